@@ -1,0 +1,4 @@
+//! Numerical building blocks (how things are solved), kept apart from the physics.
+
+pub mod quad;
+pub mod roots;

@@ -1,0 +1,245 @@
+//! Closed-form solutions of classical contact mechanics, each with its source.
+//!
+//! These are the yardsticks the numerical paths are tested against; they are written
+//! from the 3D literature forms, not from the MRD procedure. E* is the effective modulus
+//! (Eq. 2), G* the tangential one (Eq. 5), gamma the work of adhesion.
+
+use crate::profile::kappa;
+use std::f64::consts::PI;
+
+/// Hertz: sphere of radius R (paraboloid). Contact radius a = sqrt(R d).
+pub mod hertz {
+    pub fn radius(r: f64, d: f64) -> f64 {
+        (r * d).sqrt()
+    }
+    /// F = 4/3 E* R^(1/2) d^(3/2).
+    pub fn force(e_star: f64, r: f64, d: f64) -> f64 {
+        4.0 / 3.0 * e_star * r.sqrt() * d.powf(1.5)
+    }
+    /// Depth under force F.
+    pub fn depth(e_star: f64, r: f64, f: f64) -> f64 {
+        (3.0 * f / (4.0 * e_star * r.sqrt())).powf(2.0 / 3.0)
+    }
+    /// p(r) = (2/pi) E* (d/R)^(1/2) sqrt(1 - r^2/a^2) (Eq. 30).
+    pub fn pressure(e_star: f64, r_sphere: f64, d: f64, r: f64) -> f64 {
+        let a = radius(r_sphere, d);
+        if r >= a {
+            0.0
+        } else {
+            2.0 / std::f64::consts::PI * e_star * (d / r_sphere).sqrt() * (1.0 - (r / a).powi(2)).sqrt()
+        }
+    }
+}
+
+/// Cone of slope tan(theta) (Love 1939; Eqs. 31-32).
+pub mod cone {
+    use std::f64::consts::PI;
+    /// a = 2 d / (pi tan theta).
+    pub fn radius(tan_theta: f64, d: f64) -> f64 {
+        2.0 * d / (PI * tan_theta)
+    }
+    /// F = 2 E* d^2 / (pi tan theta).
+    pub fn force(e_star: f64, tan_theta: f64, d: f64) -> f64 {
+        2.0 * e_star * d * d / (PI * tan_theta)
+    }
+    /// p(r) = E* tan(theta)/2 * arccosh(a/r) (Eq. 32).
+    pub fn pressure(e_star: f64, tan_theta: f64, d: f64, r: f64) -> f64 {
+        let a = radius(tan_theta, d);
+        if r >= a {
+            0.0
+        } else {
+            0.5 * e_star * tan_theta * (a / r).acosh()
+        }
+    }
+}
+
+/// Flat cylindrical punch of radius a (Boussinesq; Eqs. 1, 28).
+pub mod flat_punch {
+    use std::f64::consts::PI;
+    pub fn force(e_star: f64, a: f64, d: f64) -> f64 {
+        2.0 * a * e_star * d
+    }
+    /// p(r) = F / (2 pi a^2 sqrt(1 - r^2/a^2)) (Eq. 28).
+    pub fn pressure(f: f64, a: f64, r: f64) -> f64 {
+        if r >= a {
+            0.0
+        } else {
+            f / (2.0 * PI * a * a * (1.0 - (r / a).powi(2)).sqrt())
+        }
+    }
+}
+
+/// Flattened paraboloid (Ejike 1981; Eqs. 24-25).
+pub mod ejike {
+    /// d(a) = a sqrt(a^2 - a0^2) / R (Eq. 24).
+    pub fn depth(r: f64, a0: f64, a: f64) -> f64 {
+        a * (a * a - a0 * a0).sqrt() / r
+    }
+    /// F(a) = 2E*/(3R) sqrt(a^2 - a0^2) (2a^2 + a0^2) (Eq. 25).
+    pub fn force(e_star: f64, r: f64, a0: f64, a: f64) -> f64 {
+        2.0 * e_star / (3.0 * r) * (a * a - a0 * a0).sqrt() * (2.0 * a * a + a0 * a0)
+    }
+}
+
+/// Power-law indenter z = c r^n (Sneddon 1965; Eqs. 19-21 with the exact prefactor).
+pub mod power_law {
+    use super::kappa;
+    /// d = kappa_n c a^n.
+    pub fn depth(c: f64, n: f64, a: f64) -> f64 {
+        kappa(n) * c * a.powf(n)
+    }
+    /// F = 2 E* n/(n+1) kappa_n c a^(n+1).
+    pub fn force(e_star: f64, c: f64, n: f64, a: f64) -> f64 {
+        2.0 * e_star * n / (n + 1.0) * kappa(n) * c * a.powf(n + 1.0)
+    }
+}
+
+/// JKR adhesive sphere (Johnson, Kendall & Roberts 1971), parametric in a.
+pub mod jkr {
+    use std::f64::consts::PI;
+    pub fn depth(e_star: f64, r: f64, gamma: f64, a: f64) -> f64 {
+        a * a / r - (2.0 * PI * a * gamma / e_star).sqrt()
+    }
+    pub fn force(e_star: f64, r: f64, gamma: f64, a: f64) -> f64 {
+        4.0 * e_star * a.powi(3) / (3.0 * r) - (8.0 * PI * gamma * e_star * a.powi(3)).sqrt()
+    }
+    /// Pull-off force magnitude under force control, 3/2 pi R gamma.
+    pub fn pull_off_force_control(r: f64, gamma: f64) -> f64 {
+        1.5 * PI * r * gamma
+    }
+    /// Force magnitude at separation under displacement control, 5/6 pi R gamma.
+    pub fn pull_off_displacement_control(r: f64, gamma: f64) -> f64 {
+        5.0 / 6.0 * PI * r * gamma
+    }
+}
+
+/// Adhesive flat punch (Kendall 1971; Eq. 34): F_A = sqrt(8 pi a^3 E* gamma).
+pub fn adhesive_flat_punch_pull_off(e_star: f64, a: f64, gamma: f64) -> f64 {
+    (8.0 * e_star * a.powi(3) * PI * gamma).sqrt()
+}
+
+/// Adhesive cone (Maugis 1995; Eq. 37): F_A = 54 gamma^2 / (pi E* tan^3 theta).
+pub fn adhesive_cone_pull_off(e_star: f64, tan_theta: f64, gamma: f64) -> f64 {
+    54.0 * gamma * gamma / (PI * e_star * tan_theta.powi(3))
+}
+
+/// Cattaneo-Mindlin tangential contact of a sphere.
+pub mod cattaneo_mindlin {
+    /// c/a = (1 - Fx/(mu FN))^(1/3) (Eq. 49).
+    pub fn stick_ratio(fx: f64, mu: f64, fn_: f64) -> f64 {
+        (1.0 - fx / (mu * fn_)).cbrt()
+    }
+    /// u_x,max = mu E*/G* d (Eq. 50).
+    pub fn max_displacement(mu: f64, e_star: f64, g_star: f64, d: f64) -> f64 {
+        mu * e_star / g_star * d
+    }
+    /// Tangential displacement at Fx (Mindlin 1949):
+    /// u = mu E*/G* d (1 - (1 - Fx/(mu FN))^(2/3)).
+    pub fn displacement(mu: f64, e_star: f64, g_star: f64, d: f64, fx: f64, fn_: f64) -> f64 {
+        mu * e_star / g_star * d * (1.0 - (1.0 - fx / (mu * fn_)).powf(2.0 / 3.0))
+    }
+    /// Traction tau(r) = mu p0 [sqrt(1 - r^2/a^2) - (c/a) sqrt(1 - r^2/c^2)], p0 = peak
+    /// Hertz pressure.
+    pub fn traction(mu: f64, p0: f64, a: f64, c: f64, r: f64) -> f64 {
+        let outer = if r < a { (1.0 - (r / a).powi(2)).sqrt() } else { 0.0 };
+        let inner = if r < c { c / a * (1.0 - (r / c).powi(2)).sqrt() } else { 0.0 };
+        mu * p0 * (outer - inner)
+    }
+}
+
+/// Frictional damping of an oscillating sphere contact (Mindlin et al. 1952; Section 7).
+pub mod mindlin_damping {
+    /// Exact dissipation per cycle for displacement amplitude A (any nu via
+    /// beta = E*/G*): W = 4 mu E* sqrt(R) Int_0^{ds} delta (A - mu beta delta)
+    /// (d - delta)^(-1/2) d delta, ds = min(d, A/(mu beta)), in closed form.
+    /// For beta = 5/4 (nu = 1/3) this is Eq. (58).
+    pub fn dissipation_exact(e_star: f64, beta: f64, r: f64, mu: f64, d: f64, amp: f64) -> f64 {
+        let ds = (amp / (mu * beta)).min(d);
+        // Antiderivatives in s = d - delta (see module docs).
+        // d^p - s^p without cancellation for s close to d.
+        let pd = |p: f64| -d.powf(p) * (p * (-ds / d).ln_1p()).exp_m1();
+        let lin = 2.0 * d * pd(0.5) - 2.0 / 3.0 * pd(1.5);
+        let quad = 2.0 * d * d * pd(0.5) - 4.0 / 3.0 * d * pd(1.5) + 0.4 * pd(2.5);
+        let integral = amp * lin - mu * beta * quad;
+        4.0 * mu * e_star * r.sqrt() * integral
+    }
+
+    /// Eq. (58) as printed, generalised from nu = 1/3 (beta = 5/4) to any beta by
+    /// replacing 4/5 with 1/beta; A_c0 = mu beta d. Valid for A <= A_c0.
+    pub fn dissipation_eq58(e_star: f64, beta: f64, r: f64, mu: f64, d: f64, amp: f64) -> f64 {
+        let ac0 = mu * beta * d;
+        let rest = ac0 - amp;
+        let bracket = ac0 * (amp - ac0) * (ac0.sqrt() - rest.sqrt())
+            + (2.0 * ac0 - amp) / 3.0 * (ac0.powf(1.5) - rest.powf(1.5))
+            - 0.2 * (ac0.powf(2.5) - rest.powf(2.5));
+        8.0 * e_star * r.sqrt() * (1.0 / beta).powf(1.5) * mu.powf(-0.5) * bracket
+    }
+
+    /// Small-amplitude limit (Eq. 61): W = 2/3 (1/beta)^2 E* R^(1/2) mu^-1 d^(-1/2) A^3,
+    /// with 1/beta = 2(1-nu)/(2-nu).
+    pub fn dissipation_small_amplitude(e_star: f64, beta: f64, r: f64, mu: f64, d: f64, amp: f64) -> f64 {
+        2.0 / 3.0 / (beta * beta) * e_star * r.sqrt() / (mu * d.sqrt()) * amp.powi(3)
+    }
+
+    /// Mindlin's small-amplitude law in force terms: W = F*^3 / (9 G* a mu F_N).
+    pub fn dissipation_force_amplitude(g_star: f64, a: f64, mu: f64, fn_: f64, f_amp: f64) -> f64 {
+        f_amp.powi(3) / (9.0 * g_star * a * mu * fn_)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn power_law_n2_is_hertz_and_n1_is_cone() {
+        let (e, r, d) = (1.3, 2.0, 0.01);
+        let a = hertz::radius(r, d);
+        let c = 1.0 / (2.0 * r);
+        assert!((power_law::depth(c, 2.0, a) - d).abs() < 1e-15);
+        assert!((power_law::force(e, c, 2.0, a) / hertz::force(e, r, d) - 1.0).abs() < 1e-13);
+        let t = 0.2;
+        let a = cone::radius(t, d);
+        assert!((power_law::force(e, t, 1.0, a) / cone::force(e, t, d) - 1.0).abs() < 1e-13);
+    }
+
+    #[test]
+    fn hertz_round_trip_and_ejike_limit() {
+        let (e, r) = (2.0, 0.5);
+        let f = 3.7;
+        assert!((hertz::force(e, r, hertz::depth(e, r, f)) / f - 1.0).abs() < 1e-14);
+        let a = 0.1;
+        let d = hertz::radius(r, 1.0).powi(0) * a * a / r;
+        assert!((ejike::depth(r, 0.0, a) - d).abs() < 1e-15);
+        assert!((ejike::force(e, r, 0.0, a) / hertz::force(e, r, d) - 1.0).abs() < 1e-13);
+    }
+
+    #[test]
+    fn jkr_parametric_minimum_is_pull_off() {
+        let (e, r, g) = (1.0, 1.0, 0.01);
+        let fmin = (1..100_000)
+            .map(|i| jkr::force(e, r, g, i as f64 * 1e-5))
+            .fold(f64::INFINITY, f64::min);
+        assert!((fmin + jkr::pull_off_force_control(r, g)).abs() < 1e-8);
+    }
+
+    #[test]
+    fn damping_forms_agree() {
+        let (e, r, mu, d) = (1.0, 1.0, 0.3, 0.01);
+        for &beta in &[1.0, 1.25, 1.5] {
+            let ac0 = mu * beta * d;
+            for &f in &[0.01, 0.3, 0.9, 1.0] {
+                let amp = f * ac0;
+                let w1 = mindlin_damping::dissipation_exact(e, beta, r, mu, d, amp);
+                let w2 = mindlin_damping::dissipation_eq58(e, beta, r, mu, d, amp);
+                // Eq. (58) as printed cancels catastrophically at small A: 1e-6 there.
+                let tol = if f < 0.1 { 1e-6 } else { 1e-12 };
+                assert!((w1 / w2 - 1.0).abs() < tol, "beta={beta} A/Ac0={f}: {w1} {w2}");
+            }
+            let amp = 1e-3 * ac0;
+            let w = mindlin_damping::dissipation_exact(e, beta, r, mu, d, amp);
+            let w0 = mindlin_damping::dissipation_small_amplitude(e, beta, r, mu, d, amp);
+            assert!((w / w0 - 1.0).abs() < 1e-3);
+        }
+    }
+}
