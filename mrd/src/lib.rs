@@ -21,3 +21,7 @@ pub mod reference;
 pub use error::{MrdError, Result};
 pub use material::{ElasticBody, Material};
 pub use profile::{Profile, Shape, TabulatedProfile};
+pub mod foundation;
+pub mod normal;
+pub mod discrete;
+pub mod pressure;
