@@ -35,10 +35,14 @@ impl Foundation {
         positive("dx", dx)?;
         positive("e_star", modulus)?;
         if gaps.is_empty() {
-            return Err(MrdError::InvalidTable("foundation needs at least one spring".into()));
+            return Err(MrdError::InvalidTable(
+                "foundation needs at least one spring".into(),
+            ));
         }
         if let Some(i) = gaps.iter().position(|g| !g.is_finite()) {
-            return Err(MrdError::InvalidTable(format!("non-finite height at index {i}")));
+            return Err(MrdError::InvalidTable(format!(
+                "non-finite height at index {i}"
+            )));
         }
         let mut sorted = gaps.to_vec();
         sorted.sort_unstable_by(f64::total_cmp);
@@ -128,7 +132,9 @@ mod tests {
 
     #[test]
     fn force_control_inverts_depth_control_exactly() {
-        let gaps: Vec<f64> = (0..1000).map(|i| ((i * 7919) % 1000) as f64 * 1e-3).collect();
+        let gaps: Vec<f64> = (0..1000)
+            .map(|i| ((i * 7919) % 1000) as f64 * 1e-3)
+            .collect();
         let f = Foundation::new(&gaps, 0.01, 2.0).unwrap();
         for &d in &[0.0005, 0.0123, 0.3004, 0.9991, 1.5] {
             let s = f.at_depth(d).unwrap();

@@ -77,7 +77,10 @@ mod tests {
         for &x in &[0.31, 0.5, 1.0, 2.0] {
             let exact = x * (x * x - 0.09f64).sqrt() / 2.0; // Eq. (23)
             let num = p.z1d_numeric(x).unwrap();
-            assert!(((num - exact) / exact).abs() <= 1e-9, "x={x}: {num} vs {exact}");
+            assert!(
+                ((num - exact) / exact).abs() <= 1e-9,
+                "x={x}: {num} vs {exact}"
+            );
         }
         assert_eq!(p.z1d(0.2), 0.0);
     }
@@ -100,13 +103,20 @@ mod tests {
             for &r in &[0.01, 0.4, 1.0, 2.5] {
                 let z = inverse(|x| p.z1d(x), &[], r).unwrap();
                 let exact = 1.3 * f64::powf(r, n);
-                assert!(((z - exact) / exact).abs() <= 1e-9, "n={n} r={r}: {z} vs {exact}");
+                assert!(
+                    ((z - exact) / exact).abs() <= 1e-9,
+                    "n={n} r={r}: {z} vs {exact}"
+                );
             }
         }
         let p = Profile::single(Shape::flattened_paraboloid(1.0, 0.5).unwrap());
         for &r in &[0.3, 0.6, 1.2] {
             let z = inverse(|x| p.z1d(x), &p.breaks(), r).unwrap();
-            assert!((z - p.z(r)).abs() <= 1e-9 * p.z(1.2), "r={r}: {z} vs {}", p.z(r));
+            assert!(
+                (z - p.z(r)).abs() <= 1e-9 * p.z(1.2),
+                "r={r}: {z} vs {}",
+                p.z(r)
+            );
         }
     }
 }

@@ -121,12 +121,13 @@ impl AxisymmetricContact {
             }
         }
         let z1d = |a: f64| self.profile.z1d(a);
-        let hi = bracket_up(|a| Ok(z1d(a)), d, 1e-3 * self.scale(), self.limit()).map_err(
-            |_| MrdError::OutOfRange {
-                needed: f64::INFINITY,
-                limit: self.limit(),
-            },
-        )?;
+        let hi =
+            bracket_up(|a| Ok(z1d(a)), d, 1e-3 * self.scale(), self.limit()).map_err(|_| {
+                MrdError::OutOfRange {
+                    needed: f64::INFINITY,
+                    limit: self.limit(),
+                }
+            })?;
         let a = brent(|a| z1d(a) - d, 0.0, hi, 1e-16 * hi)?;
         let mut s = self.state_at_radius(a)?;
         s.depth = d;
@@ -188,7 +189,8 @@ mod tests {
             assert!(rel(t.depth, d) < 1e-9);
             // Eq. (20): stiffness equals a central difference of F(d).
             let h = 1e-5 * d;
-            let k = (c.state_at_depth(d + h).unwrap().force - c.state_at_depth(d - h).unwrap().force)
+            let k = (c.state_at_depth(d + h).unwrap().force
+                - c.state_at_depth(d - h).unwrap().force)
                 / (2.0 * h);
             assert!(rel(s.stiffness, k) < 1e-6);
         }
@@ -201,11 +203,18 @@ mod tests {
         assert!(rel(s.force, cone::force(1.0, 0.1, 0.05)) < 1e-9);
         assert!(rel(s.radius, cone::radius(0.1, 0.05)) < 1e-9);
         for &n in &[0.5, 1.0, 2.0, 3.0, 4.5] {
-            let c = AxisymmetricContact::new(Profile::single(Shape::power_law(0.8, n).unwrap()), 2.0)
-                .unwrap();
+            let c =
+                AxisymmetricContact::new(Profile::single(Shape::power_law(0.8, n).unwrap()), 2.0)
+                    .unwrap();
             let s = c.state_at_force(0.37).unwrap();
-            assert!(rel(power_law::force(2.0, 0.8, n, s.radius), 0.37) < 1e-9, "n={n}");
-            assert!(rel(power_law::depth(0.8, n, s.radius), s.depth) < 1e-9, "n={n}");
+            assert!(
+                rel(power_law::force(2.0, 0.8, n, s.radius), 0.37) < 1e-9,
+                "n={n}"
+            );
+            assert!(
+                rel(power_law::depth(0.8, n, s.radius), s.depth) < 1e-9,
+                "n={n}"
+            );
         }
     }
 
@@ -253,6 +262,9 @@ mod tests {
         assert!(AxisymmetricContact::new(c.profile.clone(), -2.0).is_err());
         let t = crate::profile::TabulatedProfile::new(vec![0.0, 1.0], vec![0.0, 0.5]).unwrap();
         let c = AxisymmetricContact::new(Profile::single(Shape::Table(t)), 1.0).unwrap();
-        assert!(matches!(c.state_at_depth(10.0), Err(MrdError::OutOfRange { .. })));
+        assert!(matches!(
+            c.state_at_depth(10.0),
+            Err(MrdError::OutOfRange { .. })
+        ));
     }
 }

@@ -23,7 +23,14 @@ use crate::profile::Profile;
 use std::f64::consts::PI;
 
 /// Pressure at radius `r` for depth `d`, contact radius `a`, inner radius `c`.
-pub fn abel_pressure(profile: &Profile, e_star: f64, d: f64, a: f64, c: f64, r: f64) -> Result<f64> {
+pub fn abel_pressure(
+    profile: &Profile,
+    e_star: f64,
+    d: f64,
+    a: f64,
+    c: f64,
+    r: f64,
+) -> Result<f64> {
     let r = r.abs();
     if r >= a {
         return Ok(0.0);
@@ -55,19 +62,19 @@ pub fn abel_pressure(profile: &Profile, e_star: f64, d: f64, a: f64, c: f64, r: 
             let (u_lo, u_hi) = (0.0, (q / r).acosh());
             // Clamp: r cosh u may round past q onto the far side of a break.
             let below_q = q.next_down();
-            tanh_sinh(|u| profile.dz1d((r * u.cosh()).min(below_q)), u_lo, u_hi, tol)?
+            tanh_sinh(
+                |u| profile.dz1d((r * u.cosh()).min(below_q)),
+                u_lo,
+                u_hi,
+                tol,
+            )?
         } else if p == 0.0 {
             tanh_sinh(|x| profile.dz1d(x) / x, 0.0, q, tol)?
         } else {
             // Panel starting above r, where the kernel K = (x^2 - r^2)^(-1/2) is regular:
             // by parts, so that z1d (bounded) replaces z1d' (possibly singular at p).
             let k = |x: f64| 1.0 / (x * x - r * r).sqrt();
-            let rest = tanh_sinh(
-                |x| profile.z1d(x) * x * k(x).powi(3),
-                p,
-                q,
-                tol,
-            )?;
+            let rest = tanh_sinh(|x| profile.z1d(x) * x * k(x).powi(3), p, q, tol)?;
             profile.z1d(q) * k(q) - profile.z1d(p) * k(p) + rest
         };
         p = q;
@@ -162,7 +169,9 @@ mod tests {
             let num = abel_pressure(&p, 2.0, d, a, 0.0, r).unwrap();
             assert!(rel(num, cone::pressure(2.0, 0.3, d, r)) < 1e-9, "r/a={f}");
         }
-        assert!(abel_pressure(&p, 2.0, d, a, 0.0, 0.0).unwrap().is_infinite());
+        assert!(abel_pressure(&p, 2.0, d, a, 0.0, 0.0)
+            .unwrap()
+            .is_infinite());
     }
 
     #[test]
@@ -188,7 +197,9 @@ mod tests {
         // there handles it (stated tolerance 1e-8).
         let total = integrate_force(p, 0.6, &[0.3]).unwrap();
         assert!(rel(total, s.force) < 1e-8, "{total} vs {}", s.force);
-        assert!(abel_pressure(&prof, 1.0, s.depth, 0.6, 0.0, 0.3).unwrap().is_infinite());
+        assert!(abel_pressure(&prof, 1.0, s.depth, 0.6, 0.0, 0.3)
+            .unwrap()
+            .is_infinite());
         let near = abel_pressure(&prof, 1.0, s.depth, 0.6, 0.0, 0.6 * (1.0 - 1e-6)).unwrap();
         assert!(near < 1e-2 * abel_pressure(&prof, 1.0, s.depth, 0.6, 0.0, 0.0).unwrap());
     }

@@ -26,7 +26,10 @@ pub mod hertz {
         if r >= a {
             0.0
         } else {
-            2.0 / std::f64::consts::PI * e_star * (d / r_sphere).sqrt() * (1.0 - (r / a).powi(2)).sqrt()
+            2.0 / std::f64::consts::PI
+                * e_star
+                * (d / r_sphere).sqrt()
+                * (1.0 - (r / a).powi(2)).sqrt()
         }
     }
 }
@@ -141,8 +144,16 @@ pub mod cattaneo_mindlin {
     /// Traction tau(r) = mu p0 [sqrt(1 - r^2/a^2) - (c/a) sqrt(1 - r^2/c^2)], p0 = peak
     /// Hertz pressure.
     pub fn traction(mu: f64, p0: f64, a: f64, c: f64, r: f64) -> f64 {
-        let outer = if r < a { (1.0 - (r / a).powi(2)).sqrt() } else { 0.0 };
-        let inner = if r < c { c / a * (1.0 - (r / c).powi(2)).sqrt() } else { 0.0 };
+        let outer = if r < a {
+            (1.0 - (r / a).powi(2)).sqrt()
+        } else {
+            0.0
+        };
+        let inner = if r < c {
+            c / a * (1.0 - (r / c).powi(2)).sqrt()
+        } else {
+            0.0
+        };
         mu * p0 * (outer - inner)
     }
 }
@@ -177,7 +188,14 @@ pub mod mindlin_damping {
 
     /// Small-amplitude limit (Eq. 61): W = 2/3 (1/beta)^2 E* R^(1/2) mu^-1 d^(-1/2) A^3,
     /// with 1/beta = 2(1-nu)/(2-nu).
-    pub fn dissipation_small_amplitude(e_star: f64, beta: f64, r: f64, mu: f64, d: f64, amp: f64) -> f64 {
+    pub fn dissipation_small_amplitude(
+        e_star: f64,
+        beta: f64,
+        r: f64,
+        mu: f64,
+        d: f64,
+        amp: f64,
+    ) -> f64 {
         2.0 / 3.0 / (beta * beta) * e_star * r.sqrt() / (mu * d.sqrt()) * amp.powi(3)
     }
 
@@ -234,7 +252,10 @@ mod tests {
                 let w2 = mindlin_damping::dissipation_eq58(e, beta, r, mu, d, amp);
                 // Eq. (58) as printed cancels catastrophically at small A: 1e-6 there.
                 let tol = if f < 0.1 { 1e-6 } else { 1e-12 };
-                assert!((w1 / w2 - 1.0).abs() < tol, "beta={beta} A/Ac0={f}: {w1} {w2}");
+                assert!(
+                    (w1 / w2 - 1.0).abs() < tol,
+                    "beta={beta} A/Ac0={f}: {w1} {w2}"
+                );
             }
             let amp = 1e-3 * ac0;
             let w = mindlin_damping::dissipation_exact(e, beta, r, mu, d, amp);
