@@ -1,1 +1,140 @@
-fn main() {}
+//! `mrdw`: the MRD validation workbench command-line tool.
+
+use clap::{Parser, Subcommand};
+use compare::scene::Scene;
+use compare::scenes;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// MRD validation workbench: the method of reduction of dimensionality (1D springs)
+/// checked against closed forms and 3D boundary elements.
+///
+/// A scene (TOML case file) declares material, indenter and the outputs it wants;
+/// `mrdw run` computes only what those outputs need and writes one CSV per table, one
+/// PNG per figure and summary.json into a report folder.
+#[derive(Parser)]
+#[command(name = "mrdw", version, about, long_about, after_help = EXAMPLES)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+const EXAMPLES: &str = "Examples:
+  mrdw run                         run the default embedded scene (tour) into reports/tour/
+  mrdw run hertz                   run the embedded scene `hertz`
+  mrdw run cases/jkr.toml --out /tmp/jkr
+  mrdw scenes                      list embedded scenes
+  mrdw show jkr > my.toml          start a new scene from an embedded one
+  mrdw bench mrd                   time against error of the 1D solvers
+
+The scene format is documented in cases/README.md.";
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a scene (a .toml path or an embedded scene name; default: the tour).
+    Run {
+        /// Scene file path or embedded scene name.
+        scene: Option<String>,
+        /// Output folder (default: reports/<scene name>/). Replaced atomically.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// List the embedded scenes.
+    Scenes,
+    /// Print an embedded scene's TOML text.
+    Show {
+        /// Embedded scene name.
+        name: String,
+    },
+    /// Benchmarks: run time and error (figures for the README's performance section).
+    Bench {
+        /// What to benchmark.
+        #[arg(value_enum, default_value = "mrd")]
+        target: BenchTarget,
+        /// Largest log10 of the number of springs.
+        #[arg(long, default_value_t = 6)]
+        max_exp: u32,
+    },
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum BenchTarget {
+    /// Normal solves and oscillation cycles on N = 1e3 .. 1e6 springs.
+    Mrd,
+}
+
+fn load(scene: Option<&str>) -> Result<Scene, String> {
+    let name = scene.unwrap_or(scenes::DEFAULT);
+    let path = PathBuf::from(name);
+    if path.exists() {
+        return Scene::load(&path).map_err(|e| e.to_string());
+    }
+    if let Some(text) = scenes::get(name) {
+        return Scene::parse(text, &format!("<embedded:{name}>"), None).map_err(|e| e.to_string());
+    }
+    let hint = if name.ends_with(".toml") {
+        "no such file"
+    } else {
+        "neither a file nor an embedded scene (see `mrdw scenes`)"
+    };
+    Err(format!("scene `{name}`: {hint}"))
+}
+
+fn run(cmd: Command) -> Result<(), String> {
+    match cmd {
+        Command::Run { scene, out } => {
+            let scene = load(scene.as_deref())?;
+            let out = out.unwrap_or_else(|| PathBuf::from("reports").join(&scene.file.name));
+            let (report, files) =
+                compare::run_and_write(&scene, &out).map_err(|e| e.to_string())?;
+            for w in &report.warnings {
+                eprintln!("warning: {w}");
+            }
+            println!(
+                "scene `{}`: stages {}",
+                scene.file.name,
+                report.stages.join(", ")
+            );
+            for (k, v) in &report.scalars {
+                println!("  {k} = {v}");
+            }
+            println!("wrote {} files to {}", files.len(), out.display());
+            Ok(())
+        }
+        Command::Scenes => {
+            for (name, text) in scenes::EMBEDDED {
+                let mark = if *name == scenes::DEFAULT {
+                    " (default)"
+                } else {
+                    ""
+                };
+                println!("{name:<18} {}{mark}", scenes::title(text));
+            }
+            Ok(())
+        }
+        Command::Show { name } => {
+            let text = scenes::get(&name)
+                .ok_or_else(|| format!("no embedded scene `{name}` (see `mrdw scenes`)"))?;
+            print!("{text}");
+            Ok(())
+        }
+        Command::Bench { target, max_exp } => {
+            match target {
+                BenchTarget::Mrd => compare::bench::run_mrd(max_exp.clamp(3, 8)),
+            }
+            Ok(())
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli.command) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            // One readable line.
+            eprintln!("error: {}", e.replace('\n', " "));
+            ExitCode::from(2)
+        }
+    }
+}

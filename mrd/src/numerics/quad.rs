@@ -19,7 +19,7 @@ const T_MAX: f64 = 4.5;
 /// where nodes are exact offsets from `a`); it is never
 /// evaluated exactly at an end point.
 pub fn tanh_sinh<F: Fn(f64) -> f64>(f: F, a: f64, b: f64, tol: f64) -> Result<f64> {
-    if !(b > a) {
+    if b.partial_cmp(&a) != Some(std::cmp::Ordering::Greater) {
         return Ok(0.0);
     }
     let h = 0.5 * (b - a);

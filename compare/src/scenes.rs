@@ -1,0 +1,41 @@
+//! Scenes embedded in the binary, so a user without the repository can run them.
+//! Every file in `cases/` must be listed here (a test checks it).
+
+/// (name, TOML text); the first is the default scene.
+pub const EMBEDDED: &[(&str, &str)] = &[
+    ("tour", include_str!("../../cases/tour.toml")),
+    (
+        "adhesive-cone",
+        include_str!("../../cases/adhesive-cone.toml"),
+    ),
+    (
+        "cattaneo-mindlin",
+        include_str!("../../cases/cattaneo-mindlin.toml"),
+    ),
+    ("cone", include_str!("../../cases/cone.toml")),
+    ("ejike", include_str!("../../cases/ejike.toml")),
+    ("flat-punch", include_str!("../../cases/flat-punch.toml")),
+    ("hertz", include_str!("../../cases/hertz.toml")),
+    ("jkr", include_str!("../../cases/jkr.toml")),
+    (
+        "mindlin-damping",
+        include_str!("../../cases/mindlin-damping.toml"),
+    ),
+    ("power-law", include_str!("../../cases/power-law.toml")),
+    ("tabulated", include_str!("../../cases/tabulated.toml")),
+];
+
+/// The scene `mrdw run` runs when given none.
+pub const DEFAULT: &str = "tour";
+
+pub fn get(name: &str) -> Option<&'static str> {
+    EMBEDDED.iter().find(|(n, _)| *n == name).map(|(_, t)| *t)
+}
+
+/// One-line title of an embedded scene (its `title`, else its name).
+pub fn title(text: &str) -> String {
+    text.lines()
+        .find_map(|l| l.strip_prefix("title = "))
+        .map(|t| t.trim().trim_matches('"').to_string())
+        .unwrap_or_default()
+}
