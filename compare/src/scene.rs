@@ -257,7 +257,7 @@ pub fn read_profile_csv(path: &Path) -> Result<(Vec<f64>, Vec<f64>)> {
             continue;
         }
         let cols: Vec<&str> = line
-            .split(|c| c == ',' || c == ';' || c == '\t')
+            .split([',', ';', '\t'])
             .map(str::trim)
             .collect();
         let parsed: Option<Vec<f64>> = cols.iter().map(|c| c.parse::<f64>().ok()).collect();

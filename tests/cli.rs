@@ -1,0 +1,261 @@
+//! End-to-end tests of the `mrdw` binary: every embedded scene runs and its closed-form
+//! errors stay within stated tolerances; outputs request only their stages; bad input
+//! fails with one line, a non-zero exit and no output folder.
+
+use serde_json::Value;
+use std::path::Path;
+use std::process::Command;
+
+fn mrdw(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_mrdw"))
+        .args(args)
+        .output()
+        .expect("mrdw runs")
+}
+
+fn run_scene(scene: &str, out: &Path) -> Value {
+    let o = mrdw(&["run", scene, "--out", out.to_str().unwrap()]);
+    assert!(
+        o.status.success(),
+        "{scene}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let text = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    serde_json::from_str(&text).unwrap()
+}
+
+fn result(s: &Value, key: &str) -> f64 {
+    s["results"][key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("missing result {key} in {}", s["results"]))
+}
+
+fn stages(s: &Value) -> Vec<String> {
+    s["stages"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_str().unwrap().to_string())
+        .collect()
+}
+
+#[test]
+fn every_case_file_is_embedded() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases");
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let p = entry.unwrap().path();
+        if p.extension().is_some_and(|e| e == "toml") {
+            let name = p.file_stem().unwrap().to_str().unwrap();
+            let text = std::fs::read_to_string(&p).unwrap();
+            assert_eq!(
+                compare::scenes::get(name),
+                Some(text.as_str()),
+                "{name} not embedded or stale"
+            );
+        }
+    }
+}
+
+#[test]
+fn all_embedded_scenes_run_and_match_closed_forms() {
+    let tmp = tempfile::tempdir().unwrap();
+    for (name, _) in compare::scenes::EMBEDDED {
+        let out = tmp.path().join(name);
+        let s = run_scene(name, &out);
+        // Every CSV carries provenance and unit-bearing headers; every figure exists.
+        for f in s["files"].as_array().unwrap() {
+            let f = f.as_str().unwrap();
+            let path = out.join(f);
+            assert!(path.metadata().unwrap().len() > 0, "{name}/{f} empty");
+            if f.ends_with(".csv") {
+                let text = std::fs::read_to_string(&path).unwrap();
+                assert!(text.starts_with("# mrdw "), "{name}/{f}: no provenance");
+                assert!(text.contains("# scene file as given:"));
+                let header = text.lines().find(|l| !l.starts_with('#')).unwrap();
+                assert!(
+                    header.contains('['),
+                    "{name}/{f}: header without units: {header}"
+                );
+                let data: String = text.lines().filter(|l| !l.starts_with('#')).collect();
+                assert!(
+                    !data.contains("NaN") && !data.contains("inf"),
+                    "{name}/{f}: non-finite values"
+                );
+            }
+        }
+        let res = s["results"].as_object().unwrap();
+        // Semi-analytic paths: 1e-9 relative against the closed forms.
+        for (k, v) in res {
+            let v = v.as_f64().unwrap();
+            if k.ends_with("max_rel_error_vs_closed_form")
+                || k.ends_with("vs_cattaneo_mindlin")
+                || k.ends_with("pull_off_rel_error_vs_closed_form")
+                || k.ends_with("max_rel_dev_quadrature_vs_closed_form")
+                || k == "traction.max_error_over_mu_p0"
+            {
+                assert!(v < 1e-9, "{name}: {k} = {v}");
+            }
+            if k == "pressure.equilibrium_rel_error" {
+                assert!(v < 1e-7, "{name}: {k} = {v}");
+            }
+            // Discrete paths, at the scenes' spring counts (>= 2000 over 1.5 a): 1e-3.
+            if k == "force_depth.max_rel_dev_discrete_vs_semi_analytic"
+                || k == "damping.max_rel_error_time_stepped_vs_eq58"
+            {
+                assert!(v < 1e-3, "{name}: {k} = {v}");
+            }
+            // Adhesive pull-off on springs is first order in dx (quantised radius): 2e-3.
+            if k == "adhesion.pull_off_rel_dev_discrete_vs_semi_analytic" {
+                assert!(v < 2e-3, "{name}: {k} = {v}");
+            }
+        }
+        // MRD-only scenes never touch the 3D solver.
+        assert!(stages(&s).iter().all(|st| !st.starts_with("bem")), "{name}");
+    }
+}
+
+#[test]
+fn force_depth_request_runs_no_pressure_stage() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = tmp.path().join("fd.toml");
+    std::fs::write(
+        &scene,
+        "name = \"fd\"\n[material]\ne_star = 1.0\n[profile]\nshapes = [{ kind = \"sphere\", radius = 1.0 }]\n\
+         [[outputs]]\nkind = \"force_depth\"\nmax = 0.01\n",
+    )
+    .unwrap();
+    let s = run_scene(scene.to_str().unwrap(), &tmp.path().join("out"));
+    assert_eq!(
+        stages(&s),
+        ["hess_transform", "normal_semi_analytic", "closed_form"]
+    );
+    // The pressure scene does run the Abel stage.
+    let s = run_scene("hertz", &tmp.path().join("hertz"));
+    assert!(stages(&s).contains(&"abel_pressure".to_string()));
+    assert!(stages(&s).contains(&"normal_discrete".to_string()));
+}
+
+fn expect_failure(toml: &str, needle: &str) {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = tmp.path().join("bad.toml");
+    std::fs::write(&scene, toml).unwrap();
+    let out = tmp.path().join("out");
+    let o = mrdw(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "expected failure for {needle}: {err}"
+    );
+    assert_eq!(err.trim_end().lines().count(), 1, "not one line: {err}");
+    assert!(err.starts_with("error: "), "{err}");
+    assert!(err.contains(needle), "`{needle}` not in: {err}");
+    assert!(!out.exists(), "partial output written for {needle}");
+    let leftovers: Vec<_> = std::fs::read_dir(tmp.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(leftovers.len(), 1, "temporary files left: {leftovers:?}");
+}
+
+const SPHERE: &str = "[profile]\nshapes = [{ kind = \"sphere\", radius = 1.0 }]\n";
+const FD: &str = "[[outputs]]\nkind = \"force_depth\"\nmax = 0.01\n";
+
+#[test]
+fn bad_input_is_one_clear_line_and_no_output() {
+    let mat = "[material]\ne_star = 1.0\n";
+    expect_failure(
+        &format!("name = \"x\"\ncolour = 3\n{mat}{SPHERE}{FD}"),
+        "unknown field `colour`",
+    );
+    expect_failure(&format!("name = \"x\"\n{mat}{SPHERE}[[outputs]]\nkind = \"force_depth\"\nmax = 0.01\nspings = 3\n"), "unknown field `spings`");
+    expect_failure(
+        &format!("name = \"x\"\n[material]\ne_star = -1.0\n{SPHERE}{FD}"),
+        "e_star",
+    );
+    expect_failure(
+        &format!("name = \"x\"\n[material.indenter]\nyoungs_modulus = inf\npoisson_ratio = 0.3\n[material.substrate]\nyoungs_modulus = -5.0\npoisson_ratio = 0.3\n{SPHERE}{FD}"),
+        "youngs_modulus",
+    );
+    expect_failure(&format!("name = \"x\"\n{mat}[profile]\nshapes = [{{ kind = \"power_law\", c = 1.0, n = 0.0 }}]\n{FD}"), "invalid n = 0");
+    expect_failure(&format!("name = \"x\"\n{mat}[profile]\nshapes = [{{ kind = \"power_law\", c = 1.0, n = -1.5 }}]\n{FD}"), "invalid n = -1.5");
+    expect_failure(&format!("name = \"x\"\n{mat}[profile]\nshapes = [{{ kind = \"table\", r = [0.0, 0.5, 1.0], z = [0.0, nan, 1.0] }}]\n{FD}"), "non-finite");
+    expect_failure(
+        &format!("name = \"x\"\n{mat}[profile]\nshapes = [{{ kind = \"table\", r = [0.0, 0.5, 1.0], z = [0.0, 0.1, 0.4] }}]\n[[outputs]]\nkind = \"force_depth\"\nmax = 5.0\n"),
+        "exceeds the profile's defined range",
+    );
+    expect_failure(
+        &format!("name = \"x\"\n[material]\ne_star = 1.0\ng_star = 1.0\n{SPHERE}[[outputs]]\nkind = \"tangential\"\nmu = 0.0\nnormal_force = 1.0\n"),
+        "mu must be > 0",
+    );
+    expect_failure(
+        &format!("name = \"x\"\n[material]\ne_star = 1.0\ng_star = 1.0\n{SPHERE}[[outputs]]\nkind = \"damping\"\nmu = -0.3\ndepth = 0.01\n"),
+        "mu must be > 0",
+    );
+    expect_failure(&format!("name = \"x\"\n{mat}{SPHERE}[[outputs]]\nkind = \"tangential\"\nmu = 0.3\nnormal_force = 1.0\n"), "g_star");
+    expect_failure(
+        &format!("name = \"x\"\n{mat}{SPHERE}"),
+        "missing field `outputs`",
+    );
+    expect_failure("name = \"x\"\n[material\n", "bad.toml:2");
+}
+
+#[test]
+fn missing_scene_and_table_file_errors() {
+    let o = mrdw(&["run", "no-such-scene"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("neither a file nor an embedded scene"));
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = tmp.path().join("t.toml");
+    let table = tmp.path().join("tip.csv");
+    std::fs::write(&table, "r,z\n0,0\n0.5,0.1\n1.0,oops\n").unwrap();
+    std::fs::write(
+        &scene,
+        format!("name = \"t\"\n[material]\ne_star = 1.0\n[profile]\nshapes = [{{ kind = \"table\", file = \"tip.csv\" }}]\n{FD}"),
+    )
+    .unwrap();
+    let o = mrdw(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        tmp.path().join("o").to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(err.contains("tip.csv:4"), "{err}");
+    // A valid file table works and matches the inline one.
+    std::fs::write(&table, "# worn tip\nr,z\n0,0\n0.5,0.1\n1.0,0.4\n").unwrap();
+    let s = run_scene(scene.to_str().unwrap(), &tmp.path().join("o"));
+    assert!(result(&s, "force_depth.final_force") > 0.0);
+}
+
+#[test]
+fn scenes_and_show_and_help() {
+    let o = mrdw(&["scenes"]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("tour") && text.contains("(default)") && text.contains("jkr"));
+    let o = mrdw(&["show", "hertz"]);
+    assert_eq!(
+        String::from_utf8_lossy(&o.stdout),
+        compare::scenes::get("hertz").unwrap()
+    );
+    let o = mrdw(&["--help"]);
+    assert!(String::from_utf8_lossy(&o.stdout).contains("Examples:"));
+}
+
+#[test]
+fn rerun_replaces_report_and_csvs_are_deterministic() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("r");
+    run_scene("jkr", &out);
+    let first = std::fs::read(out.join("adhesion.csv")).unwrap();
+    std::fs::write(out.join("stale.txt"), "old").unwrap();
+    run_scene("jkr", &out);
+    assert_eq!(std::fs::read(out.join("adhesion.csv")).unwrap(), first);
+    assert!(!out.join("stale.txt").exists());
+}
