@@ -256,10 +256,7 @@ pub fn read_profile_csv(path: &Path) -> Result<(Vec<f64>, Vec<f64>)> {
         if line.is_empty() || line.starts_with('#') {
             continue;
         }
-        let cols: Vec<&str> = line
-            .split([',', ';', '\t'])
-            .map(str::trim)
-            .collect();
+        let cols: Vec<&str> = line.split([',', ';', '\t']).map(str::trim).collect();
         let parsed: Option<Vec<f64>> = cols.iter().map(|c| c.parse::<f64>().ok()).collect();
         match parsed {
             Some(v) if v.len() == 2 => {
