@@ -1,1 +1,18 @@
-//! placeholder
+//! # bem3d: 3D FFT boundary-element half-space contact
+//!
+//! Frictionless, non-adhesive normal contact of a rigid body with an arbitrary height
+//! map against a linear elastic half-space of modulus E*. Knows nothing of MRD: it takes
+//! plain height arrays (row-major `ny x nx`). Operators ([`operator`]) are apart from the
+//! solver ([`solver`]).
+
+// Numerical kernels index several parallel arrays with one index.
+#![allow(clippy::needless_range_loop)]
+
+pub mod error;
+pub mod fft;
+pub mod operator;
+
+pub use error::{BemError, Result};
+pub mod solver;
+pub use operator::{Compliance, DenseCompliance, NonPeriodicHalfSpace, PeriodicHalfSpace};
+pub use solver::{ContactSolver, Load, Solution, SolverOptions};

@@ -1,0 +1,372 @@
+//! Surface compliance operators u = K p of an elastic half-space (modulus E*).
+//!
+//! Physics apart from the solver: the periodic and the non-periodic half-space are two
+//! types behind one trait, and a dense matrix (for tests on tiny grids) is a third.
+//! Arrays are row-major `ny x nx` (index `j * nx + i`), cell sizes `hx = lx/nx`,
+//! `hy = ly/ny`; pressures are cell averages, displacements are taken at cell centres.
+
+use crate::fft::Fft2;
+use rustfft::num_complex::Complex64;
+use std::f64::consts::PI;
+
+/// A linear surface compliance operator.
+pub trait Compliance: Send {
+    fn nx(&self) -> usize;
+    fn ny(&self) -> usize;
+    fn lx(&self) -> f64;
+    fn ly(&self) -> f64;
+    fn e_star(&self) -> f64;
+    /// Periodic operators have no defined mean displacement (the k = 0 mode is left to
+    /// the load or approach constraint).
+    fn is_periodic(&self) -> bool;
+    /// u = K p (both `ny x nx`); `u` is overwritten.
+    fn apply(&mut self, p: &[f64], u: &mut [f64]);
+    fn cells(&self) -> usize {
+        self.nx() * self.ny()
+    }
+    fn cell_area(&self) -> f64 {
+        self.lx() * self.ly() / self.cells() as f64
+    }
+}
+
+/// Periodic half-space: spectral Green's function, surface stiffness E* |k| / 2
+/// (Stanley & Kato 1997), so `u_hat = 2 p_hat / (E* |k|)` for k != 0 and 0 for k = 0.
+pub struct PeriodicHalfSpace {
+    nx: usize,
+    ny: usize,
+    lx: f64,
+    ly: f64,
+    e_star: f64,
+    fft: Fft2,
+    kernel: Vec<f64>,
+    spec: Vec<Complex64>,
+}
+
+/// Signed frequency index of bin `r` of an n-point DFT.
+fn signed(r: usize, n: usize) -> f64 {
+    if r <= n / 2 {
+        r as f64
+    } else {
+        r as f64 - n as f64
+    }
+}
+
+impl PeriodicHalfSpace {
+    pub fn new(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Self {
+        let fft = Fft2::new(nx, ny);
+        let nc = fft.nc();
+        let mut kernel = vec![0.0; nc * ny];
+        for c in 0..nc {
+            for r in 0..ny {
+                let kx = 2.0 * PI * c as f64 / lx;
+                let ky = 2.0 * PI * signed(r, ny) / ly;
+                let k = (kx * kx + ky * ky).sqrt();
+                kernel[c * ny + r] = if k > 0.0 { 2.0 / (e_star * k) } else { 0.0 };
+            }
+        }
+        let spec = vec![Complex64::default(); fft.spectrum_len()];
+        Self {
+            nx,
+            ny,
+            lx,
+            ly,
+            e_star,
+            fft,
+            kernel,
+            spec,
+        }
+    }
+}
+
+impl Compliance for PeriodicHalfSpace {
+    fn nx(&self) -> usize {
+        self.nx
+    }
+    fn ny(&self) -> usize {
+        self.ny
+    }
+    fn lx(&self) -> f64 {
+        self.lx
+    }
+    fn ly(&self) -> f64 {
+        self.ly
+    }
+    fn e_star(&self) -> f64 {
+        self.e_star
+    }
+    fn is_periodic(&self) -> bool {
+        true
+    }
+    fn apply(&mut self, p: &[f64], u: &mut [f64]) {
+        self.fft.forward(p, &mut self.spec);
+        for (s, k) in self.spec.iter_mut().zip(&self.kernel) {
+            *s *= *k;
+        }
+        self.fft.inverse(&mut self.spec, u);
+    }
+}
+
+/// Love (1929): surface displacement at offset (x, y) from the centre of a rectangle of
+/// half-widths (a, b) under unit uniform pressure, times pi E*. Written with asinh so that
+/// far-field values keep their precision.
+pub fn love_coefficient(x: f64, y: f64, a: f64, b: f64) -> f64 {
+    let (k, l, m, n) = (x + a, x - a, y + b, y - b);
+    let t = |s: f64, p: f64, q: f64| -> f64 {
+        // s [asinh(p/|s|) - asinh(q/|s|)]; s = 0 contributes 0.
+        if s == 0.0 {
+            0.0
+        } else {
+            s * ((p / s.abs()).asinh() - (q / s.abs()).asinh())
+        }
+    };
+    t(k, m, n) + t(l, n, m) + t(m, k, l) + t(n, l, k)
+}
+
+/// Non-periodic half-space: piecewise-constant pressure cells, Love's influence
+/// coefficients, linear convolution by zero-padding to `2nx x 2ny` (DC-FFT,
+/// Liu, Wang & Liu 2000).
+pub struct NonPeriodicHalfSpace {
+    nx: usize,
+    ny: usize,
+    lx: f64,
+    ly: f64,
+    e_star: f64,
+    fft: Fft2,
+    kernel: Vec<f64>,
+    spec: Vec<Complex64>,
+    padded: Vec<f64>,
+}
+
+impl NonPeriodicHalfSpace {
+    pub fn new(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Self {
+        let (px, py) = (2 * nx, 2 * ny);
+        let (hx, hy) = (lx / nx as f64, ly / ny as f64);
+        let mut fft = Fft2::new(px, py);
+        let mut k_real = vec![0.0; px * py];
+        for j in 0..py {
+            let oy = if j < ny {
+                j as f64
+            } else if j > ny {
+                j as f64 - py as f64
+            } else {
+                continue;
+            };
+            for i in 0..px {
+                let ox = if i < nx {
+                    i as f64
+                } else if i > nx {
+                    i as f64 - px as f64
+                } else {
+                    continue;
+                };
+                k_real[j * px + i] =
+                    love_coefficient(ox * hx, oy * hy, 0.5 * hx, 0.5 * hy) / (PI * e_star);
+            }
+        }
+        let mut spec = vec![Complex64::default(); fft.spectrum_len()];
+        fft.forward(&k_real, &mut spec);
+        // The kernel is even in x and y, so its spectrum is real.
+        let kernel = spec.iter().map(|c| c.re).collect();
+        Self {
+            nx,
+            ny,
+            lx,
+            ly,
+            e_star,
+            fft,
+            kernel,
+            spec,
+            padded: vec![0.0; px * py],
+        }
+    }
+}
+
+impl Compliance for NonPeriodicHalfSpace {
+    fn nx(&self) -> usize {
+        self.nx
+    }
+    fn ny(&self) -> usize {
+        self.ny
+    }
+    fn lx(&self) -> f64 {
+        self.lx
+    }
+    fn ly(&self) -> f64 {
+        self.ly
+    }
+    fn e_star(&self) -> f64 {
+        self.e_star
+    }
+    fn is_periodic(&self) -> bool {
+        false
+    }
+    fn apply(&mut self, p: &[f64], u: &mut [f64]) {
+        let (nx, ny, px) = (self.nx, self.ny, 2 * self.nx);
+        self.padded.iter_mut().for_each(|v| *v = 0.0);
+        for j in 0..ny {
+            self.padded[j * px..j * px + nx].copy_from_slice(&p[j * nx..(j + 1) * nx]);
+        }
+        self.fft.forward(&self.padded, &mut self.spec);
+        for (s, k) in self.spec.iter_mut().zip(&self.kernel) {
+            *s *= *k;
+        }
+        self.fft.inverse(&mut self.spec, &mut self.padded);
+        for j in 0..ny {
+            u[j * nx..(j + 1) * nx].copy_from_slice(&self.padded[j * px..j * px + nx]);
+        }
+    }
+}
+
+/// A dense influence matrix (row-major n x n), for tests and tiny grids.
+pub struct DenseCompliance {
+    nx: usize,
+    ny: usize,
+    lx: f64,
+    ly: f64,
+    e_star: f64,
+    periodic: bool,
+    pub matrix: Vec<f64>,
+}
+
+impl DenseCompliance {
+    /// Non-periodic matrix straight from Love's formula.
+    pub fn love(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Self {
+        let (hx, hy) = (lx / nx as f64, ly / ny as f64);
+        let n = nx * ny;
+        let mut matrix = vec![0.0; n * n];
+        for a in 0..n {
+            for b in 0..n {
+                let (ia, ja, ib, jb) = (a % nx, a / nx, b % nx, b / nx);
+                let x = (ia as f64 - ib as f64) * hx;
+                let y = (ja as f64 - jb as f64) * hy;
+                matrix[a * n + b] = love_coefficient(x, y, 0.5 * hx, 0.5 * hy) / (PI * e_star);
+            }
+        }
+        Self {
+            nx,
+            ny,
+            lx,
+            ly,
+            e_star,
+            periodic: false,
+            matrix,
+        }
+    }
+
+    /// Periodic matrix by a naive inverse DFT of 2/(E*|k|) (independent of the FFT).
+    pub fn periodic(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Self {
+        let n = nx * ny;
+        let mut green = vec![0.0; n];
+        for dj in 0..ny {
+            for di in 0..nx {
+                let mut s = 0.0;
+                for r in 0..ny {
+                    for c in 0..nx {
+                        let (fx, fy) = (signed(c, nx), signed(r, ny));
+                        let k = 2.0 * PI * ((fx / lx).powi(2) + (fy / ly).powi(2)).sqrt();
+                        if k > 0.0 {
+                            let ph = 2.0
+                                * PI
+                                * (fx * di as f64 / nx as f64 + fy * dj as f64 / ny as f64);
+                            s += 2.0 / (e_star * k) * ph.cos();
+                        }
+                    }
+                }
+                green[dj * nx + di] = s / n as f64;
+            }
+        }
+        let mut matrix = vec![0.0; n * n];
+        for a in 0..n {
+            for b in 0..n {
+                let di = (a % nx + nx - b % nx) % nx;
+                let dj = (a / nx + ny - b / nx) % ny;
+                matrix[a * n + b] = green[dj * nx + di];
+            }
+        }
+        Self {
+            nx,
+            ny,
+            lx,
+            ly,
+            e_star,
+            periodic: true,
+            matrix,
+        }
+    }
+}
+
+impl Compliance for DenseCompliance {
+    fn nx(&self) -> usize {
+        self.nx
+    }
+    fn ny(&self) -> usize {
+        self.ny
+    }
+    fn lx(&self) -> f64 {
+        self.lx
+    }
+    fn ly(&self) -> f64 {
+        self.ly
+    }
+    fn e_star(&self) -> f64 {
+        self.e_star
+    }
+    fn is_periodic(&self) -> bool {
+        self.periodic
+    }
+    fn apply(&mut self, p: &[f64], u: &mut [f64]) {
+        let n = p.len();
+        for (a, ua) in u.iter_mut().enumerate() {
+            *ua = self.matrix[a * n..(a + 1) * n]
+                .iter()
+                .zip(p)
+                .map(|(m, x)| m * x)
+                .sum();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check(fft: &mut dyn Compliance, dense: &mut DenseCompliance) {
+        let n = fft.cells();
+        let p: Vec<f64> = (0..n)
+            .map(|k| ((k * 2654435761) % 1000) as f64 / 1000.0)
+            .collect();
+        let (mut u1, mut u2) = (vec![0.0; n], vec![0.0; n]);
+        fft.apply(&p, &mut u1);
+        dense.apply(&p, &mut u2);
+        let scale = u2.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (a, b) in u1.iter().zip(&u2) {
+            assert!((a - b).abs() <= 1e-12 * scale, "{a} vs {b}");
+        }
+    }
+
+    #[test]
+    fn fft_operators_match_dense_matrices_to_1e12() {
+        for &(nx, ny) in &[(8usize, 8usize), (7, 5), (12, 9)] {
+            let mut np = NonPeriodicHalfSpace::new(nx, ny, 1.0, 0.8, 2.0);
+            check(&mut np, &mut DenseCompliance::love(nx, ny, 1.0, 0.8, 2.0));
+            let mut pe = PeriodicHalfSpace::new(nx, ny, 1.0, 0.8, 2.0);
+            check(
+                &mut pe,
+                &mut DenseCompliance::periodic(nx, ny, 1.0, 0.8, 2.0),
+            );
+        }
+    }
+
+    #[test]
+    fn love_coefficient_centre_value() {
+        // Centre of a square of side 2a: u = (4 a ln(1 + sqrt 2)) / (pi E*) * 2 ...
+        // Johnson (1985) 3.25: w(0) = (2/pi) p a 2 ln(1+sqrt2) (1-nu^2)/E for side 2a.
+        let a = 0.5;
+        let f = love_coefficient(0.0, 0.0, a, a);
+        assert!((f - 8.0 * a * (1.0 + 2f64.sqrt()).ln()).abs() < 1e-14);
+        // Far field: a point force, u = F / (pi E* r), F = 4ab.
+        let r = 1e3;
+        let f = love_coefficient(r, 0.0, a, a);
+        assert!((f / (4.0 * a * a / r) - 1.0).abs() < 1e-6);
+    }
+}

@@ -1,0 +1,512 @@
+//! Verification of the 3D solver against closed forms (Hertz, flat punch, Westergaard),
+
+#![allow(clippy::needless_range_loop)]
+//! an independent dense solve, invariances and determinism. Small grids only.
+
+use bem3d::*;
+use std::f64::consts::PI;
+
+fn rel(a: f64, b: f64) -> f64 {
+    ((a - b) / b).abs()
+}
+
+/// Heights of a sphere of radius r (peaks up) on an n x n grid of side l, its apex on
+/// the centre of cell (n/2, n/2) (as in the peer codes' Hertz benchmark).
+fn sphere(n: usize, l: f64, r: f64) -> Vec<f64> {
+    let h = l / n as f64;
+    let mut z = Vec::with_capacity(n * n);
+    for j in 0..n {
+        for i in 0..n {
+            let (x, y) = (
+                (i as f64 - (n / 2) as f64) * h,
+                (j as f64 - (n / 2) as f64) * h,
+            );
+            z.push(-(x * x + y * y) / (2.0 * r));
+        }
+    }
+    z
+}
+
+struct HertzErrors {
+    depth: f64,
+    peak: f64,
+    radius_fit: f64,
+    radius_area: f64,
+}
+
+/// Force-controlled Hertz with contact radius a = l/4 (R = 1, E* = 1).
+fn hertz_errors(n: usize) -> HertzErrors {
+    let (l, r, e) = (1.0f64, 1.0f64, 1.0f64);
+    let a = l / 4.0;
+    let f = 4.0 * e * a.powi(3) / (3.0 * r);
+    let op = NonPeriodicHalfSpace::new(n, n, l, l, e);
+    let mut s = ContactSolver::new(op, &sphere(n, l, r), None).unwrap();
+    let sol = s
+        .solve(
+            Load::Force(f),
+            &SolverOptions {
+                tolerance: 1e-10,
+                max_iterations: 5000,
+            },
+            None,
+        )
+        .unwrap();
+    let d = a * a / r;
+    let p0 = 2.0 * e * a / (PI * r);
+    let pmax = sol.pressure.iter().fold(0.0f64, |m, &v| m.max(v));
+    // Radius from a least-squares fit of p^2 = p0^2 (1 - r^2/a^2) over the inner 80 % of
+    // the contact (the pixel count converges only linearly).
+    let h = l / n as f64;
+    let (mut sx, mut sy, mut sxx, mut sxy, mut m) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for j in 0..n {
+        for i in 0..n {
+            let p = sol.pressure[j * n + i];
+            let (x, y) = (
+                (i as f64 - (n / 2) as f64) * h,
+                (j as f64 - (n / 2) as f64) * h,
+            );
+            let rr = x * x + y * y;
+            if p > 0.0 && rr < (0.8 * a).powi(2) {
+                let (u, v) = (rr, p * p);
+                sx += u;
+                sy += v;
+                sxx += u * u;
+                sxy += u * v;
+                m += 1.0;
+            }
+        }
+    }
+    let slope = (m * sxy - sx * sy) / (m * sxx - sx * sx);
+    let icpt = (sy - slope * sx) / m;
+    let a_fit = (-icpt / slope).sqrt();
+    HertzErrors {
+        depth: rel(sol.approach, d),
+        peak: rel(pmax, p0),
+        radius_fit: rel(a_fit, a),
+        radius_area: rel((sol.contact_area / PI).sqrt(), a),
+    }
+}
+
+#[test]
+fn hertz_at_256() {
+    // Required: 1 %. Measured: approach 8.9e-6, peak 1.2e-5, pixel-count radius 2.2e-3,
+    // the same figures Tamaas and ContactMechanics give on this discrete problem.
+    let e = hertz_errors(256);
+    assert!(e.depth < 2e-5, "approach error {}", e.depth);
+    assert!(e.peak < 2e-5, "peak pressure error {}", e.peak);
+    assert!(e.radius_fit < 1e-3, "radius (fit) error {}", e.radius_fit);
+    assert!(
+        e.radius_area < 3e-3,
+        "radius (area) error {}",
+        e.radius_area
+    );
+}
+
+/// Least-squares slope of log(error) against log(cell size).
+fn order(ns: &[usize], errs: &[f64]) -> f64 {
+    let pts: Vec<(f64, f64)> = ns
+        .iter()
+        .zip(errs)
+        .map(|(&n, &e)| ((1.0 / n as f64).ln(), e.ln()))
+        .collect();
+    let m = pts.len() as f64;
+    let (mx, my) = (
+        pts.iter().map(|p| p.0).sum::<f64>() / m,
+        pts.iter().map(|p| p.1).sum::<f64>() / m,
+    );
+    pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>()
+        / pts.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>()
+}
+
+#[test]
+fn hertz_grid_refinement() {
+    // Approach and peak pressure converge at second order in the cell size; the
+    // pixel-count radius at first order.
+    let ns = [32usize, 64, 128, 256];
+    let e: Vec<HertzErrors> = ns.iter().map(|&n| hertz_errors(n)).collect();
+    let od = order(&ns, &e.iter().map(|x| x.depth).collect::<Vec<_>>());
+    let op = order(&ns, &e.iter().map(|x| x.peak).collect::<Vec<_>>());
+    let oa = order(&ns, &e.iter().map(|x| x.radius_area).collect::<Vec<_>>());
+    assert!((1.6..2.4).contains(&od), "approach order {od}");
+    assert!((1.7..2.3).contains(&op), "peak order {op}");
+    assert!((0.7..1.5).contains(&oa), "area-radius order {oa}");
+}
+
+#[test]
+fn flat_punch_stiffness() {
+    let (n, l, e) = (96, 1.0, 1.0);
+    let a = 0.4;
+    let h = l / n as f64;
+    let mask: Vec<bool> = (0..n * n)
+        .map(|k| {
+            let (x, y) = (
+                ((k % n) as f64 + 0.5) * h - 0.5,
+                ((k / n) as f64 + 0.5) * h - 0.5,
+            );
+            x * x + y * y < a * a
+        })
+        .collect();
+    let op = NonPeriodicHalfSpace::new(n, n, l, l, e);
+    let mut s = ContactSolver::new(op, &vec![0.0; n * n], Some(mask.clone())).unwrap();
+    let sol = s
+        .solve(Load::Force(1.0), &SolverOptions::default(), None)
+        .unwrap();
+    // The disc of cells has area n_cells h^2; its equivalent radius is the fair one.
+    let a_eq = (mask.iter().filter(|&&m| m).count() as f64 * h * h / PI).sqrt();
+    let k = sol.force / sol.approach;
+    assert!(
+        rel(k, 2.0 * a_eq * e) < 0.02,
+        "k = {k}, 2aE* = {}",
+        2.0 * a_eq * e
+    ); // Eq. (1)
+    let kt = s.tangent_stiffness(&sol, 1e-10).unwrap();
+    assert!(rel(kt, k) < 1e-6, "tangent {kt} vs secant {k}");
+}
+
+#[test]
+fn westergaard_wavy_surface() {
+    // z = D cos(2 pi x / lam) on a periodic 1D wave (ny small), mean pressure half of
+    // full contact p* = pi E* D / lam: sin^2(pi a / lam) = pbar / p*.
+    let (nx, ny, lam, e, amp) = (256, 4, 1.0, 1.0, 0.01);
+    let heights: Vec<f64> = (0..nx * ny)
+        .map(|k| amp * (2.0 * PI * ((k % nx) as f64 + 0.5) / nx as f64).cos())
+        .collect();
+    let p_star = PI * e * amp / lam;
+    let pbar = 0.5 * p_star;
+    let op = PeriodicHalfSpace::new(nx, ny, lam, lam * ny as f64 / nx as f64, e);
+    let mut s = ContactSolver::new(op, &heights, None).unwrap();
+    let sol = s
+        .solve(Load::MeanPressure(pbar), &SolverOptions::default(), None)
+        .unwrap();
+    let a = lam / PI * (pbar / p_star).sqrt().asin();
+    let measured = sol.contact_cells as f64 / ny as f64 / nx as f64 * lam / 2.0;
+    assert!(
+        (measured - a).abs() <= lam / nx as f64,
+        "half-width {measured} vs {a}"
+    );
+    let s2 = (PI * a / lam).sin().powi(2);
+    let mut worst = 0.0f64;
+    for i in 0..nx {
+        let x = (i as f64 + 0.5) / nx as f64 * lam;
+        let xc = if x > 0.5 * lam { x - lam } else { x }; // centred on the crest at x = 0
+        let sx2 = (PI * xc / lam).sin().powi(2);
+        let exact = if sx2 < s2 {
+            2.0 * pbar * (PI * xc / lam).cos() / s2 * (s2 - sx2).sqrt()
+        } else {
+            0.0
+        };
+        worst = worst.max((sol.pressure[i] - exact).abs());
+    }
+    let peak = 2.0 * pbar / s2 * s2.sqrt();
+    assert!(
+        worst < 0.02 * peak,
+        "max pressure deviation {worst} of peak {peak}"
+    );
+}
+
+/// Dense reference: the same discrete LCP solved by an active-set method with direct
+/// (faer LU) solves on the contact set, force-controlled.
+fn dense_reference(dense: &DenseCompliance, z: &[f64], force: f64, area: f64) -> (Vec<f64>, f64) {
+    use faer::prelude::*;
+    use faer::Mat;
+    let n = z.len();
+    let mut active: Vec<bool> = vec![true; n];
+    for _ in 0..200 {
+        let idx: Vec<usize> = (0..n).filter(|&i| active[i]).collect();
+        let m = idx.len();
+        // [K_CC  -1] [p]   [-z_C]
+        // [A 1^T  0] [d] = [ W  ]
+        let a = Mat::<f64>::from_fn(m + 1, m + 1, |r, c| {
+            if r < m && c < m {
+                dense.matrix[idx[r] * n + idx[c]]
+            } else if r < m {
+                -1.0
+            } else if c < m {
+                area
+            } else {
+                0.0
+            }
+        });
+        let b = Mat::<f64>::from_fn(m + 1, 1, |r, _| if r < m { -z[idx[r]] } else { force });
+        let x = a.partial_piv_lu().solve(&b);
+        let mut p = vec![0.0; n];
+        for (k, &i) in idx.iter().enumerate() {
+            p[i] = x[(k, 0)];
+        }
+        let d = x[(m, 0)];
+        let mut u = vec![0.0; n];
+        for i in 0..n {
+            u[i] = (0..n).map(|j| dense.matrix[i * n + j] * p[j]).sum();
+        }
+        let mut changed = false;
+        for i in 0..n {
+            if active[i] && p[i] < 0.0 {
+                active[i] = false;
+                changed = true;
+            }
+        }
+        if !changed {
+            for i in 0..n {
+                if !active[i] && u[i] + z[i] - d < -1e-15 {
+                    active[i] = true;
+                    changed = true;
+                }
+            }
+        }
+        if !changed {
+            return (p, d);
+        }
+    }
+    panic!("active set did not settle");
+}
+
+#[test]
+fn fft_solver_matches_dense_active_set_solve() {
+    for &(n, periodic) in &[(16usize, false), (20, true), (32, false)] {
+        let l = 1.0;
+        // A bumpy smooth surface with several contact spots.
+        let h: Vec<f64> = (0..n * n)
+            .map(|k| {
+                let (x, y) = ((k % n) as f64 / n as f64, (k / n) as f64 / n as f64);
+                0.01 * ((2.0 * PI * x).cos()
+                    + 0.5 * (4.0 * PI * y + 1.0).cos()
+                    + 0.3 * (6.0 * PI * (x + y)).sin())
+            })
+            .collect();
+        let hmax = h.iter().fold(f64::NEG_INFINITY, |m, &v| m.max(v));
+        let z: Vec<f64> = h.iter().map(|v| hmax - v).collect();
+        let force = 0.004;
+        let area = l * l / (n * n) as f64;
+        let opts = SolverOptions {
+            tolerance: 1e-14,
+            max_iterations: 20_000,
+        };
+        let (sol, dense) = if periodic {
+            let mut s =
+                ContactSolver::new(PeriodicHalfSpace::new(n, n, l, l, 1.0), &h, None).unwrap();
+            (
+                s.solve(Load::Force(force), &opts, None).unwrap(),
+                DenseCompliance::periodic(n, n, l, l, 1.0),
+            )
+        } else {
+            let mut s =
+                ContactSolver::new(NonPeriodicHalfSpace::new(n, n, l, l, 1.0), &h, None).unwrap();
+            (
+                s.solve(Load::Force(force), &opts, None).unwrap(),
+                DenseCompliance::love(n, n, l, l, 1.0),
+            )
+        };
+        let (p_ref, d_ref) = dense_reference(&dense, &z, force, area);
+        let pmax = p_ref.iter().fold(0.0f64, |m, &v| m.max(v));
+        for (a, b) in sol.pressure.iter().zip(&p_ref) {
+            assert!(
+                (a - b).abs() <= 1e-9 * pmax,
+                "n={n} periodic={periodic}: {a} vs {b}"
+            );
+        }
+        assert!(rel(sol.force, force) < 1e-12);
+        assert!(
+            (sol.approach - d_ref).abs() <= 1e-9 * d_ref.abs().max(1e-3),
+            "{} vs {d_ref}",
+            sol.approach
+        );
+    }
+}
+
+fn rough(nx: usize, ny: usize, seed: u64) -> Vec<f64> {
+    // Deterministic smooth random-ish surface: a few sines with hashed phases.
+    let mut h = vec![0.0; nx * ny];
+    let mut state = seed;
+    for m in 1..6 {
+        for k in 0..3 {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let ph = (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 * PI;
+            let (fx, fy) = (m as f64, (k as f64) - 1.0);
+            for j in 0..ny {
+                for i in 0..nx {
+                    let arg =
+                        2.0 * PI * (fx * i as f64 / nx as f64 + fy * j as f64 / ny as f64) + ph;
+                    h[j * nx + i] += arg.cos() / (m * m) as f64;
+                }
+            }
+        }
+    }
+    h
+}
+
+#[test]
+fn invariances() {
+    let (nx, ny) = (48, 40);
+    let h = rough(nx, ny, 7);
+    let opts = SolverOptions {
+        tolerance: 1e-12,
+        max_iterations: 10_000,
+    };
+    let load = Load::MeanPressure(0.02);
+    let mut base =
+        ContactSolver::new(PeriodicHalfSpace::new(nx, ny, 1.2, 1.0, 1.0), &h, None).unwrap();
+    let s0 = base.solve(load, &opts, None).unwrap();
+    let scale = s0.pressure.iter().fold(0.0f64, |m, &v| m.max(v));
+    // Periodic translation by (5, 3) cells.
+    let shifted: Vec<f64> = (0..nx * ny)
+        .map(|k| h[((k / nx + ny - 3) % ny) * nx + (k % nx + nx - 5) % nx])
+        .collect();
+    let mut s = ContactSolver::new(
+        PeriodicHalfSpace::new(nx, ny, 1.2, 1.0, 1.0),
+        &shifted,
+        None,
+    )
+    .unwrap();
+    let s1 = s.solve(load, &opts, None).unwrap();
+    for k in 0..nx * ny {
+        let src = ((k / nx + ny - 3) % ny) * nx + (k % nx + nx - 5) % nx;
+        assert!((s1.pressure[k] - s0.pressure[src]).abs() < 1e-7 * scale);
+    }
+    // Transposed grid.
+    let tr: Vec<f64> = (0..nx * ny).map(|k| h[(k % ny) * nx + k / ny]).collect();
+    let mut s =
+        ContactSolver::new(PeriodicHalfSpace::new(ny, nx, 1.0, 1.2, 1.0), &tr, None).unwrap();
+    let s2 = s.solve(load, &opts, None).unwrap();
+    for k in 0..nx * ny {
+        assert!((s2.pressure[k] - s0.pressure[(k % ny) * nx + k / ny]).abs() < 1e-7 * scale);
+    }
+    // Heights and load scaled together: pressure scales, contact set unchanged.
+    let hs: Vec<f64> = h.iter().map(|v| 3.0 * v).collect();
+    let mut s =
+        ContactSolver::new(PeriodicHalfSpace::new(nx, ny, 1.2, 1.0, 1.0), &hs, None).unwrap();
+    let s3 = s.solve(Load::MeanPressure(0.06), &opts, None).unwrap();
+    assert_eq!(s3.contact_cells, s0.contact_cells);
+    for k in 0..nx * ny {
+        assert!((s3.pressure[k] - 3.0 * s0.pressure[k]).abs() < 3e-7 * scale);
+    }
+    assert!(rel(s3.approach, 3.0 * s0.approach) < 1e-7);
+}
+
+#[test]
+fn tangent_stiffness_matches_central_difference() {
+    let (n, l) = (64, 1.0);
+    let h = rough(n, n, 3);
+    let mut s = ContactSolver::new(NonPeriodicHalfSpace::new(n, n, l, l, 1.0), &h, None).unwrap();
+    let opts = SolverOptions {
+        tolerance: 1e-13,
+        max_iterations: 20_000,
+    };
+    let sol = s.solve(Load::Force(0.05), &opts, None).unwrap();
+    let kt = s.tangent_stiffness(&sol, 1e-12).unwrap();
+    let dd = 1e-6 * sol.approach;
+    let fp = s
+        .solve(
+            Load::Approach(sol.approach + dd),
+            &opts,
+            Some(&sol.pressure),
+        )
+        .unwrap()
+        .force;
+    let fm = s
+        .solve(
+            Load::Approach(sol.approach - dd),
+            &opts,
+            Some(&sol.pressure),
+        )
+        .unwrap()
+        .force;
+    let kc = (fp - fm) / (2.0 * dd);
+    // The contact set changes within +/- dd only at its edge: agreement to 1e-3.
+    assert!(
+        rel(kt, kc) < 1e-3,
+        "tangent {kt} vs central difference {kc}"
+    );
+}
+
+#[test]
+fn displacement_and_force_control_agree_and_warm_start_helps() {
+    let n = 64;
+    let h = sphere(n, 1.0, 1.0);
+    let mut s =
+        ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None).unwrap();
+    let opts = SolverOptions {
+        tolerance: 1e-12,
+        max_iterations: 10_000,
+    };
+    let a = s.solve(Load::Force(0.01), &opts, None).unwrap();
+    let b = s.solve(Load::Approach(a.approach), &opts, None).unwrap();
+    assert!(rel(b.force, 0.01) < 1e-8);
+    let c = s
+        .solve(Load::Force(0.0101), &opts, Some(&a.pressure))
+        .unwrap();
+    let cold = s.solve(Load::Force(0.0101), &opts, None).unwrap();
+    assert!(
+        c.iterations < cold.iterations,
+        "warm {} cold {}",
+        c.iterations,
+        cold.iterations
+    );
+}
+
+#[test]
+fn errors_are_typed() {
+    let n = 16;
+    let mut h = sphere(n, 1.0, 1.0);
+    let mut s =
+        ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None).unwrap();
+    match s.solve(
+        Load::Force(0.01),
+        &SolverOptions {
+            tolerance: 1e-14,
+            max_iterations: 2,
+        },
+        None,
+    ) {
+        Err(BemError::NoConvergence {
+            iterations,
+            residual,
+            last,
+            ..
+        }) => {
+            assert_eq!(iterations, 2);
+            assert!(residual.is_finite() && residual > 1e-14);
+            assert_eq!(last.pressure.len(), n * n);
+        }
+        other => panic!("expected NoConvergence, got {other:?}"),
+    }
+    assert!(s
+        .solve(Load::Force(-1.0), &SolverOptions::default(), None)
+        .is_err());
+    assert!(s
+        .solve(Load::Approach(f64::NAN), &SolverOptions::default(), None)
+        .is_err());
+    h[5] = f64::NAN;
+    assert!(matches!(
+        ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None),
+        Err(BemError::InvalidInput(_))
+    ));
+    assert!(ContactSolver::new(
+        NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0),
+        &h[..10],
+        None
+    )
+    .is_err());
+}
+
+#[test]
+fn bit_identical_whatever_the_thread_count() {
+    let n = 64;
+    let h = rough(n, n, 11);
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut s =
+                ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None)
+                    .unwrap();
+            s.solve(Load::Force(0.05), &SolverOptions::default(), None)
+                .unwrap()
+                .pressure
+        })
+    };
+    assert_eq!(run(1), run(3));
+}
