@@ -1,7 +1,7 @@
 //! Verification of the 3D solver against closed forms (Hertz, flat punch, Westergaard),
+//! an independent dense solve, invariances and determinism. Small grids only.
 
 #![allow(clippy::needless_range_loop)]
-//! an independent dense solve, invariances and determinism. Small grids only.
 
 use bem3d::*;
 use std::f64::consts::PI;
