@@ -227,7 +227,7 @@ fn missing_scene_and_table_file_errors() {
     ]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2));
-    assert!(err.contains("tip.csv:4"), "{err}");
+    assert!(err.contains("tip.csv: line 4"), "{err}");
     // A valid file table works and matches the inline one.
     std::fs::write(&table, "# worn tip\nr,z\n0,0\n0.5,0.1\n1.0,0.4\n").unwrap();
     let s = run_scene(scene.to_str().unwrap(), &tmp.path().join("o"));

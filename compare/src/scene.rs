@@ -183,7 +183,9 @@ impl ProfileSpec {
                 } => Shape::flattened_paraboloid(*radius, *flat_radius).ctx(ctx)?,
                 ShapeSpec::Table { file, r, z } => {
                     let (r, z) = match (file, r, z) {
-                        (Some(f), None, None) => read_profile_csv(&resolve(base_dir, f)?)?,
+                        (Some(f), None, None) => {
+                            mrd::topography::read_profile_csv(&resolve(base_dir, f)?).ctx(&ctx)?
+                        }
                         (None, Some(r), Some(z)) => (r.clone(), z.clone()),
                         _ => {
                             return Err(CompareError::Scene(format!(
@@ -241,45 +243,6 @@ fn resolve(base: Option<&Path>, file: &str) -> Result<PathBuf> {
             "table file `{file}`: embedded scenes cannot refer to files; use inline r and z"
         ))),
     }
-}
-
-/// Reads a two-column CSV (r, z); `#` comment lines and one header line are allowed.
-pub fn read_profile_csv(path: &Path) -> Result<(Vec<f64>, Vec<f64>)> {
-    let text = std::fs::read_to_string(path).map_err(crate::error::io_err(format!(
-        "reading profile table {}",
-        path.display()
-    )))?;
-    let (mut r, mut z) = (Vec::new(), Vec::new());
-    let mut header_seen = false;
-    for (i, line) in text.lines().enumerate() {
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') {
-            continue;
-        }
-        let cols: Vec<&str> = line.split([',', ';', '\t']).map(str::trim).collect();
-        let parsed: Option<Vec<f64>> = cols.iter().map(|c| c.parse::<f64>().ok()).collect();
-        match parsed {
-            Some(v) if v.len() == 2 => {
-                r.push(v[0]);
-                z.push(v[1]);
-            }
-            None if !header_seen && r.is_empty() => header_seen = true,
-            _ => {
-                return Err(CompareError::Scene(format!(
-                    "{}:{}: expected two numeric columns `r, z`, found `{line}`",
-                    path.display(),
-                    i + 1
-                )))
-            }
-        }
-    }
-    if r.is_empty() {
-        return Err(CompareError::Scene(format!(
-            "{}: no data rows",
-            path.display()
-        )));
-    }
-    Ok((r, z))
 }
 
 /// How a force-depth curve is driven.

@@ -27,4 +27,6 @@ pub mod foundation;
 pub mod normal;
 pub mod oscillation;
 pub mod pressure;
+pub mod roughness;
 pub mod tangential;
+pub mod topography;

@@ -1,0 +1,164 @@
+//! Random-phase synthesis of periodic rough surfaces (Eq. 71) and lines (Eq. 72).
+//!
+//! `h(x) = sum_q B(q) exp(i (q.x + phi(q)))` with `phi(-q) = -phi(q)` so that h is real,
+//! `B2D = (2 pi / sqrt(Lx Ly)) sqrt(C2D)` (Eq. 71 for Lx = Ly = L) and
+//! `B1D = sqrt(2 pi C1D / L)` (Eq. 72). The sums are inverse FFTs. Mean (q = 0) and
+//! Nyquist modes are not populated. Each realisation draws from its own ChaCha8 stream
+//! seeded by (seed, realisation), in a fixed order, so a realisation is the same whatever
+//! the thread count or the set of realisations computed alongside it.
+
+use super::spectrum::{LineSpectrum, SelfAffine};
+use crate::error::{MrdError, Result};
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use realfft::RealFftPlanner;
+use rustfft::num_complex::Complex64;
+use rustfft::FftPlanner;
+use std::f64::consts::PI;
+
+/// Amplitude statistics of the Fourier modes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Amplitudes {
+    /// |H(q)| = B(q) exactly, random phase (Eqs. 71-72 as written).
+    #[default]
+    Deterministic,
+    /// Complex Gaussian modes with <|H(q)|^2> = B(q)^2 (Gaussian random field).
+    Gaussian,
+}
+
+/// Stream for one realisation (SplitMix64 mixing of seed and index).
+pub fn realisation_rng(seed: u64, realisation: u64) -> ChaCha8Rng {
+    let mix = |mut z: u64| {
+        z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    };
+    ChaCha8Rng::seed_from_u64(mix(seed ^ mix(realisation.wrapping_add(1))))
+}
+
+fn mode(rng: &mut ChaCha8Rng, b: f64, amps: Amplitudes) -> Complex64 {
+    match amps {
+        Amplitudes::Deterministic => Complex64::from_polar(b, 2.0 * PI * rng.random::<f64>()),
+        Amplitudes::Gaussian => {
+            // Box-Muller: |H|^2 is exponential with mean b^2, phase uniform.
+            let u: f64 = rng.random::<f64>();
+            let r = b * (-(1.0 - u).ln()).sqrt();
+            Complex64::from_polar(r, 2.0 * PI * rng.random::<f64>())
+        }
+    }
+}
+
+fn check_size(n: usize, what: &str) -> Result<()> {
+    if n < 4 {
+        return Err(MrdError::InvalidParameter {
+            name: "grid points",
+            value: n as f64,
+            reason: "need at least 4 points per direction",
+        });
+    }
+    let _ = what;
+    Ok(())
+}
+
+/// A periodic rough surface on an `ny x nx` grid (row-major) of size `lx x ly`.
+pub fn surface(
+    spec: &SelfAffine,
+    nx: usize,
+    ny: usize,
+    lx: f64,
+    ly: f64,
+    seed: u64,
+    realisation: u64,
+    amps: Amplitudes,
+) -> Result<Vec<f64>> {
+    check_size(nx, "nx")?;
+    check_size(ny, "ny")?;
+    crate::error::positive("lx", lx)?;
+    crate::error::positive("ly", ly)?;
+    let nc = nx / 2 + 1;
+    let mut rng = realisation_rng(seed, realisation);
+    let norm = 2.0 * PI / (lx * ly).sqrt();
+    // Half spectrum S[i][j] (column i = kx >= 0, row j = ky signed), column-major for the
+    // y transforms.
+    let mut s = vec![Complex64::default(); nc * ny];
+    let signed = |j: usize| {
+        if j <= ny / 2 {
+            j as f64
+        } else {
+            j as f64 - ny as f64
+        }
+    };
+    for i in 0..nc {
+        if nx % 2 == 0 && i == nx / 2 {
+            continue; // Nyquist column
+        }
+        for j in 0..ny {
+            if ny % 2 == 0 && j == ny / 2 {
+                continue; // Nyquist row
+            }
+            if i == 0 {
+                // kx = 0 column: modes (0, ky) and (0, -ky) are conjugates; draw once.
+                let jn = (ny - j) % ny;
+                if j == 0 || jn < j {
+                    continue;
+                }
+                let q = 2.0 * PI * (signed(j) / ly).abs();
+                let h = mode(&mut rng, norm * spec.c2d(q).sqrt(), amps);
+                s[j] = h;
+                s[jn] = h.conj();
+                continue;
+            }
+            let q = 2.0 * PI * ((i as f64 / lx).powi(2) + (signed(j) / ly).powi(2)).sqrt();
+            s[i * ny + j] = mode(&mut rng, norm * spec.c2d(q).sqrt(), amps);
+        }
+    }
+    let mut planner = FftPlanner::<f64>::new();
+    let ifft_y = planner.plan_fft_inverse(ny);
+    ifft_y.process(&mut s); // all nc columns, each of length ny
+    let mut rp = RealFftPlanner::<f64>::new();
+    let c2r = rp.plan_fft_inverse(nx);
+    let mut row = vec![Complex64::default(); nc];
+    let mut out = vec![0.0; nx * ny];
+    for j in 0..ny {
+        for i in 0..nc {
+            row[i] = s[i * ny + j];
+        }
+        row[0].im = 0.0;
+        if nx % 2 == 0 {
+            row[nc - 1].im = 0.0;
+        }
+        c2r.process(&mut row, &mut out[j * nx..(j + 1) * nx])
+            .map_err(|e| MrdError::InvalidTable(e.to_string()))?;
+    }
+    Ok(out)
+}
+
+/// A periodic rough line of `n` points over length `l` (Eq. 72).
+pub fn line(
+    spec: &LineSpectrum,
+    n: usize,
+    l: f64,
+    seed: u64,
+    realisation: u64,
+    amps: Amplitudes,
+) -> Result<Vec<f64>> {
+    check_size(n, "n")?;
+    crate::error::positive("length", l)?;
+    let nc = n / 2 + 1;
+    let mut rng = realisation_rng(seed, realisation);
+    let mut s = vec![Complex64::default(); nc];
+    for (k, sk) in s.iter_mut().enumerate().skip(1) {
+        if n % 2 == 0 && k == n / 2 {
+            break;
+        }
+        let q = 2.0 * PI * k as f64 / l;
+        *sk = mode(&mut rng, (2.0 * PI * spec.c1d(q) / l).sqrt(), amps); // Eq. (72)
+    }
+    let mut rp = RealFftPlanner::<f64>::new();
+    let c2r = rp.plan_fft_inverse(n);
+    let mut out = vec![0.0; n];
+    c2r.process(&mut s, &mut out)
+        .map_err(|e| MrdError::InvalidTable(e.to_string()))?;
+    Ok(out)
+}
