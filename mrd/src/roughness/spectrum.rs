@@ -27,7 +27,7 @@ fn power_integral(a: f64, b: f64, k: f64) -> f64 {
 /// lambda of a straight cut: `Int C2D(sqrt(q^2 + qy^2)) dqy = lambda_cut q C2D(q)` for a
 /// power law C2D ~ q^(-2H-2); finite for H > -1/2.
 pub fn lambda_cut(hurst: f64) -> Result<f64> {
-    if !(hurst > -0.5) || !hurst.is_finite() {
+    if hurst.is_nan() || hurst <= -0.5 || hurst.is_infinite() {
         return Err(MrdError::InvalidParameter {
             name: "hurst",
             value: hurst,
@@ -51,7 +51,7 @@ impl LambdaTable {
                 "lambda table needs equal, non-empty columns".into(),
             ));
         }
-        if hurst.windows(2).any(|w| !(w[1] > w[0])) {
+        if hurst.iter().any(|h| h.is_nan()) || hurst.windows(2).any(|w| w[1] <= w[0]) {
             return Err(MrdError::InvalidTable(
                 "lambda table: H must increase strictly".into(),
             ));
@@ -154,7 +154,7 @@ pub struct SelfAffine {
 impl SelfAffine {
     /// Spectrum with unit C0; see [`Self::with_rms_height`] and [`Self::with_rms_slope`].
     pub fn new(hurst: f64, q0: f64, qr: f64, q1: f64) -> Result<Self> {
-        if !(hurst >= -1.0 && hurst <= 3.0) {
+        if !(-1.0..=3.0).contains(&hurst) {
             return Err(MrdError::InvalidParameter {
                 name: "hurst",
                 value: hurst,

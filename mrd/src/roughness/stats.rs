@@ -152,7 +152,7 @@ pub fn surface_psd(
 mod tests {
     use super::*;
     use crate::roughness::spectrum::SelfAffine;
-    use crate::roughness::synthesis::{line, surface, Amplitudes};
+    use crate::roughness::synthesis::{line, surface, Amplitudes, Grid};
 
     #[test]
     fn pure_sine_has_exact_moments_and_psd() {
@@ -187,7 +187,7 @@ mod tests {
             .unwrap()
             .with_rms_height(1.0)
             .unwrap();
-        let h = surface(&s, n, n, l, l, 1, 0, Amplitudes::Deterministic).unwrap();
+        let h = surface(&s, &Grid::square(n, l), 1, 0, Amplitudes::Deterministic).unwrap();
         let m = surface_moments(&h, n, n, l, l);
         let mut discrete = 0.0;
         for j in 0..n {
@@ -205,7 +205,7 @@ mod tests {
             .unwrap()
             .with_rms_height(1.0)
             .unwrap();
-        let h = surface(&s, n, n, l, l, 1, 0, Amplitudes::Deterministic).unwrap();
+        let h = surface(&s, &Grid::square(n, l), 1, 0, Amplitudes::Deterministic).unwrap();
         let m = surface_moments(&h, n, n, l, l);
         assert!((m.rms_height - 1.0).abs() < 0.03, "{}", m.rms_height);
         assert!(
@@ -228,7 +228,7 @@ mod tests {
         let (mut acc, mut acc2) = ([0.0; 3], [0.0; 3]);
         let mut psd_acc: Vec<(f64, f64)> = Vec::new();
         for k in 0..r {
-            let h = surface(&s, n, n, l, l, 99, k, Amplitudes::Gaussian).unwrap();
+            let h = surface(&s, &Grid::square(n, l), 99, k, Amplitudes::Gaussian).unwrap();
             let m = surface_moments(&h, n, n, l, l);
             let v = [
                 m.rms_height.powi(2),
