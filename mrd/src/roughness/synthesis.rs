@@ -61,17 +61,35 @@ fn check_size(n: usize, what: &str) -> Result<()> {
     Ok(())
 }
 
-/// A periodic rough surface on an `ny x nx` grid (row-major) of size `lx x ly`.
+/// A periodic grid of `ny x nx` points (row-major) covering `lx x ly`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Grid {
+    pub nx: usize,
+    pub ny: usize,
+    pub lx: f64,
+    pub ly: f64,
+}
+
+impl Grid {
+    pub fn square(n: usize, l: f64) -> Self {
+        Self {
+            nx: n,
+            ny: n,
+            lx: l,
+            ly: l,
+        }
+    }
+}
+
+/// A periodic rough surface on `grid` (Eq. 71).
 pub fn surface(
     spec: &SelfAffine,
-    nx: usize,
-    ny: usize,
-    lx: f64,
-    ly: f64,
+    grid: &Grid,
     seed: u64,
     realisation: u64,
     amps: Amplitudes,
 ) -> Result<Vec<f64>> {
+    let Grid { nx, ny, lx, ly } = *grid;
     check_size(nx, "nx")?;
     check_size(ny, "ny")?;
     crate::error::positive("lx", lx)?;
