@@ -90,7 +90,7 @@ impl Fft2 {
                     // The DC and Nyquist imaginary parts must vanish for c2r; they do up
                     // to rounding for real data, so clear them.
                     a[0].im = 0.0;
-                    if nx % 2 == 0 {
+                    if nx.is_multiple_of(2) {
                         a[nc - 1].im = 0.0;
                     }
                     c2r.process_with_scratch(a, b, &mut scratch)

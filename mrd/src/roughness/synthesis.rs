@@ -108,11 +108,11 @@ pub fn surface(
         }
     };
     for i in 0..nc {
-        if nx % 2 == 0 && i == nx / 2 {
+        if nx.is_multiple_of(2) && i == nx / 2 {
             continue; // Nyquist column
         }
         for j in 0..ny {
-            if ny % 2 == 0 && j == ny / 2 {
+            if ny.is_multiple_of(2) && j == ny / 2 {
                 continue; // Nyquist row
             }
             if i == 0 {
@@ -143,7 +143,7 @@ pub fn surface(
             row[i] = s[i * ny + j];
         }
         row[0].im = 0.0;
-        if nx % 2 == 0 {
+        if nx.is_multiple_of(2) {
             row[nc - 1].im = 0.0;
         }
         c2r.process(&mut row, &mut out[j * nx..(j + 1) * nx])
@@ -167,7 +167,7 @@ pub fn line(
     let mut rng = realisation_rng(seed, realisation);
     let mut s = vec![Complex64::default(); nc];
     for (k, sk) in s.iter_mut().enumerate().skip(1) {
-        if n % 2 == 0 && k == n / 2 {
+        if n.is_multiple_of(2) && k == n / 2 {
             break;
         }
         let q = 2.0 * PI * k as f64 / l;
