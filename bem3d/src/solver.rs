@@ -15,6 +15,7 @@
 
 use crate::error::{BemError, Result};
 use crate::operator::Compliance;
+use rayon::prelude::*;
 
 /// The load prescribed to a solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -68,13 +69,69 @@ pub struct Solution {
 pub struct ContactSolver<K: Compliance> {
     op: K,
     z: Vec<f64>,
-    mask: Vec<bool>,
+    /// 1.0 on cells that may touch, 0.0 elsewhere (f64: the sweeps are branch-free).
+    mask: Vec<f64>,
     h_rms: f64,
     u: Vec<f64>,
     g: Vec<f64>,
     t: Vec<f64>,
     r: Vec<f64>,
-    active: Vec<bool>,
+    /// 1.0 on the current contact set.
+    active: Vec<f64>,
+}
+
+/// Sweep chunk: fixed, so that partial sums (and results) do not depend on the thread
+/// count.
+const CHUNK: usize = 16_384;
+
+/// Sums `N` per-chunk partial results in chunk order (deterministic for any thread
+/// count); `max_last` combines the last entry by max instead of sum.
+fn reduce<const N: usize, I, F>(iter: I, f: F, max_slot: Option<usize>) -> [f64; N]
+where
+    I: IntoParallelIterator,
+    I::Iter: IndexedParallelIterator,
+    F: Fn(I::Item) -> [f64; N] + Sync + Send,
+{
+    let parts: Vec<[f64; N]> = iter.into_par_iter().map(f).collect();
+    let mut acc = [0.0f64; N];
+    for p in parts {
+        for k in 0..N {
+            if Some(k) == max_slot {
+                acc[k] = acc[k].max(p[k]);
+            } else {
+                acc[k] += p[k];
+            }
+        }
+    }
+    acc
+}
+
+fn reduce2<I, F>(iter: I, f: F) -> [f64; 2]
+where
+    I: IntoParallelIterator,
+    I::Iter: IndexedParallelIterator,
+    F: Fn(I::Item) -> [f64; 2] + Sync + Send,
+{
+    reduce(iter, f, None)
+}
+
+fn reduce3<I, F>(iter: I, f: F) -> [f64; 3]
+where
+    I: IntoParallelIterator,
+    I::Iter: IndexedParallelIterator,
+    F: Fn(I::Item) -> [f64; 3] + Sync + Send,
+{
+    reduce(iter, f, None)
+}
+
+/// Four sums; with `third_is_max` the third entry is a maximum.
+fn reduce4<I, F>(iter: I, f: F, third_is_max: bool) -> [f64; 4]
+where
+    I: IntoParallelIterator,
+    I::Iter: IndexedParallelIterator,
+    F: Fn(I::Item) -> [f64; 4] + Sync + Send,
+{
+    reduce(iter, f, third_is_max.then_some(2))
 }
 
 impl<K: Compliance> ContactSolver<K> {
@@ -140,13 +197,13 @@ impl<K: Compliance> ContactSolver<K> {
         Ok(Self {
             op,
             z,
-            mask,
             h_rms,
             u: vec![0.0; n],
             g: vec![0.0; n],
             t: vec![0.0; n],
             r: vec![0.0; n],
-            active: vec![false; n],
+            active: vec![0.0; n],
+            mask: mask.iter().map(|&m| if m { 1.0 } else { 0.0 }).collect(),
         })
     }
 
@@ -155,23 +212,6 @@ impl<K: Compliance> ContactSolver<K> {
     }
     pub fn h_rms(&self) -> f64 {
         self.h_rms
-    }
-
-    fn residual(&self, p: &[f64]) -> f64 {
-        let (mut pg, mut ps, mut worst) = (0.0, 0.0, 0.0f64);
-        for i in 0..p.len() {
-            if self.mask[i] {
-                pg += p[i] * self.g[i].abs();
-                ps += p[i];
-                worst = worst.max(-self.g[i]);
-            }
-        }
-        let comp = if ps > 0.0 {
-            pg / (ps * self.h_rms)
-        } else {
-            0.0
-        };
-        comp.max(worst / self.h_rms)
     }
 
     /// Solves for `load`, starting from `warm` pressures if given (e.g. the previous
@@ -184,7 +224,7 @@ impl<K: Compliance> ContactSolver<K> {
     ) -> Result<Solution> {
         let n = self.op.cells();
         let area = self.op.cell_area();
-        let nm = self.mask.iter().filter(|&&m| m).count();
+        let nm = self.mask.iter().filter(|&&m| m > 0.0).count();
         let target_force = match load {
             Load::Force(f) => Some(f),
             Load::MeanPressure(pm) => Some(pm * self.op.lx() * self.op.ly()),
@@ -214,13 +254,17 @@ impl<K: Compliance> ContactSolver<K> {
         match (warm, load) {
             (Some(w), _) => {
                 for i in 0..n {
-                    p[i] = if self.mask[i] { w[i].max(0.0) } else { 0.0 };
+                    p[i] = if self.mask[i] > 0.0 {
+                        w[i].max(0.0)
+                    } else {
+                        0.0
+                    };
                 }
             }
             (None, Load::Approach(d)) => {
                 let scale = self.op.e_star() / (self.op.lx() * self.op.ly()).sqrt();
                 for i in 0..n {
-                    p[i] = if self.mask[i] {
+                    p[i] = if self.mask[i] > 0.0 {
                         (d - self.z[i]).max(0.0) * scale
                     } else {
                         0.0
@@ -229,7 +273,7 @@ impl<K: Compliance> ContactSolver<K> {
             }
             (None, _) => {
                 for i in 0..n {
-                    p[i] = if self.mask[i] { 1.0 } else { 0.0 };
+                    p[i] = if self.mask[i] > 0.0 { 1.0 } else { 0.0 };
                 }
             }
         }
@@ -239,9 +283,7 @@ impl<K: Compliance> ContactSolver<K> {
             }
             let s: f64 = p.iter().sum::<f64>() * area;
             if s == 0.0 {
-                p.iter_mut()
-                    .zip(&self.mask)
-                    .for_each(|(v, &m)| *v = if m { 1.0 } else { 0.0 });
+                p.iter_mut().zip(&self.mask).for_each(|(v, &m)| *v = m);
             }
             let s: f64 = p.iter().sum::<f64>() * area;
             p.iter_mut().for_each(|v| *v *= w / s);
@@ -254,100 +296,168 @@ impl<K: Compliance> ContactSolver<K> {
         let (mut delta, mut g_old) = (0.0, 1.0);
         self.t.iter_mut().for_each(|v| *v = 0.0);
         let mut residual = f64::INFINITY;
+        let force_control = target_force.is_some();
+        let fixed_approach = match load {
+            Load::Approach(d) => d,
+            _ => 0.0,
+        };
+        // Pending factor of the load constraint: p and u = K p are rescaled lazily in
+        // pass A (K is linear), saving a sweep.
+        let mut scale = 1.0;
+        // Shift for the one-pass sum of squares: the previous mean contact gap, close to
+        // the current one, so sum (g-c)^2 - n (gbar-c)^2 does not cancel.
+        let mut shift = 0.0;
+        let h_rms = self.h_rms;
+        let e_star = self.op.e_star();
         for it in 0..opts.max_iterations {
             self.op.apply(&p, &mut self.u);
-            let mut approach = match load {
-                Load::Approach(d) => d,
-                _ => 0.0,
-            };
-            for i in 0..n {
-                self.g[i] = if self.mask[i] {
-                    self.u[i] + self.z[i] - approach
-                } else {
-                    0.0
-                };
-            }
-            for i in 0..n {
-                self.active[i] = self.mask[i] && p[i] > 0.0;
-            }
-            let active = &self.active;
-            let in_contact = |i: usize| active[i];
-            let nc = active.iter().filter(|&&a| a).count();
-            if target_force.is_some() {
-                // Force control: the approach is the mean gap over the contact set.
-                let gbar = (0..n)
-                    .filter(|&i| in_contact(i))
-                    .map(|i| self.g[i])
-                    .sum::<f64>()
-                    / nc.max(1) as f64;
-                approach += gbar;
-                for i in 0..n {
-                    if self.mask[i] {
-                        self.g[i] -= gbar;
+            // Pass A: rescale, raw gap, contact set, sums for its mean and G.
+            let [sum_g, sum_g2, nc] = reduce3(
+                (
+                    p.par_chunks_mut(CHUNK),
+                    self.u.par_chunks(CHUNK),
+                    self.z.par_chunks(CHUNK),
+                    self.mask.par_chunks(CHUNK),
+                    self.g.par_chunks_mut(CHUNK),
+                    self.active.par_chunks_mut(CHUNK),
+                ),
+                |(p, u, z, m, g, act)| {
+                    let (mut s1, mut s2, mut c) = (0.0, 0.0, 0.0);
+                    for i in 0..p.len() {
+                        p[i] *= scale;
+                        let a = if p[i] > 0.0 { m[i] } else { 0.0 };
+                        let gi = m[i] * (scale * u[i] + z[i] - fixed_approach);
+                        g[i] = gi;
+                        act[i] = a;
+                        let gs = gi - shift;
+                        s1 += a * gs;
+                        s2 += a * gs * gs;
+                        c += a;
                     }
-                }
+                    [s1, s2, c]
+                },
+            );
+            // Force control: the approach is the mean gap over the contact set.
+            let mean_shifted = if nc > 0.0 { sum_g / nc } else { 0.0 };
+            let gbar = if force_control {
+                shift + mean_shifted
+            } else {
+                0.0
+            };
+            let approach = fixed_approach + gbar;
+            // sum over contact of (g - gbar)^2; for displacement control gbar = 0.
+            let big_g = if force_control {
+                (sum_g2 - nc * mean_shifted * mean_shifted).max(0.0)
+            } else {
+                sum_g2 + 2.0 * shift * sum_g + nc * shift * shift
+            };
+            if force_control {
+                shift = gbar;
             }
-            residual = self.residual(&p);
+            let beta = if g_old > 0.0 {
+                delta * big_g / g_old
+            } else {
+                0.0
+            };
+            // Pass B: shift the gap, residual terms, conjugate direction, <g, t>.
+            let [pg, ps, worst, num] = reduce4(
+                (
+                    p.par_chunks(CHUNK),
+                    self.mask.par_chunks(CHUNK),
+                    self.active.par_chunks(CHUNK),
+                    self.g.par_chunks_mut(CHUNK),
+                    self.t.par_chunks_mut(CHUNK),
+                ),
+                |(p, m, act, g, t)| {
+                    let (mut pg, mut ps, mut worst, mut num) = (0.0, 0.0, 0.0f64, 0.0);
+                    for i in 0..p.len() {
+                        let gi = g[i] - m[i] * gbar;
+                        g[i] = gi;
+                        pg += p[i] * gi.abs();
+                        ps += p[i];
+                        worst = worst.max(-gi);
+                        let ti = act[i] * (gi + beta * t[i]);
+                        t[i] = ti;
+                        num += gi * ti;
+                    }
+                    [pg, ps, worst, num]
+                },
+                true,
+            );
+            residual = (if ps > 0.0 { pg / (ps * h_rms) } else { 0.0 }).max(worst / h_rms);
             if residual <= opts.tolerance {
                 return Ok(self.finish(p, approach, it, residual));
             }
-            let big_g: f64 = (0..n)
-                .filter(|&i| in_contact(i))
-                .map(|i| self.g[i] * self.g[i])
-                .sum();
-            let beta = delta * big_g / g_old;
-            for i in 0..n {
-                self.t[i] = if in_contact(i) {
-                    self.g[i] + beta * self.t[i]
-                } else {
-                    0.0
-                };
-            }
             g_old = big_g;
             self.op.apply(&self.t, &mut self.r);
-            if target_force.is_some() {
-                let rbar = (0..n)
-                    .filter(|&i| in_contact(i))
-                    .map(|i| self.r[i])
-                    .sum::<f64>()
-                    / nc.max(1) as f64;
-                self.r.iter_mut().for_each(|v| *v -= rbar);
-            }
-            let num: f64 = (0..n)
-                .filter(|&i| in_contact(i))
-                .map(|i| self.g[i] * self.t[i])
-                .sum();
-            let den: f64 = (0..n)
-                .filter(|&i| in_contact(i))
-                .map(|i| self.r[i] * self.t[i])
-                .sum();
-            let tau = if den > 0.0 { num / den } else { 0.0 };
-            for i in 0..n {
-                if in_contact(i) {
-                    p[i] = (p[i] - tau * self.t[i]).max(0.0);
-                }
-            }
-            let mut overlap = 0usize;
-            // Cells without pressure that interpenetrate re-enter the contact set.
+            // Pass C: step length (force control: r shifted by its contact mean).
+            let [sr, srt, st] = reduce3(
+                (
+                    self.r.par_chunks(CHUNK),
+                    self.t.par_chunks(CHUNK),
+                    self.active.par_chunks(CHUNK),
+                ),
+                |(r, t, act)| {
+                    let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
+                    for i in 0..r.len() {
+                        a += act[i] * r[i];
+                        b += r[i] * t[i];
+                        c += t[i];
+                    }
+                    [a, b, c]
+                },
+            );
+            let rbar = if force_control && nc > 0.0 {
+                sr / nc
+            } else {
+                0.0
+            };
+            let den = srt - rbar * st;
+            let tau = if den > 0.0 && num.is_finite() {
+                num / den
+            } else {
+                0.0
+            };
+            // Pass D: projected update; interpenetrating cells without pressure re-enter
+            // the contact set (Polonsky & Keer's overlap correction).
             let step = if tau > 0.0 {
                 tau
             } else {
-                1.0 / (self.op.e_star() * nm as f64).max(1e-300)
+                1.0 / (e_star * nm as f64).max(1e-300)
             };
-            for i in 0..n {
-                if self.mask[i] && !self.active[i] && self.g[i] < 0.0 {
-                    p[i] = -step * self.g[i];
-                    overlap += 1;
-                }
-            }
-            delta = if overlap > 0 { 0.0 } else { 1.0 };
-            if let Some(w) = target_force {
-                let s: f64 = p.iter().sum::<f64>() * area;
-                if s > 0.0 {
-                    p.iter_mut().for_each(|v| *v *= w / s);
-                }
-            }
+            let [overlap, total] = reduce2(
+                (
+                    p.par_chunks_mut(CHUNK),
+                    self.t.par_chunks(CHUNK),
+                    self.g.par_chunks(CHUNK),
+                    self.mask.par_chunks(CHUNK),
+                    self.active.par_chunks(CHUNK),
+                ),
+                |(p, t, g, m, act)| {
+                    let (mut o, mut tot) = (0.0, 0.0);
+                    for i in 0..p.len() {
+                        let enter = if act[i] == 0.0 && g[i] < 0.0 {
+                            m[i]
+                        } else {
+                            0.0
+                        };
+                        let updated = (p[i] - tau * t[i]).max(0.0);
+                        let pi = act[i] * updated + enter * (-step * g[i]);
+                        p[i] = pi;
+                        o += enter;
+                        tot += pi;
+                    }
+                    [o, tot]
+                },
+            );
+            delta = if overlap > 0.0 { 0.0 } else { 1.0 };
+            scale = match target_force {
+                Some(w) if total > 0.0 => w / (total * area),
+                _ => 1.0,
+            };
         }
+        // Apply the pending rescale to the last iterate.
+        p.iter_mut().for_each(|v| *v *= scale);
         let last = self.finish(p, f64::NAN, opts.max_iterations, residual);
         Err(BemError::NoConvergence {
             iterations: opts.max_iterations,
@@ -362,7 +472,7 @@ impl<K: Compliance> ContactSolver<K> {
         let area = self.op.cell_area();
         if iterations == 0 && p.iter().all(|&v| v == 0.0) {
             for i in 0..n {
-                self.g[i] = if self.mask[i] {
+                self.g[i] = if self.mask[i] > 0.0 {
                     self.z[i] - approach
                 } else {
                     0.0
@@ -370,9 +480,9 @@ impl<K: Compliance> ContactSolver<K> {
             }
         }
         let contact_cells = p.iter().filter(|&&v| v > 0.0).count();
-        let nm = self.mask.iter().filter(|&&m| m).count() as f64;
+        let nm = self.mask.iter().filter(|&&m| m > 0.0).count() as f64;
         let mean_gap = (0..n)
-            .filter(|&i| self.mask[i])
+            .filter(|&i| self.mask[i] > 0.0)
             .map(|i| self.g[i].max(0.0))
             .sum::<f64>()
             / nm;
