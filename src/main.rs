@@ -51,9 +51,24 @@ enum Command {
         /// What to benchmark.
         #[arg(value_enum, default_value = "mrd")]
         target: BenchTarget,
-        /// Largest log10 of the number of springs.
+        /// Largest log10 of the number of springs (mrd).
         #[arg(long, default_value_t = 6)]
         max_exp: u32,
+        /// Largest grid side (bem): periodic 128.. and Hertz 128.. up to this.
+        #[arg(long, default_value_t = 1024)]
+        max_n: usize,
+        /// Also write the periodic surfaces and our pressures as .npy here (bem), for
+        /// bench/tamaas_compare.py.
+        #[arg(long)]
+        write_surfaces: Option<PathBuf>,
+    },
+    /// Internal: one benchmark case in a fresh process (for its peak memory).
+    #[command(hide = true)]
+    BenchCase {
+        kind: String,
+        n: usize,
+        #[arg(long)]
+        write_surfaces: Option<PathBuf>,
     },
 }
 
@@ -61,6 +76,8 @@ enum Command {
 enum BenchTarget {
     /// Normal solves and oscillation cycles on N = 1e3 .. 1e6 springs.
     Mrd,
+    /// The 3D solver: periodic self-affine 128^2.. and non-periodic Hertz 128^2..
+    Bem,
 }
 
 fn load(scene: Option<&str>) -> Result<Scene, String> {
@@ -118,10 +135,53 @@ fn run(cmd: Command) -> Result<(), String> {
             print!("{text}");
             Ok(())
         }
-        Command::Bench { target, max_exp } => {
+        Command::Bench {
+            target,
+            max_exp,
+            max_n,
+            write_surfaces,
+        } => {
             match target {
                 BenchTarget::Mrd => compare::bench::run_mrd(max_exp.clamp(3, 8)),
+                BenchTarget::Bem => {
+                    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
+                    let mut lines = Vec::new();
+                    for kind in ["periodic", "hertz"] {
+                        let mut n = 128;
+                        while n <= max_n && (kind == "periodic" || n <= 1024) {
+                            eprintln!("running {kind} {n}^2 ...");
+                            let mut cmd = std::process::Command::new(&exe);
+                            cmd.args(["bench-case", kind, &n.to_string()]);
+                            if let (Some(d), "periodic") = (&write_surfaces, kind) {
+                                cmd.arg("--write-surfaces").arg(d);
+                            }
+                            let out = cmd.output().map_err(|e| e.to_string())?;
+                            if !out.status.success() {
+                                return Err(format!(
+                                    "benchmark case {kind} {n} failed: {}",
+                                    String::from_utf8_lossy(&out.stderr)
+                                ));
+                            }
+                            lines.extend(
+                                String::from_utf8_lossy(&out.stdout)
+                                    .lines()
+                                    .filter(|l| l.starts_with("RESULT"))
+                                    .map(String::from),
+                            );
+                            n *= 2;
+                        }
+                    }
+                    compare::bench::print_bem_table(&lines);
+                }
             }
+            Ok(())
+        }
+        Command::BenchCase {
+            kind,
+            n,
+            write_surfaces,
+        } => {
+            compare::bench::run_bem_case(&kind, n, write_surfaces.as_deref());
             Ok(())
         }
     }

@@ -85,3 +85,188 @@ pub fn run_mrd(max_exp: u32) {
         "cycle: one oscillation period in 8 steps (every spring updated per step, O(N) per step)."
     );
 }
+
+/// The periodic reference problem shared with the Tamaas comparison: self-affine,
+/// H = 0.8, spectrum from 2 pi/L (roll-off at 4 pi/L) to n/4 x 2 pi/L, rms slope 0.1,
+/// L = 1, seed 2026, realisation 0.
+pub fn reference_surface(n: usize) -> Vec<f64> {
+    use mrd::roughness::synthesis::{surface, Amplitudes, Grid};
+    use mrd::roughness::SelfAffine;
+    use std::f64::consts::PI;
+    let spec = SelfAffine::new(0.8, 2.0 * PI, 4.0 * PI, 2.0 * PI * (n / 4) as f64).unwrap();
+    let mut h = surface(
+        &spec,
+        &Grid::square(n, 1.0),
+        2026,
+        0,
+        Amplitudes::Deterministic,
+    )
+    .unwrap();
+    let m = mrd::roughness::stats::surface_moments(&h, n, n, 1.0, 1.0);
+    h.iter_mut().for_each(|v| *v *= 0.1 / m.rms_slope);
+    h
+}
+
+fn fft_pair_time(nx: usize, ny: usize) -> f64 {
+    let mut f = bem3d::fft::Fft2::new(nx, ny);
+    let x: Vec<f64> = (0..nx * ny).map(|k| (k % 7) as f64).collect();
+    let mut spec = vec![Default::default(); f.spectrum_len()];
+    let mut y = vec![0.0; nx * ny];
+    time_it(
+        || {
+            f.forward(&x, &mut spec);
+            f.inverse(&mut spec, &mut y);
+        },
+        0.3,
+    )
+}
+
+/// Peak resident memory of this process in MiB (Linux VmHWM), if readable.
+pub fn peak_memory_mib() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = s.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb / 1024.0)
+}
+
+/// One benchmark case, run in its own process so that its peak memory is its own.
+/// Prints one machine-readable line `RESULT key=value ...`.
+pub fn run_bem_case(kind: &str, n: usize, write_dir: Option<&std::path::Path>) {
+    use bem3d::*;
+    let opts = SolverOptions {
+        tolerance: 1e-10,
+        max_iterations: 50_000,
+    };
+    let tight = SolverOptions {
+        tolerance: 1e-12,
+        max_iterations: 100_000,
+    };
+    let pair = if kind == "periodic" {
+        fft_pair_time(n, n)
+    } else {
+        fft_pair_time(2 * n, 2 * n)
+    };
+    let base_mem = peak_memory_mib().unwrap_or(0.0);
+    let (t, sol, err) = if kind == "periodic" {
+        let h = reference_surface(n);
+        let t0 = Instant::now();
+        let mut s =
+            ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None).unwrap();
+        let sol = s.solve(Load::MeanPressure(0.01), &opts, None).unwrap();
+        let t = t0.elapsed().as_secs_f64();
+        let mem = peak_memory_mib().unwrap_or(0.0);
+        let refsol = s.solve(Load::MeanPressure(0.01), &tight, None).unwrap();
+        let num: f64 = sol
+            .pressure
+            .iter()
+            .zip(&refsol.pressure)
+            .map(|(a, b)| (a - b).powi(2))
+            .sum();
+        let den: f64 = refsol.pressure.iter().map(|b| b * b).sum();
+        if let Some(dir) = write_dir {
+            let _ = std::fs::create_dir_all(dir);
+            let hm = mrd::topography::HeightMap {
+                rows: n,
+                cols: n,
+                data: h.clone(),
+            };
+            hm.write_npy(&dir.join(format!("surface_{n}.npy"))).unwrap();
+            let pm = mrd::topography::HeightMap {
+                rows: n,
+                cols: n,
+                data: sol.pressure.clone(),
+            };
+            pm.write_npy(&dir.join(format!("mrdw_pressure_{n}.npy")))
+                .unwrap();
+        }
+        println!("RESULT kind=periodic n={n} time={t:e} iterations={} pair={pair:e} mem={:.1} base_mem={base_mem:.1} err_pressure_l2={:e} err_approach={:e} area={:e}",
+            sol.iterations, mem, (num / den).sqrt(), ((sol.approach - refsol.approach) / refsol.approach).abs(), sol.contact_area);
+        return;
+    } else {
+        let (a, r) = (0.25, 1.0);
+        let hgt: Vec<f64> = (0..n * n)
+            .map(|k| {
+                let h = 1.0 / n as f64;
+                let (x, y) = (
+                    ((k % n) as f64 - (n / 2) as f64) * h,
+                    ((k / n) as f64 - (n / 2) as f64) * h,
+                );
+                -(x * x + y * y) / (2.0 * r)
+            })
+            .collect();
+        let f = 4.0 * a * a * a / (3.0 * r);
+        let t0 = Instant::now();
+        let mut s =
+            ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &hgt, None).unwrap();
+        let sol = s.solve(Load::Force(f), &opts, None).unwrap();
+        let t = t0.elapsed().as_secs_f64();
+        let pmax = sol.pressure.iter().fold(0.0f64, |m, &v| m.max(v));
+        let err = (
+            (pmax / (2.0 * a / (std::f64::consts::PI * r)) - 1.0).abs(),
+            (sol.approach / (a * a / r) - 1.0).abs(),
+        );
+        (t, sol, err)
+    };
+    println!("RESULT kind=hertz n={n} time={t:e} iterations={} pair={pair:e} mem={:.1} base_mem={base_mem:.1} err_peak={:e} err_approach={:e}",
+        sol.iterations, peak_memory_mib().unwrap_or(0.0), err.0, err.1);
+}
+
+/// Parses the RESULT lines of child runs and prints the table.
+pub fn print_bem_table(lines: &[String]) {
+    let field = |l: &str, k: &str| -> f64 {
+        l.split_whitespace()
+            .find_map(|kv| {
+                kv.strip_prefix(&format!("{k}="))
+                    .and_then(|v| v.parse().ok())
+            })
+            .unwrap_or(f64::NAN)
+    };
+    println!(
+        "{:>9} | {:>6} | {:>9} | {:>6} | {:>10} | {:>11} | {:>9} | {:>10} | {:>10}",
+        "case",
+        "grid",
+        "time [s]",
+        "iters",
+        "t/iter [s]",
+        "t/iter/FFT",
+        "mem [MiB]",
+        "error 1",
+        "error 2"
+    );
+    println!("{}", "-".repeat(104));
+    for l in lines {
+        let kind = if l.contains("kind=periodic") {
+            "periodic"
+        } else {
+            "hertz"
+        };
+        let (t, it, pair) = (field(l, "time"), field(l, "iterations"), field(l, "pair"));
+        let (e1, e2) = if kind == "periodic" {
+            (field(l, "err_pressure_l2"), field(l, "err_approach"))
+        } else {
+            (field(l, "err_peak"), field(l, "err_approach"))
+        };
+        println!(
+            "{:>9} | {:>6} | {:>9.3} | {:>6} | {:>10.3e} | {:>11.2} | {:>9.0} | {:>10.2e} | {:>10.2e}",
+            kind,
+            format!("{}^2", field(l, "n")),
+            t,
+            it,
+            t / it.max(1.0),
+            t / it.max(1.0) / pair,
+            field(l, "mem") - 0.0,
+            e1,
+            e2
+        );
+    }
+    println!(
+        "\nperiodic: self-affine H = 0.8, rms slope 0.1, mean pressure 0.01 E*, tolerance 1e-10;"
+    );
+    println!("  error 1 = relative L2 pressure error, error 2 = relative approach error, both against a 1e-12 run.");
+    println!("hertz: non-periodic, R = 1, a = L/4, force control, tolerance 1e-10;");
+    println!("  error 1 = peak pressure, error 2 = approach, relative to Hertz.");
+    println!(
+        "t/iter/FFT: time per iteration over one forward+inverse FFT pair of the (padded) grid;"
+    );
+    println!("mem: peak resident memory of the whole process running that case.");
+}
