@@ -109,6 +109,23 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
                 assert!(v < 2e-3, "{name}: {k} = {v}");
             }
         }
+        if *name == "rough-stiffness" {
+            // Eq. (80): alpha = 1/(1+H) for the MRD rough line (stated tolerance 0.02).
+            let a = result(&s, "rough_stiffness.alpha");
+            assert!(
+                (a - result(&s, "rough_stiffness.alpha_scaling_eq80")).abs() < 0.02,
+                "alpha {a}"
+            );
+        }
+        if *name == "fig9" {
+            // h calibrated to ~40 contacts at F = 500 (on 40 lines; 300 lines agree to 15 %),
+            // and the slope b of Eq. (91) near the caption's 0.0614 for Hurst 1.
+            let c = result(&s, "static_friction.contacts_at_max_force");
+            assert!((c / 40.0 - 1.0).abs() < 0.15, "contacts {c}");
+            let b = result(&s, "static_friction.b");
+            let ci = result(&s, "static_friction.b_ci95");
+            assert!((b - 0.0614).abs() < 2.0 * ci, "b = {b} +/- {ci}");
+        }
         // MRD-only scenes never touch the 3D solver.
         assert!(stages(&s).iter().all(|st| !st.starts_with("bem")), "{name}");
     }
@@ -203,6 +220,23 @@ fn bad_input_is_one_clear_line_and_no_output() {
         "missing field `outputs`",
     );
     expect_failure("name = \"x\"\n[material\n", "bad.toml:2");
+    let rough = "[[outputs]]\nkind = \"rough_stiffness\"\npoints = 1024\nlength = 1.0\nf_min = 1e-6\nf_max = 1.0\n";
+    expect_failure(
+        &format!("name = \"x\"\n{mat}{rough}hurst = 3.5\n"),
+        "hurst = 3.5 must lie in [-1, 3]",
+    );
+    expect_failure(
+        &format!("name = \"x\"\n{mat}{rough}hurst = 0.5\nlambda = -2.0\n"),
+        "lambda = -2 must be > 0",
+    );
+    expect_failure(
+        &format!("name = \"x\"\n{mat}{rough}hurst = -0.8\nlambda = \"cut\"\n"),
+        "H > -1/2",
+    );
+    expect_failure(
+        &format!("name = \"x\"\n{mat}[[outputs]]\nkind = \"static_friction\"\nhurst = 0.7\npoints = 1024\nlength = 1024.0\nrms_height = 1.0\ncontacts_at_max_force = 4.0\nforce_min = 1.0\nforce_max = 5.0\n"),
+        "exactly one of rms_height and contacts_at_max_force",
+    );
 }
 
 #[test]

@@ -566,6 +566,9 @@ pub fn run_output(scene: &Scene, index: usize, report: &mut Report) -> Result<()
             report.tables.push(t);
             report.figures.push(fig);
         }
+        OutputSpec::StaticFriction { .. } | OutputSpec::RoughStiffness { .. } => {
+            unreachable!("rough outputs run in crate::rough")
+        }
     }
     Ok(())
 }

@@ -7,6 +7,7 @@ pub mod axisym;
 pub mod error;
 pub mod plan;
 pub mod report;
+pub mod rough;
 pub mod scene;
 pub mod scenes;
 
@@ -23,8 +24,22 @@ pub fn tool_version() -> String {
 /// Runs every output of a scene (only their planned stages) into a report.
 pub fn run_scene(scene: &scene::Scene) -> Result<report::Report> {
     let mut report = report::Report::default();
+    let mut seen: std::collections::BTreeMap<&str, usize> = Default::default();
     for i in 0..scene.file.outputs.len() {
-        axisym::run_output(scene, i, &mut report)?;
+        let kind = scene.file.outputs[i].kind();
+        let k = seen.entry(kind).or_insert(0);
+        *k += 1;
+        let label = if *k == 1 {
+            kind.to_string()
+        } else {
+            format!("{kind}_{k}")
+        };
+        report.current = Some((kind.to_string(), label));
+        if scene.file.outputs[i].is_rough() {
+            rough::run_output(scene, i, &mut report)?;
+        } else {
+            axisym::run_output(scene, i, &mut report)?;
+        }
     }
     report.dedupe_names();
     report.warnings.dedup();

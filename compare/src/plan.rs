@@ -28,6 +28,10 @@ pub enum Stage {
     OscillationDiscrete,
     /// Literature closed forms for overlay and error measures.
     ClosedForm,
+    /// Random rough lines or surfaces (Eqs. 70-72).
+    RoughSynthesis,
+    /// Rough line on the MRD foundation (sorted gaps, exact queries).
+    RoughContact,
 }
 
 impl Stage {
@@ -43,6 +47,8 @@ impl Stage {
             Stage::AbelTraction => "abel_traction",
             Stage::OscillationDiscrete => "oscillation_discrete",
             Stage::ClosedForm => "closed_form",
+            Stage::RoughSynthesis => "rough_synthesis",
+            Stage::RoughContact => "rough_contact_mrd",
         }
     }
 }
@@ -50,6 +56,9 @@ impl Stage {
 /// Stages needed by one output (in execution order).
 pub fn stages_for(output: &OutputSpec, has_closed_form: bool) -> Vec<Stage> {
     use Stage::*;
+    if output.is_rough() {
+        return vec![RoughSynthesis, RoughContact];
+    }
     let mut s = vec![HessTransform];
     match output {
         OutputSpec::Profile1d { .. } => {}
@@ -73,6 +82,7 @@ pub fn stages_for(output: &OutputSpec, has_closed_form: bool) -> Vec<Stage> {
             }
         }
         OutputSpec::Damping { .. } => s.extend([NormalSemiAnalytic, OscillationDiscrete]),
+        OutputSpec::StaticFriction { .. } | OutputSpec::RoughStiffness { .. } => unreachable!(),
     }
     if has_closed_form && !matches!(output, OutputSpec::Profile1d { .. }) {
         s.push(ClosedForm);

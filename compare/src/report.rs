@@ -49,6 +49,8 @@ pub struct Series {
     pub label: String,
     pub points: Vec<(f64, f64)>,
     pub style: Style,
+    /// Palette index; None: the series' position.
+    pub color: Option<usize>,
 }
 
 impl Series {
@@ -57,7 +59,13 @@ impl Series {
             label: label.into(),
             points,
             style,
+            color: None,
         }
+    }
+    /// Same colour as series `index` of the figure (e.g. both bounds of a band).
+    pub fn colored(mut self, index: usize) -> Self {
+        self.color = Some(index);
+        self
     }
 }
 
@@ -98,11 +106,20 @@ pub struct Report {
     pub scalars: Map<String, Value>,
     pub warnings: Vec<String>,
     pub stages: Vec<String>,
+    /// (kind, label) of the output being run: scalars `kind.x` are stored as `label.x`,
+    /// so that two outputs of one kind keep separate results.
+    pub current: Option<(String, String)>,
 }
 
 impl Report {
     pub fn scalar(&mut self, key: impl Into<String>, value: f64) {
-        self.scalars.insert(key.into(), json!(value));
+        let mut key = key.into();
+        if let Some((kind, label)) = &self.current {
+            if let Some(rest) = key.strip_prefix(&format!("{kind}.")) {
+                key = format!("{label}.{rest}");
+            }
+        }
+        self.scalars.insert(key, json!(value));
     }
     /// Records a stage as run (once).
     pub fn ran(&mut self, stage: crate::plan::Stage) {
@@ -269,7 +286,7 @@ macro_rules! draw_with {
             .draw()
             .map_err(|e| plot_err($path, e))?;
         for (i, s) in $fig.series.iter().enumerate() {
-            let color = PALETTE[i % PALETTE.len()];
+            let color = PALETTE[s.color.unwrap_or(i) % PALETTE.len()];
             let pts: Vec<(f64, f64)> = s
                 .points
                 .iter()
@@ -282,45 +299,54 @@ macro_rules! draw_with {
                 })
                 .collect();
             let label = s.label.as_str();
+            let show = !label.is_empty();
             let err = |e| plot_err($path, e);
             match s.style {
                 Style::Line => {
-                    chart
+                    let anno = chart
                         .draw_series(LineSeries::new(pts, color.stroke_width(2)))
-                        .map_err(err)?
-                        .label(label)
-                        .legend(move |(x, y)| {
+                        .map_err(err)?;
+                    if show {
+                        anno.label(label).legend(move |(x, y)| {
                             PathElement::new(vec![(x, y), (x + 22, y)], color.stroke_width(2))
                         });
+                    }
                 }
                 Style::Dashed => {
-                    chart
+                    let anno = chart
                         .draw_series(DashedLineSeries::new(pts, 8, 6, color.stroke_width(2)))
-                        .map_err(err)?
-                        .label(label)
-                        .legend(move |(x, y)| {
+                        .map_err(err)?;
+                    if show {
+                        anno.label(label).legend(move |(x, y)| {
                             PathElement::new(vec![(x, y), (x + 8, y)], color.stroke_width(2))
                         });
+                    }
                 }
                 Style::Markers => {
-                    chart
+                    let anno = chart
                         .draw_series(
                             pts.into_iter()
                                 .map(|p| Circle::new(p, 4, color.stroke_width(2))),
                         )
-                        .map_err(err)?
-                        .label(label)
-                        .legend(move |(x, y)| Circle::new((x + 10, y), 4, color.stroke_width(2)));
+                        .map_err(err)?;
+                    if show {
+                        anno.label(label).legend(move |(x, y)| {
+                            Circle::new((x + 10, y), 4, color.stroke_width(2))
+                        });
+                    }
                 }
                 Style::Crosses => {
-                    chart
+                    let anno = chart
                         .draw_series(
                             pts.into_iter()
                                 .map(|p| Cross::new(p, 6, color.stroke_width(2))),
                         )
-                        .map_err(err)?
-                        .label(label)
-                        .legend(move |(x, y)| Cross::new((x + 10, y), 6, color.stroke_width(2)));
+                        .map_err(err)?;
+                    if show {
+                        anno.label(label).legend(move |(x, y)| {
+                            Cross::new((x + 10, y), 6, color.stroke_width(2))
+                        });
+                    }
                 }
             }
         }

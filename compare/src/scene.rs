@@ -314,6 +314,42 @@ pub enum OutputSpec {
         #[serde(default)]
         traction_at: Vec<f64>,
     },
+    /// Static friction from the mean slope in contact (Section 10.2, Fig. 9).
+    StaticFriction {
+        hurst: f64,
+        points: usize,
+        length: f64,
+        /// rms height h; or give `contacts_at_max_force` to calibrate h.
+        rms_height: Option<f64>,
+        contacts_at_max_force: Option<f64>,
+        #[serde(default = "default_realisations")]
+        realisations: u64,
+        #[serde(default)]
+        seed: u64,
+        force_min: f64,
+        force_max: f64,
+        #[serde(default = "default_force_points")]
+        force_points: usize,
+    },
+    /// Ensemble stiffness-force law of MRD rough lines (Eq. 77) and its exponent.
+    RoughStiffness {
+        hurst: f64,
+        points: usize,
+        length: f64,
+        /// Upper cut-off as a fraction of the Nyquist wavenumber pi N / L.
+        #[serde(default = "default_cutoff_ratio")]
+        upper_cutoff_ratio: f64,
+        #[serde(default)]
+        lambda: LambdaSpec,
+        #[serde(default = "default_realisations")]
+        realisations: u64,
+        #[serde(default)]
+        seed: u64,
+        f_min: f64,
+        f_max: f64,
+        #[serde(default = "default_force_points")]
+        f_points: usize,
+    },
     /// Oscillating tangential loading at depth `depth` (Section 7): dissipation per cycle
     /// against amplitude, up to `max_amplitude_ratio` x A_c0 (A_c0 = mu E*/G* d).
     Damping {
@@ -331,8 +367,32 @@ pub enum OutputSpec {
     },
 }
 
+/// lambda of Eq. (76): a number, "pi" (Eq. 73), "cut" (straight cut), or the path of a
+/// CSV table `hurst, lambda` (relative to the scene).
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(untagged)]
+pub enum LambdaSpec {
+    Value(f64),
+    Named(String),
+}
+
+impl Default for LambdaSpec {
+    fn default() -> Self {
+        LambdaSpec::Named("pi".into())
+    }
+}
+
 fn default_points() -> usize {
     60
+}
+fn default_realisations() -> u64 {
+    100
+}
+fn default_force_points() -> usize {
+    30
+}
+fn default_cutoff_ratio() -> f64 {
+    0.5
 }
 fn default_amplitude_ratio() -> f64 {
     1.0
@@ -353,7 +413,17 @@ impl OutputSpec {
             OutputSpec::Adhesion { .. } => "adhesion",
             OutputSpec::Tangential { .. } => "tangential",
             OutputSpec::Damping { .. } => "damping",
+            OutputSpec::StaticFriction { .. } => "static_friction",
+            OutputSpec::RoughStiffness { .. } => "rough_stiffness",
         }
+    }
+
+    /// Rough-surface outputs need no axisymmetric profile.
+    pub fn is_rough(&self) -> bool {
+        matches!(
+            self,
+            OutputSpec::StaticFriction { .. } | OutputSpec::RoughStiffness { .. }
+        )
     }
 }
 
@@ -365,6 +435,8 @@ pub struct Scene {
     pub origin: String,
     pub material: Material,
     pub profile: Option<Profile>,
+    /// Folder of the scene file (None for embedded scenes).
+    pub base_dir: Option<std::path::PathBuf>,
 }
 
 impl Scene {
@@ -408,6 +480,7 @@ impl Scene {
             origin: origin.to_string(),
             material,
             profile,
+            base_dir: base_dir.map(Path::to_path_buf),
         };
         scene.validate_outputs()?;
         Ok(scene)
@@ -437,6 +510,10 @@ impl Scene {
         };
         let positive = |x: f64| x.is_finite() && x > 0.0;
         for (i, o) in self.file.outputs.iter().enumerate() {
+            if o.is_rough() {
+                self.validate_rough(i, o)?;
+                continue;
+            }
             self.profile()?;
             let points = match o {
                 OutputSpec::Profile1d { points, .. }
@@ -445,6 +522,9 @@ impl Scene {
                 | OutputSpec::Adhesion { points, .. }
                 | OutputSpec::Tangential { points, .. }
                 | OutputSpec::Damping { points, .. } => *points,
+                OutputSpec::StaticFriction { .. } | OutputSpec::RoughStiffness { .. } => {
+                    unreachable!()
+                }
             };
             if !(2..=100_000).contains(&points) {
                 return bad(i, "points must lie in 2..=100000");
@@ -511,6 +591,98 @@ impl Scene {
                 }
                 _ => {}
             }
+        }
+        Ok(())
+    }
+}
+
+impl Scene {
+    fn validate_rough(&self, i: usize, o: &OutputSpec) -> Result<()> {
+        let bad = |what: String| {
+            Err(CompareError::Scene(format!(
+                "{}: outputs[{i}]: {what}",
+                self.origin
+            )))
+        };
+        let pos = |x: f64| x.is_finite() && x > 0.0;
+        let (hurst, points, length, realisations) = match o {
+            OutputSpec::StaticFriction {
+                hurst,
+                points,
+                length,
+                realisations,
+                ..
+            }
+            | OutputSpec::RoughStiffness {
+                hurst,
+                points,
+                length,
+                realisations,
+                ..
+            } => (*hurst, *points, *length, *realisations),
+            _ => unreachable!(),
+        };
+        if !(-1.0..=3.0).contains(&hurst) {
+            return bad(format!("hurst = {hurst} must lie in [-1, 3]"));
+        }
+        if !(64..=50_000_000).contains(&points) {
+            return bad(format!("points = {points} must lie in 64..=5e7"));
+        }
+        if !pos(length) {
+            return bad("length must be > 0".into());
+        }
+        if realisations == 0 || realisations > 1_000_000 {
+            return bad("realisations must lie in 1..=1e6".into());
+        }
+        match o {
+            OutputSpec::StaticFriction {
+                rms_height,
+                contacts_at_max_force,
+                force_min,
+                force_max,
+                force_points,
+                ..
+            } => {
+                if rms_height.is_some() == contacts_at_max_force.is_some() {
+                    return bad("give exactly one of rms_height and contacts_at_max_force".into());
+                }
+                if rms_height.is_some_and(|h| !pos(h))
+                    || contacts_at_max_force.is_some_and(|c| !(c >= 1.0 && c < points as f64))
+                {
+                    return bad(
+                        "rms_height must be > 0; contacts_at_max_force in [1, points)".into(),
+                    );
+                }
+                if !(pos(*force_min) && pos(*force_max) && force_max > force_min)
+                    || *force_points < 3
+                {
+                    return bad("need 0 < force_min < force_max and force_points >= 3".into());
+                }
+            }
+            OutputSpec::RoughStiffness {
+                upper_cutoff_ratio,
+                f_min,
+                f_max,
+                f_points,
+                lambda,
+                ..
+            } => {
+                if !(*upper_cutoff_ratio > 0.0 && *upper_cutoff_ratio <= 1.0) {
+                    return bad("upper_cutoff_ratio must lie in (0, 1]".into());
+                }
+                if !(pos(*f_min) && pos(*f_max) && f_max > f_min) || *f_points < 3 {
+                    return bad("need 0 < f_min < f_max and f_points >= 3".into());
+                }
+                if let LambdaSpec::Value(v) = lambda {
+                    if !pos(*v) {
+                        return bad(format!("lambda = {v} must be > 0"));
+                    }
+                }
+                crate::rough::lambda_of(lambda, self.base_dir.as_deref())?
+                    .at(hurst)
+                    .ctx(format!("outputs[{i}] lambda"))?;
+            }
+            _ => {}
         }
         Ok(())
     }

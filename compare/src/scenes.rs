@@ -14,6 +14,7 @@ pub const EMBEDDED: &[(&str, &str)] = &[
     ),
     ("cone", include_str!("../../cases/cone.toml")),
     ("ejike", include_str!("../../cases/ejike.toml")),
+    ("fig9", include_str!("../../cases/fig9.toml")),
     ("flat-punch", include_str!("../../cases/flat-punch.toml")),
     ("hertz", include_str!("../../cases/hertz.toml")),
     ("jkr", include_str!("../../cases/jkr.toml")),
@@ -22,6 +23,10 @@ pub const EMBEDDED: &[(&str, &str)] = &[
         include_str!("../../cases/mindlin-damping.toml"),
     ),
     ("power-law", include_str!("../../cases/power-law.toml")),
+    (
+        "rough-stiffness",
+        include_str!("../../cases/rough-stiffness.toml"),
+    ),
     ("tabulated", include_str!("../../cases/tabulated.toml")),
 ];
 
