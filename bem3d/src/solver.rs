@@ -72,7 +72,6 @@ pub struct ContactSolver<K: Compliance> {
     /// 1.0 on cells that may touch, 0.0 elsewhere (f64: the sweeps are branch-free).
     mask: Vec<f64>,
     h_rms: f64,
-    u: Vec<f64>,
     g: Vec<f64>,
     t: Vec<f64>,
     r: Vec<f64>,
@@ -198,7 +197,6 @@ impl<K: Compliance> ContactSolver<K> {
             op,
             z,
             h_rms,
-            u: vec![0.0; n],
             g: vec![0.0; n],
             t: vec![0.0; n],
             r: vec![0.0; n],
@@ -310,23 +308,23 @@ impl<K: Compliance> ContactSolver<K> {
         let h_rms = self.h_rms;
         let e_star = self.op.e_star();
         for it in 0..opts.max_iterations {
-            self.op.apply(&p, &mut self.u);
+            self.op.apply(&p, &mut self.g);
             // Pass A: rescale, raw gap, contact set, sums for its mean and G.
             let [sum_g, sum_g2, nc] = reduce3(
                 (
                     p.par_chunks_mut(CHUNK),
-                    self.u.par_chunks(CHUNK),
                     self.z.par_chunks(CHUNK),
                     self.mask.par_chunks(CHUNK),
                     self.g.par_chunks_mut(CHUNK),
                     self.active.par_chunks_mut(CHUNK),
                 ),
-                |(p, u, z, m, g, act)| {
+                |(p, z, m, g, act)| {
                     let (mut s1, mut s2, mut c) = (0.0, 0.0, 0.0);
                     for i in 0..p.len() {
                         p[i] *= scale;
                         let a = if p[i] > 0.0 { m[i] } else { 0.0 };
-                        let gi = m[i] * (scale * u[i] + z[i] - fixed_approach);
+                        // g holds u = K p on entry.
+                        let gi = m[i] * (scale * g[i] + z[i] - fixed_approach);
                         g[i] = gi;
                         act[i] = a;
                         let gs = gi - shift;
