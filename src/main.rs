@@ -38,6 +38,22 @@ enum Command {
         /// Output folder (default: reports/<scene name>/). Replaced atomically.
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Worker threads (default: all cores). Results do not depend on it.
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Compute only shard K of N of the sweep tasks (e.g. 0/4) into --out, for
+        /// `mrdw merge`; no report is written.
+        #[arg(long, value_parser = parse_shard)]
+        shard: Option<(usize, usize)>,
+    },
+    /// Combine shard folders of one scene into the report a single run would write.
+    Merge {
+        /// Shard folders written by `mrdw run SCENE --shard K/N --out DIR`.
+        #[arg(required = true)]
+        shards: Vec<PathBuf>,
+        /// Report folder (default: reports/<scene name>/).
+        #[arg(long)]
+        out: Option<PathBuf>,
     },
     /// List the embedded scenes.
     Scenes,
@@ -80,6 +96,24 @@ enum BenchTarget {
     Bem,
 }
 
+fn parse_shard(s: &str) -> Result<(usize, usize), String> {
+    let (k, n) = s.split_once('/').ok_or("expected K/N, e.g. 0/4")?;
+    let (k, n): (usize, usize) = (
+        k.parse().map_err(|_| "K is not a number")?,
+        n.parse().map_err(|_| "N is not a number")?,
+    );
+    if n == 0 || k >= n {
+        return Err(format!("shard {k}/{n}: need 0 <= K < N"));
+    }
+    Ok((k, n))
+}
+
+fn stop_after() -> Option<usize> {
+    std::env::var("MRDW_STOP_AFTER_TASKS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+}
+
 fn load(scene: Option<&str>) -> Result<Scene, String> {
     let name = scene.unwrap_or(scenes::DEFAULT);
     let path = PathBuf::from(name);
@@ -99,11 +133,36 @@ fn load(scene: Option<&str>) -> Result<Scene, String> {
 
 fn run(cmd: Command) -> Result<(), String> {
     match cmd {
-        Command::Run { scene, out } => {
+        Command::Run {
+            scene,
+            out,
+            threads,
+            shard,
+        } => {
+            if let Some(t) = threads {
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(t.max(1))
+                    .build_global()
+                    .map_err(|e| e.to_string())?;
+            }
             let scene = load(scene.as_deref())?;
             let out = out.unwrap_or_else(|| PathBuf::from("reports").join(&scene.file.name));
+            let control = compare::sweep::RunControl {
+                shard,
+                stop_after: stop_after(),
+                progress: true,
+            };
+            if let Some((k, n)) = shard {
+                compare::shards::run_shard(&scene, &out, &control).map_err(|e| e.to_string())?;
+                println!(
+                    "shard {k}/{n} of `{}` computed into {}",
+                    scene.file.name,
+                    out.display()
+                );
+                return Ok(());
+            }
             let (report, files) =
-                compare::run_and_write(&scene, &out).map_err(|e| e.to_string())?;
+                compare::run_and_write_with(&scene, &out, &control).map_err(|e| e.to_string())?;
             for w in &report.warnings {
                 eprintln!("warning: {w}");
             }
@@ -113,9 +172,23 @@ fn run(cmd: Command) -> Result<(), String> {
                 report.stages.join(", ")
             );
             for (k, v) in &report.scalars {
-                println!("  {k} = {v}");
+                if !v.is_object() {
+                    println!("  {k} = {v}");
+                }
             }
             println!("wrote {} files to {}", files.len(), out.display());
+            Ok(())
+        }
+        Command::Merge { shards, out } => {
+            let (scene, report, files) =
+                compare::shards::merge(&shards, out.as_deref()).map_err(|e| e.to_string())?;
+            println!(
+                "merged {} shards of `{}`: stages {}",
+                shards.len(),
+                scene.file.name,
+                report.stages.join(", ")
+            );
+            println!("wrote {} files", files.len());
             Ok(())
         }
         Command::Scenes => {

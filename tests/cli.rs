@@ -60,6 +60,9 @@ fn every_case_file_is_embedded() {
 fn all_embedded_scenes_run_and_match_closed_forms() {
     let tmp = tempfile::tempdir().unwrap();
     for (name, _) in compare::scenes::EMBEDDED {
+        if name.starts_with("fig6") {
+            continue; // sweeps: tests/sweep.rs (fig6-ci); fig6 and fig6-full are long runs
+        }
         let out = tmp.path().join(name);
         let s = run_scene(name, &out);
         // Every CSV carries provenance and unit-bearing headers; every figure exists.

@@ -566,7 +566,9 @@ pub fn run_output(scene: &Scene, index: usize, report: &mut Report) -> Result<()
             report.tables.push(t);
             report.figures.push(fig);
         }
-        OutputSpec::StaticFriction { .. } | OutputSpec::RoughStiffness { .. } => {
+        OutputSpec::StaticFriction { .. }
+        | OutputSpec::RoughStiffness { .. }
+        | OutputSpec::HurstSweep(_) => {
             unreachable!("rough outputs run in crate::rough")
         }
     }

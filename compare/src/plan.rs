@@ -32,6 +32,10 @@ pub enum Stage {
     RoughSynthesis,
     /// Rough line on the MRD foundation (sorted gaps, exact queries).
     RoughContact,
+    /// 3D boundary-element contact (bem3d).
+    Bem3d,
+    /// Fits of Eq. (77), bootstrap intervals, lambda calibration.
+    SweepFit,
 }
 
 impl Stage {
@@ -49,6 +53,8 @@ impl Stage {
             Stage::ClosedForm => "closed_form",
             Stage::RoughSynthesis => "rough_synthesis",
             Stage::RoughContact => "rough_contact_mrd",
+            Stage::Bem3d => "bem3d",
+            Stage::SweepFit => "sweep_fit",
         }
     }
 }
@@ -56,6 +62,9 @@ impl Stage {
 /// Stages needed by one output (in execution order).
 pub fn stages_for(output: &OutputSpec, has_closed_form: bool) -> Vec<Stage> {
     use Stage::*;
+    if let OutputSpec::HurstSweep(_) = output {
+        return vec![RoughSynthesis, Bem3d, RoughContact, SweepFit];
+    }
     if output.is_rough() {
         return vec![RoughSynthesis, RoughContact];
     }
@@ -82,7 +91,9 @@ pub fn stages_for(output: &OutputSpec, has_closed_form: bool) -> Vec<Stage> {
             }
         }
         OutputSpec::Damping { .. } => s.extend([NormalSemiAnalytic, OscillationDiscrete]),
-        OutputSpec::StaticFriction { .. } | OutputSpec::RoughStiffness { .. } => unreachable!(),
+        OutputSpec::StaticFriction { .. }
+        | OutputSpec::RoughStiffness { .. }
+        | OutputSpec::HurstSweep(_) => unreachable!(),
     }
     if has_closed_form && !matches!(output, OutputSpec::Profile1d { .. }) {
         s.push(ClosedForm);

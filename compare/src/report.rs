@@ -20,6 +20,8 @@ pub struct Table {
     pub rows: Vec<Vec<f64>>,
     /// Extra comment lines (method, tolerances) written under the provenance block.
     pub notes: Vec<String>,
+    /// Undefined values (NaN) are written as empty cells; otherwise they are an error.
+    pub missing_ok: bool,
 }
 
 impl Table {
@@ -51,6 +53,8 @@ pub struct Series {
     pub style: Style,
     /// Palette index; None: the series' position.
     pub color: Option<usize>,
+    /// Vertical error bars (x, low, high).
+    pub bars: Vec<(f64, f64, f64)>,
 }
 
 impl Series {
@@ -60,7 +64,12 @@ impl Series {
             points,
             style,
             color: None,
+            bars: Vec::new(),
         }
+    }
+    pub fn with_bars(mut self, bars: Vec<(f64, f64, f64)>) -> Self {
+        self.bars = bars;
+        self
     }
     /// Same colour as series `index` of the figure (e.g. both bounds of a band).
     pub fn colored(mut self, index: usize) -> Self {
@@ -182,14 +191,24 @@ fn csv_text(table: &Table, prov: &Provenance) -> Result<String> {
     w.write_record(&table.columns)
         .map_err(|e| csv_err(&table.name, e))?;
     for row in &table.rows {
-        if let Some((j, v)) = row.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        if let Some((j, v)) = row
+            .iter()
+            .enumerate()
+            .find(|(_, v)| !(v.is_finite() || (table.missing_ok && v.is_nan())))
+        {
             return Err(CompareError::Scene(format!(
                 "internal: non-finite value {v} in table `{}` column `{}`",
                 table.name, table.columns[j]
             )));
         }
-        w.write_record(row.iter().map(|v| format!("{v:e}")))
-            .map_err(|e| csv_err(&table.name, e))?;
+        w.write_record(row.iter().map(|v| {
+            if v.is_nan() {
+                String::new()
+            } else {
+                format!("{v:e}")
+            }
+        }))
+        .map_err(|e| csv_err(&table.name, e))?;
     }
     let bytes = w
         .into_inner()
@@ -300,6 +319,16 @@ macro_rules! draw_with {
                 .collect();
             let label = s.label.as_str();
             let show = !label.is_empty();
+            for &(x, lo, hi) in &s.bars {
+                if x.is_finite() && lo.is_finite() && hi.is_finite() && (!$fig.log_y || lo > 0.0) {
+                    chart
+                        .draw_series(std::iter::once(PathElement::new(
+                            vec![(x, lo), (x, hi)],
+                            color.stroke_width(1),
+                        )))
+                        .map_err(|e| plot_err($path, e))?;
+                }
+            }
             let err = |e| plot_err($path, e);
             match s.style {
                 Style::Line => {

@@ -314,6 +314,8 @@ pub enum OutputSpec {
         #[serde(default)]
         traction_at: Vec<f64>,
     },
+    /// The Hurst sweep, 3D against 1D (Section 9, Fig. 6); see [`crate::sweep`].
+    HurstSweep(crate::sweep::SweepSpec),
     /// Static friction from the mean slope in contact (Section 10.2, Fig. 9).
     StaticFriction {
         hurst: f64,
@@ -415,6 +417,7 @@ impl OutputSpec {
             OutputSpec::Damping { .. } => "damping",
             OutputSpec::StaticFriction { .. } => "static_friction",
             OutputSpec::RoughStiffness { .. } => "rough_stiffness",
+            OutputSpec::HurstSweep(_) => "hurst_sweep",
         }
     }
 
@@ -422,7 +425,9 @@ impl OutputSpec {
     pub fn is_rough(&self) -> bool {
         matches!(
             self,
-            OutputSpec::StaticFriction { .. } | OutputSpec::RoughStiffness { .. }
+            OutputSpec::StaticFriction { .. }
+                | OutputSpec::RoughStiffness { .. }
+                | OutputSpec::HurstSweep(_)
         )
     }
 }
@@ -522,7 +527,9 @@ impl Scene {
                 | OutputSpec::Adhesion { points, .. }
                 | OutputSpec::Tangential { points, .. }
                 | OutputSpec::Damping { points, .. } => *points,
-                OutputSpec::StaticFriction { .. } | OutputSpec::RoughStiffness { .. } => {
+                OutputSpec::StaticFriction { .. }
+                | OutputSpec::RoughStiffness { .. }
+                | OutputSpec::HurstSweep(_) => {
                     unreachable!()
                 }
             };
@@ -597,6 +604,17 @@ impl Scene {
 }
 
 impl Scene {
+    /// Seed recorded in the provenance: the first output that has one.
+    pub fn seed(&self) -> Option<u64> {
+        self.file.outputs.iter().find_map(|o| match o {
+            OutputSpec::HurstSweep(s) => Some(s.seed),
+            OutputSpec::StaticFriction { seed, .. } | OutputSpec::RoughStiffness { seed, .. } => {
+                Some(*seed)
+            }
+            _ => None,
+        })
+    }
+
     fn validate_rough(&self, i: usize, o: &OutputSpec) -> Result<()> {
         let bad = |what: String| {
             Err(CompareError::Scene(format!(
@@ -605,6 +623,9 @@ impl Scene {
             )))
         };
         let pos = |x: f64| x.is_finite() && x > 0.0;
+        if let OutputSpec::HurstSweep(spec) = o {
+            return spec.validate().or_else(&bad);
+        }
         let (hurst, points, length, realisations) = match o {
             OutputSpec::StaticFriction {
                 hurst,
