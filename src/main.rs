@@ -20,7 +20,8 @@ struct Cli {
 }
 
 const EXAMPLES: &str = "Examples:
-  mrdw run                         run the default embedded scene (tour) into reports/tour/
+  mrdw run                         run the default embedded scene (fig6, a few minutes) into reports/fig6/
+  mrdw run tour                    every axisymmetric output on one sphere (instant)
   mrdw run hertz                   run the embedded scene `hertz`
   mrdw run cases/jkr.toml --out /tmp/jkr
   mrdw scenes                      list embedded scenes
@@ -31,7 +32,7 @@ The scene format is documented in cases/README.md.";
 
 #[derive(Subcommand)]
 enum Command {
-    /// Run a scene (a .toml path or an embedded scene name; default: the tour).
+    /// Run a scene (a .toml path or an embedded scene name; default: fig6).
     Run {
         /// Scene file path or embedded scene name.
         scene: Option<String>,

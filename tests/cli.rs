@@ -275,7 +275,12 @@ fn missing_scene_and_table_file_errors() {
 fn scenes_and_show_and_help() {
     let o = mrdw(&["scenes"]);
     let text = String::from_utf8_lossy(&o.stdout);
-    assert!(text.contains("tour") && text.contains("(default)") && text.contains("jkr"));
+    assert!(
+        text.contains("tour")
+            && text.contains("fig6")
+            && text.contains("(default)")
+            && text.contains("jkr")
+    );
     let o = mrdw(&["show", "hertz"]);
     assert_eq!(
         String::from_utf8_lossy(&o.stdout),

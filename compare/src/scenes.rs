@@ -3,7 +3,7 @@
 
 /// (name, TOML text); the first is the default scene.
 pub const EMBEDDED: &[(&str, &str)] = &[
-    ("tour", include_str!("../../cases/tour.toml")),
+    ("fig6", include_str!("../../cases/fig6.toml")),
     (
         "adhesive-cone",
         include_str!("../../cases/adhesive-cone.toml"),
@@ -14,7 +14,6 @@ pub const EMBEDDED: &[(&str, &str)] = &[
     ),
     ("cone", include_str!("../../cases/cone.toml")),
     ("ejike", include_str!("../../cases/ejike.toml")),
-    ("fig6", include_str!("../../cases/fig6.toml")),
     ("fig6-ci", include_str!("../../cases/fig6-ci.toml")),
     ("fig6-full", include_str!("../../cases/fig6-full.toml")),
     ("fig9", include_str!("../../cases/fig9.toml")),
@@ -31,10 +30,11 @@ pub const EMBEDDED: &[(&str, &str)] = &[
         include_str!("../../cases/rough-stiffness.toml"),
     ),
     ("tabulated", include_str!("../../cases/tabulated.toml")),
+    ("tour", include_str!("../../cases/tour.toml")),
 ];
 
 /// The scene `mrdw run` runs when given none.
-pub const DEFAULT: &str = "tour";
+pub const DEFAULT: &str = "fig6";
 
 pub fn get(name: &str) -> Option<&'static str> {
     EMBEDDED.iter().find(|(n, _)| *n == name).map(|(_, t)| *t)

@@ -875,7 +875,7 @@ pub fn aggregate(spec: &SweepSpec, work: &Path, report: &mut Report, label: &str
         .map(|i| -0.45 + 3.45 * i as f64 / 70.0)
         .map(|h| (h, lambda_cut(h).unwrap()))
         .collect();
-    let figl = Figure::new(
+    let mut figl = Figure::new(
         &format!("{label}_lambda"),
         "Calibrated lambda(H) of Eq. (76)",
         "Hurst exponent H [1]",
@@ -895,6 +895,7 @@ pub fn aggregate(spec: &SweepSpec, work: &Path, report: &mut Report, label: &str
         lam_cut_pts,
         Style::Line,
     ));
+    figl.log_y = true;
     let figz = Figure::new(
         &format!("{label}_zeta"),
         "Prefactor zeta of Eq. (77)",
@@ -930,7 +931,6 @@ pub fn aggregate(spec: &SweepSpec, work: &Path, report: &mut Report, label: &str
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
             figc = figc.with(Series::new(format!("H = {hurst}"), pts, Style::Line));
         }
-        figc.log_x = true;
         report.figures.push(figc);
         report.tables.push(conv_t);
     }
