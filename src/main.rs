@@ -95,6 +95,8 @@ enum BenchTarget {
     Mrd,
     /// The 3D solver: periodic self-affine 128^2.. and non-periodic Hertz 128^2..
     Bem,
+    /// Rough lines: generation and a 100-point k(F) curve, N = 1e3 .. 1e7.
+    Rough,
 }
 
 fn parse_shard(s: &str) -> Result<(usize, usize), String> {
@@ -217,6 +219,9 @@ fn run(cmd: Command) -> Result<(), String> {
         } => {
             match target {
                 BenchTarget::Mrd => compare::bench::run_mrd(max_exp.clamp(3, 8)),
+                BenchTarget::Rough => {
+                    compare::bench::run_rough(if max_exp == 6 { 7 } else { max_exp.clamp(3, 8) })
+                }
                 BenchTarget::Bem => {
                     let exe = std::env::current_exe().map_err(|e| e.to_string())?;
                     let mut lines = Vec::new();

@@ -270,3 +270,70 @@ pub fn print_bem_table(lines: &[String]) {
     );
     println!("mem: peak resident memory of the whole process running that case.");
 }
+
+/// `mrdw bench rough`: a rough line of N points (generation) and a 100-point k(F) curve
+/// on it, N = 1e3 .. 10^max_exp, single thread.
+pub fn run_rough(max_exp: u32) {
+    use mrd::rough_contact::RoughLine;
+    use mrd::roughness::synthesis::{line, Amplitudes};
+    use mrd::roughness::SelfAffine;
+    use std::f64::consts::PI;
+    println!("rough-line benchmark: H = 0.7, spectrum 2 pi/L .. half Nyquist, 100 forces from f = 1e-6 to 1e-1");
+    println!("single thread; median of repeated runs\n");
+    println!(
+        "{:>10} | {:>12} | {:>12} | {:>12} | {:>12} | {:>14}",
+        "points", "line [s]", "setup [s]", "k(F) x100 [s]", "total [s]", "total/(N log2 N)"
+    );
+    println!("{}", "-".repeat(88));
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        for e in 3..=max_exp {
+            let n = 10usize.pow(e);
+            let spec = SelfAffine::new(0.7, 2.0 * PI, 2.0 * PI, PI * n as f64 * 0.5)
+                .unwrap()
+                .to_line(PI)
+                .with_rms_height(1.0)
+                .unwrap();
+            let budget = if e >= 7 { 0.5 } else { 0.3 };
+            let t_gen = time_it(
+                || {
+                    std::hint::black_box(
+                        line(&spec, n, 1.0, 1, 0, Amplitudes::Deterministic).unwrap(),
+                    );
+                },
+                budget,
+            );
+            let h = line(&spec, n, 1.0, 1, 0, Amplitudes::Deterministic).unwrap();
+            let t_setup = time_it(
+                || {
+                    std::hint::black_box(RoughLine::new(&h, 1.0, 1.0).unwrap());
+                },
+                budget,
+            );
+            let rl = RoughLine::new(&h, 1.0, 1.0).unwrap();
+            let fs = mrd::friction::log_space(1e-6, 1e-1, 100);
+            let t_curve = time_it(
+                || {
+                    for &f in &fs {
+                        std::hint::black_box(rl.at_force(f * rl.rms_height).unwrap());
+                    }
+                },
+                0.1,
+            );
+            let total = t_gen + t_setup + t_curve;
+            println!(
+                "{:>10} | {:>12.3e} | {:>12.3e} | {:>12.3e} | {:>12.3e} | {:>14.3e}",
+                n,
+                t_gen,
+                t_setup,
+                t_curve,
+                total,
+                total / (n as f64 * (n as f64).log2())
+            );
+        }
+    });
+    println!("\nline: synthesis by inverse real FFT (Eq. 72); setup: sort + prefix sums; k(F): 100 exact force-controlled solves.");
+}
