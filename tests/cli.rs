@@ -301,3 +301,83 @@ fn rerun_replaces_report_and_csvs_are_deterministic() {
     assert_eq!(std::fs::read(out.join("adhesion.csv")).unwrap(), first);
     assert!(!out.join("stale.txt").exists());
 }
+
+#[test]
+fn bem_contact_on_an_npy_height_map() {
+    // A sphere (R = 1) on a 128^2 map of side 1, apex on a cell centre, non-periodic:
+    // force at approach d against Hertz 4/3 E* R^1/2 d^3/2 within 1 %.
+    let tmp = tempfile::tempdir().unwrap();
+    let n = 128;
+    let h: Vec<f64> = (0..n * n)
+        .map(|k| {
+            let (x, y) = (
+                ((k % n) as f64 - 64.0) / n as f64,
+                ((k / n) as f64 - 64.0) / n as f64,
+            );
+            -(x * x + y * y) / 2.0
+        })
+        .collect();
+    mrd::topography::HeightMap {
+        rows: n,
+        cols: n,
+        data: h,
+    }
+    .write_npy(&tmp.path().join("sphere.npy"))
+    .unwrap();
+    let scene = tmp.path().join("b.toml");
+    let text = "name = \"b\"\n[material]\ne_star = 2.0\n[[outputs]]\nkind = \"bem_contact\"\nheights = \"sphere.npy\"\nsize = [1.0, 1.0]\nperiodic = false\napproaches = [0.01, 0.02]\n";
+    std::fs::write(&scene, text).unwrap();
+    let out = tmp.path().join("out");
+    let s = run_scene(scene.to_str().unwrap(), &out);
+    assert_eq!(stages(&s), ["bem3d"]);
+    let csv = std::fs::read_to_string(out.join("bem_contact.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = csv
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    for (row, d) in rows.iter().zip([0.01f64, 0.02]) {
+        let hertz = 4.0 / 3.0 * 2.0 * d.powf(1.5);
+        assert!(
+            (row[1] / hertz - 1.0).abs() < 0.01,
+            "F = {} vs {hertz}",
+            row[1]
+        );
+        // Stiffness 2 a E* with a = sqrt(R d), within 2 % (pixelated contact edge).
+        assert!(
+            (row[5] / (2.0 * d.sqrt() * 2.0) - 1.0).abs() < 0.02,
+            "k = {}",
+            row[5]
+        );
+    }
+    assert!(
+        !out.join("bem_contact_pressure_1.npy").exists(),
+        "fields written without request"
+    );
+    // Bad maps: NaN inside, missing file.
+    let mut bad = vec![0.0; 16];
+    bad[5] = f64::NAN;
+    mrd::topography::HeightMap {
+        rows: 4,
+        cols: 4,
+        data: bad,
+    }
+    .write_npy(&tmp.path().join("nan.npy"))
+    .unwrap();
+    expect_failure(
+        &text.replace(
+            "sphere.npy",
+            &tmp.path().join("nan.npy").display().to_string(),
+        ),
+        "non-finite height",
+    );
+    expect_failure(&text.replace("sphere.npy", "/no/such.npy"), "such.npy");
+    expect_failure(
+        &text.replace(
+            "approaches = [0.01, 0.02]",
+            "approaches = [0.01]\nmean_pressures = [0.1]",
+        ),
+        "exactly one of mean_pressures and approaches",
+    );
+}

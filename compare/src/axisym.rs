@@ -568,7 +568,8 @@ pub fn run_output(scene: &Scene, index: usize, report: &mut Report) -> Result<()
         }
         OutputSpec::StaticFriction { .. }
         | OutputSpec::RoughStiffness { .. }
-        | OutputSpec::HurstSweep(_) => {
+        | OutputSpec::HurstSweep(_)
+        | OutputSpec::BemContact { .. } => {
             unreachable!("rough outputs run in crate::rough")
         }
     }

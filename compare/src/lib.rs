@@ -4,6 +4,7 @@
 //! -> solvers (`mrd`, `bem3d`) -> tables and figures ([`report`]) -> report folder.
 
 pub mod axisym;
+pub mod bem;
 pub mod error;
 pub mod plan;
 pub mod report;
@@ -77,6 +78,8 @@ pub fn run_scene_in(scene: &scene::Scene, ctx: &RunContext) -> Result<report::Re
                 .map(|c| c.1.clone())
                 .unwrap_or_default();
             sweep::aggregate(spec, &work, &mut report, &label)?;
+        } else if let scene::OutputSpec::BemContact { .. } = &scene.file.outputs[i] {
+            bem::run_output(scene, i, &mut report)?;
         } else if scene.file.outputs[i].is_rough() {
             rough::run_output(scene, i, &mut report)?;
         } else {

@@ -65,7 +65,10 @@ pub fn stages_for(output: &OutputSpec, has_closed_form: bool) -> Vec<Stage> {
     if let OutputSpec::HurstSweep(_) = output {
         return vec![RoughSynthesis, Bem3d, RoughContact, SweepFit];
     }
-    if output.is_rough() {
+    if let OutputSpec::BemContact { .. } = output {
+        return vec![Bem3d];
+    }
+    if !output.needs_profile() {
         return vec![RoughSynthesis, RoughContact];
     }
     let mut s = vec![HessTransform];
@@ -93,7 +96,8 @@ pub fn stages_for(output: &OutputSpec, has_closed_form: bool) -> Vec<Stage> {
         OutputSpec::Damping { .. } => s.extend([NormalSemiAnalytic, OscillationDiscrete]),
         OutputSpec::StaticFriction { .. }
         | OutputSpec::RoughStiffness { .. }
-        | OutputSpec::HurstSweep(_) => unreachable!(),
+        | OutputSpec::HurstSweep(_)
+        | OutputSpec::BemContact { .. } => unreachable!(),
     }
     if has_closed_form && !matches!(output, OutputSpec::Profile1d { .. }) {
         s.push(ClosedForm);

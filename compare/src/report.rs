@@ -118,6 +118,8 @@ pub struct Report {
     /// (kind, label) of the output being run: scalars `kind.x` are stored as `label.x`,
     /// so that two outputs of one kind keep separate results.
     pub current: Option<(String, String)>,
+    /// Extra files (name, bytes), e.g. requested fields as .npy.
+    pub files: Vec<(String, Vec<u8>)>,
 }
 
 impl Report {
@@ -451,6 +453,10 @@ pub fn write(
         let name = format!("{}.png", f.name);
         render(f, &tmp.path().join(&name))?;
         files.push(name);
+    }
+    for (name, bytes) in &report.files {
+        std::fs::write(tmp.path().join(name), bytes).map_err(io_err(format!("writing {name}")))?;
+        files.push(name.clone());
     }
     let summary = json!({
         "tool": prov.tool,

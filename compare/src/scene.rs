@@ -314,6 +314,30 @@ pub enum OutputSpec {
         #[serde(default)]
         traction_at: Vec<f64>,
     },
+    /// A 3D boundary-element contact of a height map from a file (`.npy` or text).
+    BemContact {
+        /// Height map file (peaks up), relative to the scene.
+        heights: String,
+        /// Physical size [lx, ly] of the map (length units).
+        size: [f64; 2],
+        #[serde(default = "yes")]
+        periodic: bool,
+        /// Radius of a centred circular punch (mask); none: the whole map may touch.
+        punch_radius: Option<f64>,
+        /// Loads: mean pressures over the map area ...
+        #[serde(default)]
+        mean_pressures: Vec<f64>,
+        /// ... or rigid-body approaches from first contact.
+        #[serde(default)]
+        approaches: Vec<f64>,
+        #[serde(default = "bem_tol")]
+        tolerance: f64,
+        #[serde(default = "bem_iters")]
+        max_iterations: usize,
+        /// Also write pressure and gap fields as .npy (one pair per load).
+        #[serde(default)]
+        fields: bool,
+    },
     /// The Hurst sweep, 3D against 1D (Section 9, Fig. 6); see [`crate::sweep`].
     HurstSweep(crate::sweep::SweepSpec),
     /// Static friction from the mean slope in contact (Section 10.2, Fig. 9).
@@ -387,6 +411,15 @@ impl Default for LambdaSpec {
 fn default_points() -> usize {
     60
 }
+fn yes() -> bool {
+    true
+}
+fn bem_tol() -> f64 {
+    1e-10
+}
+fn bem_iters() -> usize {
+    20_000
+}
 fn default_realisations() -> u64 {
     100
 }
@@ -418,6 +451,7 @@ impl OutputSpec {
             OutputSpec::StaticFriction { .. } => "static_friction",
             OutputSpec::RoughStiffness { .. } => "rough_stiffness",
             OutputSpec::HurstSweep(_) => "hurst_sweep",
+            OutputSpec::BemContact { .. } => "bem_contact",
         }
     }
 
@@ -429,6 +463,11 @@ impl OutputSpec {
                 | OutputSpec::RoughStiffness { .. }
                 | OutputSpec::HurstSweep(_)
         )
+    }
+
+    /// Axisymmetric outputs need the scene's `[profile]`; the others do not.
+    pub fn needs_profile(&self) -> bool {
+        !self.is_rough() && !matches!(self, OutputSpec::BemContact { .. })
     }
 }
 
@@ -515,7 +554,7 @@ impl Scene {
         };
         let positive = |x: f64| x.is_finite() && x > 0.0;
         for (i, o) in self.file.outputs.iter().enumerate() {
-            if o.is_rough() {
+            if !o.needs_profile() {
                 self.validate_rough(i, o)?;
                 continue;
             }
@@ -529,7 +568,8 @@ impl Scene {
                 | OutputSpec::Damping { points, .. } => *points,
                 OutputSpec::StaticFriction { .. }
                 | OutputSpec::RoughStiffness { .. }
-                | OutputSpec::HurstSweep(_) => {
+                | OutputSpec::HurstSweep(_)
+                | OutputSpec::BemContact { .. } => {
                     unreachable!()
                 }
             };
@@ -625,6 +665,39 @@ impl Scene {
         let pos = |x: f64| x.is_finite() && x > 0.0;
         if let OutputSpec::HurstSweep(spec) = o {
             return spec.validate().or_else(&bad);
+        }
+        if let OutputSpec::BemContact {
+            size,
+            punch_radius,
+            mean_pressures,
+            approaches,
+            tolerance,
+            max_iterations,
+            ..
+        } = o
+        {
+            if !size.iter().all(|v| pos(*v)) {
+                return bad("size [lx, ly] must be > 0".into());
+            }
+            if mean_pressures.is_empty() == approaches.is_empty() {
+                return bad(
+                    "give exactly one of mean_pressures and approaches (a non-empty list)".into(),
+                );
+            }
+            if mean_pressures
+                .iter()
+                .chain(approaches)
+                .any(|v| !(v.is_finite() && *v >= 0.0))
+            {
+                return bad("loads must be finite and >= 0".into());
+            }
+            if punch_radius.is_some_and(|r| !pos(r)) {
+                return bad("punch_radius must be > 0".into());
+            }
+            if !(*tolerance > 0.0 && *tolerance < 1e-2) || *max_iterations == 0 {
+                return bad("tolerance must lie in (0, 1e-2) and max_iterations be > 0".into());
+            }
+            return Ok(());
         }
         let (hurst, points, length, realisations) = match o {
             OutputSpec::StaticFriction {
