@@ -9,16 +9,37 @@ use crate::fft::Fft2;
 use rustfft::num_complex::Complex64;
 use std::f64::consts::PI;
 
+/// Grid and modulus shared by every operator.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HalfSpace {
+    pub nx: usize,
+    pub ny: usize,
+    pub lx: f64,
+    pub ly: f64,
+    pub e_star: f64,
+}
+
 /// A linear surface compliance operator.
 pub trait Compliance: Send {
-    fn nx(&self) -> usize;
-    fn ny(&self) -> usize;
-    fn lx(&self) -> f64;
-    fn ly(&self) -> f64;
-    fn e_star(&self) -> f64;
+    fn half_space(&self) -> &HalfSpace;
     /// Periodic operators have no defined mean displacement (the k = 0 mode is left to
     /// the load or approach constraint).
     fn is_periodic(&self) -> bool;
+    fn nx(&self) -> usize {
+        self.half_space().nx
+    }
+    fn ny(&self) -> usize {
+        self.half_space().ny
+    }
+    fn lx(&self) -> f64 {
+        self.half_space().lx
+    }
+    fn ly(&self) -> f64 {
+        self.half_space().ly
+    }
+    fn e_star(&self) -> f64 {
+        self.half_space().e_star
+    }
     /// u = K p (both `ny x nx`); `u` is overwritten.
     fn apply(&mut self, p: &[f64], u: &mut [f64]);
     fn cells(&self) -> usize {
@@ -32,11 +53,7 @@ pub trait Compliance: Send {
 /// Periodic half-space: spectral Green's function, surface stiffness E* |k| / 2
 /// (Stanley & Kato 1997), so `u_hat = 2 p_hat / (E* |k|)` for k != 0 and 0 for k = 0.
 pub struct PeriodicHalfSpace {
-    nx: usize,
-    ny: usize,
-    lx: f64,
-    ly: f64,
-    e_star: f64,
+    hs: HalfSpace,
     fft: Fft2,
     kernel: Vec<f64>,
     spec: Vec<Complex64>,
@@ -66,11 +83,13 @@ impl PeriodicHalfSpace {
         }
         let spec = vec![Complex64::default(); fft.spectrum_len()];
         Self {
-            nx,
-            ny,
-            lx,
-            ly,
-            e_star,
+            hs: HalfSpace {
+                nx,
+                ny,
+                lx,
+                ly,
+                e_star,
+            },
             fft,
             kernel,
             spec,
@@ -79,20 +98,8 @@ impl PeriodicHalfSpace {
 }
 
 impl Compliance for PeriodicHalfSpace {
-    fn nx(&self) -> usize {
-        self.nx
-    }
-    fn ny(&self) -> usize {
-        self.ny
-    }
-    fn lx(&self) -> f64 {
-        self.lx
-    }
-    fn ly(&self) -> f64 {
-        self.ly
-    }
-    fn e_star(&self) -> f64 {
-        self.e_star
+    fn half_space(&self) -> &HalfSpace {
+        &self.hs
     }
     fn is_periodic(&self) -> bool {
         true
@@ -126,11 +133,7 @@ pub fn love_coefficient(x: f64, y: f64, a: f64, b: f64) -> f64 {
 /// coefficients, linear convolution by zero-padding to `2nx x 2ny` (DC-FFT,
 /// Liu, Wang & Liu 2000).
 pub struct NonPeriodicHalfSpace {
-    nx: usize,
-    ny: usize,
-    lx: f64,
-    ly: f64,
-    e_star: f64,
+    hs: HalfSpace,
     fft: Fft2,
     kernel: Vec<f64>,
     spec: Vec<Complex64>,
@@ -168,11 +171,13 @@ impl NonPeriodicHalfSpace {
         // The kernel is even in x and y, so its spectrum is real.
         let kernel = spec.iter().map(|c| c.re).collect();
         Self {
-            nx,
-            ny,
-            lx,
-            ly,
-            e_star,
+            hs: HalfSpace {
+                nx,
+                ny,
+                lx,
+                ly,
+                e_star,
+            },
             fft,
             kernel,
             spec,
@@ -182,26 +187,14 @@ impl NonPeriodicHalfSpace {
 }
 
 impl Compliance for NonPeriodicHalfSpace {
-    fn nx(&self) -> usize {
-        self.nx
-    }
-    fn ny(&self) -> usize {
-        self.ny
-    }
-    fn lx(&self) -> f64 {
-        self.lx
-    }
-    fn ly(&self) -> f64 {
-        self.ly
-    }
-    fn e_star(&self) -> f64 {
-        self.e_star
+    fn half_space(&self) -> &HalfSpace {
+        &self.hs
     }
     fn is_periodic(&self) -> bool {
         false
     }
     fn apply(&mut self, p: &[f64], u: &mut [f64]) {
-        let (nx, ny, px) = (self.nx, self.ny, 2 * self.nx);
+        let (nx, ny, px) = (self.hs.nx, self.hs.ny, 2 * self.hs.nx);
         self.padded.iter_mut().for_each(|v| *v = 0.0);
         for j in 0..ny {
             self.padded[j * px..j * px + nx].copy_from_slice(&p[j * nx..(j + 1) * nx]);
@@ -219,11 +212,7 @@ impl Compliance for NonPeriodicHalfSpace {
 
 /// A dense influence matrix (row-major n x n), for tests and tiny grids.
 pub struct DenseCompliance {
-    nx: usize,
-    ny: usize,
-    lx: f64,
-    ly: f64,
-    e_star: f64,
+    hs: HalfSpace,
     periodic: bool,
     pub matrix: Vec<f64>,
 }
@@ -243,11 +232,13 @@ impl DenseCompliance {
             }
         }
         Self {
-            nx,
-            ny,
-            lx,
-            ly,
-            e_star,
+            hs: HalfSpace {
+                nx,
+                ny,
+                lx,
+                ly,
+                e_star,
+            },
             periodic: false,
             matrix,
         }
@@ -284,11 +275,13 @@ impl DenseCompliance {
             }
         }
         Self {
-            nx,
-            ny,
-            lx,
-            ly,
-            e_star,
+            hs: HalfSpace {
+                nx,
+                ny,
+                lx,
+                ly,
+                e_star,
+            },
             periodic: true,
             matrix,
         }
@@ -296,20 +289,8 @@ impl DenseCompliance {
 }
 
 impl Compliance for DenseCompliance {
-    fn nx(&self) -> usize {
-        self.nx
-    }
-    fn ny(&self) -> usize {
-        self.ny
-    }
-    fn lx(&self) -> f64 {
-        self.lx
-    }
-    fn ly(&self) -> f64 {
-        self.ly
-    }
-    fn e_star(&self) -> f64 {
-        self.e_star
+    fn half_space(&self) -> &HalfSpace {
+        &self.hs
     }
     fn is_periodic(&self) -> bool {
         self.periodic

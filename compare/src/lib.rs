@@ -45,16 +45,6 @@ pub fn run_scene(scene: &scene::Scene) -> Result<report::Report> {
     run_scene_in(scene, &RunContext::default())
 }
 
-/// Computes the sweep tasks of a scene (all, or one shard's) without aggregating.
-pub fn compute_sweeps(scene: &scene::Scene, ctx: &RunContext) -> Result<()> {
-    for o in &scene.file.outputs {
-        if let scene::OutputSpec::HurstSweep(spec) = o {
-            sweep::compute(spec, &sweep::work_dir(&ctx.work_root(), spec), &ctx.control)?;
-        }
-    }
-    Ok(())
-}
-
 /// As [`run_scene`], with checkpoints and work control for sweeps.
 pub fn run_scene_in(scene: &scene::Scene, ctx: &RunContext) -> Result<report::Report> {
     let mut report = report::Report::default();

@@ -601,7 +601,6 @@ pub fn aggregate(spec: &SweepSpec, work: &Path, report: &mut Report, label: &str
         let all1: Vec<usize> = (0..k1.len()).collect();
         let m1 = mean_curve(&k1, &all1, nf);
         let fit1 = fit_window(&fs, &m1, lo, hi);
-        let mut alpha_by_grid = Vec::new();
         for g in spec.grids() {
             let bem: Vec<BemCurve> = (0..spec.realisations_3d)
                 .map(|r| load(work, &Task::Bem { h: hi_idx, g, r }))
@@ -637,7 +636,6 @@ pub fn aggregate(spec: &SweepSpec, work: &Path, report: &mut Report, label: &str
                     ci_a3.0,
                     ci_a3.1,
                 ]);
-                alpha_by_grid.push((g, fit3.map(|x| x.0)));
                 continue;
             }
             t3 += bem.iter().map(|c| c.seconds).sum::<f64>();
@@ -817,9 +815,6 @@ pub fn aggregate(spec: &SweepSpec, work: &Path, report: &mut Report, label: &str
             fig.log_x = true;
             fig.log_y = true;
             kf_figs.push(fig);
-        }
-        for (g, a) in alpha_by_grid {
-            let _ = (g, a);
         }
     }
     report.scalar(format!("{label}.wall_time_3d_s"), t3);

@@ -62,19 +62,28 @@ pub fn band_spectrum(
         .with_rms_height(rms_height)
 }
 
+/// Line `r` of the experiment with rms height `h`.
+fn rough_line(
+    setup: &FrictionSetup,
+    spec: &crate::roughness::LineSpectrum,
+    r: u64,
+) -> Result<RoughLine> {
+    let z = line(
+        spec,
+        setup.points,
+        setup.length,
+        setup.seed,
+        r,
+        Amplitudes::Deterministic,
+    )?;
+    RoughLine::new(&z, setup.length, setup.e_star)
+}
+
 pub fn static_friction(setup: &FrictionSetup) -> Result<FrictionResult> {
     positive("rms height", setup.rms_height)?;
     let spec = band_spectrum(setup.hurst, setup.points, setup.length, setup.rms_height)?;
     let per: Vec<Vec<(f64, f64)>> = ensemble(setup.realisations, |r| {
-        let h = line(
-            &spec,
-            setup.points,
-            setup.length,
-            setup.seed,
-            r,
-            Amplitudes::Deterministic,
-        )?;
-        let rl = RoughLine::new(&h, setup.length, setup.e_star)?;
+        let rl = rough_line(setup, &spec, r)?;
         setup
             .forces
             .iter()
@@ -112,17 +121,7 @@ pub fn static_friction(setup: &FrictionSetup) -> Result<FrictionResult> {
 /// bisected.
 pub fn calibrate_rms_height(setup: &FrictionSetup, target: f64, probe: u64) -> Result<f64> {
     let spec = band_spectrum(setup.hurst, setup.points, setup.length, 1.0)?;
-    let lines: Vec<RoughLine> = ensemble(probe.max(1), |r| {
-        let h = line(
-            &spec,
-            setup.points,
-            setup.length,
-            setup.seed,
-            r,
-            Amplitudes::Deterministic,
-        )?;
-        RoughLine::new(&h, setup.length, setup.e_star)
-    })?;
+    let lines: Vec<RoughLine> = ensemble(probe.max(1), |r| rough_line(setup, &spec, r))?;
     let mean_contacts = |f: f64| -> Result<f64> {
         let mut s = 0.0;
         for l in &lines {

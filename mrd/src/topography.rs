@@ -141,6 +141,11 @@ impl HeightMap {
 
     /// Writes a float64 C-order `.npy` (version 1.0).
     pub fn write_npy(&self, path: &Path) -> Result<()> {
+        std::fs::write(path, self.to_npy_bytes()).map_err(|e| bad(path, e))
+    }
+
+    /// The float64 C-order `.npy` (version 1.0) encoding of the map.
+    pub fn to_npy_bytes(&self) -> Vec<u8> {
         let mut header = format!(
             "{{'descr': '<f8', 'fortran_order': False, 'shape': ({}, {}), }}",
             self.rows, self.cols
@@ -156,7 +161,7 @@ impl HeightMap {
         for v in &self.data {
             out.extend_from_slice(&v.to_le_bytes());
         }
-        std::fs::write(path, out).map_err(|e| bad(path, e))
+        out
     }
 
     pub fn read_text(path: &Path) -> Result<Self> {

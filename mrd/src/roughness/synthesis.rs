@@ -49,7 +49,7 @@ fn mode(rng: &mut ChaCha8Rng, b: f64, amps: Amplitudes) -> Complex64 {
     }
 }
 
-fn check_size(n: usize, what: &str) -> Result<()> {
+fn check_size(n: usize) -> Result<()> {
     if n < 4 {
         return Err(MrdError::InvalidParameter {
             name: "grid points",
@@ -57,7 +57,6 @@ fn check_size(n: usize, what: &str) -> Result<()> {
             reason: "need at least 4 points per direction",
         });
     }
-    let _ = what;
     Ok(())
 }
 
@@ -90,8 +89,8 @@ pub fn surface(
     amps: Amplitudes,
 ) -> Result<Vec<f64>> {
     let Grid { nx, ny, lx, ly } = *grid;
-    check_size(nx, "nx")?;
-    check_size(ny, "ny")?;
+    check_size(nx)?;
+    check_size(ny)?;
     crate::error::positive("lx", lx)?;
     crate::error::positive("ly", ly)?;
     let nc = nx / 2 + 1;
@@ -161,7 +160,7 @@ pub fn line(
     realisation: u64,
     amps: Amplitudes,
 ) -> Result<Vec<f64>> {
-    check_size(n, "n")?;
+    check_size(n)?;
     crate::error::positive("length", l)?;
     let nc = n / 2 + 1;
     let mut rng = realisation_rng(seed, realisation);
