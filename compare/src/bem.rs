@@ -160,16 +160,12 @@ fn solve_all<K: Compliance>(
         ]);
         if fields {
             for (what, data) in [("pressure", &sol.pressure), ("gap", &sol.gap)] {
-                let m = HeightMap {
+                let bytes = HeightMap {
                     rows: ny,
                     cols: nx,
                     data: data.clone(),
-                };
-                let tmp = std::env::temp_dir()
-                    .join(format!("mrdw-field-{}-{k}-{what}.npy", std::process::id()));
-                m.write_npy(&tmp).ctx(ctx)?;
-                let bytes = std::fs::read(&tmp).map_err(crate::error::io_err("reading field"))?;
-                let _ = std::fs::remove_file(&tmp);
+                }
+                .to_npy_bytes();
                 report
                     .files
                     .push((format!("bem_contact_{what}_{}.npy", k + 1), bytes));
