@@ -20,13 +20,14 @@ struct Cli {
 }
 
 const EXAMPLES: &str = "Examples:
-  mrdw run                         run the default embedded scene (fig6, a few minutes) into reports/fig6/
-  mrdw run tour                    every axisymmetric output on one sphere (instant)
-  mrdw run hertz                   run the embedded scene `hertz`
+  mrdw run                      the default scene, fig6 (3.5 min), into reports/fig6/
+  mrdw run tour                 every axisymmetric output on one sphere (instant)
   mrdw run cases/jkr.toml --out /tmp/jkr
-  mrdw scenes                      list embedded scenes
-  mrdw show jkr > my.toml          start a new scene from an embedded one
-  mrdw bench mrd                   time against error of the 1D solvers
+  mrdw scenes                   list the embedded scenes
+  mrdw show jkr > my.toml       start a new scene from an embedded one
+  mrdw run fig6-full --shard 0/4 --out shards/0    one machine's share of a sweep
+  mrdw merge shards/0 shards/1 shards/2 shards/3   combine the shares into one report
+  mrdw bench mrd | rough | bem  run time against error of the solvers
 
 The scene format is documented in cases/README.md.";
 

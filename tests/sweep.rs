@@ -79,6 +79,46 @@ fn fig6_ci_exponents_agree_between_3d_and_mrd() {
 const SMALL: &str = "name = \"sw\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"hurst_sweep\"\nhurst = [0.0, 1.0]\ngrid = 32\nrealisations_3d = 3\nrealisations_1d = 8\nloads = 8\nseed = 5\n";
 
 #[test]
+fn calibrated_lambda_tables_load() {
+    // The embedded table and a sweep's own table both load as lambda for rough lines.
+    let tmp = tempfile::tempdir().unwrap();
+    let table = tmp.path().join("lam.csv");
+    std::fs::write(
+        &table,
+        "# from a sweep\nhurst [1],lambda [1]\n0.0,2.5\n1.0,4.0\n",
+    )
+    .unwrap();
+    let scene = tmp.path().join("r.toml");
+    for lam in ["\"calibrated\"", "\"lam.csv\""] {
+        std::fs::write(
+            &scene,
+            format!("name = \"r\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"rough_stiffness\"\nhurst = 0.5\npoints = 4096\nlength = 1.0\nlambda = {lam}\nrealisations = 4\nf_min = 1e-5\nf_max = 1.0\n"),
+        )
+        .unwrap();
+        let out = tmp.path().join("o");
+        ok(&mrdw(
+            &[
+                "run",
+                scene.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+            ],
+            &[],
+        ));
+        let s: Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                .unwrap();
+        let l = s["results"]["rough_stiffness.lambda"].as_f64().unwrap();
+        let expect = if lam.contains("lam.csv") {
+            3.25
+        } else {
+            (2.83791 + 2.04792) / 2.0
+        };
+        assert!((l - expect).abs() < 1e-4, "{lam}: {l}");
+    }
+}
+
+#[test]
 fn killed_run_resumes_to_identical_csvs() {
     let tmp = tempfile::tempdir().unwrap();
     let scene = tmp.path().join("sw.toml");

@@ -34,6 +34,8 @@ pub enum Stage {
     RoughContact,
     /// 3D boundary-element contact (bem3d).
     Bem3d,
+    /// Power spectrum of a measured topography.
+    Psd,
     /// Fits of Eq. (77), bootstrap intervals, lambda calibration.
     SweepFit,
 }
@@ -54,6 +56,7 @@ impl Stage {
             Stage::RoughSynthesis => "rough_synthesis",
             Stage::RoughContact => "rough_contact_mrd",
             Stage::Bem3d => "bem3d",
+            Stage::Psd => "measured_psd",
             Stage::SweepFit => "sweep_fit",
         }
     }

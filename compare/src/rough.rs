@@ -8,14 +8,20 @@ use crate::report::{Figure, Report, Series, Style, Table};
 use crate::scene::{LambdaSpec, OutputSpec, Scene};
 use mrd::friction::{log_space, static_friction, FrictionSetup};
 use mrd::rough_contact::{ensemble, fit_line, RoughLine, Stat};
-use mrd::roughness::synthesis::{line, Amplitudes};
+use mrd::roughness::synthesis::Amplitudes;
 use mrd::roughness::{Lambda, LambdaTable, SelfAffine};
 use std::f64::consts::PI;
+
+/// The project's own lambda(H), calibrated by the `fig6` scene (provenance in the file).
+pub const DEFAULT_LAMBDA_CSV: &str = include_str!("../data/lambda_fig6.csv");
 
 pub fn lambda_of(spec: &LambdaSpec, base: Option<&std::path::Path>) -> Result<Lambda> {
     Ok(match spec {
         LambdaSpec::Named(s) if s == "pi" => Lambda::Pi,
         LambdaSpec::Named(s) if s == "cut" => Lambda::Cut,
+        LambdaSpec::Named(s) if s == "calibrated" => {
+            Lambda::Table(LambdaTable::from_csv(DEFAULT_LAMBDA_CSV).ctx("embedded lambda table")?)
+        }
         LambdaSpec::Named(s) => {
             let path = match base {
                 Some(b) => b.join(s),
@@ -156,6 +162,7 @@ pub fn run_output(scene: &Scene, index: usize, report: &mut Report) -> Result<()
         }
         OutputSpec::RoughStiffness {
             hurst,
+            measured,
             points,
             length,
             upper_cutoff_ratio,
@@ -175,9 +182,40 @@ pub fn run_output(scene: &Scene, index: usize, report: &mut Report) -> Result<()
             let q1 = PI * *points as f64 / length * upper_cutoff_ratio;
             let surf = SelfAffine::new(*hurst, q0, q0, q1).ctx(&ctx)?;
             let spec = surf.to_line(lam).with_rms_height(1.0).ctx(&ctx)?;
+            // A measured surface: its radially averaged PSD, C1D = lambda q C2D (Eq. 76).
+            let tab = match measured {
+                Some(m) => {
+                    let path = scene.base_dir.as_deref().map_or_else(
+                        || std::path::PathBuf::from(&m.heights),
+                        |b| b.join(&m.heights),
+                    );
+                    let map = mrd::topography::HeightMap::read(&path).ctx(&ctx)?;
+                    let psd = mrd::roughness::stats::surface_psd(
+                        &map.data, map.cols, map.rows, m.size[0], m.size[1], 40,
+                    );
+                    let t = mrd::roughness::TabulatedSpectrum::new(&psd)
+                        .ctx(format!("{ctx}: PSD of {}", path.display()))?
+                        .with_lowest_wavenumber(2.0 * PI / m.size[0].max(m.size[1]));
+                    report.scalar("rough_stiffness.measured_fitted_hurst", t.fitted_hurst());
+                    report.ran(Stage::Psd);
+                    Some(t)
+                }
+                None => None,
+            };
+            let c1d = |q: f64| match &tab {
+                Some(t) => lam * q * t.c2d(q),
+                None => spec.c1d(q),
+            };
             let fs = log_space(*f_min, *f_max, *f_points);
             let per: Vec<Vec<f64>> = ensemble(*realisations, |r| {
-                let h = line(&spec, *points, *length, *seed, r, Amplitudes::Deterministic)?;
+                let h = mrd::roughness::synthesis::line_from(
+                    &c1d,
+                    *points,
+                    *length,
+                    *seed,
+                    r,
+                    Amplitudes::Deterministic,
+                )?;
                 let rl = RoughLine::new(&h, *length, e)?;
                 fs.iter()
                     .map(|&f| {
@@ -217,7 +255,10 @@ pub fn run_output(scene: &Scene, index: usize, report: &mut Report) -> Result<()
                     "in_fit_range [0/1]".into(),
                 ],
             );
-            t.notes.push(format!("Eq. (77) on {realisations} MRD rough lines: N = {points}, L = {length}, H = {hurst}, C1D = lambda q C2D with lambda = {lam}, q from 2 pi/L to {upper_cutoff_ratio} x Nyquist"));
+            t.notes.push(match measured {
+                Some(m) => format!("Eq. (77) on {realisations} MRD rough lines: N = {points}, L = {length}, C1D = lambda q C2D with lambda = {lam} (at H = {hurst}) and C2D the radially averaged PSD of {} ({} x {})", m.heights, m.size[0], m.size[1]),
+                None => format!("Eq. (77) on {realisations} MRD rough lines: N = {points}, L = {length}, H = {hurst}, C1D = lambda q C2D with lambda = {lam}, q from 2 pi/L to {upper_cutoff_ratio} x Nyquist"),
+            });
             for (k, s) in stats.iter().enumerate() {
                 t.push(vec![
                     fs[k],

@@ -360,6 +360,9 @@ pub enum OutputSpec {
     /// Ensemble stiffness-force law of MRD rough lines (Eq. 77) and its exponent.
     RoughStiffness {
         hurst: f64,
+        /// A measured topography whose radially averaged PSD replaces the self-affine
+        /// spectrum: C1D = lambda q C2D_measured (Eq. 76).
+        measured: Option<MeasuredSurface>,
         points: usize,
         length: f64,
         /// Upper cut-off as a fraction of the Nyquist wavenumber pi N / L.
@@ -393,8 +396,19 @@ pub enum OutputSpec {
     },
 }
 
-/// lambda of Eq. (76): a number, "pi" (Eq. 73), "cut" (straight cut), or the path of a
-/// CSV table `hurst, lambda` (relative to the scene).
+/// A height map on disk and its physical size.
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct MeasuredSurface {
+    /// `.npy` or text matrix, relative to the scene.
+    pub heights: String,
+    /// [lx, ly] in length units.
+    pub size: [f64; 2],
+}
+
+/// lambda of Eq. (76): a number, "pi" (Eq. 73), "cut" (straight cut), "calibrated" (the
+/// embedded table from the `fig6` scene), or the path of a CSV table `hurst, lambda`
+/// (relative to the scene), e.g. a sweep's `<label>_lambda_table.csv`.
 #[derive(Debug, Clone, Deserialize, PartialEq)]
 #[serde(untagged)]
 pub enum LambdaSpec {

@@ -904,7 +904,21 @@ pub fn aggregate(spec: &SweepSpec, work: &Path, report: &mut Report, label: &str
     .with(Series::new("MRD (1D), lambda = pi", col(11), Style::Line));
     report.figures.extend([fig6, figl, figz]);
     report.figures.extend(kf_figs);
+    // lambda(H) in the two-column form `mrd` loads (LambdaTable::from_csv; scene key
+    // `lambda = "<file>"`), rows with a calibrated value only.
+    let mut lam_t = Table::new(
+        &format!("{label}_lambda_table"),
+        &["hurst [1]".into(), "lambda [1]".into()],
+    );
+    lam_t.notes.push(format!(
+        "calibrated lambda(H) of Eq. (76) on 3D {0}^2 circular rough punches ({1} realisations per H) against {2} MRD lines per H; load with lambda = \"<this file>\"",
+        spec.grid, spec.realisations_3d, spec.realisations_1d
+    ));
+    for r in alpha_t.rows.iter().filter(|r| r[14].is_finite()) {
+        lam_t.push(vec![r[0], r[14]]);
+    }
     report.tables.push(alpha_t);
+    report.tables.push(lam_t);
     report.tables.push(curves_t);
     if !conv_t.rows.is_empty() {
         let mut figc = Figure::new(

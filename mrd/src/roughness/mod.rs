@@ -5,4 +5,4 @@ pub mod spectrum;
 pub mod stats;
 pub mod synthesis;
 
-pub use spectrum::{lambda_cut, Lambda, LambdaTable, LineSpectrum, SelfAffine};
+pub use spectrum::{lambda_cut, Lambda, LambdaTable, LineSpectrum, SelfAffine, TabulatedSpectrum};

@@ -151,9 +151,10 @@ pub fn surface(
     Ok(out)
 }
 
-/// A periodic rough line of `n` points over length `l` (Eq. 72).
-pub fn line(
-    spec: &LineSpectrum,
+/// A periodic rough line of `n` points over length `l` (Eq. 72) for any 1D spectrum
+/// `c1d(q)`, e.g. one derived from a measured PSD.
+pub fn line_from(
+    c1d: &dyn Fn(f64) -> f64,
     n: usize,
     l: f64,
     seed: u64,
@@ -170,7 +171,7 @@ pub fn line(
             break;
         }
         let q = 2.0 * PI * k as f64 / l;
-        *sk = mode(&mut rng, (2.0 * PI * spec.c1d(q) / l).sqrt(), amps); // Eq. (72)
+        *sk = mode(&mut rng, (2.0 * PI * c1d(q) / l).sqrt(), amps); // Eq. (72)
     }
     let mut rp = RealFftPlanner::<f64>::new();
     let c2r = rp.plan_fft_inverse(n);
@@ -178,4 +179,16 @@ pub fn line(
     c2r.process(&mut s, &mut out)
         .map_err(|e| MrdError::InvalidTable(e.to_string()))?;
     Ok(out)
+}
+
+/// A periodic rough line of `n` points over length `l` (Eq. 72).
+pub fn line(
+    spec: &LineSpectrum,
+    n: usize,
+    l: f64,
+    seed: u64,
+    realisation: u64,
+    amps: Amplitudes,
+) -> Result<Vec<f64>> {
+    line_from(&|q| spec.c1d(q), n, l, seed, realisation, amps)
 }
