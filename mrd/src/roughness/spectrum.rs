@@ -257,7 +257,7 @@ impl TabulatedSpectrum {
             .collect();
         if pts.len() < 2
             || pts.windows(2).any(|w| w[1].0 <= w[0].0)
-            || pts.iter().any(|p| !(p.0 > 0.0))
+            || pts.iter().any(|p| p.0.is_nan() || p.0 <= 0.0)
         {
             return Err(MrdError::InvalidTable(
                 "a tabulated spectrum needs >= 2 points with increasing q > 0".into(),
