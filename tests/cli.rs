@@ -129,6 +129,16 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             let ci = result(&s, "static_friction.b_ci95");
             assert!((b - 0.0614).abs() < 2.0 * ci, "b = {b} +/- {ci}");
         }
+        if *name == "fig9-readings" {
+            // Reading A (rms height h = 1) touches at thousands of points at F = 500, not
+            // the caption's 40: the caption's "H = 1" is the Hurst exponent.
+            assert!(result(&s, "static_friction.contacts_at_max_force") > 1000.0);
+            // b of Eq. (91) falls with H (reading B, H = 0.3 .. 1).
+            let b: Vec<f64> = (2..=5)
+                .map(|k| result(&s, &format!("static_friction_{k}.b")))
+                .collect();
+            assert!(b.windows(2).all(|w| w[1] < w[0]), "{b:?}");
+        }
         // MRD-only scenes never touch the 3D solver.
         assert!(stages(&s).iter().all(|st| !st.starts_with("bem")), "{name}");
     }

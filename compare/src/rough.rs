@@ -55,6 +55,8 @@ pub fn run_output(scene: &Scene, index: usize, report: &mut Report) -> Result<()
             force_min,
             force_max,
             force_points,
+            paper_a,
+            paper_b,
         } => {
             report.ran(Stage::RoughSynthesis);
             report.ran(Stage::RoughContact);
@@ -156,6 +158,19 @@ pub fn run_output(scene: &Scene, index: usize, report: &mut Report) -> Result<()
                 )
                 .colored(2),
             );
+            if let (Some(pa), Some(pb)) = (paper_a, paper_b) {
+                report.scalar("static_friction.paper_a", *pa);
+                report.scalar("static_friction.paper_b", *pb);
+                let line: Vec<(f64, f64)> = r
+                    .points
+                    .iter()
+                    .map(|p| (p.reduced_force, pa + pb * p.reduced_force.ln()))
+                    .collect();
+                fig = fig.with(
+                    Series::new(format!("paper: xi = {pa} + {pb} ln f"), line, Style::Dashed)
+                        .colored(5),
+                );
+            }
             fig.log_x = true;
             report.tables.push(t);
             report.figures.push(fig);

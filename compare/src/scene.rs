@@ -356,6 +356,9 @@ pub enum OutputSpec {
         force_max: f64,
         #[serde(default = "default_force_points")]
         force_points: usize,
+        /// A published fit xi = a + b ln f to draw and report alongside (optional).
+        paper_a: Option<f64>,
+        paper_b: Option<f64>,
     },
     /// Ensemble stiffness-force law of MRD rough lines (Eq. 77) and its exponent.
     RoughStiffness {

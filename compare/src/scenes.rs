@@ -17,6 +17,10 @@ pub const EMBEDDED: &[(&str, &str)] = &[
     ("fig6-ci", include_str!("../../cases/fig6-ci.toml")),
     ("fig6-full", include_str!("../../cases/fig6-full.toml")),
     ("fig9", include_str!("../../cases/fig9.toml")),
+    (
+        "fig9-readings",
+        include_str!("../../cases/fig9-readings.toml"),
+    ),
     ("flat-punch", include_str!("../../cases/flat-punch.toml")),
     ("hertz", include_str!("../../cases/hertz.toml")),
     ("jkr", include_str!("../../cases/jkr.toml")),
