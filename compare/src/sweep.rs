@@ -783,6 +783,19 @@ pub fn aggregate(spec: &SweepSpec, work: &Path, report: &mut Report, label: &str
                 pts(&m1),
                 Style::Line,
             ));
+            // 95 % confidence bands of the 3D ensemble mean (mean +/- 1.96 s/sqrt(n)).
+            let band = |sign: f64| -> Vec<(f64, f64)> {
+                (0..nf)
+                    .filter_map(|j| {
+                        let v: Vec<f64> = k3.iter().filter_map(|c| c[j]).collect();
+                        m3[j].map(|m| (fs[j], m + sign * mrd::rough_contact::Stat::of(&v).ci95))
+                    })
+                    .filter(|p| p.1 > 0.0)
+                    .collect()
+            };
+            fig = fig
+                .with(Series::new("3D mean +/- 95% CI", band(1.0), Style::Dashed).colored(0))
+                .with(Series::new("", band(-1.0), Style::Dashed).colored(0));
             if let Some((a, z)) = fit3 {
                 let w: Vec<(f64, f64)> = pts(&m3)
                     .into_iter()
