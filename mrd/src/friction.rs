@@ -167,6 +167,7 @@ pub fn log_space(lo: f64, hi: f64, count: usize) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::roughness::SpectralMoments;
 
     #[test]
     fn xi_is_invariant_under_height_scaling() {

@@ -5,4 +5,6 @@ pub mod spectrum;
 pub mod stats;
 pub mod synthesis;
 
-pub use spectrum::{lambda_cut, Lambda, LambdaTable, LineSpectrum, SelfAffine, TabulatedSpectrum};
+pub use spectrum::{
+    lambda_cut, Lambda, LambdaTable, LineSpectrum, SelfAffine, SpectralMoments, TabulatedSpectrum,
+};

@@ -137,6 +137,22 @@ impl Lambda {
     }
 }
 
+/// rms height, slope and curvature from the spectral moments (Eqs. 74-75 and their
+/// q^2, q^4 weighted versions).
+pub trait SpectralMoments {
+    /// Mean square of the k-th derivative-like moment: k = 0 height, 2 slope, 4 curvature.
+    fn moment(&self, k: f64) -> f64;
+    fn rms_height(&self) -> f64 {
+        self.moment(0.0).sqrt()
+    }
+    fn rms_slope(&self) -> f64 {
+        self.moment(2.0).sqrt()
+    }
+    fn rms_curvature(&self) -> f64 {
+        self.moment(4.0).sqrt()
+    }
+}
+
 /// Isotropic self-affine 2D spectrum with roll-off and cut-offs (Eq. 70).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SelfAffine {
@@ -190,22 +206,12 @@ impl SelfAffine {
     }
 
     /// `2 pi Int q^(1+k) C2D(q) dq`: k = 0 mean square height, 2 slope, 4 curvature.
-    pub fn moment(&self, k: f64) -> f64 {
+    fn moment_2d(&self, k: f64) -> f64 {
         let plateau = power_integral(self.q0, self.qr, 1.0 + k);
         // Int_qr^q1 q^(1+k) (q/qr)^(-2H-2) dq = qr^(2+k) Int_1^(q1/qr) s^(k-1-2H) ds
         let law = self.qr.powf(2.0 + k)
             * power_integral(1.0, self.q1 / self.qr, k - 1.0 - 2.0 * self.hurst);
         2.0 * PI * self.c0 * (plateau + law)
-    }
-
-    pub fn rms_height(&self) -> f64 {
-        self.moment(0.0).sqrt()
-    }
-    pub fn rms_slope(&self) -> f64 {
-        self.moment(2.0).sqrt()
-    }
-    pub fn rms_curvature(&self) -> f64 {
-        self.moment(4.0).sqrt()
     }
 
     /// Rescales C0 so that the rms height is `h`.
@@ -324,19 +330,22 @@ impl LineSpectrum {
     pub fn c1d(&self, q: f64) -> f64 {
         self.lambda * q.abs() * self.surface.c2d(q.abs()) // Eq. (76)
     }
+}
+
+impl SpectralMoments for SelfAffine {
+    fn moment(&self, k: f64) -> f64 {
+        self.moment_2d(k)
+    }
+}
+
+impl SpectralMoments for LineSpectrum {
     /// `2 Int_0^inf q^k C1D dq = (lambda/pi) 2 pi Int q^(1+k) C2D dq`.
-    pub fn moment(&self, k: f64) -> f64 {
-        self.lambda / PI * self.surface.moment(k)
+    fn moment(&self, k: f64) -> f64 {
+        self.lambda / PI * self.surface.moment_2d(k)
     }
-    pub fn rms_height(&self) -> f64 {
-        self.moment(0.0).sqrt()
-    }
-    pub fn rms_slope(&self) -> f64 {
-        self.moment(2.0).sqrt()
-    }
-    pub fn rms_curvature(&self) -> f64 {
-        self.moment(4.0).sqrt()
-    }
+}
+
+impl LineSpectrum {
     /// Rescales to rms height `h`.
     pub fn with_rms_height(mut self, h: f64) -> Result<Self> {
         positive("rms height", h)?;

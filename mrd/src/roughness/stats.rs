@@ -153,6 +153,7 @@ mod tests {
     use super::*;
     use crate::roughness::spectrum::SelfAffine;
     use crate::roughness::synthesis::{line, surface, Amplitudes, Grid};
+    use crate::roughness::SpectralMoments;
 
     #[test]
     fn pure_sine_has_exact_moments_and_psd() {
