@@ -56,12 +56,22 @@ impl Fft2 {
 
     /// Forward transform of `input` (`ny x nx`, row-major) into `spec` (`nc x ny`).
     pub fn forward(&mut self, input: &[f64], spec: &mut [Complex64]) {
+        self.forward_rows(input, spec, self.ny);
+    }
+
+    /// As [`Self::forward`] when only the first `rows` rows of `input` can be non-zero
+    /// (zero padding): the other rows' transforms are skipped.
+    pub fn forward_rows(&mut self, input: &[f64], spec: &mut [Complex64], rows: usize) {
         let (nx, nc) = (self.nx, self.nc);
-        self.real_tmp.copy_from_slice(input);
+        let rows = rows.min(self.ny);
+        self.real_tmp[..rows * nx].copy_from_slice(&input[..rows * nx]);
+        self.rows[rows * nc..]
+            .iter_mut()
+            .for_each(|c| *c = Complex64::default());
         let r2c = &self.r2c;
-        self.real_tmp
+        self.real_tmp[..rows * nx]
             .par_chunks_mut(nx * ROW_CHUNK)
-            .zip(self.rows.par_chunks_mut(nc * ROW_CHUNK))
+            .zip(self.rows[..rows * nc].par_chunks_mut(nc * ROW_CHUNK))
             .for_each(|(rin, rout)| {
                 let mut scratch = r2c.make_scratch_vec();
                 for (a, b) in rin.chunks_mut(nx).zip(rout.chunks_mut(nc)) {
@@ -76,14 +86,21 @@ impl Fft2 {
     /// Inverse transform of `spec` (`nc x ny`, destroyed) into `output` (`ny x nx`),
     /// normalised so that inverse(forward(x)) = x.
     pub fn inverse(&mut self, spec: &mut [Complex64], output: &mut [f64]) {
+        self.inverse_rows(spec, output, self.ny);
+    }
+
+    /// As [`Self::inverse`] computing only the first `rows` rows of `output` (the others
+    /// are left untouched).
+    pub fn inverse_rows(&mut self, spec: &mut [Complex64], output: &mut [f64], rows: usize) {
         let (nx, nc, ny) = (self.nx, self.nc, self.ny);
+        let rows = rows.min(ny);
         batch_fft(&self.inv_y, spec, ny);
-        transpose(spec, &mut self.rows, nc, ny);
+        transpose_rows(spec, &mut self.rows, nc, ny, rows);
         let c2r = &self.c2r;
         let norm = 1.0 / (nx * ny) as f64;
-        self.rows
+        self.rows[..rows * nc]
             .par_chunks_mut(nc * ROW_CHUNK)
-            .zip(output.par_chunks_mut(nx * ROW_CHUNK))
+            .zip(output[..rows * nx].par_chunks_mut(nx * ROW_CHUNK))
             .for_each(|(rin, rout)| {
                 let mut scratch = c2r.make_scratch_vec();
                 for (a, b) in rin.chunks_mut(nc).zip(rout.chunks_mut(nx)) {
@@ -109,6 +126,28 @@ fn batch_fft(fft: &Arc<dyn Fft<f64>>, data: &mut [Complex64], len: usize) {
         let mut scratch = vec![Complex64::default(); fft.get_inplace_scratch_len()];
         fft.process_with_scratch(chunk, &mut scratch);
     });
+}
+
+/// Transposes the first `keep` columns of `src` (`rows x cols`) into the first `keep`
+/// rows of `dst` (`cols x rows`).
+fn transpose_rows(src: &[Complex64], dst: &mut [Complex64], rows: usize, cols: usize, keep: usize) {
+    const B: usize = 32;
+    dst[..keep * rows]
+        .par_chunks_mut(rows * B)
+        .enumerate()
+        .for_each(|(cb, dchunk)| {
+            let c0 = cb * B;
+            let c1 = (c0 + B).min(keep);
+            for r0 in (0..rows).step_by(B) {
+                let r1 = (r0 + B).min(rows);
+                for c in c0..c1 {
+                    let drow = &mut dchunk[(c - c0) * rows..(c - c0 + 1) * rows];
+                    for r in r0..r1 {
+                        drow[r] = src[r * cols + c];
+                    }
+                }
+            }
+        });
 }
 
 /// Transposes `src` (`rows x cols`) into `dst` (`cols x rows`), in blocks.

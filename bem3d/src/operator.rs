@@ -195,15 +195,19 @@ impl Compliance for NonPeriodicHalfSpace {
     }
     fn apply(&mut self, p: &[f64], u: &mut [f64]) {
         let (nx, ny, px) = (self.hs.nx, self.hs.ny, 2 * self.hs.nx);
-        self.padded.iter_mut().for_each(|v| *v = 0.0);
+        // Rows ny..2ny of the padded array stay zero; only the first ny rows are
+        // transformed forward and computed backward (pruned DC-FFT). Their right halves
+        // carry wrap-around values after an inverse, so they are cleared before use.
         for j in 0..ny {
-            self.padded[j * px..j * px + nx].copy_from_slice(&p[j * nx..(j + 1) * nx]);
+            let row = &mut self.padded[j * px..(j + 1) * px];
+            row[..nx].copy_from_slice(&p[j * nx..(j + 1) * nx]);
+            row[nx..].iter_mut().for_each(|v| *v = 0.0);
         }
-        self.fft.forward(&self.padded, &mut self.spec);
+        self.fft.forward_rows(&self.padded, &mut self.spec, ny);
         for (s, k) in self.spec.iter_mut().zip(&self.kernel) {
             *s *= *k;
         }
-        self.fft.inverse(&mut self.spec, &mut self.padded);
+        self.fft.inverse_rows(&mut self.spec, &mut self.padded, ny);
         for j in 0..ny {
             u[j * nx..(j + 1) * nx].copy_from_slice(&self.padded[j * px..j * px + nx]);
         }
