@@ -20,7 +20,7 @@ struct Cli {
 }
 
 const EXAMPLES: &str = "Examples:
-  mrdw run                      the default scene, fig6 (3.5 min), into reports/fig6/
+  mrdw run                      the default scene, fig6 (< 2 min), into reports/fig6/
   mrdw run tour                 every axisymmetric output on one sphere (instant)
   mrdw run cases/jkr.toml --out /tmp/jkr
   mrdw scenes                   list the embedded scenes
