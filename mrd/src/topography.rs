@@ -84,7 +84,11 @@ impl HeightMap {
         let descr = &descr[..descr.find('\'').ok_or("malformed descr")?];
         let fortran = field("fortran_order")?.starts_with("True");
         let shape_txt = field("shape")?;
-        let shape_txt = &shape_txt[1..shape_txt.find(')').ok_or("malformed shape")?];
+        let close = shape_txt.find(')').ok_or("malformed shape")?;
+        if !shape_txt.starts_with('(') || close == 0 {
+            return Err("malformed shape".into());
+        }
+        let shape_txt = &shape_txt[1..close];
         let shape: Vec<usize> = shape_txt
             .split(',')
             .map(str::trim)
@@ -100,7 +104,7 @@ impl HeightMap {
             s => return Err(format!("expected a 1D or 2D array, got shape {s:?}")),
         };
         let body = &b[start + hlen..];
-        let n = rows * cols;
+        let n = rows.checked_mul(cols).ok_or("shape too large")?;
         let (size, big, float32) = match descr {
             "<f8" | "=f8" | "|f8" => (8, false, false),
             ">f8" => (8, true, false),
@@ -108,7 +112,7 @@ impl HeightMap {
             ">f4" => (4, true, true),
             d => return Err(format!("unsupported dtype `{d}` (need float32 or float64)")),
         };
-        if body.len() < n * size {
+        if n.checked_mul(size).is_none_or(|bytes| body.len() < bytes) {
             return Err(format!(
                 "data truncated: {} bytes for {n} values of {size} bytes",
                 body.len()
@@ -309,6 +313,17 @@ mod tests {
             .contains("truncated"));
         std::fs::write(&p, b"hello").unwrap();
         assert!(HeightMap::read(&p).is_err());
+        // Malformed headers are errors, not panics.
+        for shape in [
+            "), ",
+            "(",
+            "(99999999999, 99999999999)",
+            "(a, 2)",
+            "(1, 2, 3)",
+        ] {
+            std::fs::write(&p, npy("<f8", false, shape, &[0; 16])).unwrap();
+            assert!(HeightMap::read(&p).is_err(), "{shape}");
+        }
     }
 
     #[test]
