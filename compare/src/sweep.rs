@@ -936,8 +936,8 @@ pub fn aggregate(spec: &SweepSpec, work: &Path, report: &mut Report, label: &str
     if !conv_t.rows.is_empty() {
         let mut figc = Figure::new(
             &format!("{label}_convergence"),
-            "Finite-size study: fitted 3D alpha against grid resolution",
-            "grid cells across the punch [1]",
+            "Finite-size study: 3D alpha against system size (8 cells per shortest wavelength)",
+            "grid cells across the punch, = 8 L / shortest wavelength [1]",
             "alpha_3d [1]",
         );
         for &hurst in &spec.hurst {
