@@ -28,6 +28,8 @@ pub enum Stage {
     OscillationDiscrete,
     /// Literature closed forms for overlay and error measures.
     ClosedForm,
+    /// Hereditary (Prony) springs of Eq. (63).
+    Viscoelastic,
     /// Random rough lines or surfaces (Eqs. 70-72).
     RoughSynthesis,
     /// Rough line on the MRD foundation (sorted gaps, exact queries).
@@ -53,6 +55,7 @@ impl Stage {
             Stage::AbelTraction => "abel_traction",
             Stage::OscillationDiscrete => "oscillation_discrete",
             Stage::ClosedForm => "closed_form",
+            Stage::Viscoelastic => "viscoelastic_springs",
             Stage::RoughSynthesis => "rough_synthesis",
             Stage::RoughContact => "rough_contact_mrd",
             Stage::Bem3d => "bem3d",
@@ -97,6 +100,7 @@ pub fn stages_for(output: &OutputSpec, has_closed_form: bool) -> Vec<Stage> {
             }
         }
         OutputSpec::Damping { .. } => s.extend([NormalSemiAnalytic, OscillationDiscrete]),
+        OutputSpec::Viscoelastic { .. } => s.extend([Viscoelastic, ClosedForm]),
         OutputSpec::StaticFriction { .. }
         | OutputSpec::RoughStiffness { .. }
         | OutputSpec::HurstSweep(_)

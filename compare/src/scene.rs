@@ -382,6 +382,22 @@ pub enum OutputSpec {
         #[serde(default = "default_force_points")]
         f_points: usize,
     },
+    /// Viscoelastic indentation (Section 8, Eq. 63): a constant-rate ramp to `depth_max`
+    /// over `ramp_time`, then a hold until `end_time`, against Radok's solution.
+    Viscoelastic {
+        /// Long-time modulus E*_inf.
+        e_inf: f64,
+        /// Prony terms [[E_i, tau_i], ...] of E*(t) = E_inf + sum E_i exp(-t/tau_i).
+        prony: Vec<[f64; 2]>,
+        depth_max: f64,
+        ramp_time: f64,
+        end_time: f64,
+        #[serde(default = "default_springs")]
+        springs: usize,
+        half_length: Option<f64>,
+        #[serde(default = "default_steps_visco")]
+        steps: usize,
+    },
     /// Oscillating tangential loading at depth `depth` (Section 7): dissipation per cycle
     /// against amplitude, up to `max_amplitude_ratio` x A_c0 (A_c0 = mu E*/G* d).
     Damping {
@@ -452,6 +468,9 @@ fn default_amplitude_ratio() -> f64 {
 fn default_springs() -> usize {
     20_000
 }
+fn default_steps_visco() -> usize {
+    400
+}
 fn default_steps() -> usize {
     8
 }
@@ -465,6 +484,7 @@ impl OutputSpec {
             OutputSpec::Adhesion { .. } => "adhesion",
             OutputSpec::Tangential { .. } => "tangential",
             OutputSpec::Damping { .. } => "damping",
+            OutputSpec::Viscoelastic { .. } => "viscoelastic",
             OutputSpec::StaticFriction { .. } => "static_friction",
             OutputSpec::RoughStiffness { .. } => "rough_stiffness",
             OutputSpec::HurstSweep(_) => "hurst_sweep",
@@ -583,6 +603,7 @@ impl Scene {
                 | OutputSpec::Adhesion { points, .. }
                 | OutputSpec::Tangential { points, .. }
                 | OutputSpec::Damping { points, .. } => *points,
+                OutputSpec::Viscoelastic { steps, .. } => *steps,
                 OutputSpec::StaticFriction { .. }
                 | OutputSpec::RoughStiffness { .. }
                 | OutputSpec::HurstSweep(_)

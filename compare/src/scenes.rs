@@ -29,6 +29,7 @@ pub const EMBEDDED: &[(&str, &str)] = &[
         include_str!("../../cases/mindlin-damping.toml"),
     ),
     ("power-law", include_str!("../../cases/power-law.toml")),
+    ("radok", include_str!("../../cases/radok.toml")),
     (
         "rough-stiffness",
         include_str!("../../cases/rough-stiffness.toml"),

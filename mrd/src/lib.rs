@@ -32,3 +32,4 @@ pub mod rough_contact;
 pub mod roughness;
 pub mod tangential;
 pub mod topography;
+pub mod viscoelastic;
