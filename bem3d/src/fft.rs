@@ -152,22 +152,7 @@ fn transpose_rows(src: &[Complex64], dst: &mut [Complex64], rows: usize, cols: u
 
 /// Transposes `src` (`rows x cols`) into `dst` (`cols x rows`), in blocks.
 fn transpose(src: &[Complex64], dst: &mut [Complex64], rows: usize, cols: usize) {
-    const B: usize = 32;
-    dst.par_chunks_mut(rows * B)
-        .enumerate()
-        .for_each(|(cb, dchunk)| {
-            let c0 = cb * B;
-            let c1 = (c0 + B).min(cols);
-            for r0 in (0..rows).step_by(B) {
-                let r1 = (r0 + B).min(rows);
-                for c in c0..c1 {
-                    let drow = &mut dchunk[(c - c0) * rows..(c - c0 + 1) * rows];
-                    for r in r0..r1 {
-                        drow[r] = src[r * cols + c];
-                    }
-                }
-            }
-        });
+    transpose_rows(src, dst, rows, cols, cols);
 }
 
 #[cfg(test)]
