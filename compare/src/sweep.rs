@@ -292,10 +292,11 @@ fn run_mrd(spec: &SweepSpec, h: usize) -> Result<MrdEnsemble> {
             let z =
                 line(&line_spec, n1, 1.0, seed, id, Amplitudes::Deterministic).ctx("1D line")?;
             let rl = RoughLine::new(&z, 1.0, 1.0).ctx("1D line")?;
+            let full_force = rl.at_depth(rl.full_contact_depth()).ctx("1D")?.force;
             fs.iter()
                 .map(|&f| {
                     let force = f * rl.rms_height;
-                    if rl.at_depth(rl.full_contact_depth()).ctx("1D")?.force <= force {
+                    if full_force <= force {
                         return Ok(1.0); // complete contact: k = E* L
                     }
                     Ok(rl.at_force(force).ctx("1D")?.stiffness)

@@ -164,11 +164,7 @@ pub fn simulate_cycle(
     }
     let profile = &adhesive.contact.profile;
     let e = adhesive.contact.e_star;
-    let l = profile.rim().unwrap_or(half_length);
-    let dx = l / n_half as f64;
-    let gaps: Vec<f64> = (0..n_half)
-        .map(|i| profile.z1d((i as f64 + 0.5) * dx))
-        .collect();
+    let (l, dx, gaps) = crate::foundation::half_line(profile, n_half, half_length);
     // Loading: springs with gap <= d attach (the profile is monotone in |x|).
     let m_max = gaps.partition_point(|&g| g <= d_max);
     if m_max == n_half && profile.rim().is_none() {

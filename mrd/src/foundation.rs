@@ -7,6 +7,19 @@
 //! exact inversion of this piecewise-linear function, not an iteration.
 
 use crate::error::{non_negative, positive, MrdError, Result};
+use crate::profile::Profile;
+
+/// The mirrored half-line of an axisymmetric contact on the foundation: `n_half` springs
+/// at the midpoints of [0, L], L the profile's rim if it has one, else `half_length`.
+/// Returns (L, dx, gaps z1d(x_i)); each spring stands for itself and its mirror image.
+pub fn half_line(profile: &Profile, n_half: usize, half_length: f64) -> (f64, f64, Vec<f64>) {
+    let l = profile.rim().unwrap_or(half_length);
+    let dx = l / n_half.max(1) as f64;
+    let gaps = (0..n_half)
+        .map(|i| profile.z1d((i as f64 + 0.5) * dx))
+        .collect();
+    (l, dx, gaps)
+}
 
 /// A spring row with sorted gaps and prefix sums.
 #[derive(Debug, Clone)]

@@ -47,10 +47,10 @@ impl OscillatingContact {
         positive("friction coefficient", mu)?;
         positive("depth", d)?;
         positive("half_length", half_length)?;
-        let l = profile.rim().unwrap_or(half_length);
-        let dx = l / n_half.max(1) as f64;
-        let normal_force: Vec<f64> = (0..n_half)
-            .map(|i| d - profile.z1d((i as f64 + 0.5) * dx))
+        let (l, dx, gaps) = crate::foundation::half_line(profile, n_half, half_length);
+        let normal_force: Vec<f64> = gaps
+            .iter()
+            .map(|g| d - g)
             .take_while(|&delta| delta > 0.0)
             .map(|delta| 2.0 * e_star * dx * delta) // both mirrored springs
             .collect();

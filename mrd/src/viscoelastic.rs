@@ -66,11 +66,7 @@ pub fn simulate(
             reason: "need >= 2 increasing times and >= 2 springs",
         });
     }
-    let l = profile.rim().unwrap_or(half_length);
-    let dx = l / n_half as f64;
-    let gaps: Vec<f64> = (0..n_half)
-        .map(|i| profile.z1d((i as f64 + 0.5) * dx))
-        .collect();
+    let (l, dx, gaps) = crate::foundation::half_line(profile, n_half, half_length);
     let m = modulus.terms.len();
     // Per spring: current u and one hereditary variable per Prony term.
     let mut u = vec![0.0f64; n_half];
