@@ -510,3 +510,81 @@ fn bit_identical_whatever_the_thread_count() {
     };
     assert_eq!(run(1), run(3));
 }
+
+/// The operator with none of the solver's accelerations: no preconditioner (the
+/// identity, i.e. Polonsky & Keer's iteration) and `K p` recomputed every iteration.
+struct Plain<K: Compliance>(K);
+
+impl<K: Compliance> Compliance for Plain<K> {
+    fn half_space(&self) -> &bem3d::operator::HalfSpace {
+        self.0.half_space()
+    }
+    fn is_periodic(&self) -> bool {
+        self.0.is_periodic()
+    }
+    fn apply(&mut self, p: &[f64], u: &mut [f64]) {
+        self.0.apply(p, u)
+    }
+}
+
+#[test]
+fn preconditioned_incremental_solver_matches_plain_polonsky_keer() {
+    let opts = SolverOptions {
+        tolerance: 1e-12,
+        max_iterations: 20_000,
+    };
+    // `gain`: the fewest times fewer iterations the preconditioner must take.
+    let check = |a: &Solution, b: &Solution, gain: f64, what: &str| {
+        let pmax = b.pressure.iter().fold(0.0f64, |m, &v| m.max(v));
+        for (x, y) in a.pressure.iter().zip(&b.pressure) {
+            assert!((x - y).abs() <= 1e-8 * pmax, "{what}: {x} vs {y}");
+        }
+        assert!(rel(a.approach, b.approach) < 1e-9, "{what}: approach");
+        assert!(
+            a.iterations as f64 * gain < b.iterations as f64,
+            "{what}: {} iterations preconditioned vs {} plain",
+            a.iterations,
+            b.iterations
+        );
+    };
+    // Periodic rough surface, force control.
+    let (n, l) = (96usize, 1.0);
+    let h: Vec<f64> = rough(n, n, 7).iter().map(|v| 0.01 * v).collect();
+    let load = Load::MeanPressure(0.02);
+    let fast = ContactSolver::new(PeriodicHalfSpace::new(n, n, l, l, 1.0), &h, None)
+        .unwrap()
+        .solve(load, &opts, None)
+        .unwrap();
+    let plain = ContactSolver::new(Plain(PeriodicHalfSpace::new(n, n, l, l, 1.0)), &h, None)
+        .unwrap()
+        .solve(load, &opts, None)
+        .unwrap();
+    check(&fast, &plain, 2.0, "periodic rough, force control");
+    // Non-periodic sphere under a circular mask, displacement control.
+    let n = 64;
+    let h = sphere(n, 1.0, 1.0);
+    let mask: Vec<bool> = (0..n * n)
+        .map(|k| {
+            let (x, y) = ((k % n) as f64 - 31.5, (k / n) as f64 - 31.5);
+            x * x + y * y < 28.0 * 28.0
+        })
+        .collect();
+    let load = Load::Approach(0.02);
+    let fast = ContactSolver::new(
+        NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0),
+        &h,
+        Some(mask.clone()),
+    )
+    .unwrap()
+    .solve(load, &opts, None)
+    .unwrap();
+    let plain = ContactSolver::new(
+        Plain(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0)),
+        &h,
+        Some(mask),
+    )
+    .unwrap()
+    .solve(load, &opts, None)
+    .unwrap();
+    check(&fast, &plain, 1.3, "masked sphere, approach control");
+}
