@@ -183,10 +183,12 @@ impl Compliance for PeriodicHalfSpace {
     }
 }
 
-/// Below this many loads a direct real-space sum beats an FFT-pair application (about
-/// log2 of the grid size times the FFT's constant; measured break-even 20-30 loads at
-/// 256^2 to 1024^2 with `mrdw bench bem`).
-const POINT_LOAD_LIMIT: usize = 24;
+/// Below this many loads a direct real-space sum beats an FFT-pair application of a
+/// periodic operator (in theory about log2 of the grid size times the FFT's constant;
+/// measured break-even 47, 65 and 76 loads at 256^2, 512^2 and 1024^2 on the 2-core
+/// development machine, AVX-512 build). Only speed depends on it, never results beyond
+/// rounding.
+const POINT_LOAD_LIMIT: usize = 48;
 
 /// A real-space influence table on a `py x px` torus: the response at cell (j, i) to a
 /// unit load at (jc, ic) is `values[((j - jc) mod py) * px + (i - ic) mod px]`. Periodic
@@ -246,7 +248,6 @@ pub struct NonPeriodicHalfSpace {
     fft: Fft2,
     kernel: Vec<f64>,
     spec: Vec<Complex64>,
-    padded: Vec<f64>,
     /// Love's coefficients on the padded grid, for direct sums.
     table: Circulant,
     /// Preconditioner: the periodic stiffness on the unpadded grid, with its own
@@ -261,25 +262,32 @@ impl NonPeriodicHalfSpace {
         let (px, py) = (2 * nx, 2 * ny);
         let (hx, hy) = (lx / nx as f64, ly / ny as f64);
         let mut fft = Fft2::new(px, py);
+        // Love's coefficient is even in x and y: one quadrant of offsets (0..nx, 0..ny),
+        // rows in parallel, then mirrored into the wrap-around layout of the padded
+        // grid (offset nx and ny, never reached, stay zero).
+        let quadrant: Vec<f64> = (0..ny)
+            .into_par_iter()
+            .flat_map_iter(|j| {
+                (0..nx).map(move |i| {
+                    love_coefficient(i as f64 * hx, j as f64 * hy, 0.5 * hx, 0.5 * hy)
+                        / (PI * e_star)
+                })
+            })
+            .collect();
         let mut k_real = vec![0.0; px * py];
         for j in 0..py {
-            let oy = if j < ny {
-                j as f64
-            } else if j > ny {
-                j as f64 - py as f64
-            } else {
-                continue;
+            let oy = match j {
+                j if j < ny => j,
+                j if j > ny => py - j,
+                _ => continue,
             };
             for i in 0..px {
-                let ox = if i < nx {
-                    i as f64
-                } else if i > nx {
-                    i as f64 - px as f64
-                } else {
-                    continue;
+                let ox = match i {
+                    i if i < nx => i,
+                    i if i > nx => px - i,
+                    _ => continue,
                 };
-                k_real[j * px + i] =
-                    love_coefficient(ox * hx, oy * hy, 0.5 * hx, 0.5 * hy) / (PI * e_star);
+                k_real[j * px + i] = quadrant[oy * nx + ox];
             }
         }
         let mut spec = vec![Complex64::default(); fft.spectrum_len()];
@@ -297,7 +305,6 @@ impl NonPeriodicHalfSpace {
             fft,
             kernel,
             spec,
-            padded: vec![0.0; px * py],
             table: Circulant {
                 px,
                 py,
@@ -318,30 +325,23 @@ impl Compliance for NonPeriodicHalfSpace {
         false
     }
     fn apply(&mut self, p: &[f64], u: &mut [f64]) {
-        let (nx, ny, px) = (self.hs.nx, self.hs.ny, 2 * self.hs.nx);
-        // Rows ny..2ny of the padded array stay zero; only the first ny rows are
-        // transformed forward and computed backward (pruned DC-FFT). Their right halves
-        // carry wrap-around values after an inverse, so they are cleared before use.
-        for j in 0..ny {
-            let row = &mut self.padded[j * px..(j + 1) * px];
-            row[..nx].copy_from_slice(&p[j * nx..(j + 1) * nx]);
-            row[nx..].iter_mut().for_each(|v| *v = 0.0);
-        }
-        self.fft.forward_rows(&self.padded, &mut self.spec, ny);
+        // Pruned DC-FFT: rows ny..2ny of the padded input are zero and not transformed
+        // forward; only the first ny rows and nx columns of the result are computed
+        // back (the rest carries wrap-around values).
+        let (nx, ny) = (self.hs.nx, self.hs.ny);
+        self.fft.forward_padded(p, nx, ny, &mut self.spec);
         for (s, k) in self.spec.iter_mut().zip(&self.kernel) {
             *s *= *k;
         }
-        self.fft.inverse_rows(&mut self.spec, &mut self.padded, ny);
-        for j in 0..ny {
-            u[j * nx..(j + 1) * nx].copy_from_slice(&self.padded[j * px..j * px + nx]);
-        }
+        self.fft.inverse_cropped(&mut self.spec, u, nx, ny);
     }
     fn add_point_loads(&mut self, loads: &[(usize, f64)], u: &mut [f64]) {
         self.table.add_point_loads(self.hs.nx, loads, u);
     }
     fn point_load_limit(&self) -> usize {
-        // A direct sum runs over the n cells, the transforms over the 4n padded ones.
-        4 * POINT_LOAD_LIMIT
+        // A direct sum runs over the n cells, the transforms over the 4n padded ones
+        // (measured break-even 103, 227 and 191 loads at 256^2, 512^2, 1024^2).
+        3 * POINT_LOAD_LIMIT
     }
     /// The periodic stiffness of the unpadded grid: K's inverse up to the coupling
     /// across the boundary, which the padding removes from K but not from M (a
