@@ -222,18 +222,19 @@ pub fn print_bem_table(lines: &[String]) {
             .unwrap_or(f64::NAN)
     };
     println!(
-        "{:>9} | {:>6} | {:>9} | {:>6} | {:>10} | {:>11} | {:>9} | {:>10} | {:>10}",
+        "{:>9} | {:>6} | {:>9} | {:>6} | {:>10} | {:>11} | {:>10} | {:>9} | {:>10} | {:>10}",
         "case",
         "grid",
         "time [s]",
         "iters",
         "t/iter [s]",
         "t/iter/FFT",
+        "t/FFT",
         "mem [MiB]",
         "error 1",
         "error 2"
     );
-    println!("{}", "-".repeat(104));
+    println!("{}", "-".repeat(117));
     for l in lines {
         let kind = if l.contains("kind=periodic") {
             "periodic"
@@ -247,13 +248,14 @@ pub fn print_bem_table(lines: &[String]) {
             (field(l, "err_peak"), field(l, "err_approach"))
         };
         println!(
-            "{:>9} | {:>6} | {:>9.3} | {:>6} | {:>10.3e} | {:>11.2} | {:>9.0} | {:>10.2e} | {:>10.2e}",
+            "{:>9} | {:>6} | {:>9.3} | {:>6} | {:>10.3e} | {:>11.2} | {:>10.0} | {:>9.0} | {:>10.2e} | {:>10.2e}",
             kind,
             format!("{}^2", field(l, "n")),
             t,
             it,
             t / it.max(1.0),
             t / it.max(1.0) / pair,
+            t / pair,
             field(l, "mem") - 0.0,
             e1,
             e2
@@ -266,8 +268,10 @@ pub fn print_bem_table(lines: &[String]) {
     println!("hertz: non-periodic, R = 1, a = L/4, force control, tolerance 1e-10;");
     println!("  error 1 = peak pressure, error 2 = approach, relative to Hertz.");
     println!(
-        "t/iter/FFT: time per iteration over one forward+inverse FFT pair of the (padded) grid;"
+        "t/iter/FFT: time per iteration over one forward+inverse FFT pair of the (padded) grid"
     );
+    println!("  (an iteration applies K and the preconditioner once each, and K p where the projection");
+    println!("  changed too many cells); t/FFT: the whole solve (set-up included) in FFT-pair times;");
     println!("mem: peak resident memory of the whole process running that case.");
 }
 
