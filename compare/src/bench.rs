@@ -270,8 +270,12 @@ pub fn print_bem_table(lines: &[String]) {
     println!(
         "t/iter/FFT: time per iteration over one forward+inverse FFT pair of the (padded) grid"
     );
-    println!("  (an iteration applies K and the preconditioner once each, and K p where the projection");
-    println!("  changed too many cells); t/FFT: the whole solve (set-up included) in FFT-pair times;");
+    println!(
+        "  (an iteration applies K and the preconditioner once each, and K p where the projection"
+    );
+    println!(
+        "  changed too many cells); t/FFT: the whole solve (set-up included) in FFT-pair times;"
+    );
     println!("mem: peak resident memory of the whole process running that case.");
 }
 

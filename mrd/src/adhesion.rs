@@ -164,7 +164,7 @@ pub fn simulate_cycle(
     }
     let profile = &adhesive.contact.profile;
     let e = adhesive.contact.e_star;
-    let (l, dx, gaps) = crate::foundation::half_line(profile, n_half, half_length);
+    let (l, dx, gaps) = crate::foundation::half_line(profile, n_half, half_length)?;
     // Loading: springs with gap <= d attach (the profile is monotone in |x|).
     let m_max = gaps.partition_point(|&g| g <= d_max);
     if m_max == n_half && profile.rim().is_none() {

@@ -12,13 +12,27 @@ use crate::profile::Profile;
 /// The mirrored half-line of an axisymmetric contact on the foundation: `n_half` springs
 /// at the midpoints of [0, L], L the profile's rim if it has one, else `half_length`.
 /// Returns (L, dx, gaps z1d(x_i)); each spring stands for itself and its mirror image.
-pub fn half_line(profile: &Profile, n_half: usize, half_length: f64) -> (f64, f64, Vec<f64>) {
-    let l = profile.rim().unwrap_or(half_length);
+/// A line longer than a tabulated profile's range is an error (no extrapolation).
+pub fn half_line(
+    profile: &Profile,
+    n_half: usize,
+    half_length: f64,
+) -> Result<(f64, f64, Vec<f64>)> {
+    let l = match profile.rim() {
+        Some(r) => r,
+        None => positive("half_length", half_length)?,
+    };
+    if l > profile.max_contact_radius() * (1.0 + 1e-12) {
+        return Err(MrdError::OutOfRange {
+            needed: l,
+            limit: profile.max_contact_radius(),
+        });
+    }
     let dx = l / n_half.max(1) as f64;
     let gaps = (0..n_half)
         .map(|i| profile.z1d((i as f64 + 0.5) * dx))
         .collect();
-    (l, dx, gaps)
+    Ok((l, dx, gaps))
 }
 
 /// A spring row with sorted gaps and prefix sums.
@@ -142,6 +156,18 @@ impl Foundation {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn half_line_refuses_to_extrapolate_a_table() {
+        use crate::profile::{Shape, TabulatedProfile};
+        let table = TabulatedProfile::new(vec![0.0, 0.5, 1.0], vec![0.0, 0.1, 0.4]).unwrap();
+        let p = Profile::single(Shape::Table(table));
+        assert!(half_line(&p, 10, 0.9).is_ok());
+        assert!(matches!(
+            half_line(&p, 10, 1.5),
+            Err(MrdError::OutOfRange { .. })
+        ));
+    }
 
     #[test]
     fn force_control_inverts_depth_control_exactly() {

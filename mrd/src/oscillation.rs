@@ -47,7 +47,7 @@ impl OscillatingContact {
         positive("friction coefficient", mu)?;
         positive("depth", d)?;
         positive("half_length", half_length)?;
-        let (l, dx, gaps) = crate::foundation::half_line(profile, n_half, half_length);
+        let (l, dx, gaps) = crate::foundation::half_line(profile, n_half, half_length)?;
         let normal_force: Vec<f64> = gaps
             .iter()
             .map(|g| d - g)

@@ -66,7 +66,7 @@ pub fn simulate(
             reason: "need >= 2 increasing times and >= 2 springs",
         });
     }
-    let (l, dx, gaps) = crate::foundation::half_line(profile, n_half, half_length);
+    let (l, dx, gaps) = crate::foundation::half_line(profile, n_half, half_length)?;
     let m = modulus.terms.len();
     // Per spring: current u and one hereditary variable per Prony term.
     let mut u = vec![0.0f64; n_half];
