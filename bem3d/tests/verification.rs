@@ -560,6 +560,21 @@ fn preconditioned_incremental_solver_matches_plain_polonsky_keer() {
         .solve(load, &opts, None)
         .unwrap();
     check(&fast, &plain, 2.0, "periodic rough, force control");
+    // The same surface under approach control (the preconditioner's mean mode at work).
+    let load = Load::Approach(fast.approach);
+    let fast_d = ContactSolver::new(PeriodicHalfSpace::new(n, n, l, l, 1.0), &h, None)
+        .unwrap()
+        .solve(load, &opts, None)
+        .unwrap();
+    let plain_d = ContactSolver::new(Plain(PeriodicHalfSpace::new(n, n, l, l, 1.0)), &h, None)
+        .unwrap()
+        .solve(load, &opts, None)
+        .unwrap();
+    check(&fast_d, &plain_d, 2.0, "periodic rough, approach control");
+    assert!(
+        rel(fast_d.force, fast.force) < 1e-8,
+        "force at that approach"
+    );
     // Non-periodic sphere under a circular mask, displacement control.
     let n = 64;
     let h = sphere(n, 1.0, 1.0);
