@@ -91,15 +91,22 @@ pub struct PeriodicHalfSpace {
 /// mode is undefined; the stiffness takes its value at the lowest wavenumber there, so
 /// that a uniform residual still moves the pressure.
 fn stiffness_kernel(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Vec<f64> {
-    let nc = nx / 2 + 1;
     let k_min = (2.0 * PI / lx).min(2.0 * PI / ly);
+    spectral(nx, ny, lx, ly, |k| {
+        0.5 * e_star * if k > 0.0 { k } else { k_min }
+    })
+}
+
+/// `f(|k|)` at every bin of a real 2D FFT of a periodic `ny x nx` grid of size
+/// `lx x ly`, in the transposed layout of [`Fft2`] (`(nx/2 + 1) x ny`).
+fn spectral(nx: usize, ny: usize, lx: f64, ly: f64, f: impl Fn(f64) -> f64) -> Vec<f64> {
+    let nc = nx / 2 + 1;
     let mut s = vec![0.0; nc * ny];
     for c in 0..nc {
         for r in 0..ny {
             let kx = 2.0 * PI * c as f64 / lx;
             let ky = 2.0 * PI * signed(r, ny) / ly;
-            let k = (kx * kx + ky * ky).sqrt();
-            s[c * ny + r] = 0.5 * e_star * if k > 0.0 { k } else { k_min };
+            s[c * ny + r] = f((kx * kx + ky * ky).sqrt());
         }
     }
     s
@@ -116,18 +123,14 @@ fn signed(r: usize, n: usize) -> f64 {
 
 impl PeriodicHalfSpace {
     pub fn new(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Self {
-        let fft = Fft2::new(nx, ny);
-        let nc = fft.nc();
-        let mut kernel = vec![0.0; nc * ny];
-        for c in 0..nc {
-            for r in 0..ny {
-                let kx = 2.0 * PI * c as f64 / lx;
-                let ky = 2.0 * PI * signed(r, ny) / ly;
-                let k = (kx * kx + ky * ky).sqrt();
-                kernel[c * ny + r] = if k > 0.0 { 2.0 / (e_star * k) } else { 0.0 };
+        let mut fft = Fft2::new(nx, ny);
+        let kernel = spectral(nx, ny, lx, ly, |k| {
+            if k > 0.0 {
+                2.0 / (e_star * k)
+            } else {
+                0.0
             }
-        }
-        let mut fft = fft;
+        });
         let mut spec: Vec<Complex64> = kernel.iter().map(|&k| Complex64::new(k, 0.0)).collect();
         let mut green = vec![0.0; nx * ny];
         fft.inverse(&mut spec, &mut green);

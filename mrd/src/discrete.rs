@@ -30,16 +30,7 @@ impl DiscreteAxisymmetric {
                 reason: "need at least 2 springs",
             });
         }
-        let l = match profile.rim() {
-            Some(r) => r,
-            None => positive("half_length", half_length)?,
-        };
-        if l > profile.max_contact_radius() * (1.0 + 1e-12) {
-            return Err(MrdError::OutOfRange {
-                needed: l,
-                limit: profile.max_contact_radius(),
-            });
-        }
+        let l = crate::foundation::line_extent(profile, half_length)?;
         let dx = 2.0 * l / n as f64;
         let gaps: Vec<f64> = (0..n)
             .map(|i| profile.z1d(-l + (i as f64 + 0.5) * dx))

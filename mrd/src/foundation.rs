@@ -18,6 +18,17 @@ pub fn half_line(
     n_half: usize,
     half_length: f64,
 ) -> Result<(f64, f64, Vec<f64>)> {
+    let l = line_extent(profile, half_length)?;
+    let dx = l / n_half.max(1) as f64;
+    let gaps = (0..n_half)
+        .map(|i| profile.z1d((i as f64 + 0.5) * dx))
+        .collect();
+    Ok((l, dx, gaps))
+}
+
+/// Half-length of a spring line under `profile`: its rim, else `half_length` (> 0);
+/// beyond the range of a tabulated profile is an error.
+pub fn line_extent(profile: &Profile, half_length: f64) -> Result<f64> {
     let l = match profile.rim() {
         Some(r) => r,
         None => positive("half_length", half_length)?,
@@ -28,11 +39,7 @@ pub fn half_line(
             limit: profile.max_contact_radius(),
         });
     }
-    let dx = l / n_half.max(1) as f64;
-    let gaps = (0..n_half)
-        .map(|i| profile.z1d((i as f64 + 0.5) * dx))
-        .collect();
-    Ok((l, dx, gaps))
+    Ok(l)
 }
 
 /// A spring row with sorted gaps and prefix sums.
