@@ -5,7 +5,7 @@
 //! the operator's approximate inverse ([`Compliance::precondition`]: the spectral
 //! stiffness E*|k|/2; an FFT-based preconditioner in the spirit of Vollebregt 2014,
 //! J. Comput. Phys. 257). With M the identity the iteration is Polonsky & Keer's. On
-//! the benchmark surfaces M cuts the iterations 3-4x (512^2 rough: 300 -> 70).
+//! the benchmark surfaces M cuts the iterations 3-5x (512^2 rough: 300 -> 70).
 //! Each iteration applies K once (to the direction) and M once; the displacement
 //! `K p` is carried along (see [`ContactSolver::solve`]).
 //!
