@@ -59,21 +59,22 @@ pub fn run_scene_in(scene: &scene::Scene, ctx: &RunContext) -> Result<report::Re
             format!("{kind}_{k}")
         };
         report.current = Some((kind.to_string(), label));
-        if let scene::OutputSpec::HurstSweep(spec) = &scene.file.outputs[i] {
-            let work = sweep::work_dir(&ctx.work_root(), spec);
-            sweep::compute(spec, &work, &ctx.control)?;
-            let label = report
-                .current
-                .as_ref()
-                .map(|c| c.1.clone())
-                .unwrap_or_default();
-            sweep::aggregate(spec, &work, &mut report, &label)?;
-        } else if let scene::OutputSpec::BemContact { .. } = &scene.file.outputs[i] {
-            bem::run_output(scene, i, &mut report)?;
-        } else if scene.file.outputs[i].is_rough() {
-            rough::run_output(scene, i, &mut report)?;
-        } else {
-            axisym::run_output(scene, i, &mut report)?;
+        let output = &scene.file.outputs[i];
+        match (output.executor(), output) {
+            (scene::Executor::Sweep, scene::OutputSpec::HurstSweep(spec)) => {
+                let work = sweep::work_dir(&ctx.work_root(), spec);
+                sweep::compute(spec, &work, &ctx.control)?;
+                let label = report
+                    .current
+                    .as_ref()
+                    .map(|c| c.1.clone())
+                    .unwrap_or_default();
+                sweep::aggregate(spec, &work, &mut report, &label)?;
+            }
+            (scene::Executor::Bem, _) => bem::run_output(scene, i, &mut report)?,
+            (scene::Executor::RoughLines, _) => rough::run_output(scene, i, &mut report)?,
+            (scene::Executor::Axisymmetric, _) => axisym::run_output(scene, i, &mut report)?,
+            (scene::Executor::Sweep, _) => unreachable!("only hurst_sweep runs as a sweep"),
         }
     }
     report.dedupe_names();

@@ -4,7 +4,7 @@
 //! so a force-depth request never reconstructs pressure fields and an MRD-only scene
 //! never touches the 3D solver; `summary.json` lists the stages that actually ran.
 
-use crate::scene::{OutputSpec, Scene};
+use crate::scene::{Executor, OutputSpec, Scene};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Stage {
@@ -68,14 +68,11 @@ impl Stage {
 /// Stages needed by one output (in execution order).
 pub fn stages_for(output: &OutputSpec, has_closed_form: bool) -> Vec<Stage> {
     use Stage::*;
-    if let OutputSpec::HurstSweep(_) = output {
-        return vec![RoughSynthesis, Bem3d, RoughContact, SweepFit];
-    }
-    if let OutputSpec::BemContact { .. } = output {
-        return vec![Bem3d];
-    }
-    if !output.needs_profile() {
-        return vec![RoughSynthesis, RoughContact];
+    match output.executor() {
+        Executor::Sweep => return vec![RoughSynthesis, Bem3d, RoughContact, SweepFit],
+        Executor::Bem => return vec![Bem3d],
+        Executor::RoughLines => return vec![RoughSynthesis, RoughContact],
+        Executor::Axisymmetric => {}
     }
     let mut s = vec![HessTransform];
     match output {

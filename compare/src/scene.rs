@@ -492,20 +492,41 @@ impl OutputSpec {
         }
     }
 
-    /// Rough-surface outputs need no axisymmetric profile.
-    pub fn is_rough(&self) -> bool {
-        matches!(
-            self,
-            OutputSpec::StaticFriction { .. }
-                | OutputSpec::RoughStiffness { .. }
-                | OutputSpec::HurstSweep(_)
-        )
+    /// The module that runs this output: the one place that sorts output kinds.
+    pub fn executor(&self) -> Executor {
+        match self {
+            OutputSpec::Profile1d { .. }
+            | OutputSpec::ForceDepth { .. }
+            | OutputSpec::Pressure { .. }
+            | OutputSpec::Adhesion { .. }
+            | OutputSpec::Tangential { .. }
+            | OutputSpec::Damping { .. }
+            | OutputSpec::Viscoelastic { .. } => Executor::Axisymmetric,
+            OutputSpec::StaticFriction { .. } | OutputSpec::RoughStiffness { .. } => {
+                Executor::RoughLines
+            }
+            OutputSpec::HurstSweep(_) => Executor::Sweep,
+            OutputSpec::BemContact { .. } => Executor::Bem,
+        }
     }
 
     /// Axisymmetric outputs need the scene's `[profile]`; the others do not.
     pub fn needs_profile(&self) -> bool {
-        !self.is_rough() && !matches!(self, OutputSpec::BemContact { .. })
+        self.executor() == Executor::Axisymmetric
     }
+}
+
+/// Which module runs an output (and so which stages it can need).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Executor {
+    /// `crate::axisym`: exact MRD of an axisymmetric profile.
+    Axisymmetric,
+    /// `crate::rough`: MRD rough lines.
+    RoughLines,
+    /// `crate::sweep`: the Hurst sweep, 3D against 1D.
+    Sweep,
+    /// `crate::bem`: 3D contact of a height map.
+    Bem,
 }
 
 /// A parsed and validated scene, with its source text for provenance.
