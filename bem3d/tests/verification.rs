@@ -4,28 +4,9 @@
 #![allow(clippy::needless_range_loop)]
 
 use bem3d::*;
+mod common;
+use common::{rel, rough, sphere};
 use std::f64::consts::PI;
-
-fn rel(a: f64, b: f64) -> f64 {
-    ((a - b) / b).abs()
-}
-
-/// Heights of a sphere of radius r (peaks up) on an n x n grid of side l, its apex on
-/// the centre of cell (n/2, n/2) (as in the peer codes' Hertz benchmark).
-fn sphere(n: usize, l: f64, r: f64) -> Vec<f64> {
-    let h = l / n as f64;
-    let mut z = Vec::with_capacity(n * n);
-    for j in 0..n {
-        for i in 0..n {
-            let (x, y) = (
-                (i as f64 - (n / 2) as f64) * h,
-                (j as f64 - (n / 2) as f64) * h,
-            );
-            z.push(-(x * x + y * y) / (2.0 * r));
-        }
-    }
-    z
-}
 
 struct HertzErrors {
     depth: f64,
@@ -159,7 +140,9 @@ fn flat_punch_stiffness() {
         "k = {k}, 2aE* = {}",
         2.0 * a_eq * e
     ); // Eq. (1)
-    let kt = s.tangent_stiffness(&sol, 1e-10).unwrap();
+    let kt = s
+        .tangent_stiffness(&sol, &SolverOptions::default())
+        .unwrap();
     assert!(rel(kt, k) < 1e-6, "tangent {kt} vs secant {k}");
 }
 
@@ -313,29 +296,6 @@ fn fft_solver_matches_dense_active_set_solve() {
     }
 }
 
-fn rough(nx: usize, ny: usize, seed: u64) -> Vec<f64> {
-    // Deterministic smooth random-ish surface: a few sines with hashed phases.
-    let mut h = vec![0.0; nx * ny];
-    let mut state = seed;
-    for m in 1..6 {
-        for k in 0..3 {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            let ph = (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 * PI;
-            let (fx, fy) = (m as f64, (k as f64) - 1.0);
-            for j in 0..ny {
-                for i in 0..nx {
-                    let arg =
-                        2.0 * PI * (fx * i as f64 / nx as f64 + fy * j as f64 / ny as f64) + ph;
-                    h[j * nx + i] += arg.cos() / (m * m) as f64;
-                }
-            }
-        }
-    }
-    h
-}
-
 #[test]
 fn invariances() {
     let (nx, ny) = (48, 40);
@@ -394,22 +354,22 @@ fn tangent_stiffness_matches_central_difference() {
         max_iterations: 20_000,
     };
     let sol = s.solve(Load::Force(0.05), &opts, None).unwrap();
-    let kt = s.tangent_stiffness(&sol, 1e-12).unwrap();
+    let kt = s
+        .tangent_stiffness(
+            &sol,
+            &SolverOptions {
+                tolerance: 1e-12,
+                max_iterations: 10_000,
+            },
+        )
+        .unwrap();
     let dd = 1e-6 * sol.approach;
     let fp = s
-        .solve(
-            Load::Approach(sol.approach + dd),
-            &opts,
-            Some(&sol.pressure),
-        )
+        .solve(Load::Approach(sol.approach + dd), &opts, Some(&sol))
         .unwrap()
         .force;
     let fm = s
-        .solve(
-            Load::Approach(sol.approach - dd),
-            &opts,
-            Some(&sol.pressure),
-        )
+        .solve(Load::Approach(sol.approach - dd), &opts, Some(&sol))
         .unwrap()
         .force;
     let kc = (fp - fm) / (2.0 * dd);
@@ -433,9 +393,7 @@ fn displacement_and_force_control_agree_and_warm_start_helps() {
     let a = s.solve(Load::Force(0.01), &opts, None).unwrap();
     let b = s.solve(Load::Approach(a.approach), &opts, None).unwrap();
     assert!(rel(b.force, 0.01) < 1e-8);
-    let c = s
-        .solve(Load::Force(0.0101), &opts, Some(&a.pressure))
-        .unwrap();
+    let c = s.solve(Load::Force(0.0101), &opts, Some(&a)).unwrap();
     let cold = s.solve(Load::Force(0.0101), &opts, None).unwrap();
     assert!(
         c.iterations < cold.iterations,

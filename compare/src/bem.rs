@@ -136,15 +136,15 @@ fn solve_all<K: Compliance>(
         .map_or(nx * ny, |m| m.iter().filter(|&&v| v).count()) as f64;
     let mut solver = ContactSolver::new(op, heights, mask)
         .map_err(|e| CompareError::Scene(format!("{ctx}: {e}")))?;
-    let mut warm: Option<Vec<f64>> = None;
+    let mut warm: Option<bem3d::Solution> = None;
     let mut rows = Vec::new();
     for (k, &load) in loads.iter().enumerate() {
         let t0 = Instant::now();
         let sol = solver
-            .solve(load, opts, warm.as_deref())
+            .solve(load, opts, warm.as_ref())
             .map_err(|e| CompareError::Scene(format!("{ctx}: load {}: {e}", k + 1)))?;
         let kk = solver
-            .tangent_stiffness(&sol, 1e-10)
+            .tangent_stiffness(&sol, opts)
             .map_err(|e| CompareError::Scene(format!("{ctx}: stiffness at load {}: {e}", k + 1)))?;
         let secs = t0.elapsed().as_secs_f64();
         rows.push(vec![
@@ -171,7 +171,7 @@ fn solve_all<K: Compliance>(
                     .push((format!("bem_contact_{what}_{}.npy", k + 1), bytes));
             }
         }
-        warm = Some(sol.pressure);
+        warm = Some(sol);
     }
     Ok(rows)
 }

@@ -249,10 +249,10 @@ fn run_bem(spec: &SweepSpec, h: usize, g: usize, r: u64) -> Result<BemCurve> {
         unconverged: 0,
         seconds: 0.0,
     };
-    let mut warm: Option<Vec<f64>> = None;
+    let mut warm: Option<bem3d::Solution> = None;
     for k in 0..spec.loads {
         let d = full * 10f64.powf(-3.0 * (1.0 - k as f64 / (spec.loads - 1) as f64));
-        let sol = match solver.solve(Load::Approach(d), &opts, warm.as_deref()) {
+        let sol = match solver.solve(Load::Approach(d), &opts, warm.as_ref()) {
             Ok(s) => s,
             Err(BemError::NoConvergence { last, .. }) => {
                 out.unconverged += 1;
@@ -262,16 +262,20 @@ fn run_bem(spec: &SweepSpec, h: usize, g: usize, r: u64) -> Result<BemCurve> {
         };
         out.iterations += sol.iterations;
         out.max_residual = out.max_residual.max(sol.residual);
-        let kk = match solver.tangent_stiffness(&sol, 1e-9) {
+        let stiffness_opts = SolverOptions {
+            tolerance: 1e-9,
+            ..opts
+        };
+        let kk = match solver.tangent_stiffness(&sol, &stiffness_opts) {
             Ok(v) => v,
-            Err(BemError::NoConvergence { .. }) => f64::NAN,
+            Err(BemError::NoConvergence { .. } | BemError::Breakdown { .. }) => f64::NAN,
             Err(e) => return Err(CompareError::Scene(format!("3D stiffness: {e}"))),
         };
         if sol.force > 0.0 && kk.is_finite() && kk > 0.0 {
             out.force.push(sol.force);
             out.stiffness.push(kk);
         }
-        warm = Some(sol.pressure);
+        warm = Some(sol);
     }
     out.seconds = t0.elapsed().as_secs_f64();
     Ok(out)

@@ -1,0 +1,83 @@
+//! Surfaces and measures shared by the solver's tests.
+#![allow(dead_code)]
+
+use std::f64::consts::PI;
+
+pub fn rel(a: f64, b: f64) -> f64 {
+    ((a - b) / b).abs()
+}
+
+/// Heights of a sphere of radius r (peaks up) on an n x n grid of side l, its apex on
+/// the centre of cell (n/2, n/2) (as in the peer codes' Hertz benchmark).
+pub fn sphere(n: usize, l: f64, r: f64) -> Vec<f64> {
+    let h = l / n as f64;
+    let mut z = Vec::with_capacity(n * n);
+    for j in 0..n {
+        for i in 0..n {
+            let (x, y) = (
+                (i as f64 - (n / 2) as f64) * h,
+                (j as f64 - (n / 2) as f64) * h,
+            );
+            z.push(-(x * x + y * y) / (2.0 * r));
+        }
+    }
+    z
+}
+
+pub fn rough(nx: usize, ny: usize, seed: u64) -> Vec<f64> {
+    // Deterministic smooth random-ish surface: a few sines with hashed phases.
+    let mut h = vec![0.0; nx * ny];
+    let mut state = seed;
+    for m in 1..6 {
+        for k in 0..3 {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let ph = (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 * PI;
+            let (fx, fy) = (m as f64, (k as f64) - 1.0);
+            for j in 0..ny {
+                for i in 0..nx {
+                    let arg =
+                        2.0 * PI * (fx * i as f64 / nx as f64 + fy * j as f64 / ny as f64) + ph;
+                    h[j * nx + i] += arg.cos() / (m * m) as f64;
+                }
+            }
+        }
+    }
+    h
+}
+
+/// A periodic random self-affine surface on an `n x n` grid of side 1: spectral
+/// amplitudes |k|^(-1-H) from the lowest wavenumber to n/4, phases from a fixed LCG,
+/// scaled to rms height 0.01 (deterministic for a seed).
+pub fn self_affine(n: usize, hurst: f64, seed: u64) -> Vec<f64> {
+    use bem3d::fft::Fft2;
+    use rustfft::num_complex::Complex64;
+    let mut fft = Fft2::new(n, n);
+    let nc = fft.nc();
+    let mut spec = vec![Complex64::default(); fft.spectrum_len()];
+    let mut state = seed.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    for c in 0..nc {
+        for r in 0..n {
+            let ky = if r <= n / 2 {
+                r as f64
+            } else {
+                r as f64 - n as f64
+            };
+            let k = (c as f64 * c as f64 + ky * ky).sqrt();
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let ph = (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 * PI;
+            if k >= 1.0 && k <= n as f64 / 4.0 {
+                spec[c * n + r] = Complex64::from_polar(k.powf(-1.0 - hurst), ph);
+            }
+        }
+    }
+    let mut h = vec![0.0; n * n];
+    fft.inverse(&mut spec, &mut h);
+    let mean = h.iter().sum::<f64>() / h.len() as f64;
+    let rms = (h.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / h.len() as f64).sqrt();
+    h.iter_mut().for_each(|v| *v = 0.01 * (*v - mean) / rms);
+    h
+}

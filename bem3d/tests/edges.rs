@@ -1,0 +1,197 @@
+//! The solver at its edges: complete contact, infeasible loads, iteration caps and warm
+//! starts. Each test pins a defect that once hung, returned NaN or cost more than a cold
+//! start (issue "Nothing lost, nothing hidden").
+
+use bem3d::*;
+mod common;
+use common::{rel, self_affine, sphere};
+
+fn opts(tolerance: f64, max_iterations: usize) -> SolverOptions {
+    SolverOptions {
+        tolerance,
+        max_iterations,
+    }
+}
+
+/// Beyond complete contact of a periodic rough surface (0.3 and 3 E*, where it starts
+/// near 0.05 E* here): the solve converges, every cell carries pressure, the gap is zero
+/// everywhere (K p + z is the constant approach, to 1e-12 of the rms height) and the
+/// stiffness is +inf (the mean mode of K is free), returned at once.
+#[test]
+fn periodic_complete_contact_solves_and_has_infinite_stiffness() {
+    let n = 64;
+    let h = self_affine(n, 0.8, 3);
+    let mut s = ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None).unwrap();
+    for pm in [0.3, 3.0] {
+        let sol = s
+            .solve(Load::MeanPressure(pm), &opts(1e-10, 100), None)
+            .unwrap();
+        assert!(
+            sol.complete_contact(),
+            "p = {pm}: {} cells",
+            sol.contact_cells
+        );
+        assert!(
+            sol.iterations <= 3,
+            "p = {pm}: {} iterations",
+            sol.iterations
+        );
+        assert!(rel(sol.force, pm) < 1e-12);
+        let max_gap = sol.gap.iter().fold(0.0f64, |m, &g| m.max(g));
+        assert!(max_gap < 1e-12 * 0.01, "gap {max_gap}");
+        // Independent check of the field: K p = approach - z on every cell.
+        let mut op = PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
+        let mut u = vec![0.0; n * n];
+        op.apply(&sol.pressure, &mut u);
+        let hmax = h.iter().cloned().fold(f64::MIN, f64::max);
+        let worst = u
+            .iter()
+            .zip(&h)
+            .map(|(u, h)| (u + (hmax - h) - sol.approach).abs())
+            .fold(0.0f64, f64::max);
+        assert!(worst < 1e-12, "K p + z - d = {worst}");
+        let k = s.tangent_stiffness(&sol, &opts(1e-10, 1000)).unwrap();
+        assert_eq!(k, f64::INFINITY);
+    }
+}
+
+/// A flat map is in complete contact at any load: uniform pressure, one iteration.
+/// Periodic: stiffness +inf, any approach > 0 infeasible. Non-periodic: the stiffness
+/// is the flat square punch's, k = F / d exactly (the contact set cannot change).
+#[test]
+fn flat_map_complete_contact() {
+    let n = 32;
+    let flat = vec![0.25; n * n];
+    let mut s =
+        ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &flat, None).unwrap();
+    let sol = s
+        .solve(Load::MeanPressure(0.2), &opts(1e-10, 50), None)
+        .unwrap();
+    assert!(sol.complete_contact());
+    assert!(sol.pressure.iter().all(|&p| rel(p, 0.2) < 1e-12));
+    assert_eq!(
+        s.tangent_stiffness(&sol, &opts(1e-10, 50)).unwrap(),
+        f64::INFINITY
+    );
+    match s.solve(Load::Approach(1e-3), &opts(1e-10, 50), None) {
+        Err(BemError::Infeasible(m)) => assert!(m.contains("complete contact"), "{m}"),
+        other => panic!("expected Infeasible, got {:?}", other.map(|s| s.iterations)),
+    }
+    let mut s =
+        ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &flat, None).unwrap();
+    let sol = s.solve(Load::Force(0.2), &opts(1e-12, 500), None).unwrap();
+    assert!(sol.complete_contact());
+    let k = s.tangent_stiffness(&sol, &opts(1e-12, 500)).unwrap();
+    assert!(
+        rel(k, sol.force / sol.approach) < 1e-8,
+        "k {k} vs F/d {}",
+        sol.force / sol.approach
+    );
+}
+
+/// An approach beyond complete contact of a periodic surface has no solution: refused
+/// at once with a typed error naming the limit, instead of iterating to the cap.
+#[test]
+fn periodic_approach_beyond_complete_contact_is_infeasible() {
+    let n = 64;
+    let h = self_affine(n, 0.8, 5);
+    let hmax = h.iter().cloned().fold(f64::MIN, f64::max);
+    let mean = h.iter().sum::<f64>() / h.len() as f64;
+    let mut s = ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None).unwrap();
+    for d in [hmax - mean, 1.5 * (hmax - mean)] {
+        assert!(matches!(
+            s.solve(Load::Approach(d), &opts(1e-10, 100_000), None),
+            Err(BemError::Infeasible(_))
+        ));
+    }
+    // Just below it the solve converges, nearly everywhere in contact.
+    let sol = s
+        .solve(
+            Load::Approach(0.98 * (hmax - mean)),
+            &opts(1e-8, 20_000),
+            None,
+        )
+        .unwrap();
+    assert!(sol.contact_cells as f64 > 0.5 * (n * n) as f64);
+    // A mask lifts the limit: the free cells outside it take the mean displacement.
+    let mask: Vec<bool> = (0..n * n).map(|k| k % n < n / 2).collect();
+    let mut s =
+        ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, Some(mask)).unwrap();
+    assert!(s
+        .solve(Load::Approach(hmax - mean), &opts(1e-8, 20_000), None)
+        .is_ok());
+}
+
+/// The stiffness iteration honours its cap and reports the residual it reached.
+#[test]
+fn stiffness_honours_max_iterations() {
+    let n = 64;
+    let h = sphere(n, 1.0, 1.0);
+    let mut s =
+        ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None).unwrap();
+    let sol = s
+        .solve(Load::Force(0.01), &opts(1e-10, 1000), None)
+        .unwrap();
+    match s.tangent_stiffness(&sol, &opts(1e-14, 2)) {
+        Err(BemError::NoConvergence {
+            what,
+            iterations,
+            residual,
+            ..
+        }) => {
+            assert_eq!(what, "tangent stiffness");
+            assert_eq!(iterations, 2);
+            assert!(residual.is_finite() && residual > 1e-14);
+        }
+        other => panic!("expected NoConvergence, got {other:?}"),
+    }
+    // Invalid options are refused, not looped on.
+    assert!(matches!(
+        s.solve(Load::Force(0.01), &opts(1e-10, 0), None),
+        Err(BemError::InvalidInput(_))
+    ));
+    assert!(matches!(
+        s.solve(Load::Force(0.01), &opts(f64::NAN, 10), None),
+        Err(BemError::InvalidInput(_))
+    ));
+}
+
+/// On a load ladder with large and small steps, a warm-started sequence never needs
+/// more iterations than cold starts: large steps start cold (same iterations), small
+/// steps (ratio in the window) start warm and need fewer.
+#[test]
+fn warm_start_never_costs_more_than_cold() {
+    let n = 128;
+    let h = self_affine(n, 0.8, 11);
+    let mut s = ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None).unwrap();
+    let o = opts(1e-10, 5000);
+    let ladder = [0.01, 0.05, 0.1, 0.11, 0.12, 0.06, 0.01];
+    let mut warm: Option<Solution> = None;
+    let (mut tw, mut tc) = (0, 0);
+    for &pm in &ladder {
+        let w = s.solve(Load::MeanPressure(pm), &o, warm.as_ref()).unwrap();
+        let c = s.solve(Load::MeanPressure(pm), &o, None).unwrap();
+        assert!(
+            w.iterations <= c.iterations,
+            "p = {pm}: warm {} > cold {}",
+            w.iterations,
+            c.iterations
+        );
+        if w.warm_started {
+            assert!(rel(w.force, c.force) < 1e-12);
+            let dp = w
+                .pressure
+                .iter()
+                .zip(&c.pressure)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0f64, f64::max);
+            assert!(dp < 1e-6 * pm, "same solution: {dp}");
+        } else {
+            assert_eq!(w.iterations, c.iterations);
+        }
+        tw += w.iterations;
+        tc += c.iterations;
+        warm = Some(w);
+    }
+    assert!(tw < tc, "ladder: warm {tw} cold {tc}");
+}
