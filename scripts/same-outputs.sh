@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# Runs every embedded scene with two builds of `mrdw` and compares the CSVs byte for
+# byte; the other files of each report (figures, summary.json without wall times) are
+# compared too and listed when they differ, without failing (a redesign may correct the
+# recorded stage list, for example).
+#
+#   scripts/same-outputs.sh BASE_REF [SKIP_REGEX]
+#
+# BASE_REF is a git revision (built in a temporary worktree); the other build is the
+# work tree. SKIP_REGEX names scenes to leave out (default: fig6-full, a 48-minute run).
+# Exit status 0 when every compared file is identical.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+base_ref=${1:?usage: scripts/same-outputs.sh BASE_REF [SKIP_REGEX]}
+skip=${2:-^fig6-full$}
+tmp=$(mktemp -d)
+trap 'git worktree remove --force "$tmp/base" >/dev/null 2>&1 || true; rm -rf "$tmp"' EXIT
+
+git worktree add --detach "$tmp/base" "$base_ref" >/dev/null
+(cd "$tmp/base" && cargo build --release --quiet --bin mrdw)
+cargo build --release --quiet --bin mrdw
+base_bin=$tmp/base/target/release/mrdw
+new_bin=$PWD/target/release/mrdw
+
+status=0
+for scene in $("$new_bin" scenes | awk '{print $1}'); do
+  if [[ $scene =~ $skip ]]; then
+    echo "skip  $scene"
+    continue
+  fi
+  if ! "$base_bin" show "$scene" >/dev/null 2>&1; then
+    echo "new   $scene (not in $base_ref)"
+    continue
+  fi
+  "$base_bin" run "$scene" --out "$tmp/a/$scene" >/dev/null 2>&1
+  "$new_bin" run "$scene" --out "$tmp/b/$scene" >/dev/null 2>&1
+  differ=()
+  other=()
+  ncsv=0
+  for f in "$tmp/a/$scene"/*; do
+    name=$(basename "$f")
+    g=$tmp/b/$scene/$name
+    case $name in
+      *.csv)
+        ncsv=$((ncsv + 1))
+        cmp -s "$f" "$g" || differ+=("$name") ;;
+      summary.json)
+        diff -q <(grep -v '_s"\|wall_time' "$f") <(grep -v '_s"\|wall_time' "$g") \
+          >/dev/null 2>&1 || other+=("$name") ;;
+      *) cmp -s "$f" "$g" || other+=("$name") ;;
+    esac
+  done
+  for g in "$tmp/b/$scene"/*.csv; do
+    [ -e "$tmp/a/$scene/$(basename "$g")" ] || differ+=("$(basename "$g") (new)")
+  done
+  note=""
+  [ ${#other[@]} -eq 0 ] || note="; other files differ: ${other[*]}"
+  if [ ${#differ[@]} -eq 0 ]; then
+    echo "same  $scene ($ncsv CSVs identical$note)"
+  else
+    echo "DIFF  $scene: ${differ[*]}$note"
+    status=1
+  fi
+done
+exit $status
