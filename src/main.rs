@@ -1,8 +1,11 @@
-//! `mrdw`: the MRD validation workbench command-line tool.
+//! `mrdw`: the MRD validation workbench command-line tool. It parses arguments and
+//! calls the `compare` library; everything it prints goes through [`Out`], so a closed
+//! pipe or a full disk is an error like any other, not a panic.
 
 use clap::{Parser, Subcommand};
 use compare::scene::Scene;
-use compare::scenes;
+use compare::{scenes, CompareError, RunControl};
+use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -10,8 +13,8 @@ use std::process::ExitCode;
 /// checked against closed forms and 3D boundary elements.
 ///
 /// A scene (TOML case file) declares material, indenter and the outputs it wants;
-/// `mrdw run` computes only what those outputs need and writes one CSV per table, one
-/// PNG per figure and summary.json into a report folder.
+/// `mrdw run` prints the plan of stages those outputs need, computes only those, and
+/// writes one CSV per table, one PNG per figure and summary.json into a report folder.
 #[derive(Parser)]
 #[command(name = "mrdw", version, about, long_about, after_help = EXAMPLES)]
 struct Cli {
@@ -20,14 +23,25 @@ struct Cli {
 }
 
 const EXAMPLES: &str = "Examples:
-  mrdw run                      the default scene, fig6 (< 2 min), into reports/fig6/
+  mrdw run                      the default scene, fig6 (about 2 min on 2 cores), into reports/fig6/
   mrdw run tour                 every axisymmetric output on one sphere (instant)
   mrdw run cases/jkr.toml --out /tmp/jkr
   mrdw scenes                   list the embedded scenes
+  mrdw kinds                    list the output kinds a scene can request
   mrdw show jkr > my.toml       start a new scene from an embedded one
   mrdw run fig6-full --shard 0/4 --out shards/0    one machine's share of a sweep
   mrdw merge shards/0 shards/1 shards/2 shards/3   combine the shares into one report
   mrdw bench mrd | rough | bem  run time against error of the solvers
+
+Report folders: --out may name a new folder, an empty one, or a report folder mrdw
+wrote before (replaced as a whole); any other existing path is refused. A run holds a
+lock on its folder: a second run into the same folder is refused while the first runs.
+
+Exit codes: 0 success; 2 error (bad input, failed computation, I/O), one line on
+stderr; 3 stopped on request (MRDW_STOP_AFTER_TASKS) with checkpoints kept: rerun to
+resume; 4 report written but some requested results are missing (e.g. unconverged 3D
+solves: see the failures in summary.json and the CSV's `converged` column); 5 the
+report folder is in use by another run.
 
 The scene format is documented in cases/README.md.";
 
@@ -37,10 +51,11 @@ enum Command {
     Run {
         /// Scene file path or embedded scene name.
         scene: Option<String>,
-        /// Output folder (default: reports/<scene name>/). Replaced atomically.
+        /// Output folder (default: reports/<scene name>/). Written atomically; only a
+        /// new, empty or earlier mrdw report folder is accepted.
         #[arg(long)]
         out: Option<PathBuf>,
-        /// Worker threads (default: all cores). Results do not depend on it.
+        /// Worker threads, 1..=1024 (default: all cores). Results do not depend on it.
         #[arg(long)]
         threads: Option<usize>,
         /// Compute only shard K of N of the sweep tasks (e.g. 0/4) into --out, for
@@ -59,6 +74,8 @@ enum Command {
     },
     /// List the embedded scenes.
     Scenes,
+    /// List the output kinds a scene's [[outputs]] can request.
+    Kinds,
     /// Print an embedded scene's TOML text.
     Show {
         /// Embedded scene name.
@@ -112,88 +129,123 @@ fn parse_shard(s: &str) -> Result<(usize, usize), String> {
     Ok((k, n))
 }
 
+/// How a command ended, beyond plain success.
+enum Failure {
+    /// One line for stderr and the exit code.
+    Error(String, u8),
+}
+
+impl From<CompareError> for Failure {
+    fn from(e: CompareError) -> Self {
+        let code = match e {
+            CompareError::Stopped { .. } => 3,
+            CompareError::Busy(_) => 5,
+            _ => 2,
+        };
+        Failure::Error(e.to_string(), code)
+    }
+}
+
+impl From<String> for Failure {
+    fn from(e: String) -> Self {
+        Failure::Error(e, 2)
+    }
+}
+
+impl From<std::io::Error> for Failure {
+    fn from(e: std::io::Error) -> Self {
+        Failure::Error(format!("writing to standard output: {e}"), 2)
+    }
+}
+
+/// Standard output, with write errors returned instead of panicking.
+struct Out(std::io::StdoutLock<'static>);
+
+macro_rules! say {
+    ($out:expr, $($arg:tt)*) => { writeln!($out.0, $($arg)*)? };
+}
+
 fn stop_after() -> Option<usize> {
     std::env::var("MRDW_STOP_AFTER_TASKS")
         .ok()
         .and_then(|v| v.parse().ok())
 }
 
-fn load(scene: Option<&str>) -> Result<Scene, String> {
+fn load(scene: Option<&str>) -> Result<Scene, Failure> {
     let name = scene.unwrap_or(scenes::DEFAULT);
     let path = PathBuf::from(name);
     if path.exists() {
-        return Scene::load(&path).map_err(|e| e.to_string());
+        return Ok(Scene::load(&path)?);
     }
     if let Some(text) = scenes::get(name) {
-        return Scene::parse(text, &format!("<embedded:{name}>"), None).map_err(|e| e.to_string());
+        return Ok(Scene::parse(text, &format!("<embedded:{name}>"), None)?);
     }
     let hint = if name.ends_with(".toml") {
         "no such file"
     } else {
         "neither a file nor an embedded scene (see `mrdw scenes`)"
     };
-    Err(format!("scene `{name}`: {hint}"))
+    Err(format!("scene `{name}`: {hint}").into())
 }
 
-fn run(cmd: Command) -> Result<(), String> {
+fn set_threads(threads: Option<usize>) -> Result<(), Failure> {
+    let Some(t) = threads else { return Ok(()) };
+    if !(1..=1024).contains(&t) {
+        return Err(format!("--threads {t}: give 1..=1024 (default: all cores)").into());
+    }
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(t)
+        .build_global()
+        .map_err(|e| e.to_string())?;
+    Ok(())
+}
+
+fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
     match cmd {
         Command::Run {
             scene,
-            out,
+            out: dir,
             threads,
             shard,
         } => {
-            if let Some(t) = threads {
-                rayon::ThreadPoolBuilder::new()
-                    .num_threads(t.max(1))
-                    .build_global()
-                    .map_err(|e| e.to_string())?;
-            }
+            set_threads(threads)?;
             let scene = load(scene.as_deref())?;
-            let out = out.unwrap_or_else(|| PathBuf::from("reports").join(&scene.file.name));
-            let control = compare::sweep::RunControl {
+            let dir = dir.unwrap_or_else(|| PathBuf::from("reports").join(&scene.name));
+            let control = RunControl {
                 shard,
                 stop_after: stop_after(),
                 progress: true,
             };
+            say!(out, "scene `{}`: plan", scene.name);
+            write!(out.0, "{}", compare::run::plan(&scene))?;
             if let Some((k, n)) = shard {
-                compare::shards::run_shard(&scene, &out, &control).map_err(|e| e.to_string())?;
-                println!(
-                    "shard {k}/{n} of `{}` computed into {}",
-                    scene.file.name,
-                    out.display()
-                );
+                compare::shards::run_shard(&scene, &dir, &control)?;
+                say!(out, "shard {k}/{n} computed into {}", dir.display());
                 return Ok(());
             }
-            let (report, files) =
-                compare::run_and_write_with(&scene, &out, &control).map_err(|e| e.to_string())?;
-            for w in &report.warnings {
+            let (report, files) = compare::run_to_folder(&scene, &dir, &control)?;
+            for w in report.warnings() {
                 eprintln!("warning: {w}");
             }
-            println!(
-                "scene `{}`: stages {}",
-                scene.file.name,
-                report.stages.join(", ")
-            );
-            for (k, v) in &report.scalars {
+            for (k, v) in report.results() {
                 if !v.is_object() {
-                    println!("  {k} = {v}");
+                    say!(out, "  {k} = {v}");
                 }
             }
-            println!("wrote {} files to {}", files.len(), out.display());
-            Ok(())
+            say!(out, "wrote {} files to {}", files.len(), dir.display());
+            incomplete(&report)
         }
-        Command::Merge { shards, out } => {
-            let (scene, report, files) =
-                compare::shards::merge(&shards, out.as_deref()).map_err(|e| e.to_string())?;
-            println!(
+        Command::Merge { shards, out: dir } => {
+            let (scene, report, files) = compare::shards::merge(&shards, dir.as_deref())?;
+            say!(
+                out,
                 "merged {} shards of `{}`: stages {}",
                 shards.len(),
-                scene.file.name,
-                report.stages.join(", ")
+                scene.name,
+                report.stages().join(", ")
             );
-            println!("wrote {} files", files.len());
-            Ok(())
+            say!(out, "wrote {} files", files.len());
+            incomplete(&report)
         }
         Command::Scenes => {
             for (name, text) in scenes::EMBEDDED {
@@ -202,14 +254,24 @@ fn run(cmd: Command) -> Result<(), String> {
                 } else {
                     ""
                 };
-                println!("{name:<18} {}{mark}", scenes::title(text));
+                say!(out, "{name:<18} {}{mark}", scenes::title(text));
             }
+            Ok(())
+        }
+        Command::Kinds => {
+            for k in compare::outputs::KINDS {
+                say!(out, "{:<16} {}", k.name, k.about);
+            }
+            say!(
+                out,
+                "\nKeys of each kind: cases/README.md; examples: `mrdw show NAME`."
+            );
             Ok(())
         }
         Command::Show { name } => {
             let text = scenes::get(&name)
                 .ok_or_else(|| format!("no embedded scene `{name}` (see `mrdw scenes`)"))?;
-            print!("{text}");
+            write!(out.0, "{text}")?;
             Ok(())
         }
         Command::Bench {
@@ -219,39 +281,13 @@ fn run(cmd: Command) -> Result<(), String> {
             write_surfaces,
         } => {
             match target {
-                BenchTarget::Mrd => compare::bench::run_mrd(max_exp.clamp(3, 8)),
-                BenchTarget::Rough => {
-                    compare::bench::run_rough(if max_exp == 6 { 7 } else { max_exp.clamp(3, 8) })
-                }
+                BenchTarget::Mrd => compare::bench::run_mrd(&mut out.0, max_exp.clamp(3, 8))?,
+                BenchTarget::Rough => compare::bench::run_rough(
+                    &mut out.0,
+                    if max_exp == 6 { 7 } else { max_exp.clamp(3, 8) },
+                )?,
                 BenchTarget::Bem => {
-                    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
-                    let mut lines = Vec::new();
-                    for kind in ["periodic", "hertz"] {
-                        let mut n = 128;
-                        while n <= max_n && (kind == "periodic" || n <= 1024) {
-                            eprintln!("running {kind} {n}^2 ...");
-                            let mut cmd = std::process::Command::new(&exe);
-                            cmd.args(["bench-case", kind, &n.to_string()]);
-                            if let (Some(d), "periodic") = (&write_surfaces, kind) {
-                                cmd.arg("--write-surfaces").arg(d);
-                            }
-                            let out = cmd.output().map_err(|e| e.to_string())?;
-                            if !out.status.success() {
-                                return Err(format!(
-                                    "benchmark case {kind} {n} failed: {}",
-                                    String::from_utf8_lossy(&out.stderr)
-                                ));
-                            }
-                            lines.extend(
-                                String::from_utf8_lossy(&out.stdout)
-                                    .lines()
-                                    .filter(|l| l.starts_with("RESULT"))
-                                    .map(String::from),
-                            );
-                            n *= 2;
-                        }
-                    }
-                    compare::bench::print_bem_table(&lines);
+                    compare::bench::run_bem(&mut out.0, max_n, write_surfaces.as_deref())?
                 }
             }
             Ok(())
@@ -261,20 +297,40 @@ fn run(cmd: Command) -> Result<(), String> {
             n,
             write_surfaces,
         } => {
-            compare::bench::run_bem_case(&kind, n, write_surfaces.as_deref());
+            compare::bench::run_bem_case(&mut out.0, &kind, n, write_surfaces.as_deref())?;
             Ok(())
         }
     }
 }
 
+/// Exit code 4 when the report lacks requested results.
+fn incomplete(report: &compare::report::Report) -> Result<(), Failure> {
+    let failures = report.failures();
+    if failures.is_empty() {
+        return Ok(());
+    }
+    for f in &failures {
+        eprintln!("warning: {f}");
+    }
+    Err(Failure::Error(
+        format!(
+            "{} requested results are missing (see `failures` in summary.json)",
+            failures.len()
+        ),
+        4,
+    ))
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    match run(cli.command) {
+    let mut out = Out(std::io::stdout().lock());
+    let result = run(cli.command, &mut out).and_then(|()| Ok(out.0.flush()?));
+    match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
+        Err(Failure::Error(e, code)) => {
             // One readable line.
             eprintln!("error: {}", e.replace('\n', " "));
-            ExitCode::from(2)
+            ExitCode::from(code)
         }
     }
 }

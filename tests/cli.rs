@@ -30,6 +30,48 @@ fn result(s: &Value, key: &str) -> f64 {
         .unwrap_or_else(|| panic!("missing result {key} in {}", s["results"]))
 }
 
+/// A CSV of the report: header names (without units) and numeric rows.
+pub struct Csv {
+    pub columns: Vec<String>,
+    pub rows: Vec<Vec<f64>>,
+}
+
+impl Csv {
+    pub fn get(&self, name: &str, row: usize) -> f64 {
+        let j = self
+            .columns
+            .iter()
+            .position(|c| c == name)
+            .unwrap_or_else(|| panic!("no column {name} in {:?}", self.columns));
+        self.rows[row][j]
+    }
+}
+
+pub fn read_csv(path: &Path) -> Csv {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let columns = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(|c| c.split(" [").next().unwrap().to_string())
+        .collect();
+    let rows = lines
+        .map(|l| {
+            l.split(',')
+                .map(|v| {
+                    if v.is_empty() {
+                        f64::NAN
+                    } else {
+                        v.parse().unwrap()
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    Csv { columns, rows }
+}
+
 fn stages(s: &Value) -> Vec<String> {
     s["stages"]
         .as_array()
@@ -94,7 +136,7 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
                 || k.ends_with("vs_cattaneo_mindlin")
                 || k.ends_with("pull_off_rel_error_vs_closed_form")
                 || k.ends_with("max_rel_dev_quadrature_vs_closed_form")
-                || k == "traction.max_error_over_mu_p0"
+                || k == "tangential.traction_max_error_over_mu_p0"
             {
                 assert!(v < 1e-9, "{name}: {k} = {v}");
             }
@@ -142,6 +184,11 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
                 .map(|k| result(&s, &format!("static_friction_{k}.b")))
                 .collect();
             assert!(b.windows(2).all(|w| w[1] < w[0]), "{b:?}");
+        }
+        // The plan is true: every output ran exactly the stages it declared.
+        for o in s["outputs"].as_array().unwrap() {
+            assert_eq!(o["stages"], o["declared"], "{name}: {o}");
+            assert!(!o["stages"].as_array().unwrap().is_empty(), "{name}: {o}");
         }
         // MRD-only scenes never touch the 3D solver.
         assert!(stages(&s).iter().all(|st| !st.starts_with("bem")), "{name}");
@@ -339,36 +386,37 @@ fn bem_contact_on_an_npy_height_map() {
     .write_npy(&tmp.path().join("sphere.npy"))
     .unwrap();
     let scene = tmp.path().join("b.toml");
-    let text = "name = \"b\"\n[material]\ne_star = 2.0\n[[outputs]]\nkind = \"bem_contact\"\nheights = \"sphere.npy\"\nsize = [1.0, 1.0]\nperiodic = false\napproaches = [0.01, 0.02]\n";
+    let text = "name = \"b\"\n[material]\ne_star = 2.0\n[[outputs]]\nkind = \"bem_contact\"\nheights = \"sphere.npy\"\nsize = [1.0, 1.0]\nperiodic = false\nstiffness = true\napproaches = [0.01, 0.02]\n";
     std::fs::write(&scene, text).unwrap();
     let out = tmp.path().join("out");
     let s = run_scene(scene.to_str().unwrap(), &out);
-    assert_eq!(stages(&s), ["bem3d"]);
-    let csv = std::fs::read_to_string(out.join("bem_contact.csv")).unwrap();
-    let rows: Vec<Vec<f64>> = csv
-        .lines()
-        .filter(|l| !l.starts_with('#'))
-        .skip(1)
-        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
-        .collect();
-    for (row, d) in rows.iter().zip([0.01f64, 0.02]) {
+    assert_eq!(stages(&s), ["bem3d", "bem3d_stiffness"]);
+    let t = read_csv(&out.join("bem_contact.csv"));
+    for (k, d) in [0.01f64, 0.02].into_iter().enumerate() {
         let hertz = 4.0 / 3.0 * 2.0 * d.powf(1.5);
-        assert!(
-            (row[1] / hertz - 1.0).abs() < 0.01,
-            "F = {} vs {hertz}",
-            row[1]
-        );
+        let f = t.get("force", k);
+        assert!((f / hertz - 1.0).abs() < 0.01, "F = {f} vs {hertz}");
         // Stiffness 2 a E* with a = sqrt(R d), within 2 % (pixelated contact edge).
-        assert!(
-            (row[5] / (2.0 * d.sqrt() * 2.0) - 1.0).abs() < 0.02,
-            "k = {}",
-            row[5]
-        );
+        let kk = t.get("stiffness", k);
+        assert!((kk / (2.0 * d.sqrt() * 2.0) - 1.0).abs() < 0.02, "k = {kk}");
+        assert_eq!(t.get("converged", k), 1.0);
     }
     assert!(
         !out.join("bem_contact_pressure_1.npy").exists(),
         "fields written without request"
     );
+    // Without `stiffness = true` no stiffness is computed (nor its column written).
+    let plain = tmp.path().join("b2.toml");
+    std::fs::write(&plain, text.replace("stiffness = true\n", "")).unwrap();
+    let s = run_scene(plain.to_str().unwrap(), &tmp.path().join("out2"));
+    assert_eq!(stages(&s), ["bem3d"]);
+    let t2 = read_csv(&tmp.path().join("out2/bem_contact.csv"));
+    assert!(
+        !t2.columns.iter().any(|c| c == "stiffness"),
+        "{:?}",
+        t2.columns
+    );
+    assert_eq!(t2.get("force", 1), t.get("force", 1));
     // Bad maps: NaN inside, missing file.
     let mut bad = vec![0.0; 16];
     bad[5] = f64::NAN;

@@ -70,6 +70,9 @@ fn fig6_ci_exponents_agree_between_3d_and_mrd() {
         .collect();
     assert!(from0.windows(2).all(|w| w[1] < w[0]), "{mrd_alpha:?}");
     assert!(s["stages"].as_array().unwrap().iter().any(|v| v == "bem3d"));
+    for o in s["outputs"].as_array().unwrap() {
+        assert_eq!(o["stages"], o["declared"], "{o}");
+    }
     assert!(
         !tmp.path().join("fig6-ci.work").exists(),
         "checkpoints not cleaned up"

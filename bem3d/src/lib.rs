@@ -10,6 +10,7 @@
 
 pub mod error;
 pub mod fft;
+pub mod mask;
 pub mod operator;
 
 pub use error::{BemError, Result};

@@ -5,6 +5,7 @@ use mrd::discrete::DiscreteAxisymmetric;
 use mrd::oscillation::OscillatingContact;
 use mrd::reference as rf;
 use mrd::{Profile, Shape};
+use std::io::Write;
 use std::time::Instant;
 
 /// Median wall time of `f` over enough repetitions to fill ~`budget` seconds.
@@ -25,20 +26,22 @@ fn time_it<F: FnMut()>(mut f: F, budget: f64) -> f64 {
 }
 
 /// Prints the MRD benchmark table; `max_exp` is the largest log10(N).
-pub fn run_mrd(max_exp: u32) {
+pub fn run_mrd(w: &mut dyn Write, max_exp: u32) -> std::io::Result<()> {
     let (r, e, g, mu, d) = (1.0, 1.0, 0.8, 0.3, 0.01);
     let sphere = Profile::single(Shape::paraboloid(r).unwrap());
     let a = rf::hertz::radius(r, d);
     let f_target = rf::hertz::force(e, r, d);
-    println!(
+    writeln!(
+        w,
         "MRD benchmark: Hertz sphere R = 1, E* = 1, d = 0.01 (a = 0.1), springs on [-1.2a, 1.2a]"
-    );
-    println!("single thread; median of repeated runs\n");
-    println!(
+    )?;
+    writeln!(w, "single thread; median of repeated runs\n")?;
+    writeln!(
+        w,
         "{:>9} | {:>12} | {:>12} | {:>12} | {:>11} | {:>14} | {:>11}",
         "springs", "setup [s]", "F(d) [s]", "d(F) [s]", "|dF/F|", "cycle [s]", "|dW/W|"
-    );
-    println!("{}", "-".repeat(99));
+    )?;
+    writeln!(w, "{}", "-".repeat(99))?;
     for k in 3..=max_exp {
         let n = 10usize.pow(k);
         let l = 1.2 * a;
@@ -67,9 +70,10 @@ pub fn run_mrd(max_exp: u32) {
             || drop(std::hint::black_box(osc.simulate(amp, 1, 8).unwrap())),
             0.3,
         );
-        let w = osc.simulate(amp, 2, 8).unwrap().dissipation;
+        let w_sim = osc.simulate(amp, 2, 8).unwrap().dissipation;
         let w_exact = rf::mindlin_damping::dissipation_exact(e, beta, r, mu, d, amp);
-        println!(
+        writeln!(
+            w,
             "{:>9} | {:>12.3e} | {:>12.3e} | {:>12.3e} | {:>11.2e} | {:>14.3e} | {:>11.2e}",
             n,
             setup,
@@ -77,13 +81,15 @@ pub fn run_mrd(max_exp: u32) {
             t_force,
             err_f,
             t_cycle,
-            (w / w_exact - 1.0).abs()
-        );
+            (w_sim / w_exact - 1.0).abs()
+        )?;
     }
-    println!("\nsetup: z1d at N springs + sort + prefix sums (O(N log N)); F(d), d(F): exact solves (O(log N));");
-    println!(
+    writeln!(w, "\nsetup: z1d at N springs + sort + prefix sums (O(N log N)); F(d), d(F): exact solves (O(log N));")?;
+    writeln!(
+        w,
         "cycle: one oscillation period in 8 steps (every spring updated per step, O(N) per step)."
-    );
+    )?;
+    Ok(())
 }
 
 /// The periodic reference problem shared with the Tamaas comparison: self-affine,
@@ -131,7 +137,12 @@ pub fn peak_memory_mib() -> Option<f64> {
 
 /// One benchmark case, run in its own process so that its peak memory is its own.
 /// Prints one machine-readable line `RESULT key=value ...`.
-pub fn run_bem_case(kind: &str, n: usize, write_dir: Option<&std::path::Path>) {
+pub fn run_bem_case(
+    w: &mut dyn Write,
+    kind: &str,
+    n: usize,
+    write_dir: Option<&std::path::Path>,
+) -> std::io::Result<()> {
     use bem3d::*;
     let opts = SolverOptions {
         tolerance: 1e-10,
@@ -179,9 +190,9 @@ pub fn run_bem_case(kind: &str, n: usize, write_dir: Option<&std::path::Path>) {
             pm.write_npy(&dir.join(format!("mrdw_pressure_{n}.npy")))
                 .unwrap();
         }
-        println!("RESULT kind=periodic n={n} time={t:e} iterations={} pair={pair:e} mem={:.1} base_mem={base_mem:.1} err_pressure_l2={:e} err_approach={:e} area={:e}",
-            sol.iterations, mem, (num / den).sqrt(), ((sol.approach - refsol.approach) / refsol.approach).abs(), sol.contact_area);
-        return;
+        writeln!(w, "RESULT kind=periodic n={n} time={t:e} iterations={} pair={pair:e} mem={:.1} base_mem={base_mem:.1} err_pressure_l2={:e} err_approach={:e} area={:e}",
+            sol.iterations, mem, (num / den).sqrt(), ((sol.approach - refsol.approach) / refsol.approach).abs(), sol.contact_area)?;
+        return Ok(());
     } else {
         let (a, r) = (0.25, 1.0);
         let hgt: Vec<f64> = (0..n * n)
@@ -207,12 +218,51 @@ pub fn run_bem_case(kind: &str, n: usize, write_dir: Option<&std::path::Path>) {
         );
         (t, sol, err)
     };
-    println!("RESULT kind=hertz n={n} time={t:e} iterations={} pair={pair:e} mem={:.1} base_mem={base_mem:.1} err_peak={:e} err_approach={:e}",
-        sol.iterations, peak_memory_mib().unwrap_or(0.0), err.0, err.1);
+    writeln!(w, "RESULT kind=hertz n={n} time={t:e} iterations={} pair={pair:e} mem={:.1} base_mem={base_mem:.1} err_peak={:e} err_approach={:e}",
+        sol.iterations, peak_memory_mib().unwrap_or(0.0), err.0, err.1)?;
+    Ok(())
+}
+
+/// `mrdw bench bem`: each case in a fresh process of this executable (`mrdw bench-case
+/// KIND N`), so that its peak memory is its own; periodic grids from 128^2 to `max_n`,
+/// non-periodic Hertz from 128^2 to min(max_n, 1024)^2.
+pub fn run_bem(
+    w: &mut dyn Write,
+    max_n: usize,
+    write_surfaces: Option<&std::path::Path>,
+) -> Result<(), String> {
+    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
+    let mut lines = Vec::new();
+    for kind in ["periodic", "hertz"] {
+        let mut n = 128;
+        while n <= max_n && (kind == "periodic" || n <= 1024) {
+            eprintln!("running {kind} {n}^2 ...");
+            let mut cmd = std::process::Command::new(&exe);
+            cmd.args(["bench-case", kind, &n.to_string()]);
+            if let (Some(d), "periodic") = (write_surfaces, kind) {
+                cmd.arg("--write-surfaces").arg(d);
+            }
+            let out = cmd.output().map_err(|e| e.to_string())?;
+            if !out.status.success() {
+                return Err(format!(
+                    "benchmark case {kind} {n} failed: {}",
+                    String::from_utf8_lossy(&out.stderr)
+                ));
+            }
+            lines.extend(
+                String::from_utf8_lossy(&out.stdout)
+                    .lines()
+                    .filter(|l| l.starts_with("RESULT"))
+                    .map(String::from),
+            );
+            n *= 2;
+        }
+    }
+    print_bem_table(w, &lines).map_err(|e| format!("writing to standard output: {e}"))
 }
 
 /// Parses the RESULT lines of child runs and prints the table.
-pub fn print_bem_table(lines: &[String]) {
+fn print_bem_table(w: &mut dyn Write, lines: &[String]) -> std::io::Result<()> {
     let field = |l: &str, k: &str| -> f64 {
         l.split_whitespace()
             .find_map(|kv| {
@@ -221,7 +271,8 @@ pub fn print_bem_table(lines: &[String]) {
             })
             .unwrap_or(f64::NAN)
     };
-    println!(
+    writeln!(
+        w,
         "{:>9} | {:>6} | {:>9} | {:>6} | {:>10} | {:>11} | {:>10} | {:>9} | {:>10} | {:>10}",
         "case",
         "grid",
@@ -233,8 +284,8 @@ pub fn print_bem_table(lines: &[String]) {
         "mem [MiB]",
         "error 1",
         "error 2"
-    );
-    println!("{}", "-".repeat(117));
+    )?;
+    writeln!(w, "{}", "-".repeat(117))?;
     for l in lines {
         let kind = if l.contains("kind=periodic") {
             "periodic"
@@ -247,8 +298,9 @@ pub fn print_bem_table(lines: &[String]) {
         } else {
             (field(l, "err_peak"), field(l, "err_approach"))
         };
-        println!(
-            "{:>9} | {:>6} | {:>9.3} | {:>6} | {:>10.3e} | {:>11.2} | {:>10.0} | {:>9.0} | {:>10.2e} | {:>10.2e}",
+        writeln!(
+            w,
+"{:>9} | {:>6} | {:>9.3} | {:>6} | {:>10.3e} | {:>11.2} | {:>10.0} | {:>9.0} | {:>10.2e} | {:>10.2e}",
             kind,
             format!("{}^2", field(l, "n")),
             t,
@@ -259,45 +311,62 @@ pub fn print_bem_table(lines: &[String]) {
             field(l, "mem") - 0.0,
             e1,
             e2
-        );
+        )?;
     }
-    println!(
+    writeln!(
+        w,
         "\nperiodic: self-affine H = 0.8, rms slope 0.1, mean pressure 0.01 E*, tolerance 1e-10;"
-    );
-    println!("  error 1 = relative L2 pressure error, error 2 = relative approach error, both against a 1e-12 run.");
-    println!("hertz: non-periodic, R = 1, a = L/4, force control, tolerance 1e-10;");
-    println!("  error 1 = peak pressure, error 2 = approach, relative to Hertz.");
-    println!(
+    )?;
+    writeln!(w, "  error 1 = relative L2 pressure error, error 2 = relative approach error, both against a 1e-12 run.")?;
+    writeln!(
+        w,
+        "hertz: non-periodic, R = 1, a = L/4, force control, tolerance 1e-10;"
+    )?;
+    writeln!(
+        w,
+        "  error 1 = peak pressure, error 2 = approach, relative to Hertz."
+    )?;
+    writeln!(
+        w,
         "t/iter/FFT: time per iteration over one forward+inverse FFT pair of the (padded) grid"
-    );
-    println!(
+    )?;
+    writeln!(
+        w,
         "  (an iteration applies K and the preconditioner once each, and K p where the projection"
-    );
-    println!(
+    )?;
+    writeln!(
+        w,
         "  changed too many cells); t/FFT: the whole solve (set-up included) in FFT-pair times;"
-    );
-    println!("mem: peak resident memory of the whole process running that case.");
+    )?;
+    writeln!(
+        w,
+        "mem: peak resident memory of the whole process running that case."
+    )?;
+    Ok(())
 }
 
 /// `mrdw bench rough`: a rough line of N points (generation) and a 100-point k(F) curve
 /// on it, N = 1e3 .. 10^max_exp, single thread.
-pub fn run_rough(max_exp: u32) {
+pub fn run_rough(w: &mut dyn Write, max_exp: u32) -> std::io::Result<()> {
     use mrd::rough_contact::RoughLine;
     use mrd::roughness::synthesis::{line, Amplitudes};
     use mrd::roughness::SelfAffine;
     use std::f64::consts::PI;
-    println!("rough-line benchmark: H = 0.7, spectrum 2 pi/L .. half Nyquist, 100 forces from f = 1e-6 to 1e-1");
-    println!("single thread; median of repeated runs\n");
-    println!(
+    writeln!(w, "rough-line benchmark: H = 0.7, spectrum 2 pi/L .. half Nyquist, 100 forces from f = 1e-6 to 1e-1")?;
+    writeln!(w, "single thread; median of repeated runs\n")?;
+    writeln!(
+        w,
         "{:>10} | {:>12} | {:>12} | {:>12} | {:>12} | {:>14}",
         "points", "line [s]", "setup [s]", "k(F) x100 [s]", "total [s]", "total/(N log2 N)"
-    );
-    println!("{}", "-".repeat(88));
+    )?;
+    writeln!(w, "{}", "-".repeat(88))?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
         .unwrap();
-    pool.install(|| {
+    // Rows are collected in the single-thread pool and printed after it.
+    let mut buf: Vec<u8> = Vec::new();
+    pool.install(|| -> std::io::Result<()> {
         for e in 3..=max_exp {
             let n = 10usize.pow(e);
             let spec = SelfAffine::new(0.7, 2.0 * PI, 2.0 * PI, PI * n as f64 * 0.5)
@@ -332,7 +401,8 @@ pub fn run_rough(max_exp: u32) {
                 0.1,
             );
             let total = t_gen + t_setup + t_curve;
-            println!(
+            writeln!(
+                buf,
                 "{:>10} | {:>12.3e} | {:>12.3e} | {:>12.3e} | {:>12.3e} | {:>14.3e}",
                 n,
                 t_gen,
@@ -340,8 +410,11 @@ pub fn run_rough(max_exp: u32) {
                 t_curve,
                 total,
                 total / (n as f64 * (n as f64).log2())
-            );
+            )?;
         }
-    });
-    println!("\nline: synthesis by inverse real FFT (Eq. 72); setup: sort + prefix sums; k(F): 100 exact force-controlled solves.");
+        Ok(())
+    })?;
+    w.write_all(&buf)?;
+    writeln!(w, "\nline: synthesis by inverse real FFT (Eq. 72); setup: sort + prefix sums; k(F): 100 exact force-controlled solves.")?;
+    Ok(())
 }

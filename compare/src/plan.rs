@@ -1,10 +1,12 @@
-//! The plan: which computation stages a scene's outputs need.
+//! Stages and the plan: which computation stages each requested output will run.
 //!
-//! A stage is a named unit of work. The plan is derived from the requested outputs only,
-//! so a force-depth request never reconstructs pressure fields and an MRD-only scene
-//! never touches the 3D solver; `summary.json` lists the stages that actually ran.
+//! Each output declares its stages before running ([`crate::outputs::Output::stages`]),
+//! so a force-depth request never reconstructs pressure fields and an MRD-only scene never
+//! touches the 3D solver. The run records the stages each output actually executed
+//! ([`crate::report::Section::stage`]); `summary.json` lists them, and the test suite
+//! checks that they equal the declared plan for every embedded scene.
 
-use crate::scene::{Executor, OutputSpec, Scene};
+use std::fmt;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Stage {
@@ -36,6 +38,8 @@ pub enum Stage {
     RoughContact,
     /// 3D boundary-element contact (bem3d).
     Bem3d,
+    /// Tangent normal stiffness of 3D contacts (bem3d, contact set fixed).
+    Bem3dStiffness,
     /// Power spectrum of a measured topography.
     Psd,
     /// Fits of Eq. (77), bootstrap intervals, lambda calibration.
@@ -59,71 +63,47 @@ impl Stage {
             Stage::RoughSynthesis => "rough_synthesis",
             Stage::RoughContact => "rough_contact_mrd",
             Stage::Bem3d => "bem3d",
+            Stage::Bem3dStiffness => "bem3d_stiffness",
             Stage::Psd => "measured_psd",
             Stage::SweepFit => "sweep_fit",
         }
     }
 }
 
-/// Stages needed by one output (in execution order).
-pub fn stages_for(output: &OutputSpec, has_closed_form: bool) -> Vec<Stage> {
-    use Stage::*;
-    match output.executor() {
-        Executor::Sweep => return vec![RoughSynthesis, Bem3d, RoughContact, SweepFit],
-        Executor::Bem => return vec![Bem3d],
-        Executor::RoughLines => return vec![RoughSynthesis, RoughContact],
-        Executor::Axisymmetric => {}
+impl fmt::Display for Stage {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
     }
-    let mut s = vec![HessTransform];
-    match output {
-        OutputSpec::Profile1d { .. } => {}
-        OutputSpec::ForceDepth { springs, .. } => {
-            s.push(NormalSemiAnalytic);
-            if springs.is_some() {
-                s.push(NormalDiscrete);
-            }
-        }
-        OutputSpec::Pressure { .. } => s.extend([NormalSemiAnalytic, AbelPressure]),
-        OutputSpec::Adhesion { springs, .. } => {
-            s.push(AdhesionSemiAnalytic);
-            if springs.is_some() {
-                s.push(AdhesionDiscrete);
-            }
-        }
-        OutputSpec::Tangential { traction_at, .. } => {
-            s.extend([NormalSemiAnalytic, Tangential]);
-            if !traction_at.is_empty() {
-                s.push(AbelTraction);
-            }
-        }
-        OutputSpec::Damping { .. } => s.extend([NormalSemiAnalytic, OscillationDiscrete]),
-        OutputSpec::Viscoelastic { .. } => s.extend([Viscoelastic, ClosedForm]),
-        OutputSpec::StaticFriction { .. }
-        | OutputSpec::RoughStiffness { .. }
-        | OutputSpec::HurstSweep(_)
-        | OutputSpec::BemContact { .. } => unreachable!(),
-    }
-    if has_closed_form && !matches!(output, OutputSpec::Profile1d { .. }) {
-        s.push(ClosedForm);
-    }
-    s
 }
 
-/// The union of all outputs' stages, each once, in first-use order.
-pub fn plan(scene: &Scene) -> Vec<Stage> {
-    let cf = scene
-        .file
-        .profile
-        .as_ref()
-        .and_then(|p| p.closed_form())
-        .is_some();
-    let mut all = Vec::new();
-    for o in &scene.file.outputs {
-        for st in stages_for(o, cf) {
-            if !all.contains(&st) {
-                all.push(st);
+/// The stages of each output of a scene, in run order.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Plan {
+    /// (output label, stages).
+    pub outputs: Vec<(String, Vec<Stage>)>,
+}
+
+impl Plan {
+    /// Every stage once, in first-use order.
+    pub fn stages(&self) -> Vec<Stage> {
+        let mut all = Vec::new();
+        for (_, stages) in &self.outputs {
+            for &s in stages {
+                if !all.contains(&s) {
+                    all.push(s);
+                }
             }
         }
+        all
     }
-    all
+}
+
+impl fmt::Display for Plan {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (label, stages) in &self.outputs {
+            let names: Vec<&str> = stages.iter().map(|s| s.name()).collect();
+            writeln!(f, "  {label}: {}", names.join(" -> "))?;
+        }
+        Ok(())
+    }
 }

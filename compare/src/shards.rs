@@ -5,8 +5,11 @@
 //! writes (same bytes in every CSV).
 
 use crate::error::{io_err, CompareError, Result};
-use crate::scene::{OutputSpec, Scene};
-use crate::sweep::{self, RunControl};
+use crate::outputs::{Checkpointed, RunControl};
+use crate::report::write::{Destination, MARKER};
+use crate::report::Report;
+use crate::run::{provenance, remove_checkpoints, run_in, tool_version};
+use crate::scene::Scene;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -18,64 +21,51 @@ struct Manifest {
     shards: usize,
 }
 
-fn sweeps(scene: &Scene) -> Result<Vec<&sweep::SweepSpec>> {
-    let v: Vec<&sweep::SweepSpec> = scene
-        .file
+/// The checkpointed outputs of a scene whose outputs are all checkpointed.
+fn checkpointed(scene: &Scene) -> Result<Vec<&dyn Checkpointed>> {
+    let v: Vec<&dyn Checkpointed> = scene
         .outputs
         .iter()
-        .filter_map(|o| {
-            if let OutputSpec::HurstSweep(s) = o {
-                Some(s)
-            } else {
-                None
-            }
-        })
+        .filter_map(|e| e.output.checkpointed())
         .collect();
-    if v.is_empty() || v.len() != scene.file.outputs.len() {
+    if v.is_empty() || v.len() != scene.outputs.len() {
         return Err(CompareError::Scene(format!(
-            "{}: only scenes whose outputs are all `hurst_sweep` can be sharded",
-            scene.origin
+            "{}: only scenes whose outputs are all resumable (`hurst_sweep`) can be sharded",
+            scene.origin()
         )));
     }
     Ok(v)
 }
 
-/// Computes one shard of a sweep scene into `out`.
+/// Computes one shard of a sweep scene into `out` (resumable: finished tasks are kept).
 pub fn run_shard(scene: &Scene, out: &Path, control: &RunControl) -> Result<()> {
-    let specs = sweeps(scene)?;
-    let (k, n) = control.shard.expect("shard given");
-    std::fs::create_dir_all(out).map_err(io_err(format!("creating {}", out.display())))?;
-    std::fs::write(out.join("scene.toml"), &scene.source).map_err(io_err("writing scene.toml"))?;
+    let outputs = checkpointed(scene)?;
+    let (k, n) = control
+        .shard
+        .ok_or_else(|| CompareError::Internal("run_shard without a shard".into()))?;
+    let dest = Destination::claim(out)?;
+    let dir = dest.dir();
+    std::fs::create_dir_all(dir).map_err(io_err(format!("creating {}", dir.display())))?;
+    std::fs::write(dir.join(MARKER), "a shard folder written by mrdw\n")
+        .map_err(io_err(format!("writing {MARKER}")))?;
+    std::fs::write(dir.join("scene.toml"), &scene.source).map_err(io_err("writing scene.toml"))?;
     let m = Manifest {
-        tool: crate::tool_version(),
-        scene_origin: scene.origin.clone(),
+        tool: tool_version(),
+        scene_origin: scene.origin().to_string(),
         shard: k,
         shards: n,
     };
-    std::fs::write(
-        out.join("shard.json"),
-        serde_json::to_string_pretty(&m).unwrap(),
-    )
-    .map_err(io_err("writing shard.json"))?;
-    for spec in specs {
-        sweep::compute(spec, &out.join("work").join(spec_key(spec)), control)?;
+    let text =
+        serde_json::to_string_pretty(&m).map_err(|e| CompareError::Internal(e.to_string()))?;
+    std::fs::write(dir.join("shard.json"), text).map_err(io_err("writing shard.json"))?;
+    for c in outputs {
+        c.compute(&dir.join("work").join(c.key()), control)?;
     }
     Ok(())
 }
 
-fn spec_key(spec: &sweep::SweepSpec) -> String {
-    sweep::work_dir(Path::new("x"), spec)
-        .file_name()
-        .unwrap()
-        .to_string_lossy()
-        .into_owned()
-}
-
 /// Merges shard folders; returns the scene, the report and the files written.
-pub fn merge(
-    shards: &[PathBuf],
-    out: Option<&Path>,
-) -> Result<(Scene, crate::report::Report, Vec<PathBuf>)> {
+pub fn merge(shards: &[PathBuf], out: Option<&Path>) -> Result<(Scene, Report, Vec<PathBuf>)> {
     let mut text: Option<String> = None;
     let mut origin = String::new();
     let mut seen = Vec::new();
@@ -113,28 +103,32 @@ pub fn merge(
             "shards {seen:?} given, but the split has {total}: all are needed"
         )));
     }
-    let scene = Scene::parse(text.as_deref().unwrap(), &origin, None)?;
+    let text = text.ok_or_else(|| CompareError::Scene("no shard folders given".into()))?;
+    let scene = Scene::parse(&text, &origin, None)?;
     let out = out
         .map(Path::to_path_buf)
-        .unwrap_or_else(|| PathBuf::from("reports").join(&scene.file.name));
-    for spec in sweeps(&scene)? {
-        let dest = sweep::work_dir(&out, spec);
-        std::fs::create_dir_all(&dest).map_err(io_err(format!("creating {}", dest.display())))?;
+        .unwrap_or_else(|| PathBuf::from("reports").join(&scene.name));
+    let t0 = std::time::Instant::now();
+    let dest = Destination::claim(&out)?;
+    for c in checkpointed(&scene)? {
+        let to = dest.work_root().join(c.key());
+        std::fs::create_dir_all(&to).map_err(io_err(format!("creating {}", to.display())))?;
         for d in shards {
-            let src = d.join("work").join(spec_key(spec));
-            if let Ok(entries) = std::fs::read_dir(&src) {
+            let from = d.join("work").join(c.key());
+            if let Ok(entries) = std::fs::read_dir(&from) {
                 for e in entries.flatten() {
                     let name = e.file_name();
                     if name.to_string_lossy().ends_with(".json") {
-                        std::fs::copy(e.path(), dest.join(&name))
+                        std::fs::copy(e.path(), to.join(&name))
                             .map_err(io_err("copying checkpoints"))?;
                     }
                 }
             }
         }
-        let missing = sweep::tasks(spec)
+        let missing = c
+            .task_files()
             .iter()
-            .filter(|t| !dest.join(t.file_name()).exists())
+            .filter(|t| !to.join(t).exists())
             .count();
         if missing > 0 {
             return Err(CompareError::Scene(format!(
@@ -142,6 +136,8 @@ pub fn merge(
             )));
         }
     }
-    let (report, files) = crate::run_and_write_with(&scene, &out, &RunControl::default())?;
+    let report = run_in(&scene, &dest.work_root(), &RunControl::default())?;
+    let files = dest.write_report(&report, &provenance(&scene), t0.elapsed().as_secs_f64())?;
+    remove_checkpoints(&scene, &dest.work_root());
     Ok((scene, report, files))
 }

@@ -205,6 +205,123 @@ pub mod mindlin_damping {
     }
 }
 
+/// The closed forms that apply to a whole profile: a flat punch (no shapes, a rim), or a
+/// single analytic shape without a rim. Sums of shapes and tables have none.
+pub mod for_profile {
+    use super::*;
+    use crate::profile::{Profile, Shape};
+
+    /// What the profile is, where a closed form exists.
+    enum Known<'a> {
+        FlatPunch(f64),
+        Single(&'a Shape),
+    }
+
+    fn known(profile: &Profile) -> Option<Known<'_>> {
+        match (profile.shapes(), profile.rim()) {
+            ([], Some(a)) => Some(Known::FlatPunch(a)),
+            ([Shape::Table(_)], None) => None,
+            ([s], None) => Some(Known::Single(s)),
+            _ => None,
+        }
+    }
+
+    /// The literature source of the profile's closed form, for legends.
+    pub fn name(profile: &Profile) -> Option<String> {
+        Some(match known(profile)? {
+            Known::FlatPunch(_) => "flat punch, F = 2aE*d (Eq. 1)".into(),
+            Known::Single(Shape::Paraboloid { .. }) => "Hertz".into(),
+            Known::Single(Shape::Cone { .. }) => "cone (Love 1939)".into(),
+            Known::Single(Shape::PowerLaw { n, .. }) => {
+                format!("power law n = {n} (Sneddon 1965)")
+            }
+            Known::Single(Shape::FlattenedParaboloid { .. }) => "Ejike 1981 (Eqs. 24-25)".into(),
+            Known::Single(Shape::Table(_)) => return None,
+        })
+    }
+
+    /// Normal force at depth d.
+    pub fn force(profile: &Profile, e_star: f64, d: f64) -> Option<f64> {
+        Some(match known(profile)? {
+            Known::FlatPunch(a) => flat_punch::force(e_star, a, d),
+            Known::Single(&Shape::Paraboloid { radius }) => hertz::force(e_star, radius, d),
+            Known::Single(&Shape::Cone { tan_theta }) => cone::force(e_star, tan_theta, d),
+            Known::Single(&Shape::PowerLaw { c, n }) => {
+                let a = (d / (kappa(n) * c)).powf(1.0 / n);
+                power_law::force(e_star, c, n, a)
+            }
+            Known::Single(&Shape::FlattenedParaboloid {
+                radius,
+                flat_radius,
+            }) => {
+                // Invert Eq. (24) for a: a^2 = (a0^2 + sqrt(a0^4 + 4 R^2 d^2))/2.
+                let a0 = flat_radius;
+                let a =
+                    (0.5 * (a0 * a0 + (a0.powi(4) + 4.0 * radius * radius * d * d).sqrt())).sqrt();
+                ejike::force(e_star, radius, a0, a)
+            }
+            Known::Single(Shape::Table(_)) => return None,
+        })
+    }
+
+    /// Whether [`pressure`] has a closed form for this profile.
+    pub fn has_pressure(profile: &Profile) -> bool {
+        matches!(
+            known(profile),
+            Some(
+                Known::FlatPunch(_)
+                    | Known::Single(Shape::Paraboloid { .. })
+                    | Known::Single(Shape::Cone { .. })
+            )
+        )
+    }
+
+    /// Pressure at radius r, at depth d under force f.
+    pub fn pressure(profile: &Profile, e_star: f64, d: f64, f: f64, r: f64) -> Option<f64> {
+        Some(match known(profile)? {
+            Known::FlatPunch(a) => flat_punch::pressure(f, a, r),
+            Known::Single(&Shape::Paraboloid { radius }) => hertz::pressure(e_star, radius, d, r),
+            Known::Single(&Shape::Cone { tan_theta }) => cone::pressure(e_star, tan_theta, d, r),
+            _ => return None,
+        })
+    }
+
+    /// The sphere's radius, if the profile is one sphere (Cattaneo-Mindlin, Mindlin
+    /// damping and JKR apply).
+    pub fn sphere_radius(profile: &Profile) -> Option<f64> {
+        match known(profile)? {
+            Known::Single(&Shape::Paraboloid { radius }) => Some(radius),
+            _ => None,
+        }
+    }
+
+    /// Magnitude of the adhesive pull-off force and its source: JKR for a sphere (force
+    /// or displacement control), Eq. 37 for a cone (force control), Eq. 34 for a flat
+    /// punch.
+    pub fn pull_off(
+        profile: &Profile,
+        e_star: f64,
+        gamma: f64,
+        force_control: bool,
+    ) -> Option<(f64, &'static str)> {
+        match known(profile)? {
+            Known::Single(&Shape::Paraboloid { radius }) => Some((
+                if force_control {
+                    jkr::pull_off_force_control(radius, gamma)
+                } else {
+                    jkr::pull_off_displacement_control(radius, gamma)
+                },
+                "JKR",
+            )),
+            Known::Single(&Shape::Cone { tan_theta }) if force_control => {
+                Some((adhesive_cone_pull_off(e_star, tan_theta, gamma), "Eq. 37"))
+            }
+            Known::FlatPunch(a) => Some((adhesive_flat_punch_pull_off(e_star, a, gamma), "Eq. 34")),
+            _ => None,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -239,6 +356,46 @@ mod tests {
             .map(|i| jkr::force(e, r, g, i as f64 * 1e-5))
             .fold(f64::INFINITY, f64::min);
         assert!((fmin + jkr::pull_off_force_control(r, g)).abs() < 1e-8);
+    }
+
+    #[test]
+    fn profile_closed_forms_dispatch_to_the_shapes() {
+        use crate::profile::{Profile, Shape};
+        let (e, d) = (2.0, 0.01);
+        let sphere = Profile::single(Shape::paraboloid(1.5).unwrap());
+        assert_eq!(
+            for_profile::force(&sphere, e, d),
+            Some(hertz::force(e, 1.5, d))
+        );
+        assert_eq!(for_profile::sphere_radius(&sphere), Some(1.5));
+        // n = 2 power law with c = 1/(2R) is Hertz (the closed form is Sneddon's).
+        let pl = Profile::single(Shape::power_law(1.0 / 3.0, 2.0).unwrap());
+        let f = for_profile::force(&pl, e, d).unwrap();
+        assert!((f / hertz::force(e, 1.5, d) - 1.0).abs() < 1e-13);
+        assert_eq!(for_profile::sphere_radius(&pl), None);
+        // Flattened sphere with a vanishing flat is Hertz.
+        let fl = Profile::single(Shape::flattened_paraboloid(1.5, 1e-12).unwrap());
+        assert!(
+            (for_profile::force(&fl, e, d).unwrap() / hertz::force(e, 1.5, d) - 1.0).abs() < 1e-9
+        );
+        let punch = Profile::flat_punch(0.3).unwrap();
+        assert_eq!(
+            for_profile::force(&punch, e, d),
+            Some(flat_punch::force(e, 0.3, d))
+        );
+        assert!(for_profile::has_pressure(&punch) && !for_profile::has_pressure(&pl));
+        let sum = Profile::new(
+            vec![Shape::paraboloid(1.0).unwrap(), Shape::cone(0.1).unwrap()],
+            None,
+        )
+        .unwrap();
+        assert!(for_profile::force(&sum, e, d).is_none() && for_profile::name(&sum).is_none());
+        assert_eq!(
+            for_profile::pull_off(&sphere, e, 0.1, true),
+            Some((jkr::pull_off_force_control(1.5, 0.1), "JKR"))
+        );
+        let cone = Profile::single(Shape::cone(0.2).unwrap());
+        assert!(for_profile::pull_off(&cone, e, 0.1, false).is_none());
     }
 
     #[test]

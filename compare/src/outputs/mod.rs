@@ -1,0 +1,199 @@
+//! Output kinds: one file (or folder) per kind, each implementing [`Output`]. This file
+//! holds the trait, what a running output may use ([`Env`]), and the registry
+//! ([`KINDS`]): the one place that lists the kinds. Adding a kind is a new file here
+//! plus one line in [`KINDS`].
+//!
+//! The life of an output: the scene parser looks its `kind` up in [`KINDS`] and
+//! deserialises the rest of its `[[outputs]]` table into the kind's struct (unknown keys
+//! are errors); [`Output::validate`] checks it against the scene's [`Context`];
+//! [`Output::stages`] declares what it will run; [`Output::run`] computes those stages
+//! (each through [`Section::stage`], which records it) and fills its [`Section`] with
+//! named tables, figures and results.
+
+use crate::context::Context;
+use crate::error::{CompareError, Result};
+use crate::plan::Stage;
+use crate::report::Section;
+use serde::de::DeserializeOwned;
+use std::path::Path;
+
+mod adhesion;
+mod axisym;
+mod bem_contact;
+mod damping;
+mod force_depth;
+pub mod hurst_sweep;
+mod pressure;
+mod profile_1d;
+pub mod rough_stiffness;
+mod static_friction;
+mod tangential;
+mod viscoelastic;
+
+/// One requested output.
+pub trait Output: std::fmt::Debug + Send + Sync {
+    /// Checks the request against the scene before anything runs (ranges, material
+    /// constants, files); messages name the key and its valid range.
+    fn validate(&self, ctx: &Context) -> Result<()>;
+    /// The stages [`Self::run`] will execute, in order.
+    fn stages(&self, ctx: &Context) -> Vec<Stage>;
+    /// Computes the declared stages and fills `out`.
+    fn run(&self, env: &Env, out: &mut Section) -> Result<()>;
+    /// The random seed, if the output draws random surfaces.
+    fn seed(&self) -> Option<u64> {
+        None
+    }
+    /// Outputs whose work is split into checkpointed tasks (resumable, shardable).
+    fn checkpointed(&self) -> Option<&dyn Checkpointed> {
+        None
+    }
+}
+
+/// Work split into tasks, each saved to its own checkpoint file when done.
+pub trait Checkpointed {
+    /// A hash of the output's parameters: its checkpoints live in `<work root>/<key>/`.
+    fn key(&self) -> String;
+    /// The checkpoint file names of all tasks, in their fixed global order (shard K of N
+    /// computes every N-th from K).
+    fn task_files(&self) -> Vec<String>;
+    /// Computes the missing tasks (of the shard in `control`) into `dir`.
+    fn compute(&self, dir: &Path, control: &RunControl) -> Result<()>;
+}
+
+/// How a run divides and limits its work.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct RunControl {
+    /// (K, N): compute only tasks with index % N == K.
+    pub shard: Option<(usize, usize)>,
+    /// Stop (with [`CompareError::Stopped`]) after computing this many new tasks
+    /// (tests of interruption and resume).
+    pub stop_after: Option<usize>,
+    /// Show progress bars on long work.
+    pub progress: bool,
+}
+
+/// What a running output may use.
+pub struct Env<'a> {
+    pub ctx: &'a Context,
+    /// Checkpoints of resumable outputs go to `work_root/<key>/`.
+    pub work_root: &'a Path,
+    pub control: &'a RunControl,
+}
+
+/// A registered output kind.
+pub struct Kind {
+    pub name: &'static str,
+    /// One line: what the output computes.
+    pub about: &'static str,
+    parse: fn(toml::Value) -> std::result::Result<Box<dyn Output>, String>,
+}
+
+impl Kind {
+    const fn of<T: Output + DeserializeOwned + 'static>(
+        name: &'static str,
+        about: &'static str,
+    ) -> Self {
+        Self {
+            name,
+            about,
+            parse: parse_as::<T>,
+        }
+    }
+
+    /// Builds the output from its `[[outputs]]` table (without `kind`).
+    pub fn parse(&self, table: toml::Value) -> std::result::Result<Box<dyn Output>, String> {
+        (self.parse)(table)
+    }
+}
+
+fn parse_as<T: Output + DeserializeOwned + 'static>(
+    v: toml::Value,
+) -> std::result::Result<Box<dyn Output>, String> {
+    v.try_into::<T>()
+        .map(|t| Box::new(t) as Box<dyn Output>)
+        .map_err(|e| e.message().lines().next().unwrap_or("invalid").to_string())
+}
+
+/// The registry: every output kind, in the order `mrdw kinds` lists them.
+pub const KINDS: &[Kind] = &[
+    Kind::of::<profile_1d::Profile1d>(
+        "profile_1d",
+        "the 3D profile z(r) and its MRD image z1d(x) (Eq. 11)",
+    ),
+    Kind::of::<force_depth::ForceDepth>(
+        "force_depth",
+        "force, contact radius and stiffness against depth (Eqs. 20, 24, 25)",
+    ),
+    Kind::of::<pressure::Pressure>("pressure", "pressure p(r) by the Abel transform (Eq. 26)"),
+    Kind::of::<adhesion::Adhesion>(
+        "adhesion",
+        "adhesive loading-unloading and pull-off (Eqs. 33-37)",
+    ),
+    Kind::of::<tangential::Tangential>(
+        "tangential",
+        "Cattaneo-Mindlin tangential loading and tractions (Eqs. 41-51)",
+    ),
+    Kind::of::<damping::Damping>(
+        "damping",
+        "energy dissipated per cycle of an oscillating contact (Section 7)",
+    ),
+    Kind::of::<viscoelastic::Viscoelastic>(
+        "viscoelastic",
+        "viscoelastic ramp-and-hold indentation against Radok (Eq. 63)",
+    ),
+    Kind::of::<static_friction::StaticFriction>(
+        "static_friction",
+        "static friction from the mean slope in contact (Section 10.2, Fig. 9)",
+    ),
+    Kind::of::<rough_stiffness::RoughStiffness>(
+        "rough_stiffness",
+        "ensemble stiffness-force law of MRD rough lines (Eq. 77)",
+    ),
+    Kind::of::<bem_contact::BemContact>(
+        "bem_contact",
+        "3D boundary-element contact of a height map from a file",
+    ),
+    Kind::of::<hurst_sweep::HurstSweep>(
+        "hurst_sweep",
+        "the Hurst sweep, 3D against MRD: alpha(H), zeta(H), lambda(H) (Fig. 6)",
+    ),
+];
+
+/// The registered kind called `name`.
+pub fn kind(name: &str) -> Option<&'static Kind> {
+    KINDS.iter().find(|k| k.name == name)
+}
+
+/// A scene error (the caller adds which output it is).
+pub(crate) fn bad<T>(what: impl Into<String>) -> Result<T> {
+    Err(CompareError::Scene(what.into()))
+}
+
+pub(crate) fn positive(x: f64) -> bool {
+    x.is_finite() && x > 0.0
+}
+
+/// `points` of an axisymmetric output.
+pub(crate) fn check_points(points: usize) -> Result<()> {
+    if !(2..=100_000).contains(&points) {
+        return bad(format!("points = {points} must lie in 2..=100000"));
+    }
+    Ok(())
+}
+
+pub(crate) fn rel(a: f64, b: f64) -> f64 {
+    ((a - b) / b).abs()
+}
+
+pub(crate) fn default_points() -> usize {
+    60
+}
+pub(crate) fn default_springs() -> usize {
+    20_000
+}
+pub(crate) fn default_realisations() -> u64 {
+    100
+}
+pub(crate) fn default_force_points() -> usize {
+    30
+}

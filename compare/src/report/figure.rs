@@ -1,0 +1,75 @@
+//! Figures: series of points with a style, labelled axes; rendered by [`super::plot`].
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Style {
+    Line,
+    Dashed,
+    Markers,
+    Crosses,
+}
+
+#[derive(Debug, Clone)]
+pub struct Series {
+    pub label: String,
+    pub points: Vec<(f64, f64)>,
+    pub style: Style,
+    /// Palette index; None: the series' position.
+    pub color: Option<usize>,
+    /// Vertical error bars (x, low, high).
+    pub bars: Vec<(f64, f64, f64)>,
+}
+
+impl Series {
+    pub fn new(label: impl Into<String>, points: Vec<(f64, f64)>, style: Style) -> Self {
+        Self {
+            label: label.into(),
+            points,
+            style,
+            color: None,
+            bars: Vec::new(),
+        }
+    }
+    pub fn with_bars(mut self, bars: Vec<(f64, f64, f64)>) -> Self {
+        self.bars = bars;
+        self
+    }
+    /// Same colour as series `index` of the figure (e.g. both bounds of a band).
+    pub fn colored(mut self, index: usize) -> Self {
+        self.color = Some(index);
+        self
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct Figure {
+    pub name: String,
+    pub title: String,
+    pub x_label: String,
+    pub y_label: String,
+    pub series: Vec<Series>,
+    pub log_x: bool,
+    pub log_y: bool,
+}
+
+impl Figure {
+    pub fn new(name: &str, title: &str, x_label: &str, y_label: &str) -> Self {
+        Self {
+            name: name.into(),
+            title: title.into(),
+            x_label: x_label.into(),
+            y_label: y_label.into(),
+            series: Vec::new(),
+            log_x: false,
+            log_y: false,
+        }
+    }
+    pub fn with(mut self, s: Series) -> Self {
+        self.series.push(s);
+        self
+    }
+    pub fn log_log(mut self) -> Self {
+        self.log_x = true;
+        self.log_y = true;
+        self
+    }
+}

@@ -1,0 +1,247 @@
+//! What a run produces and how it is written: per-output [`Section`]s of named tables,
+//! figures, scalar results and extra files, collected into a [`Report`] and written as a
+//! report folder ([`write`]): one CSV per table ([`csv`]), one PNG per figure
+//! ([`plot`]) and `summary.json`.
+
+pub mod csv;
+pub mod figure;
+pub mod plot;
+pub mod table;
+pub mod write;
+
+pub use figure::{Figure, Series, Style};
+pub use table::Table;
+
+use crate::plan::{Plan, Stage};
+use serde_json::{Map, Value};
+use std::time::Instant;
+
+/// Provenance written at the top of every CSV and into summary.json.
+#[derive(Debug, Clone)]
+pub struct Provenance {
+    pub tool: String,
+    pub scene_name: String,
+    pub scene_origin: String,
+    pub scene_text: String,
+    pub seed: Option<u64>,
+}
+
+/// The results of one output: its tables, figures, scalars and files, and the stages
+/// it ran (recorded by [`Section::stage`]).
+#[derive(Debug)]
+pub struct Section {
+    pub kind: &'static str,
+    /// `kind`, or `kind_k` for the k-th output of that kind in the scene: prefixes the
+    /// output's results in summary.json.
+    pub label: String,
+    pub tables: Vec<Table>,
+    pub figures: Vec<Figure>,
+    /// (key, value), stored in summary.json as `label.key`.
+    pub scalars: Vec<(String, Value)>,
+    /// Extra files (name, bytes), e.g. requested fields as .npy.
+    pub files: Vec<(String, Vec<u8>)>,
+    pub warnings: Vec<String>,
+    /// Requested results that could not be computed (e.g. unconverged solves), one line
+    /// each: the report is still written, and the run fails visibly.
+    pub failures: Vec<String>,
+    /// Stages that ran, in order, with their wall time [s].
+    pub ran: Vec<(Stage, f64)>,
+}
+
+impl Section {
+    pub fn new(kind: &'static str, label: impl Into<String>) -> Self {
+        Self {
+            kind,
+            label: label.into(),
+            tables: Vec::new(),
+            figures: Vec::new(),
+            scalars: Vec::new(),
+            files: Vec::new(),
+            warnings: Vec::new(),
+            failures: Vec::new(),
+            ran: Vec::new(),
+        }
+    }
+
+    /// Runs one stage of the computation: records it as run and adds its wall time.
+    pub fn stage<T>(&mut self, stage: Stage, f: impl FnOnce() -> T) -> T {
+        let t0 = Instant::now();
+        let out = f();
+        let dt = t0.elapsed().as_secs_f64();
+        match self.ran.iter_mut().find(|(s, _)| *s == stage) {
+            Some((_, t)) => *t += dt,
+            None => self.ran.push((stage, dt)),
+        }
+        out
+    }
+
+    /// Runs stages that execute interleaved (e.g. each rough line is synthesised and
+    /// loaded in one pass): records them all; the wall time goes to the first.
+    pub fn stages_together<T>(&mut self, stages: &[Stage], f: impl FnOnce() -> T) -> T {
+        let out = self.stage(stages[0], f);
+        for &s in &stages[1..] {
+            self.stage(s, || ());
+        }
+        out
+    }
+
+    /// The stages that ran, in order.
+    pub fn stages(&self) -> Vec<Stage> {
+        self.ran.iter().map(|(s, _)| *s).collect()
+    }
+
+    /// A scalar result, stored as `label.key`.
+    pub fn scalar(&mut self, key: impl Into<String>, value: f64) {
+        self.value(key, serde_json::json!(value));
+    }
+
+    /// Any JSON result, stored as `label.key`.
+    pub fn value(&mut self, key: impl Into<String>, value: Value) {
+        let key = key.into();
+        match self.scalars.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, v)) => *v = value,
+            None => self.scalars.push((key, value)),
+        }
+    }
+
+    pub fn warn(&mut self, w: impl Into<String>) {
+        self.warnings.push(w.into());
+    }
+}
+
+/// Everything a run produces: the plan it declared and one section per output.
+#[derive(Debug, Default)]
+pub struct Report {
+    pub plan: Plan,
+    pub sections: Vec<Section>,
+}
+
+impl Report {
+    /// Every stage that ran, once, in first-use order.
+    pub fn stages(&self) -> Vec<String> {
+        let mut all: Vec<String> = Vec::new();
+        for s in self.sections.iter().flat_map(|s| s.stages()) {
+            if !all.iter().any(|n| n == s.name()) {
+                all.push(s.name().into());
+            }
+        }
+        all
+    }
+
+    /// All results keyed `label.key`.
+    pub fn results(&self) -> Map<String, Value> {
+        let mut m = Map::new();
+        for sec in &self.sections {
+            for (k, v) in &sec.scalars {
+                m.insert(format!("{}.{k}", sec.label), v.clone());
+            }
+        }
+        m
+    }
+
+    /// Warnings of all outputs, each once.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut w: Vec<String> = Vec::new();
+        for s in self.sections.iter().flat_map(|s| &s.warnings) {
+            if !w.contains(s) {
+                w.push(s.clone());
+            }
+        }
+        w
+    }
+
+    /// Results that could not be computed, prefixed with their output's label.
+    pub fn failures(&self) -> Vec<String> {
+        self.sections
+            .iter()
+            .flat_map(|s| s.failures.iter().map(move |f| format!("{}: {f}", s.label)))
+            .collect()
+    }
+
+    /// Makes every table, figure and file name unique across the report by suffixing
+    /// the second and later uses of a name with _2, _3, ... (in output order).
+    pub fn dedupe_names(&mut self) {
+        // Files keep their extension: f.npy -> f_2.npy.
+        fn fix<'a>(names: impl Iterator<Item = &'a mut String>, files: bool) {
+            let mut seen: Vec<String> = Vec::new();
+            for n in names {
+                let base = n.clone();
+                let mut k = 1;
+                while seen.contains(n) {
+                    k += 1;
+                    *n = match base.rsplit_once('.') {
+                        Some((stem, ext)) if files && !ext.is_empty() && !stem.is_empty() => {
+                            format!("{stem}_{k}.{ext}")
+                        }
+                        _ => format!("{base}_{k}"),
+                    };
+                }
+                seen.push(n.clone());
+            }
+        }
+        fix(
+            self.sections
+                .iter_mut()
+                .flat_map(|s| s.tables.iter_mut().map(|t| &mut t.name)),
+            false,
+        );
+        fix(
+            self.sections
+                .iter_mut()
+                .flat_map(|s| s.figures.iter_mut().map(|f| &mut f.name)),
+            false,
+        );
+        fix(
+            self.sections
+                .iter_mut()
+                .flat_map(|s| s.files.iter_mut().map(|f| &mut f.0)),
+            true,
+        );
+    }
+
+    pub fn tables(&self) -> impl Iterator<Item = &Table> {
+        self.sections.iter().flat_map(|s| &s.tables)
+    }
+    pub fn figures(&self) -> impl Iterator<Item = &Figure> {
+        self.sections.iter().flat_map(|s| &s.figures)
+    }
+    pub fn files(&self) -> impl Iterator<Item = &(String, Vec<u8>)> {
+        self.sections.iter().flat_map(|s| &s.files)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_unique_and_results_prefixed() {
+        let mut a = Section::new("bem_contact", "bem_contact");
+        a.tables.push(Table::new("t", &[]));
+        a.files.push(("f.npy".into(), vec![]));
+        a.scalar("x", 1.0);
+        a.stage(Stage::Bem3d, || ());
+        let mut b = Section::new("bem_contact", "bem_contact_2");
+        b.tables.push(Table::new("t", &[]));
+        b.files.push(("f.npy".into(), vec![]));
+        b.scalar("x", 2.0);
+        b.stage(Stage::Bem3d, || ());
+        b.stage(Stage::Bem3dStiffness, || ());
+        b.stage(Stage::Bem3d, || ());
+        let mut r = Report {
+            sections: vec![a, b],
+            ..Default::default()
+        };
+        r.dedupe_names();
+        let t: Vec<&str> = r.tables().map(|t| t.name.as_str()).collect();
+        assert_eq!(t, ["t", "t_2"]);
+        let f: Vec<&str> = r.files().map(|f| f.0.as_str()).collect();
+        assert_eq!(f, ["f.npy", "f_2.npy"]);
+        assert_eq!(r.results()["bem_contact_2.x"], 2.0);
+        assert_eq!(r.stages(), ["bem3d", "bem3d_stiffness"]);
+        assert_eq!(
+            r.sections[1].stages(),
+            [Stage::Bem3d, Stage::Bem3dStiffness]
+        );
+    }
+}

@@ -1,0 +1,206 @@
+//! PNG rendering of figures (plotters, bitmap backend, embedded DejaVu Sans).
+
+use super::figure::{Figure, Style};
+use crate::error::{CompareError, Result};
+use plotters::prelude::*;
+use std::path::Path;
+
+const FONT: &[u8] = include_bytes!("../../../assets/DejaVuSans.ttf");
+
+fn ensure_font() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
+    });
+}
+
+const PALETTE: [RGBColor; 10] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(255, 127, 14),
+    RGBColor(148, 103, 189),
+    RGBColor(90, 90, 90),
+    RGBColor(23, 190, 207),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(188, 189, 34),
+];
+
+fn bounds(fig: &Figure) -> ((f64, f64), (f64, f64)) {
+    let pts = fig
+        .series
+        .iter()
+        .flat_map(|s| s.points.iter())
+        .filter(|(x, y)| {
+            x.is_finite() && y.is_finite() && (!fig.log_x || *x > 0.0) && (!fig.log_y || *y > 0.0)
+        });
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for &(x, y) in pts {
+        x0 = x0.min(x);
+        x1 = x1.max(x);
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    if !x0.is_finite() {
+        return ((0.0, 1.0), (0.0, 1.0));
+    }
+    let pad = |lo: f64, hi: f64, log: bool| -> (f64, f64) {
+        if log {
+            let (l, h) = (lo.ln(), hi.ln());
+            let p = 0.05 * (h - l).max(1e-3);
+            ((l - p).exp(), (h + p).exp())
+        } else {
+            let p = 0.05 * (hi - lo).abs().max(1e-12 * hi.abs().max(1e-300));
+            (lo - p, hi + p)
+        }
+    };
+    (pad(x0, x1, fig.log_x), pad(y0, y1, fig.log_y))
+}
+
+fn plot_err(file: &Path, e: impl std::fmt::Display) -> CompareError {
+    CompareError::Plot {
+        file: file.display().to_string(),
+        message: e.to_string(),
+    }
+}
+
+macro_rules! draw_with {
+    ($root:expr, $fig:expr, $path:expr, $xs:expr, $ys:expr) => {{
+        let mut chart = ChartBuilder::on(&$root)
+            .caption(&$fig.title, ("sans-serif", 24))
+            .margin(18)
+            .x_label_area_size(56)
+            .y_label_area_size(86)
+            .build_cartesian_2d($xs, $ys)
+            .map_err(|e| plot_err($path, e))?;
+        chart
+            .configure_mesh()
+            .x_desc($fig.x_label.as_str())
+            .y_desc($fig.y_label.as_str())
+            .x_labels(8)
+            .y_labels(8)
+            .label_style(("sans-serif", 15))
+            .axis_desc_style(("sans-serif", 18))
+            .x_label_formatter(&|v| fmt_tick(*v))
+            .y_label_formatter(&|v| fmt_tick(*v))
+            .light_line_style(RGBColor(235, 235, 235))
+            .draw()
+            .map_err(|e| plot_err($path, e))?;
+        for (i, s) in $fig.series.iter().enumerate() {
+            let color = PALETTE[s.color.unwrap_or(i) % PALETTE.len()];
+            let pts: Vec<(f64, f64)> = s
+                .points
+                .iter()
+                .copied()
+                .filter(|(x, y)| {
+                    x.is_finite()
+                        && y.is_finite()
+                        && (!$fig.log_x || *x > 0.0)
+                        && (!$fig.log_y || *y > 0.0)
+                })
+                .collect();
+            let label = s.label.as_str();
+            let show = !label.is_empty();
+            for &(x, lo, hi) in &s.bars {
+                if x.is_finite() && lo.is_finite() && hi.is_finite() && (!$fig.log_y || lo > 0.0) {
+                    chart
+                        .draw_series(std::iter::once(PathElement::new(
+                            vec![(x, lo), (x, hi)],
+                            color.stroke_width(1),
+                        )))
+                        .map_err(|e| plot_err($path, e))?;
+                }
+            }
+            let err = |e| plot_err($path, e);
+            match s.style {
+                Style::Line => {
+                    let anno = chart
+                        .draw_series(LineSeries::new(pts, color.stroke_width(2)))
+                        .map_err(err)?;
+                    if show {
+                        anno.label(label).legend(move |(x, y)| {
+                            PathElement::new(vec![(x, y), (x + 22, y)], color.stroke_width(2))
+                        });
+                    }
+                }
+                Style::Dashed => {
+                    let anno = chart
+                        .draw_series(DashedLineSeries::new(pts, 8, 6, color.stroke_width(2)))
+                        .map_err(err)?;
+                    if show {
+                        anno.label(label).legend(move |(x, y)| {
+                            PathElement::new(vec![(x, y), (x + 8, y)], color.stroke_width(2))
+                        });
+                    }
+                }
+                Style::Markers => {
+                    let anno = chart
+                        .draw_series(
+                            pts.into_iter()
+                                .map(|p| Circle::new(p, 4, color.stroke_width(2))),
+                        )
+                        .map_err(err)?;
+                    if show {
+                        anno.label(label).legend(move |(x, y)| {
+                            Circle::new((x + 10, y), 4, color.stroke_width(2))
+                        });
+                    }
+                }
+                Style::Crosses => {
+                    let anno = chart
+                        .draw_series(
+                            pts.into_iter()
+                                .map(|p| Cross::new(p, 6, color.stroke_width(2))),
+                        )
+                        .map_err(err)?;
+                    if show {
+                        anno.label(label).legend(move |(x, y)| {
+                            Cross::new((x + 10, y), 6, color.stroke_width(2))
+                        });
+                    }
+                }
+            }
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(160, 160, 160))
+            .label_font(("sans-serif", 15))
+            .position(SeriesLabelPosition::UpperLeft)
+            .draw()
+            .map_err(|e| plot_err($path, e))?;
+    }};
+}
+
+fn fmt_tick(v: f64) -> String {
+    if v == 0.0 {
+        "0".into()
+    } else if v.abs() >= 1e4 || v.abs() < 1e-3 {
+        format!("{v:.1e}")
+    } else {
+        let s = format!("{v:.4}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    }
+}
+
+/// Renders one figure to a PNG file.
+pub fn render(fig: &Figure, path: &Path) -> Result<()> {
+    ensure_font();
+    let root = BitMapBackend::new(path, (1000, 680)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| plot_err(path, e))?;
+    let ((x0, x1), (y0, y1)) = bounds(fig);
+    match (fig.log_x, fig.log_y) {
+        (false, false) => draw_with!(root, fig, path, x0..x1, y0..y1),
+        (true, false) => draw_with!(root, fig, path, (x0..x1).log_scale(), y0..y1),
+        (false, true) => draw_with!(root, fig, path, x0..x1, (y0..y1).log_scale()),
+        (true, true) => draw_with!(root, fig, path, (x0..x1).log_scale(), (y0..y1).log_scale()),
+    }
+    root.present().map_err(|e| plot_err(path, e))?;
+    Ok(())
+}

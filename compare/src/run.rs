@@ -1,0 +1,151 @@
+//! Running a scene: plan -> execute -> report.
+//!
+//! [`plan`] asks every output for its stages; [`run_in`] runs the outputs in order, each
+//! into its own [`Section`], and checks that the stages each one ran are exactly those
+//! it declared (a mismatch is an internal error: the recorded plan is the true one);
+//! [`run_to_folder`] claims the report folder (lock, safety checks), runs, writes the
+//! report atomically and removes the checkpoints of resumable outputs.
+
+use crate::error::{CompareError, Result};
+use crate::outputs::{Env, RunControl};
+use crate::plan::Plan;
+use crate::report::write::Destination;
+use crate::report::{Provenance, Report, Section};
+use crate::scene::Scene;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Tool name and version written into every output.
+pub fn tool_version() -> String {
+    format!("mrdw {}", env!("CARGO_PKG_VERSION"))
+}
+
+/// The stages every output of `scene` will run.
+pub fn plan(scene: &Scene) -> Plan {
+    Plan {
+        outputs: scene
+            .outputs
+            .iter()
+            .map(|e| (e.label.clone(), e.output.stages(&scene.context)))
+            .collect(),
+    }
+}
+
+/// Runs every output of `scene` (checkpoints of resumable outputs under `work_root`).
+pub fn run_in(scene: &Scene, work_root: &Path, control: &RunControl) -> Result<Report> {
+    let mut report = Report {
+        plan: plan(scene),
+        sections: Vec::new(),
+    };
+    let env = Env {
+        ctx: &scene.context,
+        work_root,
+        control,
+    };
+    for (i, e) in scene.outputs.iter().enumerate() {
+        let mut sec = Section::new(e.kind, e.label.clone());
+        e.output
+            .run(&env, &mut sec)
+            .map_err(|err| err.within(&format!("outputs[{i}] ({})", e.kind)))?;
+        let declared = &report.plan.outputs[i].1;
+        if sec.stages() != *declared {
+            return Err(CompareError::Internal(format!(
+                "outputs[{i}] ({}) declared stages {declared:?} but ran {:?}",
+                e.kind,
+                sec.stages()
+            )));
+        }
+        report.sections.push(sec);
+    }
+    report.dedupe_names();
+    Ok(report)
+}
+
+/// Runs `scene` in memory: no report folder; checkpoints go to a temporary folder.
+pub fn run(scene: &Scene) -> Result<Report> {
+    let tmp = tempfile::tempdir().map_err(crate::error::io_err("temporary folder"))?;
+    run_in(scene, tmp.path(), &RunControl::default())
+}
+
+/// The provenance block of a scene's outputs.
+pub fn provenance(scene: &Scene) -> Provenance {
+    Provenance {
+        tool: tool_version(),
+        scene_name: scene.name.clone(),
+        scene_origin: scene.origin().to_string(),
+        scene_text: scene.source.clone(),
+        seed: scene.seed(),
+    }
+}
+
+/// Runs `scene` and writes its report folder `out` (see [`Destination`] for what may be
+/// replaced); returns the report and the files written.
+pub fn run_to_folder(
+    scene: &Scene,
+    out: &Path,
+    control: &RunControl,
+) -> Result<(Report, Vec<PathBuf>)> {
+    let t0 = Instant::now();
+    let dest = Destination::claim(out)?;
+    let report = run_in(scene, &dest.work_root(), control)?;
+    let files = dest.write_report(&report, &provenance(scene), t0.elapsed().as_secs_f64())?;
+    remove_checkpoints(scene, &dest.work_root());
+    Ok((report, files))
+}
+
+/// Removes the checkpoint folders of the scene's resumable outputs (and the work root
+/// if that leaves it empty).
+pub(crate) fn remove_checkpoints(scene: &Scene, work_root: &Path) {
+    for e in &scene.outputs {
+        if let Some(c) = e.output.checkpointed() {
+            let _ = std::fs::remove_dir_all(work_root.join(c.key()));
+        }
+    }
+    let _ = std::fs::remove_dir(work_root); // only if empty
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::context::Context;
+    use crate::outputs::Output;
+    use crate::plan::Stage;
+    use crate::scene::Entry;
+
+    /// Declares the 3D solver but runs only the rule of Hess.
+    #[derive(Debug)]
+    struct Liar;
+
+    impl Output for Liar {
+        fn validate(&self, _: &Context) -> Result<()> {
+            Ok(())
+        }
+        fn stages(&self, _: &Context) -> Vec<Stage> {
+            vec![Stage::Bem3d]
+        }
+        fn run(&self, _: &Env, out: &mut Section) -> Result<()> {
+            out.stage(Stage::HessTransform, || ());
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn a_plan_that_is_not_what_ran_is_an_error() {
+        let mut scene = Scene::parse(
+            "name = \"x\"\n[material]\ne_star = 1.0\n[profile]\nshapes = [{ kind = \"sphere\", radius = 1.0 }]\n[[outputs]]\nkind = \"profile_1d\"\nr_max = 0.1\n",
+            "test",
+            None,
+        )
+        .unwrap();
+        assert!(run(&scene).is_ok());
+        scene.outputs.push(Entry {
+            kind: "liar",
+            label: "liar".into(),
+            output: Box::new(Liar),
+        });
+        match run(&scene) {
+            Err(CompareError::Internal(m)) => assert!(m.contains("declared"), "{m}"),
+            other => panic!("expected an internal error, got {other:?}"),
+        }
+    }
+}
