@@ -63,6 +63,72 @@ fn bounds(fig: &Figure) -> ((f64, f64), (f64, f64)) {
     (pad(x0, x1, fig.log_x), pad(y0, y1, fig.log_y))
 }
 
+/// The corner for the legend that covers the fewest data: points and lines (sampled
+/// along each segment) are counted inside an estimate of the legend box, in axis
+/// coordinates scaled to [0, 1]; ties keep the upper left.
+fn legend_corner(fig: &Figure) -> SeriesLabelPosition {
+    let labels: Vec<&str> = fig
+        .series
+        .iter()
+        .map(|s| s.label.as_str())
+        .filter(|l| !l.is_empty())
+        .collect();
+    if labels.is_empty() {
+        return SeriesLabelPosition::UpperLeft;
+    }
+    let ((x0, x1), (y0, y1)) = bounds(fig);
+    let scale = |v: f64, lo: f64, hi: f64, log: bool| {
+        if log {
+            (v.ln() - lo.ln()) / (hi.ln() - lo.ln())
+        } else {
+            (v - lo) / (hi - lo)
+        }
+    };
+    // Plot area about 880 x 550 px; legend rows 21 px, text about 8.5 px a character.
+    let chars = labels.iter().map(|l| l.chars().count()).max().unwrap_or(0);
+    let w = (chars as f64 * 8.5 + 45.0) / 880.0;
+    let h = (labels.len() as f64 * 21.0 + 12.0) / 550.0;
+    let mut pts: Vec<(f64, f64)> = Vec::new();
+    for s in &fig.series {
+        let p: Vec<(f64, f64)> = s
+            .points
+            .iter()
+            .filter(|(x, y)| {
+                x.is_finite()
+                    && y.is_finite()
+                    && (!fig.log_x || *x > 0.0)
+                    && (!fig.log_y || *y > 0.0)
+            })
+            .map(|&(x, y)| (scale(x, x0, x1, fig.log_x), scale(y, y0, y1, fig.log_y)))
+            .collect();
+        let joined = matches!(s.style, Style::Line | Style::Dashed);
+        for (k, &a) in p.iter().enumerate() {
+            pts.push(a);
+            if let (true, Some(&b)) = (joined, p.get(k + 1)) {
+                for t in 1..16 {
+                    let t = t as f64 / 16.0;
+                    pts.push((a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)));
+                }
+            }
+        }
+    }
+    let corners = [
+        (SeriesLabelPosition::UpperLeft, 0.0, 1.0 - h),
+        (SeriesLabelPosition::UpperRight, 1.0 - w, 1.0 - h),
+        (SeriesLabelPosition::LowerRight, 1.0 - w, 0.0),
+        (SeriesLabelPosition::LowerLeft, 0.0, 0.0),
+    ];
+    let covered = |u0: f64, v0: f64| {
+        pts.iter()
+            .filter(|p| p.0 >= u0 && p.0 <= u0 + w && p.1 >= v0 && p.1 <= v0 + h)
+            .count()
+    };
+    corners
+        .into_iter()
+        .min_by_key(|&(_, u0, v0)| covered(u0, v0))
+        .map_or(SeriesLabelPosition::UpperLeft, |c| c.0)
+}
+
 fn plot_err(file: &Path, e: impl std::fmt::Display) -> CompareError {
     CompareError::Plot {
         file: file.display().to_string(),
@@ -172,7 +238,7 @@ macro_rules! draw_with {
             .background_style(WHITE.mix(0.85))
             .border_style(RGBColor(160, 160, 160))
             .label_font(("sans-serif", 15))
-            .position(SeriesLabelPosition::UpperLeft)
+            .position(legend_corner($fig))
             .draw()
             .map_err(|e| plot_err($path, e))?;
     }};
