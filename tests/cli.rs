@@ -131,7 +131,7 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
         let res = s["results"].as_object().unwrap();
         // Semi-analytic paths: 1e-9 relative against the closed forms.
         for (k, v) in res {
-            let v = v.as_f64().unwrap();
+            let Some(v) = v.as_f64() else { continue }; // per-H objects
             if k.ends_with("max_rel_error_vs_closed_form")
                 || k.ends_with("vs_cattaneo_mindlin")
                 || k.ends_with("pull_off_rel_error_vs_closed_form")
@@ -189,6 +189,28 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
         for o in s["outputs"].as_array().unwrap() {
             assert_eq!(o["stages"], o["declared"], "{name}: {o}");
             assert!(!o["stages"].as_array().unwrap().is_empty(), "{name}: {o}");
+        }
+        if *name == "contact-area-ci" {
+            // Section 11: the MRD contact-length fraction is several times the 3D area
+            // fraction at small forces on this punch (single macro-contact), and the two
+            // approach each other as the contact fills.
+            let t = read_csv(&out.join("contact_area.csv"));
+            for (h, v) in s["results"]["contact_area.per_hurst"].as_object().unwrap() {
+                let r0 = v["area_ratio_initial"].as_f64().unwrap();
+                assert!(r0 > 3.0, "H = {h}: initial ratio {r0}");
+                let rows: Vec<usize> = (0..t.rows.len())
+                    .filter(|&k| t.get("hurst", k) == h.parse::<f64>().unwrap())
+                    .collect();
+                let last = *rows.last().unwrap();
+                let r_end = t.get("area_mrd", last) / t.get("area_3d", last);
+                assert!(r_end < r0 / 2.0, "H = {h}: ratio {r0} -> {r_end}");
+                for w in rows.windows(2) {
+                    assert!(t.get("area_3d", w[1]) >= t.get("area_3d", w[0]) - 1e-12);
+                    assert!(t.get("area_mrd", w[1]) >= t.get("area_mrd", w[0]));
+                }
+            }
+            assert!(stages(&s).contains(&"bem3d".to_string()));
+            continue;
         }
         // MRD-only scenes never touch the 3D solver.
         assert!(stages(&s).iter().all(|st| !st.starts_with("bem")), "{name}");

@@ -13,6 +13,10 @@ pub const EMBEDDED: &[(&str, &str)] = &[
         include_str!("../../cases/cattaneo-mindlin.toml"),
     ),
     ("cone", include_str!("../../cases/cone.toml")),
+    (
+        "contact-area-ci",
+        include_str!("../../cases/contact-area-ci.toml"),
+    ),
     ("ejike", include_str!("../../cases/ejike.toml")),
     ("fig6-ci", include_str!("../../cases/fig6-ci.toml")),
     ("fig6-full", include_str!("../../cases/fig6-full.toml")),

@@ -20,6 +20,7 @@ use std::path::Path;
 mod adhesion;
 mod axisym;
 mod bem_contact;
+mod contact_area;
 mod damping;
 mod force_depth;
 pub mod hurst_sweep;
@@ -152,6 +153,10 @@ pub const KINDS: &[Kind] = &[
     Kind::of::<bem_contact::BemContact>(
         "bem_contact",
         "3D boundary-element contact of a height map from a file",
+    ),
+    Kind::of::<contact_area::ContactArea>(
+        "contact_area",
+        "real contact area and mean gap against force, 3D against MRD (Section 11)",
     ),
     Kind::of::<hurst_sweep::HurstSweep>(
         "hurst_sweep",
