@@ -251,3 +251,60 @@ fn sweep_input_errors() {
     let o = mrdw(&["run", "hertz", "--shard", "2/2"], &[]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+#[test]
+fn unconverged_3d_solves_are_recorded_and_fail_the_run() {
+    // A tolerance no solve can reach: the report is written with every solve's status
+    // and residual, a warning names the failures, and the exit code is 4.
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = tmp.path().join("sw.toml");
+    std::fs::write(
+        &scene,
+        SMALL
+            .replace("grid = 32", "grid = 16")
+            .replace("seed = 5", "seed = 5\ntolerance = 1e-20"),
+    )
+    .unwrap();
+    let out = tmp.path().join("o");
+    let o = mrdw(
+        &[
+            "run",
+            scene.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &[],
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(4), "{err}");
+    assert!(err.contains("did not converge"), "{err}");
+    assert!(err.lines().last().unwrap().starts_with("error: "), "{err}");
+    let text = std::fs::read_to_string(out.join("hurst_sweep_solves.csv")).unwrap();
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let conv = header
+        .iter()
+        .position(|h| h.starts_with("converged"))
+        .unwrap();
+    let res = header
+        .iter()
+        .position(|h| h.starts_with("residual"))
+        .unwrap();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert!(!rows.is_empty());
+    let unconverged = rows.iter().filter(|r| r[conv] == "0").count();
+    assert!(unconverged > 0);
+    for r in rows.iter().filter(|r| r[conv] == "0") {
+        let v: f64 = r[res].parse().unwrap();
+        assert!(v.is_finite() && v > 1e-20, "residual {v}");
+    }
+    let s: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert!(!s["failures"].as_array().unwrap().is_empty());
+    assert_eq!(
+        s["results"]["hurst_sweep.unconverged_3d_solves"]
+            .as_u64()
+            .unwrap(),
+        unconverged as u64
+    );
+}

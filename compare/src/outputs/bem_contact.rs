@@ -218,7 +218,7 @@ impl Output for BemContact {
             cols.push(format!("stiffness [{}]", u.stiffness()));
         }
         cols.extend([
-            "iterations [1]".into(),
+            "iterations [count]".into(),
             "residual [1]".into(),
             "converged [0/1]".into(),
         ]);

@@ -7,7 +7,8 @@ use std::fmt::Write as _;
 
 /// The CSV text of `table`: `#` comment lines (tool, scene, seed, the table's notes,
 /// the scene text as given), then the header and one line per row. Non-finite values
-/// are an error unless the table allows missing cells (NaN, written empty).
+/// are an error unless the table allows missing cells (NaN, written empty). Counts and
+/// flags are written as integers.
 pub(crate) fn csv_text(table: &Table, prov: &Provenance) -> Result<String> {
     let mut s = String::new();
     let _ = writeln!(s, "# {} -- table `{}`", prov.tool, table.name);
@@ -32,20 +33,26 @@ pub(crate) fn csv_text(table: &Table, prov: &Provenance) -> Result<String> {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record(&table.columns)
         .map_err(|e| csv_err(&table.name, e))?;
+    let integer: Vec<bool> = table.columns.iter().map(|c| is_integer(c)).collect();
     for row in &table.rows {
-        if let Some((j, v)) = row.iter().enumerate().find(|(_, v)| {
+        if let Some((j, v)) = row.iter().enumerate().find(|&(j, v)| {
             !(v.is_finite()
                 || (table.missing_ok && v.is_nan())
-                || (table.infinite_ok && **v == f64::INFINITY))
+                || (table.infinite_ok && *v == f64::INFINITY))
+                || (integer[j] && v.is_finite() && (v.fract() != 0.0 || v.abs() > 9e15))
         }) {
             return Err(CompareError::Internal(format!(
-                "non-finite value {v} in table `{}` column `{}`",
-                table.name, table.columns[j]
+                "value {v} in table `{}` column `{}` is not {}",
+                table.name,
+                table.columns[j],
+                if integer[j] { "an integer" } else { "finite" }
             )));
         }
-        w.write_record(row.iter().map(|v| {
+        w.write_record(row.iter().zip(&integer).map(|(v, &int)| {
             if v.is_nan() {
                 String::new()
+            } else if int && v.is_finite() {
+                format!("{}", *v as i64)
             } else {
                 format!("{v:e}")
             }
@@ -59,6 +66,69 @@ pub(crate) fn csv_text(table: &Table, prov: &Provenance) -> Result<String> {
     Ok(s)
 }
 
+/// Columns of counts and flags (units `[count]`, `[cells]`, `[0/1]`) hold integers and
+/// are written as such.
+fn is_integer(header: &str) -> bool {
+    ["[count]", "[cells]", "[0/1]"]
+        .iter()
+        .any(|u| header.ends_with(u))
+}
+
 fn csv_err(name: &str, e: csv::Error) -> CompareError {
     CompareError::Internal(format!("writing table {name}: {e}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn prov() -> Provenance {
+        Provenance {
+            tool: "mrdw test".into(),
+            scene_name: "s".into(),
+            scene_origin: "o".into(),
+            scene_text: "name = \"s\"".into(),
+            seed: None,
+        }
+    }
+
+    #[test]
+    fn counts_and_flags_are_integers_and_missing_cells_empty() {
+        let mut t = Table::new(
+            "t",
+            &[
+                "x [m]".into(),
+                "iterations [count]".into(),
+                "converged [0/1]".into(),
+            ],
+        );
+        t.missing_ok = true;
+        t.push(vec![0.5, 34.0, 1.0]);
+        t.push(vec![f64::NAN, 7.0, 0.0]);
+        let text = csv_text(&t, &prov()).unwrap();
+        let data: Vec<&str> = text.lines().filter(|l| !l.starts_with('#')).collect();
+        assert_eq!(
+            data,
+            [
+                "x [m],iterations [count],converged [0/1]",
+                "5e-1,34,1",
+                ",7,0"
+            ]
+        );
+        // A fraction in a count column is a bug, reported, not rounded.
+        t.push(vec![1.0, 3.5, 1.0]);
+        assert!(matches!(
+            csv_text(&t, &prov()),
+            Err(CompareError::Internal(_))
+        ));
+    }
+
+    #[test]
+    fn infinity_only_where_allowed() {
+        let mut t = Table::new("t", &["k [N/m]".into()]);
+        t.push(vec![f64::INFINITY]);
+        assert!(csv_text(&t, &prov()).is_err());
+        t.infinite_ok = true;
+        assert!(csv_text(&t, &prov()).unwrap().ends_with("inf\n"));
+    }
 }

@@ -7,7 +7,7 @@
 //! ones and the paired lambda ones), so results are reproducible bit for bit.
 
 use super::fit::{calibrate_lambda, fit_window, interp_loglog, interval, mean_curve};
-use super::tasks::{load, BemCurve, MrdEnsemble, Task};
+use super::tasks::{load, BemCurve, MrdEnsemble, SolveRecord, Task};
 use super::HurstSweep;
 use crate::error::Result;
 use mrd::rough_contact::Stat;
@@ -74,6 +74,8 @@ pub struct Results {
     pub realisations_mrd: usize,
     /// Per H: cost ratio of 3D to MRD at equal statistical error of alpha.
     pub speedups: Vec<f64>,
+    /// Every 3D solve: (H, grid, realisation, load index, record).
+    pub solves: Vec<(f64, usize, usize, usize, SolveRecord)>,
 }
 
 /// Ensemble mean's 95 % half-width at each f where the mean exists.
@@ -137,6 +139,11 @@ pub fn aggregate(spec: &HurstSweep, work: &Path) -> Result<Results> {
         let fit1 = fit_window(&fs, &m1, lo, hi);
         for g in spec.grids() {
             let (k3, bem) = curves_3d(spec, work, hi_idx, g)?;
+            for (r, c) in bem.iter().enumerate() {
+                for (k, s) in c.solves.iter().enumerate() {
+                    res.solves.push((hurst, g, r, k, s.clone()));
+                }
+            }
             let all3: Vec<usize> = (0..k3.len()).collect();
             let m3 = mean_curve(&k3, &all3, nf);
             let (glo, ghi) = spec.window(g);

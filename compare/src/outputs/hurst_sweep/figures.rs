@@ -3,6 +3,7 @@
 //! fit window, the finite-size study, and the lambda table in the form `mrd` loads.
 
 use super::aggregate::{Estimate, PerHurst, Results};
+use super::tasks::SolveRecord;
 use super::HurstSweep;
 use crate::report::{Figure, Section, Series, Style, Table};
 use mrd::roughness::lambda_cut;
@@ -18,7 +19,9 @@ pub fn report(spec: &HurstSweep, r: &Results, out: &mut Section) {
     out.figures.extend(summary_figures(r, &label));
     out.figures
         .extend(r.per_hurst.iter().map(|h| kf_figure(spec, r, h, &label)));
-    out.tables.extend([alpha, lambda, curves]);
+    out.tables
+        .extend([alpha, lambda, curves, solves_table(spec, r, &label)]);
+    failures(spec, r, out);
     if !r.convergence.is_empty() {
         let (t, fig) = convergence(spec, r, &label);
         out.figures.push(fig);
@@ -161,6 +164,75 @@ fn curves_table(r: &Results, label: &str) -> Table {
         }
     }
     t
+}
+
+/// Every 3D solve with its status: the record behind the curves.
+fn solves_table(spec: &HurstSweep, r: &Results, label: &str) -> Table {
+    let mut t = Table::new(
+        &format!("{label}_solves"),
+        &[
+            "hurst [1]",
+            "grid [cells]",
+            "realisation [count]",
+            "load [count]",
+            "approach [L]",
+            "force [E* L^2]",
+            "iterations [count]",
+            "residual [1]",
+            "converged [0/1]",
+            "stiffness_converged [0/1]",
+        ]
+        .map(String::from),
+    );
+    t.notes.push(format!(
+        "every 3D solve of the sweep: tolerance {:e} (criterion: bem3d::solver docs); unconverged solves (converged = 0, the residual reached) and failed stiffness solves are left out of the curves",
+        spec.tolerance
+    ));
+    for (h, g, real, k, s) in &r.solves {
+        t.push(vec![
+            *h,
+            *g as f64,
+            *real as f64,
+            *k as f64,
+            s.approach,
+            s.force,
+            s.iterations as f64,
+            s.residual,
+            s.converged as u8 as f64,
+            s.stiffness_converged as u8 as f64,
+        ]);
+    }
+    t
+}
+
+/// Unconverged 3D solves make the run fail visibly (the report is still written).
+fn failures(spec: &HurstSweep, r: &Results, out: &mut Section) {
+    let bad: Vec<&SolveRecord> = r
+        .solves
+        .iter()
+        .map(|s| &s.4)
+        .filter(|s| !s.converged)
+        .collect();
+    if !bad.is_empty() {
+        let worst = bad.iter().map(|s| s.residual).fold(0.0f64, f64::max);
+        out.failures.push(format!(
+            "{} of {} 3D solves did not converge (largest residual {worst:.2e}, tolerance {:.1e}); left out of the curves, listed in the solves table",
+            bad.len(),
+            r.solves.len(),
+            spec.tolerance
+        ));
+    }
+    let stiff = r
+        .solves
+        .iter()
+        .filter(|s| s.4.converged && !s.4.stiffness_converged)
+        .count();
+    if stiff > 0 {
+        out.failures.push(format!(
+            "{stiff} 3D stiffness solves did not converge; left out of the curves"
+        ));
+    }
+    out.value("unconverged_3d_solves", serde_json::json!(bad.len()));
 }
 
 /// alpha(H) (Fig. 6), lambda(H) and zeta(H).

@@ -34,12 +34,25 @@ impl Task {
     }
 }
 
-/// Result of one 3D realisation: F and k at each approach (E* = 1, L = 1).
+/// One 3D solve of a realisation's load ladder, as recorded in the solves table.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct SolveRecord {
+    pub approach: f64,
+    pub force: f64,
+    pub iterations: usize,
+    pub residual: f64,
+    pub converged: bool,
+    pub stiffness_converged: bool,
+}
+
+/// Result of one 3D realisation: F and k at each approach where both converged (E* = 1,
+/// L = 1), and every solve's record.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct BemCurve {
     pub rms_height: f64,
     pub force: Vec<f64>,
     pub stiffness: Vec<f64>,
+    pub solves: Vec<SolveRecord>,
     pub iterations: usize,
     /// Largest residual reached; above the tolerance when a solve did not converge.
     pub max_residual: f64,
@@ -122,6 +135,7 @@ fn run_bem(spec: &HurstSweep, h: usize, g: usize, r: u64) -> Result<BemCurve> {
         rms_height: solver.h_rms(),
         force: vec![],
         stiffness: vec![],
+        solves: vec![],
         iterations: 0,
         max_residual: 0.0,
         unconverged: 0,
@@ -130,26 +144,37 @@ fn run_bem(spec: &HurstSweep, h: usize, g: usize, r: u64) -> Result<BemCurve> {
     let mut warm: Option<bem3d::Solution> = None;
     for k in 0..spec.loads {
         let d = full * 10f64.powf(-3.0 * (1.0 - k as f64 / (spec.loads - 1) as f64));
-        let sol = match solver.solve(Load::Approach(d), &opts, warm.as_ref()) {
-            Ok(s) => s,
+        let (sol, converged) = match solver.solve(Load::Approach(d), &opts, warm.as_ref()) {
+            Ok(s) => (s, true),
             Err(BemError::NoConvergence { last, .. }) => {
                 out.unconverged += 1;
-                *last
+                (*last, false)
             }
             Err(e) => return Err(e).ctx("3D solve"),
         };
         out.iterations += sol.iterations;
         out.max_residual = out.max_residual.max(sol.residual);
-        let kk = match solver.tangent_stiffness(&sol, &stiffness_opts) {
-            Ok(v) => v,
-            Err(e) if e.progress().is_some() => f64::NAN,
-            Err(e) => return Err(e).ctx("3D stiffness"),
+        // Unconverged iterates are recorded, not used.
+        let kk = match converged.then(|| solver.tangent_stiffness(&sol, &stiffness_opts)) {
+            Some(Ok(v)) => v,
+            Some(Err(e)) if e.progress().is_none() => return Err(e).ctx("3D stiffness"),
+            _ => f64::NAN,
         };
+        out.solves.push(SolveRecord {
+            approach: d,
+            force: sol.force,
+            iterations: sol.iterations,
+            residual: sol.residual,
+            converged,
+            stiffness_converged: kk.is_finite(),
+        });
         if sol.force > 0.0 && kk.is_finite() && kk > 0.0 {
             out.force.push(sol.force);
             out.stiffness.push(kk);
         }
-        warm = Some(sol);
+        if converged {
+            warm = Some(sol);
+        }
     }
     out.seconds = t0.elapsed().as_secs_f64();
     Ok(out)
