@@ -300,7 +300,27 @@ fn bad_input_is_one_clear_line_and_no_output() {
         &format!("name = \"x\"\n[material]\ne_star = 1.0\ng_star = 1.0\n{SPHERE}[[outputs]]\nkind = \"damping\"\nmu = -0.3\ndepth = 0.01\n"),
         "mu must be > 0",
     );
-    expect_failure(&format!("name = \"x\"\n{mat}{SPHERE}[[outputs]]\nkind = \"tangential\"\nmu = 0.3\nnormal_force = 1.0\n"), "g_star");
+    expect_failure(&format!("name = \"x\"\n{mat}{SPHERE}[[outputs]]\nkind = \"tangential\"\nmu = 0.3\nnormal_force = 1.0\n"), "missing g_star: tangential problems need G*");
+    // Messages name the key the user wrote and its valid range (issue: misleading
+    // messages).
+    expect_failure(&format!("name = \"x\"\n{mat}[profile]\nshapes = [{{ kind = \"power_law\", c = 1.0, n = 1e6 }}]\n{FD}"), "must lie in (0, 1000]");
+    expect_failure(
+        &format!("name = \"x\"\n{mat}{SPHERE}[[outputs]]\nkind = \"force_depth\"\nmax = 1e-300\nsprings = 100\n"),
+        "give half_length > 0 or a larger max",
+    );
+    let visco = "[[outputs]]\nkind = \"viscoelastic\"\ne_inf = 1.0\nprony = [[2.0, 0.5]]\ndepth_max = 0.01\n";
+    expect_failure(
+        &format!("name = \"x\"\n{mat}{SPHERE}{visco}ramp_time = 1.0\nend_time = 0.0\n"),
+        "end_time = 0 must be > 0",
+    );
+    expect_failure(
+        &format!("name = \"x\"\n{mat}{SPHERE}{visco}ramp_time = -1.0\nend_time = 2.0\n"),
+        "ramp_time = -1 must lie in (0, end_time = 2]",
+    );
+    expect_failure(
+        &format!("name = \"x\"\n{mat}{SPHERE}[[outputs]]\nkind = \"force_depth\"\nmax = 0.01\nsprings = 10000000000\n"),
+        "springs = 10000000000 needs about",
+    );
     expect_failure(
         &format!("name = \"x\"\n{mat}{SPHERE}"),
         "missing field `outputs`",
@@ -510,4 +530,32 @@ fn measured_topography_drives_mrd_like_its_spectrum() {
     let hf = result(&measured, "rough_stiffness.measured_fitted_hurst");
     assert!((hf - 0.8).abs() < 0.1, "fitted H {hf}");
     assert!(stages(&measured).contains(&"measured_psd".to_string()));
+}
+
+#[test]
+fn data_file_errors_name_the_file_and_the_range() {
+    let tmp = tempfile::tempdir().unwrap();
+    let run = |toml: &str| {
+        let scene = tmp.path().join("s.toml");
+        std::fs::write(&scene, toml).unwrap();
+        let o = mrdw(&[
+            "run",
+            scene.to_str().unwrap(),
+            "--out",
+            tmp.path().join("o").to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(2));
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    std::fs::write(tmp.path().join("lam.csv"), "hurst,lambda\n0,2.5\n1,4\n").unwrap();
+    let err = run("name = \"x\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"rough_stiffness\"\nhurst = 2.0\npoints = 1024\nlength = 1.0\nf_min = 1e-6\nf_max = 1.0\nlambda = \"lam.csv\"\n");
+    assert!(
+        err.contains("hurst = 2 lies outside the range [0, 1] of the lambda table"),
+        "{err}"
+    );
+    assert!(!err.contains("contact radius"), "{err}");
+    std::fs::write(tmp.path().join("bad.npy"), b"\x93NUMPY garbage").unwrap();
+    let err = run("name = \"x\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"bem_contact\"\nheights = \"bad.npy\"\nsize = [1.0, 1.0]\nmean_pressures = [0.1]\n");
+    assert!(err.contains("bad.npy"), "{err}");
+    assert!(!err.contains("profile table"), "{err}");
 }

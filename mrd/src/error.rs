@@ -19,6 +19,27 @@ pub enum MrdError {
     /// The contact would need the profile beyond the radius where it is defined.
     #[error("contact radius {needed:.6e} exceeds the profile's defined range r <= {limit:.6e}")]
     OutOfRange { needed: f64, limit: f64 },
+    /// A depth that no contact radius within the profile's range reaches.
+    #[error("{}", unreachable_message(*depth, *limit))]
+    Unreachable { depth: f64, limit: f64 },
+    /// A value outside the range a table covers (no extrapolation).
+    #[error("{what} = {value} lies outside the range [{lo}, {hi}] of the {table}")]
+    OutsideTable {
+        what: &'static str,
+        value: f64,
+        lo: f64,
+        hi: f64,
+        table: &'static str,
+    },
+    /// A quantity the problem needs was not given.
+    #[error("missing {name}: {hint}")]
+    Missing {
+        name: &'static str,
+        hint: &'static str,
+    },
+    /// A data file (height map, table) is malformed; the message names the file.
+    #[error("{0}")]
+    InvalidData(String),
     /// A load that the contact cannot carry (e.g. a tensile force below pull-off).
     #[error("impossible load: {0}")]
     ImpossibleLoad(String),
@@ -32,6 +53,18 @@ pub enum MrdError {
 }
 
 pub type Result<T> = std::result::Result<T, MrdError>;
+
+fn unreachable_message(depth: f64, limit: f64) -> String {
+    if limit.is_finite() {
+        format!(
+            "depth {depth:e} needs a contact radius that exceeds the profile's defined range r <= {limit:.6e}"
+        )
+    } else {
+        format!(
+            "depth {depth:e} is not reached at any finite contact radius: the profile's 1D image stays below it (check the shape's parameters, e.g. a power law's c and n)"
+        )
+    }
+}
 
 /// Checks `value` is finite and strictly positive.
 pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64> {

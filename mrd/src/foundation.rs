@@ -69,12 +69,12 @@ impl Foundation {
         positive("dx", dx)?;
         positive("e_star", modulus)?;
         if gaps.is_empty() {
-            return Err(MrdError::InvalidTable(
+            return Err(MrdError::InvalidData(
                 "foundation needs at least one spring".into(),
             ));
         }
         if let Some(i) = gaps.iter().position(|g| !g.is_finite()) {
-            return Err(MrdError::InvalidTable(format!(
+            return Err(MrdError::InvalidData(format!(
                 "non-finite height at index {i}"
             )));
         }

@@ -132,7 +132,7 @@ pub fn calibrate_rms_height(setup: &FrictionSetup, target: f64, probe: u64) -> R
     let f_max = *setup
         .forces
         .last()
-        .ok_or(crate::error::MrdError::InvalidTable("no forces".into()))?;
+        .ok_or(crate::error::MrdError::InvalidData("no forces".into()))?;
     let (mut lo, mut hi) = (
         1e-12 * setup.e_star * setup.length,
         setup.e_star * setup.length,

@@ -130,10 +130,10 @@ impl Material {
 
     /// G*, or an error naming the missing input for tangential problems.
     pub fn g_star(&self) -> Result<f64> {
-        self.g_star.ok_or(MrdError::InvalidParameter {
+        self.g_star.ok_or(MrdError::Missing {
             name: "g_star",
-            value: f64::NAN,
-            reason: "tangential problems need G* (give g_star or both bodies' E and nu)",
+            hint: "tangential problems need G*: give material.g_star, or [material.indenter] \
+                   and [material.substrate] with E and nu",
         })
     }
 

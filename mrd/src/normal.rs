@@ -123,8 +123,8 @@ impl AxisymmetricContact {
         let z1d = |a: f64| self.profile.z1d(a);
         let hi =
             bracket_up(|a| Ok(z1d(a)), d, 1e-3 * self.scale(), self.limit()).map_err(|_| {
-                MrdError::OutOfRange {
-                    needed: f64::INFINITY,
+                MrdError::Unreachable {
+                    depth: d,
                     limit: self.limit(),
                 }
             })?;
@@ -202,7 +202,7 @@ mod tests {
         let s = c.state_at_depth(0.05).unwrap();
         assert!(rel(s.force, cone::force(1.0, 0.1, 0.05)) < 1e-9);
         assert!(rel(s.radius, cone::radius(0.1, 0.05)) < 1e-9);
-        for &n in &[0.5, 1.0, 2.0, 3.0, 4.5] {
+        for &n in &[0.5, 1.0, 2.0, 3.0, 4.5, 250.0, 1000.0] {
             let c =
                 AxisymmetricContact::new(Profile::single(Shape::power_law(0.8, n).unwrap()), 2.0)
                     .unwrap();
@@ -264,7 +264,7 @@ mod tests {
         let c = AxisymmetricContact::new(Profile::single(Shape::Table(t)), 1.0).unwrap();
         assert!(matches!(
             c.state_at_depth(10.0),
-            Err(MrdError::OutOfRange { .. })
+            Err(MrdError::Unreachable { .. })
         ));
     }
 }

@@ -13,9 +13,18 @@
 use crate::error::{positive, MrdError, Result};
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
+/// Largest power-law exponent accepted (tested against Sneddon's closed form to 1e-12).
+pub const MAX_POWER: f64 = 1000.0;
+
 /// kappa_n of Eq. (15): the factor that maps c_n r^n to kappa_n c_n x^n.
 pub fn kappa(n: f64) -> f64 {
-    0.5 * PI.sqrt() * n * libm::tgamma(0.5 * n) / libm::tgamma(0.5 * n + 0.5) // Eq. (15)
+    // Eq. (15); the Gamma ratio through log-Gamma where Gamma itself overflows.
+    let ratio = if n < 300.0 {
+        libm::tgamma(0.5 * n) / libm::tgamma(0.5 * n + 0.5)
+    } else {
+        (libm::lgamma(0.5 * n) - libm::lgamma(0.5 * n + 0.5)).exp()
+    };
+    0.5 * PI.sqrt() * n * ratio
 }
 
 /// A piecewise-linear profile z(r) read from a table, with r_0 = 0.
@@ -174,10 +183,20 @@ pub enum Shape {
 }
 
 impl Shape {
+    /// z = c r^n with 0 < n <= [`MAX_POWER`] (beyond, the profile is a flat punch to
+    /// machine precision: give a rim instead).
     pub fn power_law(c: f64, n: f64) -> Result<Self> {
+        let n = positive("n", n)?;
+        if n > MAX_POWER {
+            return Err(MrdError::InvalidParameter {
+                name: "n",
+                value: n,
+                reason: "must lie in (0, 1000]; a steeper power law is a flat punch (give a rim and no shapes)",
+            });
+        }
         Ok(Shape::PowerLaw {
             c: positive("c_n", c)?,
-            n: positive("n", n)?,
+            n,
         })
     }
     pub fn paraboloid(radius: f64) -> Result<Self> {
@@ -415,6 +434,31 @@ impl Profile {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn kappa_through_log_gamma_for_steep_power_laws() {
+        // Both Gamma paths agree where both work, and kappa approaches sqrt(pi n / 2)
+        // (Stirling) as n grows; n = 1e6 is refused with a hint.
+        let direct =
+            |n: f64| 0.5 * PI.sqrt() * n * libm::tgamma(0.5 * n) / libm::tgamma(0.5 * n + 0.5);
+        let logs = |n: f64| {
+            0.5 * PI.sqrt() * n * (libm::lgamma(0.5 * n) - libm::lgamma(0.5 * n + 0.5)).exp()
+        };
+        for n in [50.0, 250.0, 299.0] {
+            assert!((direct(n) / logs(n) - 1.0).abs() < 1e-12, "n = {n}");
+        }
+        for n in [300.0, 1000.0] {
+            let stirling = (PI * n / 2.0).sqrt() * (1.0 + 1.0 / (4.0 * n));
+            assert!(
+                (kappa(n) / stirling - 1.0).abs() < 1e-5,
+                "n = {n}: {}",
+                kappa(n)
+            );
+        }
+        assert!((kappa(299.999) / kappa(300.001) - 1.0).abs() < 1e-5);
+        let e = Shape::power_law(1.0, 1e6).unwrap_err().to_string();
+        assert!(e.contains("(0, 1000]") && e.contains("rim"), "{e}");
+    }
+
     use super::*;
 
     #[test]

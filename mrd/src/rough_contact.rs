@@ -48,13 +48,13 @@ impl RoughLine {
         positive("e_star", e_star)?;
         let n = heights.len();
         if n < 2 {
-            return Err(MrdError::InvalidTable(
+            return Err(MrdError::InvalidData(
                 "a rough line needs at least 2 points".into(),
             ));
         }
         if let Some(i) = heights.iter().position(|h| !h.is_finite()) {
-            return Err(MrdError::InvalidTable(format!(
-                "non-finite height at index {i}"
+            return Err(MrdError::InvalidData(format!(
+                "rough line: non-finite height at index {i}"
             )));
         }
         let dx = length / n as f64;
@@ -195,7 +195,7 @@ pub struct LineFit {
 pub fn fit_line(x: &[f64], y: &[f64]) -> Result<LineFit> {
     let n = x.len();
     if n < 3 || y.len() != n {
-        return Err(MrdError::InvalidTable(
+        return Err(MrdError::InvalidData(
             "a line fit needs at least 3 points".into(),
         ));
     }
@@ -204,7 +204,7 @@ pub fn fit_line(x: &[f64], y: &[f64]) -> Result<LineFit> {
     let sxx: f64 = x.iter().map(|v| (v - mx).powi(2)).sum();
     let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
     if sxx <= 0.0 {
-        return Err(MrdError::InvalidTable("a line fit needs distinct x".into()));
+        return Err(MrdError::InvalidData("a line fit needs distinct x".into()));
     }
     let b = sxy / sxx;
     let a = my - b * mx;

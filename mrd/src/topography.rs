@@ -15,7 +15,7 @@ pub struct HeightMap {
 }
 
 fn bad(path: &Path, what: impl std::fmt::Display) -> MrdError {
-    MrdError::InvalidTable(format!("{}: {what}", path.display()))
+    MrdError::InvalidData(format!("{}: {what}", path.display()))
 }
 
 impl HeightMap {

@@ -2,7 +2,7 @@
 //! pull-off (Eqs. 34-37), optionally on an event-driven row of springs, against JKR,
 //! Eq. 37 (cone) and Eq. 34 (flat punch).
 
-use super::{axisym, bad, check_points, default_points, positive, rel, Env, Output};
+use super::{axisym, bad, check_points, check_springs, default_points, positive, rel, Env, Output};
 use crate::context::{Context, ControlSpec};
 use crate::error::{Context as _, Result};
 use crate::plan::Stage;
@@ -43,6 +43,9 @@ impl Output for Adhesion {
         }
         if !positive(self.depth_max) {
             return bad("depth_max must be > 0");
+        }
+        if let Some(n) = self.springs {
+            check_springs(n, 2.0)?;
         }
         Ok(())
     }

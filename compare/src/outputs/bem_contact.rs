@@ -199,6 +199,15 @@ impl Output for BemContact {
                 "height map {ny} x {nx} is too small (need >= 4 x 4)"
             ));
         }
+        let per_cell = if self.periodic {
+            super::BYTES_PER_CELL_PERIODIC
+        } else {
+            super::BYTES_PER_CELL_NON_PERIODIC
+        };
+        super::check_memory(
+            (nx * ny) as f64 * per_cell,
+            &format!("a {ny} x {nx} height map"),
+        )?;
         let (lx, ly) = (self.size[0], self.size[1]);
         let e = env.ctx.material.e_star;
         let steps = if self.periodic {

@@ -3,7 +3,8 @@
 //! amplitude, against the semi-analytic MRD result and, for a sphere, Mindlin's Eq. 58,
 //! its small-amplitude limit Eq. 61 and the force form.
 
-use super::{axisym, bad, check_points, default_points, default_springs, positive, rel};
+use super::{axisym, bad, check_points, check_springs, default_points, default_springs};
+use super::{positive, rel};
 use super::{Env, Output};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
@@ -47,9 +48,7 @@ impl Output for Damping {
         if !positive(self.depth) || !positive(self.max_amplitude_ratio) {
             return bad("depth and max_amplitude_ratio must be > 0");
         }
-        if self.springs < 2 {
-            return bad("springs must be >= 2");
-        }
+        check_springs(self.springs, 2.0)?;
         ctx.material.g_star().ctx("damping output")?;
         Ok(())
     }

@@ -2,7 +2,8 @@
 //! slope of the contacting points of MRD rough lines against the reduced force, with
 //! the fit xi = a + b ln f of Eq. (91).
 
-use super::{bad, default_force_points, default_realisations, positive, Env, Output};
+use super::{bad, check_memory, default_force_points, default_realisations, positive};
+use super::{Env, Output, BYTES_PER_SPRING};
 use crate::context::Context;
 use crate::error::{CompareError, Context as _, Result};
 use crate::plan::Stage;
@@ -46,7 +47,11 @@ pub(crate) fn check_line(hurst: f64, points: usize, length: f64, realisations: u
     if realisations == 0 || realisations > 1_000_000 {
         return bad("realisations must lie in 1..=1e6");
     }
-    Ok(())
+    // One line per worker thread at a time.
+    check_memory(
+        points as f64 * BYTES_PER_SPRING * rayon::current_num_threads() as f64,
+        &format!("points = {points} per line"),
+    )
 }
 
 impl Output for StaticFriction {

@@ -2,7 +2,7 @@
 //! `depth_max` over `ramp_time`, then a hold until `end_time`, on Prony-series springs,
 //! against Radok's (1957) solution by quadrature.
 
-use super::{axisym, bad, default_springs, positive, rel, Env, Output};
+use super::{axisym, bad, check_springs, default_springs, positive, rel, Env, Output};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::plan::Stage;
@@ -58,9 +58,7 @@ impl Output for Viscoelastic {
                 self.ramp_time, self.end_time
             ));
         }
-        if self.springs < 2 {
-            return bad(format!("springs = {} must be >= 2", self.springs));
-        }
+        check_springs(self.springs, 1.0 + self.prony.len() as f64 / 4.0)?;
         if self.half_length.is_some_and(|l| !positive(l)) {
             return bad("half_length must be > 0");
         }

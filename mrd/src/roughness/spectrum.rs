@@ -47,17 +47,17 @@ pub struct LambdaTable {
 impl LambdaTable {
     pub fn new(hurst: Vec<f64>, lambda: Vec<f64>) -> Result<Self> {
         if hurst.len() != lambda.len() || hurst.is_empty() {
-            return Err(MrdError::InvalidTable(
+            return Err(MrdError::InvalidData(
                 "lambda table needs equal, non-empty columns".into(),
             ));
         }
         if hurst.iter().any(|h| h.is_nan()) || hurst.windows(2).any(|w| w[1] <= w[0]) {
-            return Err(MrdError::InvalidTable(
+            return Err(MrdError::InvalidData(
                 "lambda table: H must increase strictly".into(),
             ));
         }
         if let Some(i) = lambda.iter().position(|l| !(l.is_finite() && *l > 0.0)) {
-            return Err(MrdError::InvalidTable(format!(
+            return Err(MrdError::InvalidData(format!(
                 "lambda table row {}: lambda must be > 0",
                 i + 1
             )));
@@ -85,7 +85,7 @@ impl LambdaTable {
                 }
                 _ if h.is_empty() && cols.first().is_some_and(|c| c.parse::<f64>().is_err()) => {}
                 _ => {
-                    return Err(MrdError::InvalidTable(format!(
+                    return Err(MrdError::InvalidData(format!(
                         "lambda table line {}: `{line}`",
                         i + 1
                     )))
@@ -98,9 +98,12 @@ impl LambdaTable {
     pub fn at(&self, hurst: f64) -> Result<f64> {
         let (h0, h1) = (self.hurst[0], *self.hurst.last().unwrap());
         if !(hurst >= h0 && hurst <= h1) {
-            return Err(MrdError::OutOfRange {
-                needed: hurst,
-                limit: if hurst < h0 { h0 } else { h1 },
+            return Err(MrdError::OutsideTable {
+                what: "hurst",
+                value: hurst,
+                lo: h0,
+                hi: h1,
+                table: "lambda table",
             });
         }
         let k = self
@@ -265,7 +268,7 @@ impl TabulatedSpectrum {
             || pts.windows(2).any(|w| w[1].0 <= w[0].0)
             || pts.iter().any(|p| p.0.is_nan() || p.0 <= 0.0)
         {
-            return Err(MrdError::InvalidTable(
+            return Err(MrdError::InvalidData(
                 "a tabulated spectrum needs >= 2 points with increasing q > 0".into(),
             ));
         }

@@ -146,7 +146,7 @@ pub fn surface(
             row[nc - 1].im = 0.0;
         }
         c2r.process(&mut row, &mut out[j * nx..(j + 1) * nx])
-            .map_err(|e| MrdError::InvalidTable(e.to_string()))?;
+            .map_err(|e| MrdError::InvalidData(format!("inverse FFT: {e}")))?;
     }
     Ok(out)
 }
@@ -177,7 +177,7 @@ pub fn line_from(
     let c2r = rp.plan_fft_inverse(n);
     let mut out = vec![0.0; n];
     c2r.process(&mut s, &mut out)
-        .map_err(|e| MrdError::InvalidTable(e.to_string()))?;
+        .map_err(|e| MrdError::InvalidData(format!("inverse FFT: {e}")))?;
     Ok(out)
 }
 

@@ -136,7 +136,13 @@ impl Output for HurstSweep {
         if !(self.tolerance > 0.0 && self.tolerance < 1e-2) {
             return bad("tolerance must lie in (0, 1e-2)".into());
         }
-        Ok(())
+        // One 3D task per worker thread at a time.
+        super::check_memory(
+            (self.grid * self.grid) as f64
+                * super::BYTES_PER_CELL_NON_PERIODIC
+                * rayon::current_num_threads() as f64,
+            &format!("grid = {}", self.grid),
+        )
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
