@@ -195,3 +195,163 @@ fn warm_start_never_costs_more_than_cold() {
     }
     assert!(tw < tc, "ladder: warm {tw} cold {tc}");
 }
+
+/// One raised cell carries the whole load: its pressure is F / cell area and the
+/// approach is that pressure times the operator's self-influence (Love's coefficient
+/// of a cell on itself; the dense periodic matrix's diagonal for periodic grids).
+#[test]
+fn a_single_contacting_cell() {
+    let n = 16;
+    let (l, f) = (1.0, 1e-6);
+    let mut h = vec![0.0; n * n];
+    h[5 * n + 7] = 1e-3;
+    let cell = (l / n as f64).powi(2);
+    for periodic in [false, true] {
+        let sol = if periodic {
+            let mut s =
+                ContactSolver::new(PeriodicHalfSpace::new(n, n, l, l, 2.0), &h, None).unwrap();
+            s.solve(Load::Force(f), &opts(1e-12, 1000), None).unwrap()
+        } else {
+            let mut s =
+                ContactSolver::new(NonPeriodicHalfSpace::new(n, n, l, l, 2.0), &h, None).unwrap();
+            s.solve(Load::Force(f), &opts(1e-12, 1000), None).unwrap()
+        };
+        assert_eq!(sol.contact_cells, 1, "periodic = {periodic}");
+        let p = f / cell;
+        assert!(rel(sol.pressure[5 * n + 7], p) < 1e-12);
+        let self_influence = if periodic {
+            let d = DenseCompliance::periodic(n, n, l, l, 2.0);
+            let k = 5 * n + 7;
+            d.matrix[k * n * n + k]
+        } else {
+            let hh = l / n as f64;
+            bem3d::operator::love_coefficient(0.0, 0.0, hh / 2.0, hh / 2.0)
+                / (std::f64::consts::PI * 2.0)
+        };
+        assert!(
+            rel(sol.approach, self_influence * p) < 1e-9,
+            "periodic = {periodic}: {} vs {}",
+            sol.approach,
+            self_influence * p
+        );
+    }
+}
+
+/// Dimensionless results do not depend on the units: heights, loads and moduli scaled
+/// by 1e-9 and 1e9 give the same pressures relative to the load and the same
+/// iterations.
+#[test]
+fn results_scale_with_heights_and_moduli() {
+    let n = 32;
+    let h = self_affine(n, 0.5, 21);
+    let base = |hs: f64, e: f64, periodic: bool| -> Solution {
+        let hh: Vec<f64> = h.iter().map(|v| v * hs).collect();
+        let load = Load::MeanPressure(0.02 * hs * e);
+        if periodic {
+            let mut s =
+                ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, e), &hh, None).unwrap();
+            s.solve(load, &opts(1e-10, 5000), None).unwrap()
+        } else {
+            let mut s = ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, e), &hh, None)
+                .unwrap();
+            s.solve(load, &opts(1e-10, 5000), None).unwrap()
+        }
+    };
+    for periodic in [true, false] {
+        let r = base(1.0, 1.0, periodic);
+        for (hs, e) in [
+            (1e-9, 1.0),
+            (1e9, 1.0),
+            (1.0, 1e-9),
+            (1.0, 1e9),
+            (1e-9, 1e9),
+        ] {
+            let s = base(hs, e, periodic);
+            assert_eq!(s.contact_cells, r.contact_cells, "h x {hs}, E x {e}");
+            let scale = hs * e;
+            let worst = s
+                .pressure
+                .iter()
+                .zip(&r.pressure)
+                .map(|(a, b)| (a / scale - b).abs())
+                .fold(0.0f64, f64::max);
+            let pmax = r.pressure.iter().fold(0.0f64, |m, &v| m.max(v));
+            assert!(worst <= 1e-9 * pmax, "h x {hs}, E x {e}: {worst}");
+            assert!(rel(s.approach / hs, r.approach) < 1e-9);
+        }
+    }
+}
+
+/// A long thin grid (1024 x 4) and its transpose give the same (transposed) solution.
+#[test]
+fn long_thin_grids_equal_their_transpose() {
+    let (nx, ny) = (1024, 4);
+    let wave = |i: usize, j: usize| {
+        let x = i as f64 / nx as f64;
+        0.01 * (2.0 * std::f64::consts::PI * 3.0 * x).cos() + 1e-4 * j as f64
+    };
+    let a: Vec<f64> = (0..nx * ny).map(|k| wave(k % nx, k / nx)).collect();
+    let b: Vec<f64> = (0..nx * ny).map(|k| wave(k / ny, k % ny)).collect(); // 4 x 1024 -> (i = row)
+    let (lx, ly) = (1.0, ny as f64 / nx as f64);
+    let o = opts(1e-11, 5000);
+    for periodic in [true, false] {
+        let (sa, sb) = if periodic {
+            let mut s =
+                ContactSolver::new(PeriodicHalfSpace::new(nx, ny, lx, ly, 1.0), &a, None).unwrap();
+            let mut t =
+                ContactSolver::new(PeriodicHalfSpace::new(ny, nx, ly, lx, 1.0), &b, None).unwrap();
+            (
+                s.solve(Load::MeanPressure(0.01), &o, None).unwrap(),
+                t.solve(Load::MeanPressure(0.01), &o, None).unwrap(),
+            )
+        } else {
+            let mut s =
+                ContactSolver::new(NonPeriodicHalfSpace::new(nx, ny, lx, ly, 1.0), &a, None)
+                    .unwrap();
+            let mut t =
+                ContactSolver::new(NonPeriodicHalfSpace::new(ny, nx, ly, lx, 1.0), &b, None)
+                    .unwrap();
+            (
+                s.solve(Load::MeanPressure(0.01), &o, None).unwrap(),
+                t.solve(Load::MeanPressure(0.01), &o, None).unwrap(),
+            )
+        };
+        let pmax = sa.pressure.iter().fold(0.0f64, |m, &v| m.max(v));
+        for j in 0..ny {
+            for i in 0..nx {
+                let (pa, pb) = (sa.pressure[j * nx + i], sb.pressure[i * ny + j]);
+                assert!(
+                    (pa - pb).abs() <= 1e-8 * pmax,
+                    "periodic = {periodic}: ({i}, {j})"
+                );
+            }
+        }
+        assert!(rel(sa.approach, sb.approach) < 1e-8);
+    }
+}
+
+/// A non-periodic rough map pressed beyond complete contact: one solve, every cell
+/// in contact, a finite stiffness (no periodic free mode), and the stiffness the same
+/// at two loads (the contact set cannot change any more).
+#[test]
+fn non_periodic_beyond_complete_contact() {
+    let n = 24;
+    let h = self_affine(n, 0.8, 4);
+    let mut s =
+        ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None).unwrap();
+    // The criterion is relative to the rms height (0.01 here) while the displacements
+    // reach hundreds of rms heights: 1e-10 is near the rounding floor of the gap.
+    let a = s
+        .solve(Load::MeanPressure(2.0), &opts(1e-10, 2000), None)
+        .unwrap();
+    let b = s
+        .solve(Load::MeanPressure(4.0), &opts(1e-10, 2000), None)
+        .unwrap();
+    assert!(a.complete_contact() && b.complete_contact());
+    let ka = s.tangent_stiffness(&a, &opts(1e-12, 2000)).unwrap();
+    let kb = s.tangent_stiffness(&b, &opts(1e-12, 2000)).unwrap();
+    assert!(ka.is_finite() && ka > 0.0);
+    assert!(rel(ka, kb) < 1e-9);
+    // And the force-approach relation is linear there with that slope.
+    assert!(rel((b.force - a.force) / (b.approach - a.approach), ka) < 1e-7);
+}

@@ -5,7 +5,7 @@
 
 use bem3d::*;
 mod common;
-use common::{rel, rough, sphere};
+use common::{dense_reference, rel, rough, sphere};
 use std::f64::consts::PI;
 
 struct HertzErrors {
@@ -187,70 +187,23 @@ fn westergaard_wavy_surface() {
     );
 }
 
-/// Dense reference: the same discrete LCP solved by an active-set method with direct
-/// (faer LU) solves on the contact set, force-controlled.
-fn dense_reference(dense: &DenseCompliance, z: &[f64], force: f64, area: f64) -> (Vec<f64>, f64) {
-    use faer::prelude::*;
-    use faer::Mat;
-    let n = z.len();
-    let mut active: Vec<bool> = vec![true; n];
-    for _ in 0..200 {
-        let idx: Vec<usize> = (0..n).filter(|&i| active[i]).collect();
-        let m = idx.len();
-        // [K_CC  -1] [p]   [-z_C]
-        // [A 1^T  0] [d] = [ W  ]
-        let a = Mat::<f64>::from_fn(m + 1, m + 1, |r, c| {
-            if r < m && c < m {
-                dense.matrix[idx[r] * n + idx[c]]
-            } else if r < m {
-                -1.0
-            } else if c < m {
-                area
-            } else {
-                0.0
-            }
-        });
-        let b = Mat::<f64>::from_fn(m + 1, 1, |r, _| if r < m { -z[idx[r]] } else { force });
-        let x = a.partial_piv_lu().solve(&b);
-        let mut p = vec![0.0; n];
-        for (k, &i) in idx.iter().enumerate() {
-            p[i] = x[(k, 0)];
-        }
-        let d = x[(m, 0)];
-        let mut u = vec![0.0; n];
-        for i in 0..n {
-            u[i] = (0..n).map(|j| dense.matrix[i * n + j] * p[j]).sum();
-        }
-        let mut changed = false;
-        for i in 0..n {
-            if active[i] && p[i] < 0.0 {
-                active[i] = false;
-                changed = true;
-            }
-        }
-        if !changed {
-            for i in 0..n {
-                if !active[i] && u[i] + z[i] - d < -1e-15 {
-                    active[i] = true;
-                    changed = true;
-                }
-            }
-        }
-        if !changed {
-            return (p, d);
-        }
-    }
-    panic!("active set did not settle");
-}
-
 #[test]
 fn fft_solver_matches_dense_active_set_solve() {
-    for &(n, periodic) in &[(16usize, false), (20, true), (32, false)] {
-        let l = 1.0;
+    // Square and odd rectangular grids (the real FFT's odd lengths and non-square
+    // transposes), periodic and not.
+    for &(nx, ny, periodic) in &[
+        (16usize, 16usize, false),
+        (20, 20, true),
+        (32, 32, false),
+        (15, 9, false),
+        (13, 11, true),
+        (17, 6, true),
+    ] {
+        let (lx, ly) = (1.0, ny as f64 / nx as f64);
         // A bumpy smooth surface with several contact spots.
-        let h: Vec<f64> = (0..n * n)
+        let h: Vec<f64> = (0..nx * ny)
             .map(|k| {
-                let (x, y) = ((k % n) as f64 / n as f64, (k / n) as f64 / n as f64);
+                let (x, y) = ((k % nx) as f64 / nx as f64, (k / nx) as f64 / nx as f64);
                 0.01 * ((2.0 * PI * x).cos()
                     + 0.5 * (4.0 * PI * y + 1.0).cos()
                     + 0.3 * (6.0 * PI * (x + y)).sin())
@@ -258,25 +211,26 @@ fn fft_solver_matches_dense_active_set_solve() {
             .collect();
         let hmax = h.iter().fold(f64::NEG_INFINITY, |m, &v| m.max(v));
         let z: Vec<f64> = h.iter().map(|v| hmax - v).collect();
-        let force = 0.004;
-        let area = l * l / (n * n) as f64;
+        let force = 0.004 * ly;
+        let area = lx * ly / (nx * ny) as f64;
         let opts = SolverOptions {
             tolerance: 1e-14,
             max_iterations: 20_000,
         };
         let (sol, dense) = if periodic {
             let mut s =
-                ContactSolver::new(PeriodicHalfSpace::new(n, n, l, l, 1.0), &h, None).unwrap();
+                ContactSolver::new(PeriodicHalfSpace::new(nx, ny, lx, ly, 1.0), &h, None).unwrap();
             (
                 s.solve(Load::Force(force), &opts, None).unwrap(),
-                DenseCompliance::periodic(n, n, l, l, 1.0),
+                DenseCompliance::periodic(nx, ny, lx, ly, 1.0),
             )
         } else {
             let mut s =
-                ContactSolver::new(NonPeriodicHalfSpace::new(n, n, l, l, 1.0), &h, None).unwrap();
+                ContactSolver::new(NonPeriodicHalfSpace::new(nx, ny, lx, ly, 1.0), &h, None)
+                    .unwrap();
             (
                 s.solve(Load::Force(force), &opts, None).unwrap(),
-                DenseCompliance::love(n, n, l, l, 1.0),
+                DenseCompliance::love(nx, ny, lx, ly, 1.0),
             )
         };
         let (p_ref, d_ref) = dense_reference(&dense, &z, force, area);
@@ -284,13 +238,13 @@ fn fft_solver_matches_dense_active_set_solve() {
         for (a, b) in sol.pressure.iter().zip(&p_ref) {
             assert!(
                 (a - b).abs() <= 1e-9 * pmax,
-                "n={n} periodic={periodic}: {a} vs {b}"
+                "{nx}x{ny} periodic={periodic}: {a} vs {b}"
             );
         }
         assert!(rel(sol.force, force) < 1e-12);
         assert!(
             (sol.approach - d_ref).abs() <= 1e-9 * d_ref.abs().max(1e-3),
-            "{} vs {d_ref}",
+            "{nx}x{ny}: {} vs {d_ref}",
             sol.approach
         );
     }

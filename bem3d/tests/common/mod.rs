@@ -1,6 +1,7 @@
 //! Surfaces and measures shared by the solver's tests.
 #![allow(dead_code)]
 
+use bem3d::DenseCompliance;
 use std::f64::consts::PI;
 
 pub fn rel(a: f64, b: f64) -> f64 {
@@ -80,4 +81,64 @@ pub fn self_affine(n: usize, hurst: f64, seed: u64) -> Vec<f64> {
     let rms = (h.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / h.len() as f64).sqrt();
     h.iter_mut().for_each(|v| *v = 0.01 * (*v - mean) / rms);
     h
+}
+
+/// Dense reference: the same discrete LCP solved by an active-set method with direct
+/// (nalgebra LU with partial pivoting) solves on the contact set, force-controlled.
+pub fn dense_reference(
+    dense: &DenseCompliance,
+    z: &[f64],
+    force: f64,
+    area: f64,
+) -> (Vec<f64>, f64) {
+    use nalgebra::{DMatrix, DVector};
+    let n = z.len();
+    let mut active: Vec<bool> = vec![true; n];
+    for _ in 0..200 {
+        let idx: Vec<usize> = (0..n).filter(|&i| active[i]).collect();
+        let m = idx.len();
+        // [K_CC  -1] [p]   [-z_C]
+        // [A 1^T  0] [d] = [ W  ]
+        let a = DMatrix::<f64>::from_fn(m + 1, m + 1, |r, c| {
+            if r < m && c < m {
+                dense.matrix[idx[r] * n + idx[c]]
+            } else if r < m {
+                -1.0
+            } else if c < m {
+                area
+            } else {
+                0.0
+            }
+        });
+        let b = DVector::<f64>::from_fn(m + 1, |r, _| if r < m { -z[idx[r]] } else { force });
+        let x = a.lu().solve(&b).expect("the contact-set system is regular");
+        let mut p = vec![0.0; n];
+        for (k, &i) in idx.iter().enumerate() {
+            p[i] = x[k];
+        }
+        let d = x[m];
+        let mut u = vec![0.0; n];
+        for i in 0..n {
+            u[i] = (0..n).map(|j| dense.matrix[i * n + j] * p[j]).sum();
+        }
+        let mut changed = false;
+        for i in 0..n {
+            if active[i] && p[i] < 0.0 {
+                active[i] = false;
+                changed = true;
+            }
+        }
+        if !changed {
+            for i in 0..n {
+                if !active[i] && u[i] + z[i] - d < -1e-15 {
+                    active[i] = true;
+                    changed = true;
+                }
+            }
+        }
+        if !changed {
+            return (p, d);
+        }
+    }
+    panic!("active set did not settle");
 }
