@@ -1,5 +1,5 @@
 //! Surfaces and measures shared by the solver's tests.
-#![allow(dead_code)]
+#![allow(dead_code, clippy::needless_range_loop)]
 
 use bem3d::DenseCompliance;
 use std::f64::consts::PI;
