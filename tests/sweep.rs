@@ -308,3 +308,44 @@ fn unconverged_3d_solves_are_recorded_and_fail_the_run() {
         unconverged as u64
     );
 }
+
+#[test]
+fn the_ends_of_the_hurst_range_run_in_3d_and_1d() {
+    // H = -1 (flat spectrum) and H = 3 (dominated by the longest wavelength): every solve
+    // converges, exponents are finite, no NaN reaches a CSV.
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = tmp.path().join("ends.toml");
+    std::fs::write(
+        &scene,
+        SMALL
+            .replace("hurst = [0.0, 1.0]", "hurst = [-1.0, 3.0]")
+            .replace("grid = 32", "grid = 24"),
+    )
+    .unwrap();
+    let out = tmp.path().join("o");
+    ok(&mrdw(
+        &[
+            "run",
+            scene.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &[],
+    ));
+    let s: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    for (h, v) in s["results"]["hurst_sweep.per_hurst"].as_object().unwrap() {
+        for k in ["alpha_3d", "alpha_mrd"] {
+            let a = v[k].as_f64().unwrap_or(f64::NAN);
+            assert!(a.is_finite() && a > 0.0 && a < 1.5, "H = {h}: {k} = {a}");
+        }
+    }
+    assert_eq!(
+        s["results"]["hurst_sweep.unconverged_3d_solves"].as_u64(),
+        Some(0)
+    );
+    for (name, bytes) in csvs(&out) {
+        let text = String::from_utf8(bytes).unwrap();
+        assert!(!text.contains("NaN") && !text.contains("inf"), "{name}");
+    }
+}
