@@ -31,7 +31,7 @@ const EXAMPLES: &str = "Examples:
   mrdw show jkr > my.toml       start a new scene from an embedded one
   mrdw run fig6-full --shard 0/4 --out shards/0    one machine's share of a sweep
   mrdw merge shards/0 shards/1 shards/2 shards/3   combine the shares into one report
-  mrdw bench mrd | rough | bem  run time against error of the solvers
+  mrdw bench mrd | rough | bem | sliding   run time (and error) of the solvers
 
 Report folders: --out may name a new folder, an empty one, or a report folder mrdw
 wrote before (replaced as a whole); any other existing path is refused. A run holds a
@@ -115,6 +115,9 @@ enum BenchTarget {
     Bem,
     /// Rough lines: generation and a 100-point k(F) curve, N = 1e3 .. 1e7.
     Rough,
+    /// Sliding on viscoelastic springs: steps per second for 1e4 .. 1e6 springs with
+    /// 20 Prony terms, and one velocity point of fig7.
+    Sliding,
 }
 
 fn parse_shard(s: &str) -> Result<(usize, usize), String> {
@@ -286,6 +289,7 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
                     &mut out.0,
                     if max_exp == 6 { 7 } else { max_exp.clamp(3, 8) },
                 )?,
+                BenchTarget::Sliding => compare::bench::run_sliding(&mut out.0, max_exp)?,
                 BenchTarget::Bem => {
                     compare::bench::run_bem(&mut out.0, max_n, write_surfaces.as_deref())?
                 }

@@ -418,3 +418,96 @@ pub fn run_rough(w: &mut dyn Write, max_exp: u32) -> std::io::Result<()> {
     writeln!(w, "\nline: synthesis by inverse real FFT (Eq. 72); setup: sort + prefix sums; k(F): 100 exact force-controlled solves.")?;
     Ok(())
 }
+
+/// `mrdw bench sliding`: steady sliding on viscoelastic springs (Section 10.1): time
+/// steps per second for N = 1e4 .. 10^max_exp springs with 20 Prony terms (Eq. 84), and
+/// the time of one velocity point of the `fig7` scene (one line, to its steady state),
+/// single thread.
+pub fn run_sliding(w: &mut dyn Write, max_exp: u32) -> std::io::Result<()> {
+    use mrd::rheology::Eq84;
+    use mrd::roughness::synthesis::{line_from, Amplitudes};
+    use mrd::sliding::{slide, Line, Slider, Sliding};
+    use std::f64::consts::TAU;
+    let band_line = |n: usize, waves: f64| -> Line {
+        let k0 = TAU * waves;
+        let (lo, hi) = (k0 / 2f64.sqrt(), k0 * 2f64.sqrt());
+        let z = line_from(
+            &|q: f64| if (lo..=hi).contains(&q) { q } else { 0.0 },
+            n,
+            1.0,
+            7,
+            0,
+            Amplitudes::Deterministic,
+        )
+        .expect("band line");
+        Line::new(&z, 1.0).expect("line")
+    };
+    let setup = |terms: usize, line: &Line, kv: f64| -> Sliding {
+        let g = Eq84::PAPER.prony(terms).expect("prony");
+        Sliding {
+            normal_force: 4.0 * g.relaxed * line.rms_height,
+            modulus: g.scaled(4.0),
+            springs: line.len(),
+            stride: 1,
+            velocity: kv / line.wave_vector(),
+            tolerance: 1e-4,
+            max_passes: 400,
+            accelerate: true,
+        }
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("pool");
+    writeln!(
+        w,
+        "Sliding on viscoelastic springs: band line (4 waves), Eq. (84) with 20 Prony terms, k v = 1 rad/s, single thread\n"
+    )?;
+    writeln!(
+        w,
+        "{:>9} | {:>12} | {:>16}",
+        "springs", "steps/s", "ns/(spring step)"
+    )?;
+    writeln!(w, "{}", "-".repeat(44))?;
+    let mut rows = Vec::new();
+    pool.install(|| {
+        for e in 4..=max_exp.max(4) {
+            let n = 10usize.pow(e);
+            let line = band_line(n, 4.0);
+            let p = setup(20, &line, 1.0);
+            let mut sl = Slider::new(&line, &p).expect("slider");
+            for _ in 0..3 {
+                sl.step(); // warm-up
+            }
+            let steps = (2e7 / n as f64).clamp(5.0, 2000.0) as usize;
+            let t0 = Instant::now();
+            for _ in 0..steps {
+                std::hint::black_box(sl.step());
+            }
+            let t = t0.elapsed().as_secs_f64() / steps as f64;
+            rows.push((n, 1.0 / t, t / n as f64 * 1e9));
+        }
+    });
+    for (n, rate, ns) in rows {
+        writeln!(w, "{n:>9} | {rate:>12.3e} | {ns:>16.2}")?;
+    }
+    // One velocity point of fig7: 2048 springs, 16 terms, to the steady state.
+    let line = band_line(2048, 4.0);
+    let mut out = Vec::new();
+    pool.install(|| {
+        for kv in [1e-2, 1e0, 1e2] {
+            let p = setup(16, &line, kv);
+            let t0 = Instant::now();
+            let r = slide(&line, &p).expect("slide");
+            out.push((kv, t0.elapsed().as_secs_f64(), r.history.len()));
+        }
+    });
+    writeln!(
+        w,
+        "\nfig7 velocity point (one line, 2048 springs, 16 terms, to the steady state):"
+    )?;
+    for (kv, t, passes) in out {
+        writeln!(w, "  k v = {kv:e} rad/s: {t:.2} s, {passes} passes")?;
+    }
+    Ok(())
+}

@@ -32,6 +32,8 @@ pub enum Stage {
     ClosedForm,
     /// Hereditary (Prony) springs of Eq. (63).
     Viscoelastic,
+    /// Steady sliding of rough lines over viscoelastic springs (Section 10.1).
+    ViscoelasticSliding,
     /// Random rough lines or surfaces (Eqs. 70-72).
     RoughSynthesis,
     /// Rough line on the MRD foundation (sorted gaps, exact queries).
@@ -60,6 +62,7 @@ impl Stage {
             Stage::OscillationDiscrete => "oscillation_discrete",
             Stage::ClosedForm => "closed_form",
             Stage::Viscoelastic => "viscoelastic_springs",
+            Stage::ViscoelasticSliding => "viscoelastic_sliding",
             Stage::RoughSynthesis => "rough_synthesis",
             Stage::RoughContact => "rough_contact_mrd",
             Stage::Bem3d => "bem3d",

@@ -20,6 +20,12 @@ pub const EMBEDDED: &[(&str, &str)] = &[
     ("ejike", include_str!("../../cases/ejike.toml")),
     ("fig6-ci", include_str!("../../cases/fig6-ci.toml")),
     ("fig6-full", include_str!("../../cases/fig6-full.toml")),
+    ("fig7", include_str!("../../cases/fig7.toml")),
+    ("fig7-ci", include_str!("../../cases/fig7-ci.toml")),
+    (
+        "fig7-viscous",
+        include_str!("../../cases/fig7-viscous.toml"),
+    ),
     ("fig9", include_str!("../../cases/fig9.toml")),
     (
         "fig9-readings",

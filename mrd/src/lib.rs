@@ -17,6 +17,7 @@ pub mod material;
 pub mod numerics;
 pub mod profile;
 pub mod reference;
+pub mod rheology;
 
 pub use error::{MrdError, Result};
 pub use material::{ElasticBody, Material};
@@ -30,6 +31,7 @@ pub mod oscillation;
 pub mod pressure;
 pub mod rough_contact;
 pub mod roughness;
+pub mod sliding;
 pub mod tangential;
 pub mod topography;
 pub mod viscoelastic;

@@ -205,6 +205,25 @@ pub mod mindlin_damping {
     }
 }
 
+/// Viscoelastic sliding friction (Section 10.1).
+pub mod sliding {
+    /// A harmonic line z = h0 cos(k x) sliding at velocity v in full contact over
+    /// Winkler springs of complex modulus M(omega) = M' + i M'' (per unit width) at mean
+    /// indentation D (the approach minus h0). Steady state, theta = k (x + v t):
+    /// f/dx = M_inf D + h0 (M' cos theta - M'' sin theta), and with z' = -h0 k sin theta
+    /// the mean of f z' is h0^2 k M''/2 per unit length, while the mean force is
+    /// M_inf D. So mu = h0^2 k M''(k v) / (2 M_inf D), independent of the factor 4 in
+    /// M = 4 G. Full contact needs M_inf D >= h0 |M(k v)|.
+    pub fn harmonic_mu(k: f64, h0: f64, loss: f64, relaxed: f64, mean_indentation: f64) -> f64 {
+        h0 * h0 * k * loss / (2.0 * relaxed * mean_indentation)
+    }
+
+    /// Eq. (82): mu = xi grad z G''(k v) / |G(k v)|.
+    pub fn eq82(xi: f64, grad_z: f64, storage: f64, loss: f64) -> f64 {
+        xi * grad_z * loss / storage.hypot(loss)
+    }
+}
+
 /// The closed forms that apply to a whole profile: a flat punch (no shapes, a rim), or a
 /// single analytic shape without a rim. Sums of shapes and tables have none.
 pub mod for_profile {

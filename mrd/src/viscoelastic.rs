@@ -11,41 +11,7 @@
 use crate::error::{positive, MrdError, Result};
 use crate::profile::Profile;
 
-/// Relaxation modulus E*(t) as a Prony series.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Prony {
-    pub e_inf: f64,
-    /// (E_i, tau_i) pairs.
-    pub terms: Vec<(f64, f64)>,
-}
-
-impl Prony {
-    pub fn new(e_inf: f64, terms: Vec<(f64, f64)>) -> Result<Self> {
-        crate::error::non_negative("e_inf", e_inf)?;
-        for &(e, tau) in &terms {
-            positive("prony modulus", e)?;
-            positive("relaxation time", tau)?;
-        }
-        if e_inf == 0.0 && terms.is_empty() {
-            return Err(MrdError::InvalidParameter {
-                name: "e_inf",
-                value: 0.0,
-                reason: "the modulus must not vanish",
-            });
-        }
-        Ok(Self { e_inf, terms })
-    }
-
-    /// E*(t).
-    pub fn at(&self, t: f64) -> f64 {
-        self.e_inf
-            + self
-                .terms
-                .iter()
-                .map(|&(e, tau)| e * (-t / tau).exp())
-                .sum::<f64>()
-    }
-}
+pub use crate::rheology::Prony;
 
 /// Time-steps the spring row under a prescribed depth history `depth(t)` sampled at
 /// `times` (increasing, from 0 with depth 0), with `n_half` springs on [0, half_length]
@@ -75,7 +41,7 @@ pub fn simulate(
     let force = |u: &[f64], h: &[f64]| -> f64 {
         let mut f = 0.0;
         for i in 0..n_half {
-            f += modulus.e_inf * u[i]
+            f += modulus.relaxed * u[i]
                 + (0..m)
                     .map(|k| modulus.terms[k].0 * h[i * m + k])
                     .sum::<f64>();

@@ -27,6 +27,7 @@ pub mod hurst_sweep;
 mod pressure;
 mod profile_1d;
 pub mod rough_stiffness;
+mod sliding_friction;
 mod static_friction;
 mod tangential;
 mod viscoelastic;
@@ -149,6 +150,10 @@ pub const KINDS: &[Kind] = &[
     Kind::of::<rough_stiffness::RoughStiffness>(
         "rough_stiffness",
         "ensemble stiffness-force law of MRD rough lines (Eq. 77)",
+    ),
+    Kind::of::<sliding_friction::SlidingFriction>(
+        "sliding_friction",
+        "elastomer friction mu(v) of rough lines on viscoelastic springs, Eq. 82 (Fig. 7)",
     ),
     Kind::of::<bem_contact::BemContact>(
         "bem_contact",

@@ -28,10 +28,17 @@ const PALETTE: [RGBColor; 10] = [
 ];
 
 fn bounds(fig: &Figure) -> ((f64, f64), (f64, f64)) {
+    // Points and the ends of error bars.
+    let bar_ends: Vec<(f64, f64)> = fig
+        .series
+        .iter()
+        .flat_map(|s| s.bars.iter().flat_map(|&(x, lo, hi)| [(x, lo), (x, hi)]))
+        .collect();
     let pts = fig
         .series
         .iter()
         .flat_map(|s| s.points.iter())
+        .chain(bar_ends.iter())
         .filter(|(x, y)| {
             x.is_finite() && y.is_finite() && (!fig.log_x || *x > 0.0) && (!fig.log_y || *y > 0.0)
         });
@@ -66,7 +73,31 @@ fn bounds(fig: &Figure) -> ((f64, f64), (f64, f64)) {
 /// The corner for the legend that covers the fewest data: points and lines (sampled
 /// along each segment) are counted inside an estimate of the legend box, in axis
 /// coordinates scaled to [0, 1]; ties keep the upper left.
-fn legend_corner(fig: &Figure) -> SeriesLabelPosition {
+type Bounds = ((f64, f64), (f64, f64));
+
+/// Axis ranges and legend corner: the corner that covers the fewest data, and when
+/// every corner covers some, headroom added above the data for the legend.
+fn layout(fig: &Figure) -> (Bounds, SeriesLabelPosition) {
+    let b = bounds(fig);
+    let (covered, corner, h) = legend_corner(fig, b);
+    if covered == 0 {
+        return (b, corner);
+    }
+    let ((x0, x1), (y0, y1)) = b;
+    let frac = 1.0 - h - 0.02;
+    let y1 = if fig.log_y {
+        (y0.ln() + (y1.ln() - y0.ln()) / frac).exp()
+    } else {
+        y0 + (y1 - y0) / frac
+    };
+    let b = ((x0, x1), (y0, y1));
+    let (_, corner, _) = legend_corner(fig, b);
+    (b, corner)
+}
+
+/// The legend corner covering the fewest points (and that count, and the legend's
+/// height as a fraction of the plot) for axis ranges `b`.
+fn legend_corner(fig: &Figure, b: Bounds) -> (usize, SeriesLabelPosition, f64) {
     let labels: Vec<&str> = fig
         .series
         .iter()
@@ -74,9 +105,9 @@ fn legend_corner(fig: &Figure) -> SeriesLabelPosition {
         .filter(|l| !l.is_empty())
         .collect();
     if labels.is_empty() {
-        return SeriesLabelPosition::UpperLeft;
+        return (0, SeriesLabelPosition::UpperLeft, 0.0);
     }
-    let ((x0, x1), (y0, y1)) = bounds(fig);
+    let ((x0, x1), (y0, y1)) = b;
     let scale = |v: f64, lo: f64, hi: f64, log: bool| {
         if log {
             (v.ln() - lo.ln()) / (hi.ln() - lo.ln())
@@ -125,8 +156,9 @@ fn legend_corner(fig: &Figure) -> SeriesLabelPosition {
     };
     corners
         .into_iter()
-        .min_by_key(|&(_, u0, v0)| covered(u0, v0))
-        .map_or(SeriesLabelPosition::UpperLeft, |c| c.0)
+        .map(|(c, u0, v0)| (covered(u0, v0), c, h))
+        .min_by_key(|c| c.0)
+        .expect("four corners")
 }
 
 fn plot_err(file: &Path, e: impl std::fmt::Display) -> CompareError {
@@ -137,7 +169,7 @@ fn plot_err(file: &Path, e: impl std::fmt::Display) -> CompareError {
 }
 
 macro_rules! draw_with {
-    ($root:expr, $fig:expr, $path:expr, $xs:expr, $ys:expr) => {{
+    ($root:expr, $fig:expr, $path:expr, $xs:expr, $ys:expr, $corner:expr) => {{
         let mut chart = ChartBuilder::on(&$root)
             .caption(&$fig.title, ("sans-serif", 24))
             .margin(18)
@@ -238,7 +270,7 @@ macro_rules! draw_with {
             .background_style(WHITE.mix(0.85))
             .border_style(RGBColor(160, 160, 160))
             .label_font(("sans-serif", 15))
-            .position(legend_corner($fig))
+            .position($corner)
             .draw()
             .map_err(|e| plot_err($path, e))?;
     }};
@@ -260,12 +292,19 @@ pub fn render(fig: &Figure, path: &Path) -> Result<()> {
     ensure_font();
     let root = BitMapBackend::new(path, (1000, 680)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| plot_err(path, e))?;
-    let ((x0, x1), (y0, y1)) = bounds(fig);
+    let (((x0, x1), (y0, y1)), corner) = layout(fig);
     match (fig.log_x, fig.log_y) {
-        (false, false) => draw_with!(root, fig, path, x0..x1, y0..y1),
-        (true, false) => draw_with!(root, fig, path, (x0..x1).log_scale(), y0..y1),
-        (false, true) => draw_with!(root, fig, path, x0..x1, (y0..y1).log_scale()),
-        (true, true) => draw_with!(root, fig, path, (x0..x1).log_scale(), (y0..y1).log_scale()),
+        (false, false) => draw_with!(root, fig, path, x0..x1, y0..y1, corner),
+        (true, false) => draw_with!(root, fig, path, (x0..x1).log_scale(), y0..y1, corner),
+        (false, true) => draw_with!(root, fig, path, x0..x1, (y0..y1).log_scale(), corner),
+        (true, true) => draw_with!(
+            root,
+            fig,
+            path,
+            (x0..x1).log_scale(),
+            (y0..y1).log_scale(),
+            corner
+        ),
     }
     root.present().map_err(|e| plot_err(path, e))?;
     Ok(())

@@ -1,0 +1,534 @@
+//! `sliding_friction`: the friction coefficient mu(v) of a rigid rough line sliding over
+//! an elastomer with linear rheology on the MRD foundation (Section 10.1, Fig. 7),
+//! against the estimate of Eq. (82), mu = xi grad z G''(k v) / |G(k v)|, with xi fitted.
+//!
+//! The elastomer is the continuous spectrum of Eq. (84) discretised into a Prony series
+//! (accuracy: `mrd::rheology`), or a Prony series of G(t) given directly; the springs
+//! carry 4 G(t) dx (Eq. 62). Lines: a band-limited "non-fractal" line (flat C2D between
+//! k/b and k b, C1D = pi q C2D, Eq. 76 with lambda = pi), a self-affine line, or a
+//! sinusoid; scaled to the given rms height. k = rms slope / rms height of the line's
+//! spectrum, grad z its rms slope. Every (velocity, line) run is a steady-state
+//! simulation (`mrd::sliding`); the ensemble mean and its 95 % interval are reported per
+//! velocity, xi by least squares over all velocities with a bootstrap interval over
+//! lines. A run that does not reach its steady state is listed and fails the run.
+
+use super::{bad, positive, Env, Output};
+use crate::context::Context;
+use crate::error::{Context as _, Result};
+use crate::plan::Stage;
+use crate::report::{Figure, Section, Series, Style, Table};
+use mrd::rheology::{Eq84, Prony};
+use mrd::rough_contact::Stat;
+use mrd::roughness::synthesis::{line_from, Amplitudes};
+use mrd::sliding::{slide, Line, Sliding, SlidingResult};
+use rand::{RngExt, SeedableRng};
+use rayon::prelude::*;
+use serde::Deserialize;
+use std::f64::consts::{PI, TAU};
+
+/// The elastomer's shear modulus G(t).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+enum Material {
+    /// Eq. (84) with its Prony discretisation into `terms` terms.
+    Eq84 {
+        g0: f64,
+        g1: f64,
+        tau1: f64,
+        tau2: f64,
+        s: f64,
+        #[serde(default = "sixteen")]
+        terms: usize,
+    },
+    /// G(t) = g_inf + sum G_k exp(-t/tau_k), terms [[G_k, tau_k], ...].
+    Prony { g_inf: f64, terms: Vec<[f64; 2]> },
+}
+
+fn sixteen() -> usize {
+    16
+}
+
+impl Material {
+    /// G(t) as a Prony series, and G(omega) (exact for Eq. 84).
+    fn shear(&self) -> mrd::Result<Prony> {
+        match self {
+            Material::Eq84 {
+                g0,
+                g1,
+                tau1,
+                tau2,
+                s,
+                terms,
+            } => Eq84::new(*g0, *g1, *tau1, *tau2, *s)?.prony(*terms),
+            Material::Prony { g_inf, terms } => {
+                Prony::new(*g_inf, terms.iter().map(|t| (t[0], t[1])).collect())
+            }
+        }
+    }
+
+    fn complex(&self, omega: f64) -> mrd::Result<(f64, f64)> {
+        match self {
+            Material::Eq84 {
+                g0,
+                g1,
+                tau1,
+                tau2,
+                s,
+                ..
+            } => Eq84::new(*g0, *g1, *tau1, *tau2, *s)?.complex(omega),
+            Material::Prony { .. } => Ok(self.shear()?.complex(omega)),
+        }
+    }
+}
+
+/// The rigid line.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+enum LineSpec {
+    /// Flat C2D for q in [k/band, k band] (non-fractal), `waves` = k L / (2 pi).
+    Band { waves: f64, band: f64 },
+    /// Self-affine C2D ~ q^(-2H-2) for q from `min_waves` 2 pi / L (default 1) to
+    /// `waves` 2 pi / L.
+    SelfAffine {
+        hurst: f64,
+        waves: f64,
+        #[serde(default = "one_f")]
+        min_waves: f64,
+    },
+    /// h0 cos(k x + phase), `waves` whole waves over L.
+    Sinusoid { waves: usize },
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SlidingFriction {
+    material: Material,
+    line: LineSpec,
+    /// Line length L and rms height h (length units).
+    length: f64,
+    rms_height: f64,
+    /// Springs along L.
+    springs: usize,
+    /// Line points per spring (the line is synthesised on springs x this).
+    #[serde(default = "one")]
+    refine: usize,
+    /// Line points moved per time step.
+    #[serde(default = "one")]
+    stride: usize,
+    /// Normal force as F / (4 G(inf) h L), the reduced force of the relaxed (rubbery)
+    /// contact (Eq. 77).
+    reduced_force: f64,
+    /// Sliding velocities: `velocities` values log-spaced from `velocity_min` to
+    /// `velocity_max` (length units per second).
+    velocity_min: f64,
+    velocity_max: f64,
+    velocities: usize,
+    realisations: u64,
+    #[serde(default)]
+    seed: u64,
+    /// Steady state: mu and the mean approach change by less than this between passes
+    /// (relative to mu and to the rms height).
+    #[serde(default = "tolerance")]
+    tolerance: f64,
+    #[serde(default = "max_passes")]
+    max_passes: usize,
+}
+
+fn one() -> usize {
+    1
+}
+fn one_f() -> f64 {
+    1.0
+}
+fn tolerance() -> f64 {
+    1e-4
+}
+fn max_passes() -> usize {
+    400
+}
+
+/// Runs of one velocity, over the lines.
+struct AtVelocity {
+    velocity: f64,
+    runs: Vec<SlidingResult>,
+}
+
+impl SlidingFriction {
+    fn points(&self) -> usize {
+        self.springs * self.refine
+    }
+
+    fn velocity_grid(&self) -> Vec<f64> {
+        mrd::friction::log_space(self.velocity_min, self.velocity_max, self.velocities)
+    }
+
+    /// Line `r`, scaled to the rms height.
+    fn line(&self, r: u64) -> mrd::Result<Line> {
+        let (n, l) = (self.points(), self.length);
+        let z = match self.line {
+            LineSpec::Band { waves, band } => {
+                let k = TAU * waves / l;
+                let (lo, hi) = (k / band, k * band);
+                line_from(
+                    &|q: f64| if (lo..=hi).contains(&q) { PI * q } else { 0.0 },
+                    n,
+                    l,
+                    self.seed,
+                    r,
+                    Amplitudes::Deterministic,
+                )?
+            }
+            LineSpec::SelfAffine {
+                hurst,
+                waves,
+                min_waves,
+            } => {
+                let (q0, q1) = (TAU * min_waves / l, TAU * waves / l);
+                line_from(
+                    &|q: f64| {
+                        if (q0..=q1).contains(&q) {
+                            PI * q * q.powf(-2.0 * hurst - 2.0)
+                        } else {
+                            0.0
+                        }
+                    },
+                    n,
+                    l,
+                    self.seed,
+                    r,
+                    Amplitudes::Deterministic,
+                )?
+            }
+            LineSpec::Sinusoid { waves } => {
+                let phase =
+                    TAU * mrd::roughness::synthesis::realisation_rng(self.seed, r).random::<f64>();
+                (0..n)
+                    .map(|i| (TAU * waves as f64 * i as f64 / n as f64 + phase).cos())
+                    .collect()
+            }
+        };
+        let h = Line::new(&z, l)?.rms_height;
+        let z: Vec<f64> = z.iter().map(|v| v * self.rms_height / h).collect();
+        Line::new(&z, l)
+    }
+
+    fn setup(&self, shear: &Prony, velocity: f64) -> Sliding {
+        let f = self.reduced_force * 4.0 * shear.relaxed * self.rms_height * self.length;
+        Sliding {
+            modulus: shear.scaled(4.0),
+            springs: self.springs,
+            stride: self.stride,
+            normal_force: f,
+            velocity,
+            tolerance: self.tolerance,
+            max_passes: self.max_passes,
+            accelerate: true,
+        }
+    }
+}
+
+impl Output for SlidingFriction {
+    fn validate(&self, _: &Context) -> Result<()> {
+        let shear = self.material.shear().ctx("material")?;
+        if shear.relaxed <= 0.0 {
+            return bad("the material needs a relaxed modulus (g0 or g_inf > 0): under a constant normal force it would creep without end");
+        }
+        if let Material::Eq84 { terms, .. } = self.material {
+            if !(4..=64).contains(&terms) {
+                return bad(format!("material.terms = {terms} must lie in 4..=64"));
+            }
+        }
+        match self.line {
+            LineSpec::Band { waves, band } => {
+                if !(positive(waves) && band > 1.0 && band.is_finite()) {
+                    return bad("line: waves must be > 0 and band > 1");
+                }
+            }
+            LineSpec::SelfAffine {
+                hurst,
+                waves,
+                min_waves,
+            } => {
+                let ok = (-1.0..=3.0).contains(&hurst)
+                    && min_waves >= 1.0
+                    && waves >= 2.0 * min_waves
+                    && waves.is_finite();
+                if !ok {
+                    return bad(
+                        "line: hurst must lie in [-1, 3], min_waves >= 1 and waves >= 2 min_waves",
+                    );
+                }
+            }
+            LineSpec::Sinusoid { waves } => {
+                if waves == 0 {
+                    return bad("line: waves must be >= 1");
+                }
+            }
+        }
+        if !(positive(self.length) && positive(self.rms_height)) {
+            return bad("length and rms_height must be > 0");
+        }
+        if !(16..=1 << 20).contains(&self.springs) || self.refine == 0 || self.stride == 0 {
+            return bad("springs must lie in 16..=1048576, refine and stride >= 1");
+        }
+        if !self.points().is_multiple_of(self.stride) {
+            return bad(format!(
+                "stride = {} must divide springs x refine = {}",
+                self.stride,
+                self.points()
+            ));
+        }
+        if self.points() > 1 << 22 {
+            return bad("springs x refine must be <= 4194304");
+        }
+        super::check_memory(
+            self.springs as f64
+                * (shear.terms.len() as f64 + 4.0)
+                * 16.0
+                * rayon::current_num_threads() as f64,
+            &format!("springs = {}", self.springs),
+        )?;
+        if !positive(self.reduced_force) {
+            return bad("reduced_force must be > 0");
+        }
+        let ok = positive(self.velocity_min)
+            && positive(self.velocity_max)
+            && self.velocity_max >= self.velocity_min
+            && (1..=200).contains(&self.velocities);
+        if !ok {
+            return bad("need 0 < velocity_min <= velocity_max and velocities in 1..=200");
+        }
+        if !(2..=10_000).contains(&self.realisations) {
+            return bad("realisations must lie in 2..=10000 (for intervals)");
+        }
+        if !(self.tolerance > 0.0 && self.tolerance < 0.1) || self.max_passes < 2 {
+            return bad("tolerance must lie in (0, 0.1) and max_passes be >= 2");
+        }
+        Ok(())
+    }
+
+    fn stages(&self, _: &Context) -> Vec<Stage> {
+        vec![Stage::RoughSynthesis, Stage::ViscoelasticSliding]
+    }
+
+    fn seed(&self) -> Option<u64> {
+        Some(self.seed)
+    }
+
+    fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
+        let shear = self.material.shear().ctx("material")?;
+        let lines: Vec<Line> = out
+            .stage(Stage::RoughSynthesis, || {
+                (0..self.realisations)
+                    .map(|r| self.line(r))
+                    .collect::<mrd::Result<_>>()
+            })
+            .ctx("lines")?;
+        let vs = self.velocity_grid();
+        let jobs: Vec<(usize, usize)> = (0..vs.len())
+            .flat_map(|i| (0..lines.len()).map(move |r| (i, r)))
+            .collect();
+        let runs: Vec<SlidingResult> = out
+            .stage(Stage::ViscoelasticSliding, || {
+                jobs.par_iter()
+                    .with_max_len(1)
+                    .map(|&(i, r)| slide(&lines[r], &self.setup(&shear, vs[i])))
+                    .collect::<mrd::Result<_>>()
+            })
+            .ctx("sliding")?;
+        let per_v: Vec<AtVelocity> = vs
+            .iter()
+            .enumerate()
+            .map(|(i, &velocity)| AtVelocity {
+                velocity,
+                runs: runs[i * lines.len()..(i + 1) * lines.len()].to_vec(),
+            })
+            .collect();
+        self.report(env, out, &lines, &per_v)
+    }
+}
+
+impl SlidingFriction {
+    fn report(
+        &self,
+        env: &Env,
+        out: &mut Section,
+        lines: &[Line],
+        per_v: &[AtVelocity],
+    ) -> Result<()> {
+        let u = &env.ctx.units;
+        // k and grad z: ensemble means of the lines' own values.
+        let k = lines.iter().map(Line::wave_vector).sum::<f64>() / lines.len() as f64;
+        let grad_z = lines.iter().map(|l| l.rms_slope).sum::<f64>() / lines.len() as f64;
+        let estimate = |v: f64| -> Result<f64> {
+            let (re, im) = self.material.complex(k * v).ctx("G(omega)")?;
+            Ok(mrd::reference::sliding::eq82(1.0, grad_z, re, im))
+        };
+        let r: Vec<f64> = per_v
+            .iter()
+            .map(|p| estimate(p.velocity))
+            .collect::<Result<_>>()?;
+        let mean_mu = |idx: &[usize]| -> Vec<f64> {
+            per_v
+                .iter()
+                .map(|p| idx.iter().map(|&i| p.runs[i].mu).sum::<f64>() / idx.len() as f64)
+                .collect()
+        };
+        let fit = |m: &[f64]| -> f64 {
+            m.iter().zip(&r).map(|(a, b)| a * b).sum::<f64>() / r.iter().map(|b| b * b).sum::<f64>()
+        };
+        let all: Vec<usize> = (0..lines.len()).collect();
+        let xi = fit(&mean_mu(&all));
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(self.seed ^ 0xF7);
+        let boot: Vec<f64> = (0..200)
+            .map(|_| {
+                let idx: Vec<usize> = (0..lines.len())
+                    .map(|_| rng.random_range(0..lines.len()))
+                    .collect();
+                fit(&mean_mu(&idx))
+            })
+            .collect();
+        let (xi_lo, xi_hi) = super::hurst_sweep::fit::interval(boot);
+        let mut t = Table::new(
+            "sliding_friction",
+            &[
+                format!("velocity [{}/s]", u.length),
+                "kv [rad/s]".to_string(),
+                "mu_mean [1]".into(),
+                "mu_ci95 [1]".into(),
+                "mu_energy_mean [1]".into(),
+                "contact_fraction_mean [1]".into(),
+                "eq82_over_xi [1]".into(),
+                "eq82_fitted [1]".into(),
+                "passes_max [count]".into(),
+                "converged [0/1]".into(),
+            ],
+        );
+        t.notes.push(format!(
+            "Section 10.1: {} lines of {} springs (line points x{}), stride {}, L = {}, h = {}, k = rms slope / rms height = {k:e}, grad z = {grad_z:e}; reduced force F/(4 G_inf h L) = {}; material {:?}; steady state: mu and mean approach change < {:e} between passes; mu from sum f dz/dx, mu_energy from the dissipated energy per unit distance; eq82_over_xi = grad z G''(kv)/|G(kv)|, xi fitted over all velocities",
+            lines.len(), self.springs, self.refine, self.stride, self.length, self.rms_height, self.reduced_force, self.material, self.tolerance
+        ));
+        let mut runs_t = Table::new(
+            "sliding_friction_runs",
+            &[
+                format!("velocity [{}/s]", u.length),
+                "line [count]".into(),
+                "mu [1]".into(),
+                "mu_energy [1]".into(),
+                "contact_fraction [1]".into(),
+                format!("mean_approach [{}]", u.length),
+                "passes [count]".into(),
+                "converged [0/1]".into(),
+            ],
+        );
+        runs_t
+            .notes
+            .push("every steady-state run; converged = 0: max_passes reached".into());
+        let mut energy_dev: f64 = 0.0;
+        for (i, p) in per_v.iter().enumerate() {
+            let mus: Vec<f64> = p.runs.iter().map(|x| x.mu).collect();
+            let st = Stat::of(&mus);
+            let me = p.runs.iter().map(|x| x.mu_energy).sum::<f64>() / p.runs.len() as f64;
+            let cf = p.runs.iter().map(|x| x.contact_fraction).sum::<f64>() / p.runs.len() as f64;
+            let passes = p.runs.iter().map(|x| x.history.len()).max().unwrap_or(0);
+            let conv = p.runs.iter().all(|x| x.converged);
+            energy_dev = energy_dev.max((me - st.mean).abs() / st.mean.abs().max(1e-300));
+            t.push(vec![
+                p.velocity,
+                k * p.velocity,
+                st.mean,
+                st.ci95,
+                me,
+                cf,
+                r[i],
+                xi * r[i],
+                passes as f64,
+                conv as u8 as f64,
+            ]);
+            for (line, x) in p.runs.iter().enumerate() {
+                runs_t.push(vec![
+                    p.velocity,
+                    line as f64,
+                    x.mu,
+                    x.mu_energy,
+                    x.contact_fraction,
+                    x.depth,
+                    x.history.len() as f64,
+                    x.converged as u8 as f64,
+                ]);
+                if !x.converged {
+                    out.failures.push(format!(
+                        "velocity {:e}, line {line}: no steady state after {} passes (last two mu {:?})",
+                        p.velocity,
+                        x.history.len(),
+                        &x.history[x.history.len().saturating_sub(2)..]
+                    ));
+                }
+            }
+        }
+        let (imax, peak) = t.column("mu_mean").into_iter().enumerate().fold(
+            (0, f64::NEG_INFINITY),
+            |m, (i, v)| if v > m.1 { (i, v) } else { m },
+        );
+        out.scalar("xi", xi);
+        out.scalar("xi_lo95", xi_lo);
+        out.scalar("xi_hi95", xi_hi);
+        out.scalar("wave_vector", k);
+        out.scalar("grad_z", grad_z);
+        out.scalar("mu_peak", peak);
+        out.scalar("velocity_at_peak", per_v[imax].velocity);
+        out.scalar("max_rel_dev_energy_vs_slope", energy_dev);
+        // Eq. (82) on a fine grid of velocities for the figure.
+        let fine: Vec<(f64, f64)> =
+            mrd::friction::log_space(self.velocity_min, self.velocity_max, 200)
+                .into_iter()
+                .map(|v| estimate(v).map(|e| (v, xi * e)))
+                .collect::<Result<_>>()?;
+        let label = format!(
+            "Eq. (82), k = {k:.3} 1/{}, grad z = {grad_z:.3}, xi = {xi:.3} [{xi_lo:.3}, {xi_hi:.3}]",
+            u.length
+        );
+        out.figures.push(self.figure(&t, fine, label, u));
+        out.tables.push(t);
+        out.tables.push(runs_t);
+        Ok(())
+    }
+
+    fn figure(
+        &self,
+        t: &Table,
+        eq82: Vec<(f64, f64)>,
+        eq82_label: String,
+        u: &crate::context::Units,
+    ) -> Figure {
+        let mu = t.xy("velocity", "mu_mean");
+        let ci95 = t.column("mu_ci95");
+        let bars = mu
+            .iter()
+            .zip(&ci95)
+            .map(|(&(v, m), c)| (v, m - c, m + c))
+            .collect();
+        let mut fig = Figure::new(
+            "sliding_friction",
+            "Elastomer friction mu(v) by MRD and Eq. (82) (cf. Fig. 7)",
+            &format!("sliding velocity v [{}/s]", u.length),
+            "friction coefficient mu [1]",
+        )
+        .with(
+            Series::new(
+                format!("MRD, mean of {} lines (95% CI)", self.realisations),
+                mu,
+                Style::Markers,
+            )
+            .with_bars(bars),
+        )
+        .with(Series::new(eq82_label, eq82, Style::Line))
+        .with(Series::new(
+            "MRD, dissipated energy per distance / F_N",
+            t.xy("velocity", "mu_energy_mean"),
+            Style::Crosses,
+        ));
+        fig.log_x = true;
+        fig
+    }
+}
