@@ -31,7 +31,7 @@ const EXAMPLES: &str = "Examples:
   mrdw show jkr > my.toml       start a new scene from an embedded one
   mrdw run fig6-full --shard 0/4 --out shards/0    one machine's share of a sweep
   mrdw merge shards/0 shards/1 shards/2 shards/3   combine the shares into one report
-  mrdw bench mrd | rough | bem | sliding   run time (and error) of the solvers
+  mrdw bench mrd | rough | bem | sliding | sliding3d   run time (and error) of the solvers
 
 Report folders: --out may name a new folder, an empty one, or a report folder mrdw
 wrote before (replaced as a whole); any other existing path is refused. A run holds a
@@ -118,6 +118,9 @@ enum BenchTarget {
     /// Sliding on viscoelastic springs: steps per second for 1e4 .. 1e6 springs with
     /// 20 Prony terms, and one velocity point of fig7.
     Sliding,
+    /// 3D viscoelastic sliding: one velocity point of fig7-3d at k v = 1e-2 .. 1e2 rad/s
+    /// on grids 128^2 .. (--max-n)^2 (default up to 512).
+    Sliding3d,
 }
 
 fn parse_shard(s: &str) -> Result<(usize, usize), String> {
@@ -175,20 +178,7 @@ fn stop_after() -> Option<usize> {
 }
 
 fn load(scene: Option<&str>) -> Result<Scene, Failure> {
-    let name = scene.unwrap_or(scenes::DEFAULT);
-    let path = PathBuf::from(name);
-    if path.exists() {
-        return Ok(Scene::load(&path)?);
-    }
-    if let Some(text) = scenes::get(name) {
-        return Ok(Scene::parse(text, &format!("<embedded:{name}>"), None)?);
-    }
-    let hint = if name.ends_with(".toml") {
-        "no such file"
-    } else {
-        "neither a file nor an embedded scene (see `mrdw scenes`)"
-    };
-    Err(format!("scene `{name}`: {hint}").into())
+    Ok(Scene::open(scene.unwrap_or(scenes::DEFAULT))?)
 }
 
 fn set_threads(threads: Option<usize>) -> Result<(), Failure> {
@@ -290,6 +280,10 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
                     if max_exp == 6 { 7 } else { max_exp.clamp(3, 8) },
                 )?,
                 BenchTarget::Sliding => compare::bench::run_sliding(&mut out.0, max_exp)?,
+                BenchTarget::Sliding3d => {
+                    let n = if max_n == 1024 { 512 } else { max_n };
+                    compare::bench::run_sliding_3d(&mut out.0, n)?
+                }
                 BenchTarget::Bem => {
                     compare::bench::run_bem(&mut out.0, max_n, write_surfaces.as_deref())?
                 }

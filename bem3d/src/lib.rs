@@ -14,6 +14,8 @@ pub mod mask;
 pub mod operator;
 
 pub use error::{BemError, Result};
+pub mod sliding;
 pub mod solver;
 pub use operator::{Compliance, DenseCompliance, NonPeriodicHalfSpace, PeriodicHalfSpace};
+pub use sliding::{SlidingContact, SlidingSolution};
 pub use solver::{ContactSolver, Load, Solution, SolverOptions};

@@ -112,6 +112,27 @@ fn spectral(nx: usize, ny: usize, lx: f64, ly: f64, f: impl Fn(f64) -> f64) -> V
     s
 }
 
+/// `f(kx, ky)` (kx >= 0) at every bin of a real 2D FFT of a periodic `ny x nx` grid of
+/// size `lx x ly`, in the transposed layout of [`Fft2`] (`(nx/2 + 1) x ny`).
+pub fn spectral_grid(
+    nx: usize,
+    ny: usize,
+    lx: f64,
+    ly: f64,
+    f: impl Fn(f64, f64) -> f64,
+) -> Vec<f64> {
+    let nc = nx / 2 + 1;
+    let mut s = vec![0.0; nc * ny];
+    for c in 0..nc {
+        for r in 0..ny {
+            let kx = 2.0 * PI * c as f64 / lx;
+            let ky = 2.0 * PI * signed(r, ny) / ly;
+            s[c * ny + r] = f(kx, ky);
+        }
+    }
+    s
+}
+
 /// Signed frequency index of bin `r` of an n-point DFT.
 fn signed(r: usize, n: usize) -> f64 {
     if r <= n / 2 {
@@ -145,6 +166,63 @@ impl PeriodicHalfSpace {
             fft,
             kernel,
             stiffness: stiffness_kernel(nx, ny, lx, ly, e_star),
+            spec,
+            table: Circulant {
+                px: nx,
+                py: ny,
+                values: green,
+            },
+        }
+    }
+}
+
+impl PeriodicHalfSpace {
+    /// A periodic half-space with any real spectral compliance `c(kx, ky) > 0` for
+    /// k != 0, even in k (e.g. |2 / (|k| E*(kx v))| of a sliding viscoelastic body);
+    /// the k = 0 mode carries no displacement. `e_scale` is a modulus for the solver's
+    /// scales (initial guesses, the preconditioner's mean mode); the preconditioner is
+    /// the exact inverse 1 / c.
+    pub fn with_compliance(
+        nx: usize,
+        ny: usize,
+        lx: f64,
+        ly: f64,
+        e_scale: f64,
+        c: impl Fn(f64, f64) -> f64,
+    ) -> Self {
+        let mut fft = Fft2::new(nx, ny);
+        let kernel = spectral_grid(nx, ny, lx, ly, |kx, ky| {
+            if kx == 0.0 && ky == 0.0 {
+                0.0
+            } else {
+                c(kx, ky)
+            }
+        });
+        let k_min = (2.0 * PI / lx).min(2.0 * PI / ly);
+        let stiffness = kernel
+            .iter()
+            .map(|&k| {
+                if k > 0.0 {
+                    1.0 / k
+                } else {
+                    0.5 * e_scale * k_min
+                }
+            })
+            .collect();
+        let mut spec: Vec<Complex64> = kernel.iter().map(|&k| Complex64::new(k, 0.0)).collect();
+        let mut green = vec![0.0; nx * ny];
+        fft.inverse(&mut spec, &mut green);
+        Self {
+            hs: HalfSpace {
+                nx,
+                ny,
+                lx,
+                ly,
+                e_star: e_scale,
+            },
+            fft,
+            kernel,
+            stiffness,
             spec,
             table: Circulant {
                 px: nx,

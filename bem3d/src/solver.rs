@@ -205,21 +205,6 @@ impl<K: Compliance> ContactSolver<K> {
     /// `heights` (`ny x nx`, peaks up, finite); `mask`: cells that may touch (None: all).
     pub fn new(op: K, heights: &[f64], mask: Option<Vec<bool>>) -> Result<Self> {
         let n = op.cells();
-        if heights.len() != n {
-            return Err(BemError::InvalidInput(format!(
-                "height map has {} values but the grid is {} x {}",
-                heights.len(),
-                op.ny(),
-                op.nx()
-            )));
-        }
-        if let Some(i) = heights.iter().position(|h| !h.is_finite()) {
-            return Err(BemError::InvalidInput(format!(
-                "non-finite height at row {}, column {}",
-                i / op.nx(),
-                i % op.nx()
-            )));
-        }
         if !(op.e_star().is_finite() && op.e_star() > 0.0) {
             return Err(BemError::InvalidInput(format!(
                 "E* = {} must be > 0",
@@ -232,52 +217,66 @@ impl<K: Compliance> ContactSolver<K> {
                 "mask must match the grid and contain a cell".into(),
             ));
         }
-        let hmax = heights
-            .iter()
-            .zip(&mask)
-            .filter(|(_, &m)| m)
-            .map(|(h, _)| *h)
-            .fold(f64::NEG_INFINITY, f64::max);
-        let z: Vec<f64> = heights.iter().map(|h| hmax - h).collect();
-        let nm = mask.iter().filter(|&&m| m).count() as f64;
-        let mean = heights
-            .iter()
-            .zip(&mask)
-            .filter(|(_, &m)| m)
-            .map(|(h, _)| h)
-            .sum::<f64>()
-            / nm;
-        let var = heights
-            .iter()
-            .zip(&mask)
-            .filter(|(_, &m)| m)
-            .map(|(h, _)| (h - mean).powi(2))
-            .sum::<f64>()
-            / nm;
-        // Flat faces (e.g. a flat punch under a mask) have no rms height: the gap is then
-        // measured against the grid diagonal.
-        let h_rms = if var > 0.0 {
-            var.sqrt()
-        } else {
-            (op.lx() * op.lx() + op.ly() * op.ly()).sqrt()
-        };
-        let z_mean = hmax - mean;
         // Stiffness of the longest wavelength, E* / sqrt(lx ly) (up to pi): the scale of
         // a re-admitted cell's pressure per unit overlap.
         let overlap_stiffness = op.e_star() / (op.lx() * op.ly()).sqrt();
-        Ok(Self {
+        let mut solver = Self {
             overlap_stiffness,
             op,
-            w: z.clone(),
-            z,
-            h_rms,
-            domain_cells: nm as usize,
-            z_mean,
+            w: vec![0.0; n],
+            z: vec![0.0; n],
+            h_rms: 0.0,
+            domain_cells: mask.iter().filter(|&&m| m).count(),
+            z_mean: 0.0,
             t: vec![0.0; n],
             r: vec![0.0; n],
             loads: Vec::new(),
             mask: mask.iter().map(|&m| m as u8).collect(),
-        })
+        };
+        solver.set_heights(heights)?;
+        Ok(solver)
+    }
+
+    /// Replaces the height map (same grid and mask), keeping the operator and buffers.
+    pub fn set_heights(&mut self, heights: &[f64]) -> Result<()> {
+        let (n, nx) = (self.op.cells(), self.op.nx());
+        if heights.len() != n {
+            return Err(BemError::InvalidInput(format!(
+                "height map has {} values but the grid is {} x {nx}",
+                heights.len(),
+                self.op.ny(),
+            )));
+        }
+        if let Some(i) = heights.iter().position(|h| !h.is_finite()) {
+            return Err(BemError::InvalidInput(format!(
+                "non-finite height at row {}, column {}",
+                i / nx,
+                i % nx
+            )));
+        }
+        let on = |i: usize| self.mask[i] > 0;
+        let hmax = (0..n)
+            .filter(|&i| on(i))
+            .map(|i| heights[i])
+            .fold(f64::NEG_INFINITY, f64::max);
+        let nm = self.domain_cells as f64;
+        let mean = (0..n).filter(|&i| on(i)).map(|i| heights[i]).sum::<f64>() / nm;
+        let var = (0..n)
+            .filter(|&i| on(i))
+            .map(|i| (heights[i] - mean).powi(2))
+            .sum::<f64>()
+            / nm;
+        // Flat faces (e.g. a flat punch under a mask) have no rms height: the gap is then
+        // measured against the grid diagonal.
+        self.h_rms = if var > 0.0 {
+            var.sqrt()
+        } else {
+            (self.op.lx() * self.op.lx() + self.op.ly() * self.op.ly()).sqrt()
+        };
+        self.z_mean = hmax - mean;
+        self.z = heights.iter().map(|h| hmax - h).collect();
+        self.w.copy_from_slice(&self.z);
+        Ok(())
     }
 
     pub fn operator(&self) -> &K {

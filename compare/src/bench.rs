@@ -511,3 +511,93 @@ pub fn run_sliding(w: &mut dyn Write, max_exp: u32) -> std::io::Result<()> {
     }
     Ok(())
 }
+
+/// The CPU model (first `model name` of /proc/cpuinfo), for the record of a benchmark.
+pub fn cpu_model() -> String {
+    std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|m| m.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown CPU".into())
+}
+
+/// `mrdw bench sliding3d`: steady viscoelastic sliding in 3D (`bem3d::sliding`) on the
+/// `fig7-3d` surface (band spectrum, 4 waves, h = 2 um over L = 1 mm, Eq. 84, mean
+/// pressure 4 G0 h / L, tolerance 1e-6): wall time, outer and inner iterations of one
+/// cold-started velocity point at k v = 1e-2 .. 1e2 rad/s on grids 128^2 .. max_n^2, and
+/// the change of mu against the finest grid (all threads of the pool).
+pub fn run_sliding_3d(w: &mut dyn Write, max_n: usize) -> std::io::Result<()> {
+    use bem3d::{SlidingContact, SolverOptions};
+    use mrd::rheology::Eq84;
+    use mrd::roughness::stats::surface_moments;
+    use mrd::roughness::synthesis::{surface_from, upsample, Amplitudes, Grid};
+    use std::f64::consts::TAU;
+    let (l, h_rms) = (1.0, 0.002);
+    let k0 = TAU * 4.0 / l;
+    let (lo, hi) = (k0 / 2f64.sqrt(), k0 * 2f64.sqrt());
+    let base = Grid::square(16, l);
+    let band = |q: f64| if (lo..=hi).contains(&q) { 1.0 } else { 0.0 };
+    let h0 = surface_from(&band, &base, 7, 0, Amplitudes::Deterministic).expect("surface");
+    let m = surface_moments(&h0, 16, 16, l, l);
+    let k = m.rms_slope / m.rms_height;
+    let g = Eq84::PAPER;
+    let modulus = |om: f64| {
+        g.complex(om)
+            .map(|(a, b)| (4.0 * a, 4.0 * b))
+            .unwrap_or((f64::NAN, f64::NAN))
+    };
+    let pm = 4.0 * g.g0 * h_rms / l;
+    let opts = SolverOptions {
+        tolerance: 1e-6,
+        max_iterations: 2000,
+    };
+    writeln!(
+        w,
+        "3D viscoelastic sliding (bem3d::sliding): fig7-3d surface 0, Eq. (84), p = 4 G0 h / L, tolerance 1e-6, cold start, {} threads, {}\n",
+        rayon::current_num_threads(),
+        cpu_model()
+    )?;
+    writeln!(
+        w,
+        "{:>6} | {:>10} | {:>9} | {:>6} | {:>6} | {:>11} | {:>10}",
+        "grid", "kv [rad/s]", "time [s]", "outer", "inner", "mu", "contact"
+    )?;
+    writeln!(w, "{}", "-".repeat(76))?;
+    let grids: Vec<usize> = [128usize, 256, 512, 1024, 2048]
+        .into_iter()
+        .filter(|&n| n <= max_n.max(128))
+        .collect();
+    for &n in &grids {
+        let h: Vec<f64> = upsample(&h0, &base, &Grid::square(n, l))
+            .expect("upsample")
+            .iter()
+            .map(|v| v * h_rms / m.rms_height)
+            .collect();
+        for kv in [1e-2, 1e-1, 1e0, 1e1, 1e2] {
+            let t0 = Instant::now();
+            let mut s =
+                SlidingContact::new(n, n, l, l, &h, kv / k, &modulus).expect("sliding contact");
+            match s.solve(pm, &opts, None) {
+                Ok(sol) => writeln!(
+                    w,
+                    "{n:>6} | {kv:>10.0e} | {:>9.3} | {:>6} | {:>6} | {:>11.5e} | {:>10.4e}",
+                    t0.elapsed().as_secs_f64(),
+                    sol.contact.iterations,
+                    sol.inner_iterations,
+                    sol.mu,
+                    sol.contact.contact_cells as f64 / (n * n) as f64
+                )?,
+                Err(e) => writeln!(
+                    w,
+                    "{n:>6} | {kv:>10.0e} | failed: {}",
+                    e.to_string().lines().next().unwrap_or("")
+                )?,
+            }
+        }
+    }
+    Ok(())
+}

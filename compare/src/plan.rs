@@ -34,6 +34,8 @@ pub enum Stage {
     Viscoelastic,
     /// Steady sliding of rough lines over viscoelastic springs (Section 10.1).
     ViscoelasticSliding,
+    /// Steady sliding of rough surfaces over a viscoelastic half-space (bem3d).
+    ViscoelasticSliding3d,
     /// Random rough lines or surfaces (Eqs. 70-72).
     RoughSynthesis,
     /// Rough line on the MRD foundation (sorted gaps, exact queries).
@@ -63,6 +65,7 @@ impl Stage {
             Stage::ClosedForm => "closed_form",
             Stage::Viscoelastic => "viscoelastic_springs",
             Stage::ViscoelasticSliding => "viscoelastic_sliding",
+            Stage::ViscoelasticSliding3d => "viscoelastic_sliding_3d",
             Stage::RoughSynthesis => "rough_synthesis",
             Stage::RoughContact => "rough_contact_mrd",
             Stage::Bem3d => "bem3d",

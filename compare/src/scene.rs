@@ -148,6 +148,24 @@ impl Scene {
         Self::parse(&text, &path.display().to_string(), path.parent())
     }
 
+    /// A scene by name, as the command line takes it: an existing file, else an embedded
+    /// scene (see [`crate::scenes`]).
+    pub fn open(name: &str) -> Result<Self> {
+        let path = Path::new(name);
+        if path.exists() {
+            return Self::load(path);
+        }
+        if let Some(text) = crate::scenes::get(name) {
+            return Self::parse(text, &format!("<embedded:{name}>"), None);
+        }
+        let hint = if name.ends_with(".toml") {
+            "no such file"
+        } else {
+            "neither a file nor an embedded scene (see `mrdw scenes`)"
+        };
+        Err(CompareError::Scene(format!("scene `{name}`: {hint}")))
+    }
+
     /// Where the scene came from (a path, or `<embedded:name>`).
     pub fn origin(&self) -> &str {
         &self.context.origin

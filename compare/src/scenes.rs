@@ -22,6 +22,8 @@ pub const EMBEDDED: &[(&str, &str)] = &[
     ("fig6-full", include_str!("../../cases/fig6-full.toml")),
     ("fig7", include_str!("../../cases/fig7.toml")),
     ("fig7-ci", include_str!("../../cases/fig7-ci.toml")),
+    ("fig7-3d", include_str!("../../cases/fig7-3d.toml")),
+    ("fig7-3d-ci", include_str!("../../cases/fig7-3d-ci.toml")),
     (
         "fig7-viscous",
         include_str!("../../cases/fig7-viscous.toml"),

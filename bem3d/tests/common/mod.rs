@@ -1,7 +1,6 @@
 //! Surfaces and measures shared by the solver's tests.
 #![allow(dead_code, clippy::needless_range_loop)]
 
-use bem3d::DenseCompliance;
 use std::f64::consts::PI;
 
 pub fn rel(a: f64, b: f64) -> f64 {
@@ -85,12 +84,8 @@ pub fn self_affine(n: usize, hurst: f64, seed: u64) -> Vec<f64> {
 
 /// Dense reference: the same discrete LCP solved by an active-set method with direct
 /// (nalgebra LU with partial pivoting) solves on the contact set, force-controlled.
-pub fn dense_reference(
-    dense: &DenseCompliance,
-    z: &[f64],
-    force: f64,
-    area: f64,
-) -> (Vec<f64>, f64) {
+/// `matrix`: row-major n x n influence matrix (need not be symmetric).
+pub fn dense_reference(matrix: &[f64], z: &[f64], force: f64, area: f64) -> (Vec<f64>, f64) {
     use nalgebra::{DMatrix, DVector};
     let n = z.len();
     let mut active: Vec<bool> = vec![true; n];
@@ -101,7 +96,7 @@ pub fn dense_reference(
         // [A 1^T  0] [d] = [ W  ]
         let a = DMatrix::<f64>::from_fn(m + 1, m + 1, |r, c| {
             if r < m && c < m {
-                dense.matrix[idx[r] * n + idx[c]]
+                matrix[idx[r] * n + idx[c]]
             } else if r < m {
                 -1.0
             } else if c < m {
@@ -119,7 +114,7 @@ pub fn dense_reference(
         let d = x[m];
         let mut u = vec![0.0; n];
         for i in 0..n {
-            u[i] = (0..n).map(|j| dense.matrix[i * n + j] * p[j]).sum();
+            u[i] = (0..n).map(|j| matrix[i * n + j] * p[j]).sum();
         }
         let mut changed = false;
         for i in 0..n {
@@ -141,4 +136,31 @@ pub fn dense_reference(
         }
     }
     panic!("active set did not settle");
+}
+
+/// Rms gradient of a periodic `n x n` surface of side `l` (spectral derivatives).
+pub fn rms_slope(h: &[f64], n: usize, l: f64) -> f64 {
+    use bem3d::fft::Fft2;
+    use rustfft::num_complex::Complex64;
+    let mut fft = Fft2::new(n, n);
+    let mut spec = vec![Complex64::default(); fft.spectrum_len()];
+    fft.forward(h, &mut spec);
+    let nc = fft.nc();
+    let mut sum = 0.0;
+    for c in 0..nc {
+        for r in 0..n {
+            if n.is_multiple_of(2) && c == n / 2 {
+                continue;
+            }
+            let ky = if r <= n / 2 {
+                r as f64
+            } else {
+                r as f64 - n as f64
+            };
+            let k2 = (2.0 * PI / l).powi(2) * ((c * c) as f64 + ky * ky);
+            let w = if c == 0 { 1.0 } else { 2.0 };
+            sum += w * k2 * spec[c * n + r].norm_sqr();
+        }
+    }
+    (sum / (n * n) as f64 / (n * n) as f64).sqrt()
 }

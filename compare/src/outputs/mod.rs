@@ -22,12 +22,14 @@ mod axisym;
 mod bem_contact;
 mod contact_area;
 mod damping;
+mod elastomer;
 mod force_depth;
 pub mod hurst_sweep;
 mod pressure;
 mod profile_1d;
 pub mod rough_stiffness;
 mod sliding_friction;
+mod sliding_friction_3d;
 mod static_friction;
 mod tangential;
 mod viscoelastic;
@@ -154,6 +156,10 @@ pub const KINDS: &[Kind] = &[
     Kind::of::<sliding_friction::SlidingFriction>(
         "sliding_friction",
         "elastomer friction mu(v) of rough lines on viscoelastic springs, Eq. 82 (Fig. 7)",
+    ),
+    Kind::of::<sliding_friction_3d::SlidingFriction3d>(
+        "sliding_friction_3d",
+        "steady viscoelastic sliding of rough surfaces in 3D against MRD and Eq. 82 (Fig. 7 in 3D)",
     ),
     Kind::of::<bem_contact::BemContact>(
         "bem_contact",

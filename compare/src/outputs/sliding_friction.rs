@@ -12,79 +12,25 @@
 //! velocity, xi by least squares over all velocities with a bootstrap interval over
 //! lines. A run that does not reach its steady state is listed and fails the run.
 
+use super::elastomer::{self, Material};
 use super::{bad, positive, Env, Output};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
-use mrd::rheology::{Eq84, Prony};
+use mrd::rheology::Prony;
 use mrd::rough_contact::Stat;
 use mrd::roughness::synthesis::{line_from, Amplitudes};
 use mrd::sliding::{slide, Line, Sliding, SlidingResult};
-use rand::{RngExt, SeedableRng};
+use rand::RngExt;
 use rayon::prelude::*;
 use serde::Deserialize;
 use std::f64::consts::{PI, TAU};
 
-/// The elastomer's shear modulus G(t).
-#[derive(Debug, Clone, Deserialize)]
-#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
-enum Material {
-    /// Eq. (84) with its Prony discretisation into `terms` terms.
-    Eq84 {
-        g0: f64,
-        g1: f64,
-        tau1: f64,
-        tau2: f64,
-        s: f64,
-        #[serde(default = "sixteen")]
-        terms: usize,
-    },
-    /// G(t) = g_inf + sum G_k exp(-t/tau_k), terms [[G_k, tau_k], ...].
-    Prony { g_inf: f64, terms: Vec<[f64; 2]> },
-}
-
-fn sixteen() -> usize {
-    16
-}
-
-impl Material {
-    /// G(t) as a Prony series, and G(omega) (exact for Eq. 84).
-    fn shear(&self) -> mrd::Result<Prony> {
-        match self {
-            Material::Eq84 {
-                g0,
-                g1,
-                tau1,
-                tau2,
-                s,
-                terms,
-            } => Eq84::new(*g0, *g1, *tau1, *tau2, *s)?.prony(*terms),
-            Material::Prony { g_inf, terms } => {
-                Prony::new(*g_inf, terms.iter().map(|t| (t[0], t[1])).collect())
-            }
-        }
-    }
-
-    fn complex(&self, omega: f64) -> mrd::Result<(f64, f64)> {
-        match self {
-            Material::Eq84 {
-                g0,
-                g1,
-                tau1,
-                tau2,
-                s,
-                ..
-            } => Eq84::new(*g0, *g1, *tau1, *tau2, *s)?.complex(omega),
-            Material::Prony { .. } => Ok(self.shear()?.complex(omega)),
-        }
-    }
-}
-
 /// The rigid line.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
-enum LineSpec {
+pub(super) enum LineSpec {
     /// Flat C2D for q in [k/band, k band] (non-fractal), `waves` = k L / (2 pi).
     Band { waves: f64, band: f64 },
     /// Self-affine C2D ~ q^(-2H-2) for q from `min_waves` 2 pi / L (default 1) to
@@ -99,39 +45,111 @@ enum LineSpec {
     Sinusoid { waves: usize },
 }
 
+impl LineSpec {
+    /// The isotropic 2D spectrum C2D(q) of a surface of size `l` (up to a factor), whose
+    /// MRD line has C1D = pi q C2D (Eq. 76 with lambda = pi); None for the sinusoid.
+    pub(super) fn c2d(&self, l: f64) -> Option<Box<dyn Fn(f64) -> f64 + Send + Sync>> {
+        match *self {
+            LineSpec::Band { waves, band } => {
+                let k = TAU * waves / l;
+                let (lo, hi) = (k / band, k * band);
+                Some(Box::new(
+                    move |q| if (lo..=hi).contains(&q) { 1.0 } else { 0.0 },
+                ))
+            }
+            LineSpec::SelfAffine {
+                hurst,
+                waves,
+                min_waves,
+            } => {
+                let (q0, q1) = (TAU * min_waves / l, TAU * waves / l);
+                Some(Box::new(move |q| {
+                    if (q0..=q1).contains(&q) {
+                        q.powf(-2.0 * hurst - 2.0)
+                    } else {
+                        0.0
+                    }
+                }))
+            }
+            LineSpec::Sinusoid { .. } => None,
+        }
+    }
+
+    /// The highest wave number (waves over L) of the spectrum.
+    pub(super) fn max_waves(&self) -> f64 {
+        match *self {
+            LineSpec::Band { waves, band } => waves * band,
+            LineSpec::SelfAffine { waves, .. } => waves,
+            LineSpec::Sinusoid { waves } => waves as f64,
+        }
+    }
+
+    /// `key`: the scene key, named in messages.
+    pub(super) fn validate(&self, key: &str) -> Result<()> {
+        match *self {
+            LineSpec::Band { waves, band } => {
+                if !(positive(waves) && band > 1.0 && band.is_finite()) {
+                    return bad(format!("{key}: waves must be > 0 and band > 1"));
+                }
+            }
+            LineSpec::SelfAffine {
+                hurst,
+                waves,
+                min_waves,
+            } => {
+                let ok = (-1.0..=3.0).contains(&hurst)
+                    && min_waves >= 1.0
+                    && waves >= 2.0 * min_waves
+                    && waves.is_finite();
+                if !ok {
+                    return bad(format!(
+                        "{key}: hurst must lie in [-1, 3], min_waves >= 1 and waves >= 2 min_waves"
+                    ));
+                }
+            }
+            LineSpec::Sinusoid { waves } => {
+                if waves == 0 {
+                    return bad(format!("{key}: waves must be >= 1"));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SlidingFriction {
-    material: Material,
-    line: LineSpec,
+    pub(super) material: Material,
+    pub(super) line: LineSpec,
     /// Line length L and rms height h (length units).
-    length: f64,
-    rms_height: f64,
+    pub(super) length: f64,
+    pub(super) rms_height: f64,
     /// Springs along L.
-    springs: usize,
+    pub(super) springs: usize,
     /// Line points per spring (the line is synthesised on springs x this).
     #[serde(default = "one")]
-    refine: usize,
+    pub(super) refine: usize,
     /// Line points moved per time step.
     #[serde(default = "one")]
-    stride: usize,
+    pub(super) stride: usize,
     /// Normal force as F / (4 G(inf) h L), the reduced force of the relaxed (rubbery)
     /// contact (Eq. 77).
-    reduced_force: f64,
+    pub(super) reduced_force: f64,
     /// Sliding velocities: `velocities` values log-spaced from `velocity_min` to
     /// `velocity_max` (length units per second).
-    velocity_min: f64,
-    velocity_max: f64,
-    velocities: usize,
-    realisations: u64,
+    pub(super) velocity_min: f64,
+    pub(super) velocity_max: f64,
+    pub(super) velocities: usize,
+    pub(super) realisations: u64,
     #[serde(default)]
-    seed: u64,
+    pub(super) seed: u64,
     /// Steady state: mu and the mean approach change by less than this between passes
     /// (relative to mu and to the rms height).
     #[serde(default = "tolerance")]
-    tolerance: f64,
+    pub(super) tolerance: f64,
     #[serde(default = "max_passes")]
-    max_passes: usize,
+    pub(super) max_passes: usize,
 }
 
 fn one() -> usize {
@@ -148,9 +166,9 @@ fn max_passes() -> usize {
 }
 
 /// Runs of one velocity, over the lines.
-struct AtVelocity {
-    velocity: f64,
-    runs: Vec<SlidingResult>,
+pub(super) struct AtVelocity {
+    pub velocity: f64,
+    pub runs: Vec<SlidingResult>,
 }
 
 impl SlidingFriction {
@@ -165,47 +183,22 @@ impl SlidingFriction {
     /// Line `r`, scaled to the rms height.
     fn line(&self, r: u64) -> mrd::Result<Line> {
         let (n, l) = (self.points(), self.length);
-        let z = match self.line {
-            LineSpec::Band { waves, band } => {
-                let k = TAU * waves / l;
-                let (lo, hi) = (k / band, k * band);
-                line_from(
-                    &|q: f64| if (lo..=hi).contains(&q) { PI * q } else { 0.0 },
-                    n,
-                    l,
-                    self.seed,
-                    r,
-                    Amplitudes::Deterministic,
-                )?
-            }
-            LineSpec::SelfAffine {
-                hurst,
-                waves,
-                min_waves,
-            } => {
-                let (q0, q1) = (TAU * min_waves / l, TAU * waves / l);
-                line_from(
-                    &|q: f64| {
-                        if (q0..=q1).contains(&q) {
-                            PI * q * q.powf(-2.0 * hurst - 2.0)
-                        } else {
-                            0.0
-                        }
-                    },
-                    n,
-                    l,
-                    self.seed,
-                    r,
-                    Amplitudes::Deterministic,
-                )?
-            }
-            LineSpec::Sinusoid { waves } => {
-                let phase =
-                    TAU * mrd::roughness::synthesis::realisation_rng(self.seed, r).random::<f64>();
-                (0..n)
-                    .map(|i| (TAU * waves as f64 * i as f64 / n as f64 + phase).cos())
-                    .collect()
-            }
+        let z = if let LineSpec::Sinusoid { waves } = self.line {
+            let phase =
+                TAU * mrd::roughness::synthesis::realisation_rng(self.seed, r).random::<f64>();
+            (0..n)
+                .map(|i| (TAU * waves as f64 * i as f64 / n as f64 + phase).cos())
+                .collect()
+        } else {
+            let c2d = self.line.c2d(l);
+            line_from(
+                &|q: f64| PI * q * c2d.as_ref().map_or(0.0, |c| c(q)),
+                n,
+                l,
+                self.seed,
+                r,
+                Amplitudes::Deterministic,
+            )?
         };
         let h = Line::new(&z, l)?.rms_height;
         let z: Vec<f64> = z.iter().map(|v| v * self.rms_height / h).collect();
@@ -229,42 +222,8 @@ impl SlidingFriction {
 
 impl Output for SlidingFriction {
     fn validate(&self, _: &Context) -> Result<()> {
-        let shear = self.material.shear().ctx("material")?;
-        if shear.relaxed <= 0.0 {
-            return bad("the material needs a relaxed modulus (g0 or g_inf > 0): under a constant normal force it would creep without end");
-        }
-        if let Material::Eq84 { terms, .. } = self.material {
-            if !(4..=64).contains(&terms) {
-                return bad(format!("material.terms = {terms} must lie in 4..=64"));
-            }
-        }
-        match self.line {
-            LineSpec::Band { waves, band } => {
-                if !(positive(waves) && band > 1.0 && band.is_finite()) {
-                    return bad("line: waves must be > 0 and band > 1");
-                }
-            }
-            LineSpec::SelfAffine {
-                hurst,
-                waves,
-                min_waves,
-            } => {
-                let ok = (-1.0..=3.0).contains(&hurst)
-                    && min_waves >= 1.0
-                    && waves >= 2.0 * min_waves
-                    && waves.is_finite();
-                if !ok {
-                    return bad(
-                        "line: hurst must lie in [-1, 3], min_waves >= 1 and waves >= 2 min_waves",
-                    );
-                }
-            }
-            LineSpec::Sinusoid { waves } => {
-                if waves == 0 {
-                    return bad("line: waves must be >= 1");
-                }
-            }
-        }
+        let shear = self.material.validate()?;
+        self.line.validate("line")?;
         if !(positive(self.length) && positive(self.rms_height)) {
             return bad("length and rms_height must be > 0");
         }
@@ -316,6 +275,14 @@ impl Output for SlidingFriction {
     }
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
+        let (lines, per_v) = self.simulate(out)?;
+        self.report(env, out, &lines, &per_v)
+    }
+}
+
+impl SlidingFriction {
+    /// The lines and every (velocity, line) run, stages recorded in `out`.
+    pub(super) fn simulate(&self, out: &mut Section) -> Result<(Vec<Line>, Vec<AtVelocity>)> {
         let shear = self.material.shear().ctx("material")?;
         let lines: Vec<Line> = out
             .stage(Stage::RoughSynthesis, || {
@@ -344,7 +311,7 @@ impl Output for SlidingFriction {
                 runs: runs[i * lines.len()..(i + 1) * lines.len()].to_vec(),
             })
             .collect();
-        self.report(env, out, &lines, &per_v)
+        Ok((lines, per_v))
     }
 }
 
@@ -360,35 +327,19 @@ impl SlidingFriction {
         // k and grad z: ensemble means of the lines' own values.
         let k = lines.iter().map(Line::wave_vector).sum::<f64>() / lines.len() as f64;
         let grad_z = lines.iter().map(|l| l.rms_slope).sum::<f64>() / lines.len() as f64;
-        let estimate = |v: f64| -> Result<f64> {
-            let (re, im) = self.material.complex(k * v).ctx("G(omega)")?;
-            Ok(mrd::reference::sliding::eq82(1.0, grad_z, re, im))
-        };
-        let r: Vec<f64> = per_v
+        let vs: Vec<f64> = per_v.iter().map(|p| p.velocity).collect();
+        let r = self.material.eq82_over_xi(k, grad_z, &vs)?;
+        let mu: Vec<Vec<f64>> = per_v
             .iter()
-            .map(|p| estimate(p.velocity))
-            .collect::<Result<_>>()?;
-        let mean_mu = |idx: &[usize]| -> Vec<f64> {
-            per_v
-                .iter()
-                .map(|p| idx.iter().map(|&i| p.runs[i].mu).sum::<f64>() / idx.len() as f64)
-                .collect()
-        };
-        let fit = |m: &[f64]| -> f64 {
-            m.iter().zip(&r).map(|(a, b)| a * b).sum::<f64>() / r.iter().map(|b| b * b).sum::<f64>()
-        };
-        let all: Vec<usize> = (0..lines.len()).collect();
-        let xi = fit(&mean_mu(&all));
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(self.seed ^ 0xF7);
-        let boot: Vec<f64> = (0..200)
-            .map(|_| {
-                let idx: Vec<usize> = (0..lines.len())
-                    .map(|_| rng.random_range(0..lines.len()))
-                    .collect();
-                fit(&mean_mu(&idx))
-            })
+            .map(|p| p.runs.iter().map(|x| x.mu).collect())
             .collect();
-        let (xi_lo, xi_hi) = super::hurst_sweep::fit::interval(boot);
+        let elastomer::XiFit {
+            xi,
+            lo: xi_lo,
+            hi: xi_hi,
+            misfit,
+        } = elastomer::fit_xi(&mu, &r, self.seed);
+        let shift = elastomer::fit_shift(&mu, &self.material, k, grad_z, &vs, self.seed)?;
         let mut t = Table::new(
             "sliding_friction",
             &[
@@ -473,17 +424,26 @@ impl SlidingFriction {
         out.scalar("xi", xi);
         out.scalar("xi_lo95", xi_lo);
         out.scalar("xi_hi95", xi_hi);
+        out.scalar("eq82_misfit", misfit);
+        out.scalar("eq82_shift_c", shift.c);
+        out.scalar("eq82_shift_c_lo95", shift.c_lo);
+        out.scalar("eq82_shift_c_hi95", shift.c_hi);
+        out.scalar("eq82_shift_xi", shift.xi);
+        out.scalar("eq82_shift_misfit", shift.misfit);
         out.scalar("wave_vector", k);
         out.scalar("grad_z", grad_z);
         out.scalar("mu_peak", peak);
         out.scalar("velocity_at_peak", per_v[imax].velocity);
         out.scalar("max_rel_dev_energy_vs_slope", energy_dev);
         // Eq. (82) on a fine grid of velocities for the figure.
-        let fine: Vec<(f64, f64)> =
-            mrd::friction::log_space(self.velocity_min, self.velocity_max, 200)
-                .into_iter()
-                .map(|v| estimate(v).map(|e| (v, xi * e)))
-                .collect::<Result<_>>()?;
+        let fine_v = mrd::friction::log_space(self.velocity_min, self.velocity_max, 200);
+        let fine: Vec<(f64, f64)> = self
+            .material
+            .eq82_over_xi(k, grad_z, &fine_v)?
+            .into_iter()
+            .zip(&fine_v)
+            .map(|(e, &v)| (v, xi * e))
+            .collect();
         let label = format!(
             "Eq. (82), k = {k:.3} 1/{}, grad z = {grad_z:.3}, xi = {xi:.3} [{xi_lo:.3}, {xi_hi:.3}]",
             u.length

@@ -88,6 +88,19 @@ pub fn surface(
     realisation: u64,
     amps: Amplitudes,
 ) -> Result<Vec<f64>> {
+    surface_from(&|q| spec.c2d(q), grid, seed, realisation, amps)
+}
+
+/// A periodic rough surface on `grid` (Eq. 71) for any isotropic 2D spectrum `c2d(q)`.
+/// The modes are drawn in grid order: the same seed on another grid gives another
+/// surface (see [`upsample`] for one surface on several grids).
+pub fn surface_from(
+    c2d: &dyn Fn(f64) -> f64,
+    grid: &Grid,
+    seed: u64,
+    realisation: u64,
+    amps: Amplitudes,
+) -> Result<Vec<f64>> {
     let Grid { nx, ny, lx, ly } = *grid;
     check_size(nx)?;
     check_size(ny)?;
@@ -121,13 +134,13 @@ pub fn surface(
                     continue;
                 }
                 let q = 2.0 * PI * (signed(j) / ly).abs();
-                let h = mode(&mut rng, norm * spec.c2d(q).sqrt(), amps);
+                let h = mode(&mut rng, norm * c2d(q).sqrt(), amps);
                 s[j] = h;
                 s[jn] = h.conj();
                 continue;
             }
             let q = 2.0 * PI * ((i as f64 / lx).powi(2) + (signed(j) / ly).powi(2)).sqrt();
-            s[i * ny + j] = mode(&mut rng, norm * spec.c2d(q).sqrt(), amps);
+            s[i * ny + j] = mode(&mut rng, norm * c2d(q).sqrt(), amps);
         }
     }
     let mut planner = FftPlanner::<f64>::new();
@@ -191,4 +204,126 @@ pub fn line(
     amps: Amplitudes,
 ) -> Result<Vec<f64>> {
     line_from(&|q| spec.c1d(q), n, l, seed, realisation, amps)
+}
+
+/// Band-limited (spectral) interpolation of a periodic surface of `from` points onto the
+/// finer grid `to` of the same size: the same Fourier modes, evaluated at more points.
+/// The coarse grid's Nyquist modes, which [`surface_from`] never populates, are dropped.
+/// Lets one random surface be solved on several grids (grid refinement).
+pub fn upsample(h: &[f64], from: &Grid, to: &Grid) -> Result<Vec<f64>> {
+    let (nx0, ny0, nx, ny) = (from.nx, from.ny, to.nx, to.ny);
+    if h.len() != nx0 * ny0 || nx < nx0 || ny < ny0 || from.lx != to.lx || from.ly != to.ly {
+        return Err(MrdError::InvalidData(format!(
+            "upsample: {} values from a {ny0} x {nx0} grid onto {ny} x {nx} of the same size",
+            h.len()
+        )));
+    }
+    let mut planner = FftPlanner::<f64>::new();
+    let transform_2d = |data: &mut [Complex64],
+                        nx: usize,
+                        ny: usize,
+                        inverse: bool,
+                        planner: &mut FftPlanner<f64>| {
+        let (fx, fy) = if inverse {
+            (planner.plan_fft_inverse(nx), planner.plan_fft_inverse(ny))
+        } else {
+            (planner.plan_fft_forward(nx), planner.plan_fft_forward(ny))
+        };
+        fx.process(data); // rows
+        let mut col = vec![Complex64::default(); ny];
+        for i in 0..nx {
+            for j in 0..ny {
+                col[j] = data[j * nx + i];
+            }
+            fy.process(&mut col);
+            for j in 0..ny {
+                data[j * nx + i] = col[j];
+            }
+        }
+    };
+    let mut a: Vec<Complex64> = h.iter().map(|&v| Complex64::new(v, 0.0)).collect();
+    transform_2d(&mut a, nx0, ny0, false, &mut planner);
+    let signed = |m: usize, n: usize| m as i64 - if m > n / 2 { n as i64 } else { 0 };
+    let nyquist = |m: usize, n: usize| n.is_multiple_of(2) && m == n / 2;
+    let mut b = vec![Complex64::default(); nx * ny];
+    let scale = 1.0 / (nx0 * ny0) as f64;
+    for j in 0..ny0 {
+        for i in 0..nx0 {
+            if nyquist(i, nx0) || nyquist(j, ny0) {
+                continue;
+            }
+            let (si, sj) = (signed(i, nx0), signed(j, ny0));
+            let (ti, tj) = (
+                si.rem_euclid(nx as i64) as usize,
+                sj.rem_euclid(ny as i64) as usize,
+            );
+            b[tj * nx + ti] = a[j * nx0 + i] * scale;
+        }
+    }
+    transform_2d(&mut b, nx, ny, true, &mut planner);
+    Ok(b.iter().map(|c| c.re).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn upsampling_keeps_the_surface_and_its_modes() {
+        // Band-limited: the fine surface passes through the coarse points, keeps the
+        // moments, and equals a direct evaluation of the mode sum between them.
+        let band = |q: f64| if (10.0..=40.0).contains(&q) { 1.0 } else { 0.0 };
+        let (coarse, fine) = (
+            Grid {
+                nx: 16,
+                ny: 8,
+                lx: 1.0,
+                ly: 0.5,
+            },
+            Grid {
+                nx: 64,
+                ny: 32,
+                lx: 1.0,
+                ly: 0.5,
+            },
+        );
+        let h = surface_from(&band, &coarse, 3, 0, Amplitudes::Deterministic).unwrap();
+        let f = upsample(&h, &coarse, &fine).unwrap();
+        let m0 = crate::roughness::stats::surface_moments(&h, 16, 8, 1.0, 0.5);
+        let tol = 1e-14 * m0.rms_height;
+        for j in 0..8 {
+            for i in 0..16 {
+                assert!((f[4 * j * 64 + 4 * i] - h[j * 16 + i]).abs() < tol);
+            }
+        }
+        let m1 = crate::roughness::stats::surface_moments(&f, 64, 32, 1.0, 0.5);
+        assert!((m0.rms_height / m1.rms_height - 1.0).abs() < 1e-12);
+        assert!((m0.rms_slope / m1.rms_slope - 1.0).abs() < 1e-12);
+        // Midpoint of a cell from the coarse spectrum directly.
+        let (x, y) = (0.5 * (1.0 / 16.0) * 3.0, 0.5 * (0.5 / 8.0) * 5.0);
+        let mut direct = 0.0;
+        for j in 0..8usize {
+            for i in 0..16usize {
+                let s = |m: usize, n: usize| m as f64 - if m > n / 2 { n as f64 } else { 0.0 };
+                let (kx, ky) = (2.0 * PI * s(i, 16), 2.0 * PI * s(j, 8) / 0.5);
+                let mut c = Complex64::default();
+                for b in 0..8 {
+                    for a in 0..16 {
+                        let arg = -(kx * a as f64 / 16.0 + ky * b as f64 * 0.5 / 8.0);
+                        c += h[b * 16 + a] * Complex64::from_polar(1.0, arg);
+                    }
+                }
+                if i == 8 || j == 4 {
+                    continue;
+                }
+                direct += (c * Complex64::from_polar(1.0, kx * x + ky * y)).re / 128.0;
+            }
+        }
+        let (fi, fj) = (
+            (x * 64.0).round() as usize,
+            (y / 0.5 * 32.0).round() as usize,
+        );
+        assert!((f[fj * 64 + fi] - direct).abs() < tol);
+        assert!(upsample(&h, &fine, &coarse).is_err());
+    }
 }
