@@ -23,7 +23,7 @@ struct Cli {
 }
 
 const EXAMPLES: &str = "Examples:
-  mrdw run                      the default scene, fig6 (about 2 min on 2 cores), into reports/fig6/
+  mrdw run                      the default scene, fig6 (under a minute on 2 cores), into reports/fig6/
   mrdw run tour                 every axisymmetric output on one sphere (instant)
   mrdw run cases/jkr.toml --out /tmp/jkr
   mrdw scenes                   list the embedded scenes
@@ -96,6 +96,13 @@ enum Command {
         /// bench/tamaas_compare.py.
         #[arg(long)]
         write_surfaces: Option<PathBuf>,
+        /// Small ladders (report): well under a minute instead of about 10.
+        #[arg(long)]
+        quick: bool,
+        /// Report folder (report); default reports/bench (reports/bench-quick with
+        /// --quick).
+        #[arg(long)]
+        out: Option<PathBuf>,
     },
     /// Internal: one benchmark case in a fresh process (for its peak memory).
     #[command(hide = true)]
@@ -121,6 +128,10 @@ enum BenchTarget {
     /// 3D viscoelastic sliding: one velocity point of fig7-3d at k v = 1e-2 .. 1e2 rad/s
     /// on grids 128^2 .. (--max-n)^2 (default up to 512).
     Sliding3d,
+    /// Run time against error as a report folder (CSV + PNG): axisymmetric cases with
+    /// closed forms (MRD semi-analytic, springs, 3D), rough contacts (alpha against a
+    /// reference, 3D and MRD), scaling with fitted exponents.
+    Report,
 }
 
 fn parse_shard(s: &str) -> Result<(usize, usize), String> {
@@ -272,6 +283,8 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
             max_exp,
             max_n,
             write_surfaces,
+            quick,
+            out: folder,
         } => {
             match target {
                 BenchTarget::Mrd => compare::bench::run_mrd(&mut out.0, max_exp.clamp(3, 8))?,
@@ -286,6 +299,23 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
                 }
                 BenchTarget::Bem => {
                     compare::bench::run_bem(&mut out.0, max_n, write_surfaces.as_deref())?
+                }
+                BenchTarget::Report => {
+                    let folder = folder.unwrap_or_else(|| {
+                        PathBuf::from(if quick {
+                            "reports/bench-quick"
+                        } else {
+                            "reports/bench"
+                        })
+                    });
+                    let command: Vec<String> = std::env::args().collect();
+                    let files = compare::bench::report::write(
+                        compare::bench::report::Options { quick },
+                        &command.join(" "),
+                        &folder,
+                        &mut |what| eprintln!("bench report: {what} ..."),
+                    )?;
+                    say!(out, "wrote {} files into {}", files.len(), folder.display());
                 }
             }
             Ok(())

@@ -619,3 +619,58 @@ fn data_file_errors_name_the_file_and_the_range() {
     assert!(err.contains("bad.npy"), "{err}");
     assert!(!err.contains("profile table"), "{err}");
 }
+
+/// `mrdw bench report --quick`: the report folder is complete and the orders of
+/// convergence it fits from its ladders are the known ones (never timings).
+#[test]
+fn bench_report_quick_fits_the_known_orders() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("bench");
+    let o = mrdw(&["bench", "report", "--quick", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for f in [
+        "bench_error_time.csv",
+        "bench_rough.csv",
+        "bench_scaling.csv",
+        "bench_summary.md",
+        "bench_hertz.png",
+        "bench_cone.png",
+        "bench_flat_punch.png",
+        "bench_jkr.png",
+        "bench_damping.png",
+        "bench_rough.png",
+        "bench_scaling.png",
+    ] {
+        assert!(out.join(f).exists(), "{f} missing");
+    }
+    let s: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let r = |k: &str| result(&s, &format!("bench.{k}"));
+    // MRD springs: midpoint sampling of a smooth image, second order (Hertz, cone);
+    // event-driven adhesion: first order (the boundary spring, Eq. 33); damping: the
+    // per-spring sum converges faster than second order on this ladder.
+    for (k, lo, hi) in [
+        ("order_hertz_springs", 1.9, 2.1),
+        ("order_cone_springs", 1.9, 2.1),
+        ("order_jkr_springs", 0.9, 1.1),
+        ("order_damping_springs", 1.8, 3.0),
+        // 3D on 32^2 .. 128^2 cells (error ~ n^-order): Hertz tends to 2 (see
+        // bem3d/tests/verification.rs at finer grids), the cone's tip and the punch's
+        // pixelated rim converge more slowly.
+        ("order_hertz_3d", 1.2, 2.2),
+        ("order_cone_3d", 1.2, 2.2),
+        ("order_flat_punch_3d", 0.7, 1.6),
+    ] {
+        let v = r(k);
+        assert!((lo..=hi).contains(&v), "{k} = {v} outside [{lo}, {hi}]");
+    }
+    // Rough: the references are finite and each method's error falls with time.
+    assert!((0.3..0.8).contains(&r("rough_alpha_reference_3d")));
+    assert!((0.3..0.8).contains(&r("rough_alpha_reference_mrd")));
+    assert!(r("rough_error_time_slope_3d") < 0.0);
+    assert!(r("rough_error_time_slope_mrd") < 0.0);
+    let csv = read_csv(&out.join("bench_error_time.csv"));
+    assert!(csv.rows.len() >= 20);
+    let text = std::fs::read_to_string(out.join("bench_error_time.csv")).unwrap();
+    assert!(text.contains("# machine: ") && text.contains("# command: "));
+}

@@ -1,6 +1,9 @@
 //! `mrdw bench`: run time against error for the MRD solvers (not a test: figures go to
 //! the README's performance section with the command that produced them).
 
+pub mod report;
+mod rough_ladder;
+
 use mrd::discrete::DiscreteAxisymmetric;
 use mrd::oscillation::OscillatingContact;
 use mrd::reference as rf;

@@ -1,0 +1,75 @@
+"""mrdw: the MRD validation workbench from Python.
+
+The method of reduction of dimensionality (MRD) and a fast 3D FFT boundary-element
+contact solver, on numpy arrays. Equation numbers refer to V. L. Popov, M. Hess, Method
+of reduction of dimensionality in contact and friction mechanics, Friction 1 (2013)
+41-62.
+
+3D contact::
+
+    c = mrdw.Contact(heights, size=(lx, ly), e_star=E, periodic=True)
+    r = c.solve(mean_pressure=0.01 * E)      # or force=..., approach=...
+    r.pressure, r.gap, r.contact_fraction, r.mean_gap, r.iterations, r.residual
+
+Roughness: spectrum, line_spectrum, surface, line, psd, moments, read_topography.
+MRD: Profile (sphere, cone, power_law, flattened_sphere, flat_punch, tabulated),
+normal, pressure, adhesion, pull_off, cattaneo_mindlin, damping, hess_inverse,
+RoughLine, fit_line. Scenes: scenes(), run_scene(name_or_path).
+
+Units are whatever consistent set the inputs use (length and stress); docstrings give
+the dimension of each quantity. Bad input raises ValueError (the CLI's message); an
+iteration that stops short raises ConvergenceError with .iterations, .residual and,
+for contact solves, .last (the last iterate).
+"""
+
+from ._mrdw import (
+    __version__,
+    ConvergenceError,
+    Contact,
+    ContactResult,
+    spectrum,
+    line_spectrum,
+    surface,
+    line,
+    psd,
+    moments,
+    read_topography,
+    fit_line,
+    RoughLine,
+    Profile,
+    hess_inverse,
+    normal,
+    pressure,
+    adhesion,
+    pull_off,
+    cattaneo_mindlin,
+    damping,
+    scenes,
+    run_scene,
+)
+
+__all__ = [
+    "__version__",
+    "ConvergenceError",
+    "Contact",
+    "ContactResult",
+    "spectrum",
+    "line_spectrum",
+    "surface",
+    "line",
+    "psd",
+    "moments",
+    "read_topography",
+    "fit_line",
+    "RoughLine",
+    "Profile",
+    "hess_inverse",
+    "normal",
+    "pressure",
+    "adhesion",
+    "pull_off",
+    "cattaneo_mindlin",
+    "damping",
+    "scenes",
+    "run_scene",
+]

@@ -1,0 +1,299 @@
+"""Type stubs of the compiled module mrdw._mrdw (see the docstrings at run time)."""
+
+from os import PathLike
+from typing import Any, Literal, Optional, Sequence, Tuple, TypedDict, Union
+
+import numpy as np
+import numpy.typing as npt
+
+ArrayLike = npt.ArrayLike
+F64 = npt.NDArray[np.float64]
+
+__version__: str
+
+class ConvergenceError(RuntimeError):
+    """An iteration stopped before its tolerance."""
+
+    what: str
+    iterations: int
+    residual: float
+    last: Optional["ContactResult"]
+
+class ContactResult:
+    """A solved 3D contact state."""
+
+    @property
+    def pressure(self) -> F64:
+        """Cell pressures, shape (ny, nx) [stress]."""
+    @property
+    def gap(self) -> F64:
+        """Gap at cell centres, shape (ny, nx) [length]; zero in contact."""
+    @property
+    def approach(self) -> float:
+        """Rigid-body approach from first contact [length]."""
+    @property
+    def force(self) -> float:
+        """Total normal force [stress x length^2]."""
+    @property
+    def mean_pressure(self) -> float:
+        """Force over lx * ly [stress]."""
+    @property
+    def contact_area(self) -> float:
+        """Contact cells times cell area [length^2]."""
+    @property
+    def contact_fraction(self) -> float:
+        """Contact cells over the cells that may touch."""
+    @property
+    def contact_cells(self) -> int: ...
+    @property
+    def mean_gap(self) -> float:
+        """Mean gap over the cells that may touch [length]."""
+    @property
+    def iterations(self) -> int: ...
+    @property
+    def residual(self) -> float:
+        """Convergence criterion reached."""
+    @property
+    def stiffness(self) -> Optional[float]:
+        """Tangent stiffness dF/dd [stress x length] if requested (+inf at complete
+        contact of a periodic map)."""
+    @property
+    def complete_contact(self) -> bool: ...
+    @property
+    def warm_started(self) -> bool: ...
+
+class Contact:
+    """Frictionless normal contact of a rigid rough surface on an elastic half-space
+    (3D FFT boundary elements)."""
+
+    def __init__(
+        self,
+        heights: ArrayLike,
+        size: Tuple[float, float] = (1.0, 1.0),
+        e_star: float = 1.0,
+        periodic: bool = True,
+        mask: Optional[ArrayLike] = None,
+    ) -> None: ...
+    def solve(
+        self,
+        mean_pressure: Optional[float] = None,
+        force: Optional[float] = None,
+        approach: Optional[float] = None,
+        *,
+        tolerance: float = 1e-10,
+        max_iterations: int = 10000,
+        stiffness: bool = False,
+        warm: Optional[ContactResult] = None,
+    ) -> ContactResult:
+        """Solve for exactly one of mean_pressure [stress], force [stress x length^2]
+        or approach [length]. Releases the GIL."""
+    def solve_many(
+        self,
+        mean_pressures: Optional[ArrayLike] = None,
+        forces: Optional[ArrayLike] = None,
+        approaches: Optional[ArrayLike] = None,
+        *,
+        tolerance: float = 1e-10,
+        max_iterations: int = 10000,
+        stiffness: bool = False,
+    ) -> list[ContactResult]:
+        """A load list, solved in order with warm starts where they pay."""
+    @property
+    def shape(self) -> Tuple[int, int]: ...
+    @property
+    def size(self) -> Tuple[float, float]: ...
+    @property
+    def e_star(self) -> float: ...
+    @property
+    def periodic(self) -> bool: ...
+
+def spectrum(
+    q: ArrayLike,
+    hurst: float,
+    q0: float,
+    qr: float,
+    q1: float,
+    *,
+    rms_height: Optional[float] = None,
+    rms_slope: Optional[float] = None,
+) -> F64:
+    """Self-affine C2D(q) (Eq. 70) [length^4]."""
+
+def line_spectrum(
+    q: ArrayLike,
+    hurst: float,
+    q0: float,
+    qr: float,
+    q1: float,
+    *,
+    lam: float = ...,
+    rms_height: Optional[float] = None,
+    rms_slope: Optional[float] = None,
+) -> F64:
+    """C1D = lam |q| C2D (Eq. 76) [length^3]."""
+
+def surface(
+    shape: Tuple[int, int],
+    size: Tuple[float, float],
+    hurst: float,
+    q0: float,
+    qr: float,
+    q1: float,
+    *,
+    rms_height: Optional[float] = None,
+    rms_slope: Optional[float] = None,
+    seed: int = 0,
+    realisation: int = 0,
+    gaussian: bool = False,
+) -> F64:
+    """Periodic random-phase surface (Eq. 71), shape (ny, nx)."""
+
+def line(
+    n: int,
+    length: float,
+    hurst: float,
+    q0: float,
+    qr: float,
+    q1: float,
+    *,
+    lam: float = ...,
+    rms_height: Optional[float] = None,
+    rms_slope: Optional[float] = None,
+    seed: int = 0,
+    realisation: int = 0,
+    gaussian: bool = False,
+) -> F64:
+    """Periodic rough line (Eq. 72) with C1D = lam q C2D (Eq. 76)."""
+
+def psd(h: ArrayLike, size: Union[float, Tuple[float, float]], bins: int = 32) -> Tuple[F64, F64]:
+    """(q, C1D) of a line or (q, C2D) radially averaged of a surface."""
+
+class Moments(TypedDict):
+    rms_height: float
+    rms_slope: float
+    rms_curvature: float
+
+def moments(h: ArrayLike, size: Union[float, Tuple[float, float]]) -> Moments: ...
+def read_topography(path: Union[str, PathLike[str]]) -> F64: ...
+
+class LineFit(TypedDict):
+    a: float
+    b: float
+    se_a: float
+    se_b: float
+
+def fit_line(x: ArrayLike, y: ArrayLike) -> LineFit: ...
+
+class RoughState(TypedDict):
+    depth: float
+    force: float
+    contacts: int
+    contact_length: float
+    stiffness: float
+    contact_slope: float
+
+class RoughLine:
+    """A rough line on the MRD foundation (springs E* dx)."""
+
+    def __init__(self, heights: ArrayLike, length: float, e_star: float) -> None: ...
+    def at_force(self, force: float) -> RoughState: ...
+    def at_depth(self, depth: float) -> RoughState: ...
+    @property
+    def full_contact_depth(self) -> float: ...
+    @property
+    def rms_height(self) -> float: ...
+    def reduced_force(self, force: float) -> float: ...
+    def reduced_stiffness(self, stiffness: float) -> float: ...
+    def __len__(self) -> int: ...
+
+class Profile:
+    """An axisymmetric rigid indenter z(r)."""
+
+    @staticmethod
+    def sphere(radius: float, rim: Optional[float] = None) -> "Profile": ...
+    @staticmethod
+    def cone(tan_theta: float, rim: Optional[float] = None) -> "Profile": ...
+    @staticmethod
+    def power_law(c: float, n: float, rim: Optional[float] = None) -> "Profile": ...
+    @staticmethod
+    def flattened_sphere(
+        radius: float, flat_radius: float, rim: Optional[float] = None
+    ) -> "Profile": ...
+    @staticmethod
+    def flat_punch(radius: float) -> "Profile": ...
+    @staticmethod
+    def tabulated(r: ArrayLike, z: ArrayLike, rim: Optional[float] = None) -> "Profile": ...
+    def __add__(self, other: "Profile") -> "Profile": ...
+    def z(self, r: ArrayLike) -> F64: ...
+    def z1d(self, x: ArrayLike) -> F64:
+        """Rule of Hess (Eq. 11), closed forms."""
+    def z1d_numeric(self, x: ArrayLike) -> F64:
+        """Rule of Hess by quadrature."""
+    @property
+    def max_contact_radius(self) -> float: ...
+
+def hess_inverse(x: ArrayLike, g: ArrayLike, r: ArrayLike) -> F64: ...
+
+class NormalState(TypedDict):
+    depth: float
+    radius: float
+    force: float
+    stiffness: float
+
+def normal(
+    profile: Profile,
+    e_star: float,
+    *,
+    depth: Optional[float] = None,
+    force: Optional[float] = None,
+    radius: Optional[float] = None,
+) -> NormalState: ...
+def pressure(
+    profile: Profile,
+    e_star: float,
+    r: ArrayLike,
+    *,
+    depth: Optional[float] = None,
+    force: Optional[float] = None,
+) -> F64: ...
+
+class AdhesiveState(TypedDict):
+    radius: float
+    depth: float
+    force: float
+
+def adhesion(profile: Profile, e_star: float, gamma: float, radius: float) -> AdhesiveState: ...
+def pull_off(
+    profile: Profile,
+    e_star: float,
+    gamma: float,
+    *,
+    control: Literal["force", "displacement"] = "force",
+    max_radius: Optional[float] = None,
+) -> AdhesiveState: ...
+
+class TangentialState(TypedDict):
+    force: float
+    stick_radius: float
+    displacement: float
+    contact_radius: float
+    max_displacement: float
+
+def cattaneo_mindlin(
+    profile: Profile,
+    e_star: float,
+    g_star: float,
+    mu: float,
+    normal_force: float,
+    tangential_force: float,
+) -> TangentialState: ...
+def damping(
+    profile: Profile,
+    e_star: float,
+    g_star: float,
+    mu: float,
+    depth: float,
+    amplitude: float,
+) -> float: ...
+def scenes() -> list[Tuple[str, str]]: ...
+def run_scene(scene: str) -> dict[str, Any]: ...

@@ -1,0 +1,415 @@
+//! The 3D boundary-element contact solver (`bem3d`) on numpy height maps.
+
+use crate::errors::{bem_err, value_error};
+use bem3d::{
+    ContactSolver, Load, NonPeriodicHalfSpace, PeriodicHalfSpace, Solution, SolverOptions,
+};
+use numpy::ndarray::Array2;
+use numpy::{AllowTypeChange, PyArray2, PyArrayLike1, PyArrayLike2};
+use pyo3::prelude::*;
+
+/// The solver on one of the two operators.
+enum Solver {
+    Periodic(ContactSolver<PeriodicHalfSpace>),
+    NonPeriodic(ContactSolver<NonPeriodicHalfSpace>),
+}
+
+impl Solver {
+    fn solve(
+        &mut self,
+        load: Load,
+        opts: &SolverOptions,
+        warm: Option<&Solution>,
+    ) -> bem3d::Result<Solution> {
+        match self {
+            Solver::Periodic(s) => s.solve(load, opts, warm),
+            Solver::NonPeriodic(s) => s.solve(load, opts, warm),
+        }
+    }
+    fn stiffness(&mut self, sol: &Solution, opts: &SolverOptions) -> bem3d::Result<f64> {
+        match self {
+            Solver::Periodic(s) => s.tangent_stiffness(sol, opts),
+            Solver::NonPeriodic(s) => s.tangent_stiffness(sol, opts),
+        }
+    }
+}
+
+/// A solved contact state (returned by `Contact.solve`).
+#[pyclass(module = "mrdw._mrdw", frozen)]
+pub struct ContactResult {
+    sol: Solution,
+    shape: (usize, usize),
+    /// lx * ly
+    area: f64,
+    stiffness: Option<f64>,
+}
+
+impl ContactResult {
+    pub fn new(sol: Solution, shape: (usize, usize), area: f64, stiffness: Option<f64>) -> Self {
+        Self {
+            sol,
+            shape,
+            area,
+            stiffness,
+        }
+    }
+}
+
+fn grid_array<'py>(py: Python<'py>, v: &[f64], shape: (usize, usize)) -> Bound<'py, PyArray2<f64>> {
+    // The shape always matches: the solver returns ny * nx values.
+    let a = Array2::from_shape_vec(shape, v.to_vec()).expect("grid shape");
+    PyArray2::from_owned_array(py, a)
+}
+
+#[pymethods]
+impl ContactResult {
+    /// Cell pressures, shape (ny, nx) [stress].
+    #[getter]
+    fn pressure<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        grid_array(py, &self.sol.pressure, self.shape)
+    }
+    /// Gap at cell centres, shape (ny, nx) [length]; zero in contact.
+    #[getter]
+    fn gap<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        grid_array(py, &self.sol.gap, self.shape)
+    }
+    /// Rigid-body approach from first contact [length].
+    #[getter]
+    fn approach(&self) -> f64 {
+        self.sol.approach
+    }
+    /// Total normal force, sum of p times cell area [stress x length^2].
+    #[getter]
+    fn force(&self) -> f64 {
+        self.sol.force
+    }
+    /// Mean pressure over the whole grid area [stress].
+    #[getter]
+    fn mean_pressure(&self) -> f64 {
+        self.sol.force / self.area
+    }
+    /// Real contact area, contact cells times cell area [length^2].
+    #[getter]
+    fn contact_area(&self) -> f64 {
+        self.sol.contact_area
+    }
+    /// Contact cells over the cells that may touch (the mask's, or all).
+    #[getter]
+    fn contact_fraction(&self) -> f64 {
+        self.sol.contact_cells as f64 / self.sol.domain_cells as f64
+    }
+    /// Number of cells carrying pressure.
+    #[getter]
+    fn contact_cells(&self) -> usize {
+        self.sol.contact_cells
+    }
+    /// Mean gap over the cells that may touch [length].
+    #[getter]
+    fn mean_gap(&self) -> f64 {
+        self.sol.mean_gap
+    }
+    /// Iterations of the contact solve.
+    #[getter]
+    fn iterations(&self) -> usize {
+        self.sol.iterations
+    }
+    /// Convergence criterion reached (pressure-weighted gap and interpenetration
+    /// relative to the rms height; see `bem3d/src/solver.rs`).
+    #[getter]
+    fn residual(&self) -> f64 {
+        self.sol.residual
+    }
+    /// Tangent normal stiffness dF/dd with the contact set fixed [stress x length], if
+    /// requested (`stiffness=True`); +inf at complete contact of a periodic map.
+    #[getter]
+    fn stiffness(&self) -> Option<f64> {
+        self.stiffness
+    }
+    /// Every cell that may touch is in contact.
+    #[getter]
+    fn complete_contact(&self) -> bool {
+        self.sol.complete_contact()
+    }
+    /// Whether the warm start given to the solve was used (small load steps only).
+    #[getter]
+    fn warm_started(&self) -> bool {
+        self.sol.warm_started
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "ContactResult(force={:.6e}, approach={:.6e}, contact_fraction={:.4e}, mean_gap={:.6e}, iterations={}, residual={:.2e})",
+            self.sol.force,
+            self.sol.approach,
+            self.contact_fraction(),
+            self.sol.mean_gap,
+            self.sol.iterations,
+            self.sol.residual
+        )
+    }
+}
+
+/// Frictionless normal contact of a rigid rough surface on an elastic half-space (3D
+/// FFT boundary elements, preconditioned Polonsky-Keer).
+///
+/// Contact(heights, size=(1.0, 1.0), e_star=1.0, periodic=True, mask=None)
+///
+/// heights: 2D array (ny, nx) of surface heights, peaks up [length]; size: physical
+/// size (lx, ly) of the map [length]; e_star: contact modulus E* [stress] (Eq. 2);
+/// periodic: periodic half-space (False: isolated map, zero-padded FFTs); mask:
+/// optional boolean array (ny, nx) of the cells that may touch. The operator and
+/// buffers are built once; solve() may be called for many loads.
+#[pyclass(module = "mrdw._mrdw")]
+pub struct Contact {
+    solver: Solver,
+    shape: (usize, usize),
+    size: (f64, f64),
+    e_star: f64,
+    periodic: bool,
+}
+
+struct Request {
+    load: Load,
+    opts: SolverOptions,
+    stiffness: bool,
+}
+
+fn request(
+    mean_pressure: Option<f64>,
+    force: Option<f64>,
+    approach: Option<f64>,
+    tolerance: f64,
+    max_iterations: usize,
+    stiffness: bool,
+) -> PyResult<Request> {
+    let load = match (mean_pressure, force, approach) {
+        (Some(p), None, None) => Load::MeanPressure(p),
+        (None, Some(f), None) => Load::Force(f),
+        (None, None, Some(d)) => Load::Approach(d),
+        _ => {
+            return Err(value_error(
+                "give exactly one of mean_pressure, force and approach",
+            ))
+        }
+    };
+    if !(tolerance.is_finite() && tolerance > 0.0) {
+        return Err(value_error(format!("tolerance = {tolerance} must be > 0")));
+    }
+    if max_iterations == 0 {
+        return Err(value_error("max_iterations must be at least 1"));
+    }
+    Ok(Request {
+        load,
+        opts: SolverOptions {
+            tolerance,
+            max_iterations,
+        },
+        stiffness,
+    })
+}
+
+impl Contact {
+    /// Solves one load with the GIL released.
+    fn run(
+        &mut self,
+        py: Python<'_>,
+        req: &Request,
+        warm: Option<&Solution>,
+    ) -> PyResult<ContactResult> {
+        let solver = &mut self.solver;
+        let out = py.detach(|| -> bem3d::Result<(Solution, Option<f64>)> {
+            let sol = solver.solve(req.load, &req.opts, warm)?;
+            let k = if req.stiffness {
+                Some(solver.stiffness(&sol, &req.opts)?)
+            } else {
+                None
+            };
+            Ok((sol, k))
+        });
+        let (sol, k) = out.map_err(|e| bem_err(py, e, self.shape, self.size.0 * self.size.1))?;
+        Ok(ContactResult::new(
+            sol,
+            self.shape,
+            self.size.0 * self.size.1,
+            k,
+        ))
+    }
+}
+
+#[pymethods]
+impl Contact {
+    #[new]
+    #[pyo3(signature = (heights, size = (1.0, 1.0), e_star = 1.0, periodic = true, mask = None))]
+    fn new(
+        py: Python<'_>,
+        heights: PyArrayLike2<'_, f64, AllowTypeChange>,
+        size: (f64, f64),
+        e_star: f64,
+        periodic: bool,
+        mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
+    ) -> PyResult<Self> {
+        let view = heights.as_array();
+        let (ny, nx) = view.dim();
+        if nx < 2 || ny < 2 {
+            return Err(value_error(format!(
+                "heights must be a 2D array of at least 2 x 2 cells, got {ny} x {nx}"
+            )));
+        }
+        let (lx, ly) = size;
+        for (name, v) in [("size[0] (lx)", lx), ("size[1] (ly)", ly)] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(value_error(format!("{name} = {v} must be finite and > 0")));
+            }
+        }
+        if !(e_star.is_finite() && e_star > 0.0) {
+            return Err(value_error(format!(
+                "e_star = {e_star} must be finite and > 0"
+            )));
+        }
+        let h: Vec<f64> = view.iter().copied().collect();
+        let mask = match mask {
+            None => None,
+            Some(m) => {
+                let m = m.as_array();
+                if m.dim() != (ny, nx) {
+                    return Err(value_error(format!(
+                        "mask has shape {:?} but heights have ({ny}, {nx})",
+                        m.dim()
+                    )));
+                }
+                Some(m.iter().copied().collect::<Vec<bool>>())
+            }
+        };
+        let built = py.detach(|| -> bem3d::Result<Solver> {
+            Ok(if periodic {
+                Solver::Periodic(ContactSolver::new(
+                    PeriodicHalfSpace::new(nx, ny, lx, ly, e_star),
+                    &h,
+                    mask,
+                )?)
+            } else {
+                Solver::NonPeriodic(ContactSolver::new(
+                    NonPeriodicHalfSpace::new(nx, ny, lx, ly, e_star),
+                    &h,
+                    mask,
+                )?)
+            })
+        });
+        let solver = built.map_err(|e| bem_err(py, e, (ny, nx), lx * ly))?;
+        Ok(Self {
+            solver,
+            shape: (ny, nx),
+            size,
+            e_star,
+            periodic,
+        })
+    }
+
+    /// solve(mean_pressure=None, force=None, approach=None, *, tolerance=1e-10,
+    ///       max_iterations=10000, stiffness=False, warm=None) -> ContactResult
+    ///
+    /// Solves for exactly one of: mean pressure over lx * ly [stress], total force
+    /// [stress x length^2], or rigid-body approach from first contact [length].
+    /// `warm`: a previous ContactResult of this Contact, used as the initial iterate
+    /// where that pays (force ratios 0.9-1.3, approach ratios 1-1.5). `stiffness`: also
+    /// the tangent stiffness dF/dd. Raises ValueError for bad input or an infeasible
+    /// load, ConvergenceError (with `.last`) if the iteration cap is reached. The GIL is
+    /// released while solving.
+    #[pyo3(signature = (mean_pressure = None, force = None, approach = None, *, tolerance = 1e-10, max_iterations = 10_000, stiffness = false, warm = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn solve(
+        &mut self,
+        py: Python<'_>,
+        mean_pressure: Option<f64>,
+        force: Option<f64>,
+        approach: Option<f64>,
+        tolerance: f64,
+        max_iterations: usize,
+        stiffness: bool,
+        warm: Option<PyRef<'_, ContactResult>>,
+    ) -> PyResult<ContactResult> {
+        let req = request(
+            mean_pressure,
+            force,
+            approach,
+            tolerance,
+            max_iterations,
+            stiffness,
+        )?;
+        if let Some(w) = &warm {
+            if w.shape != self.shape {
+                return Err(value_error(format!(
+                    "warm start has shape {:?} but this contact is {:?}",
+                    w.shape, self.shape
+                )));
+            }
+        }
+        let warm = warm.as_ref().map(|w| w.sol.clone());
+        self.run(py, &req, warm.as_ref())
+    }
+
+    /// solve_many(mean_pressures=None, forces=None, approaches=None, *, tolerance=1e-10,
+    ///            max_iterations=10000, stiffness=False) -> list[ContactResult]
+    ///
+    /// A load list solved in order, each warm-started from the previous solution where
+    /// that pays (as the CLI's bem_contact output does).
+    #[pyo3(signature = (mean_pressures = None, forces = None, approaches = None, *, tolerance = 1e-10, max_iterations = 10_000, stiffness = false))]
+    #[allow(clippy::too_many_arguments)]
+    fn solve_many(
+        &mut self,
+        py: Python<'_>,
+        mean_pressures: Option<PyArrayLike1<'_, f64, AllowTypeChange>>,
+        forces: Option<PyArrayLike1<'_, f64, AllowTypeChange>>,
+        approaches: Option<PyArrayLike1<'_, f64, AllowTypeChange>>,
+        tolerance: f64,
+        max_iterations: usize,
+        stiffness: bool,
+    ) -> PyResult<Vec<ContactResult>> {
+        let list = |a: &Option<PyArrayLike1<'_, f64, AllowTypeChange>>| {
+            a.as_ref().map(|a| a.as_array().to_vec())
+        };
+        let loads: Vec<(Option<f64>, Option<f64>, Option<f64>)> =
+            match (list(&mean_pressures), list(&forces), list(&approaches)) {
+                (Some(v), None, None) => v.into_iter().map(|p| (Some(p), None, None)).collect(),
+                (None, Some(v), None) => v.into_iter().map(|f| (None, Some(f), None)).collect(),
+                (None, None, Some(v)) => v.into_iter().map(|d| (None, None, Some(d))).collect(),
+                _ => {
+                    return Err(value_error(
+                        "give exactly one of mean_pressures, forces and approaches",
+                    ))
+                }
+            };
+        let mut out: Vec<ContactResult> = Vec::with_capacity(loads.len());
+        for (p, f, d) in loads {
+            let req = request(p, f, d, tolerance, max_iterations, stiffness)?;
+            let warm = out.last().map(|r| r.sol.clone());
+            out.push(self.run(py, &req, warm.as_ref())?);
+        }
+        Ok(out)
+    }
+
+    /// (ny, nx)
+    #[getter]
+    fn shape(&self) -> (usize, usize) {
+        self.shape
+    }
+    /// (lx, ly) [length]
+    #[getter]
+    fn size(&self) -> (f64, f64) {
+        self.size
+    }
+    /// E* [stress]
+    #[getter]
+    fn e_star(&self) -> f64 {
+        self.e_star
+    }
+    #[getter]
+    fn periodic(&self) -> bool {
+        self.periodic
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "Contact(shape={:?}, size={:?}, e_star={}, periodic={})",
+            self.shape, self.size, self.e_star, self.periodic
+        )
+    }
+}

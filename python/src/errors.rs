@@ -1,0 +1,103 @@
+//! Rust errors as Python exceptions: bad input is a `ValueError` with the same one-line
+//! message the CLI prints; an iteration that stops short is a `ConvergenceError` that
+//! carries the iterations, the residual reached and (for contact solves) the last
+//! iterate.
+
+use pyo3::create_exception;
+use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+
+create_exception!(
+    _mrdw,
+    ConvergenceError,
+    PyRuntimeError,
+    "An iteration stopped before its tolerance. Attributes: `what` (which iteration), \
+     `iterations`, `residual` (the criterion reached) and `last` (the last iterate as a \
+     ContactResult, or None)."
+);
+
+/// A `ConvergenceError` with its attributes set.
+pub fn convergence(
+    py: Python<'_>,
+    message: String,
+    what: &str,
+    iterations: usize,
+    residual: f64,
+    last: Option<Py<PyAny>>,
+) -> PyErr {
+    let err = ConvergenceError::new_err(message);
+    let value = err.value(py);
+    // Setting attributes on a fresh exception instance cannot fail.
+    let _ = value.setattr("what", what);
+    let _ = value.setattr("iterations", iterations);
+    let _ = value.setattr("residual", residual);
+    let _ = value.setattr("last", last);
+    err
+}
+
+pub fn value_error(message: impl Into<String>) -> PyErr {
+    PyValueError::new_err(message.into())
+}
+
+/// Errors of the 1D method.
+pub fn mrd_err(py: Python<'_>, e: mrd::MrdError) -> PyErr {
+    match e {
+        mrd::MrdError::NoConvergence {
+            what,
+            iterations,
+            residual,
+        } => convergence(py, e.to_string(), what, iterations, residual, None),
+        other => value_error(other.to_string()),
+    }
+}
+
+/// Errors of the 3D solver; the last iterate of an unconverged contact solve becomes a
+/// `ContactResult`.
+pub fn bem_err(py: Python<'_>, e: bem3d::BemError, shape: (usize, usize), area: f64) -> PyErr {
+    let message = e.to_string();
+    match e {
+        bem3d::BemError::InvalidInput(_) | bem3d::BemError::Infeasible(_) => value_error(message),
+        bem3d::BemError::NoConvergence {
+            what,
+            iterations,
+            residual,
+            last,
+            ..
+        } => {
+            let last = crate::contact::ContactResult::new(*last, shape, area, None);
+            let last = Py::new(py, last).ok().map(|o| o.into_any());
+            convergence(py, message, what, iterations, residual, last)
+        }
+        bem3d::BemError::Breakdown {
+            what,
+            iterations,
+            residual,
+            ..
+        } => convergence(py, message, what, iterations, residual, None),
+    }
+}
+
+/// Errors of a scene run.
+pub fn compare_err(py: Python<'_>, e: compare::CompareError) -> PyErr {
+    use compare::CompareError as C;
+    let message = e.to_string();
+    match e {
+        C::Scene(_) => value_error(message),
+        C::Mrd { source, .. } => match source {
+            mrd::MrdError::NoConvergence {
+                what,
+                iterations,
+                residual,
+            } => convergence(py, message, what, iterations, residual, None),
+            _ => value_error(message),
+        },
+        C::Bem { source, .. } => match source.progress() {
+            Some((iterations, residual)) => {
+                convergence(py, message, "3D solve", iterations, residual, None)
+            }
+            None => value_error(message),
+        },
+        C::Io { .. } => PyOSError::new_err(message),
+        _ => PyRuntimeError::new_err(message),
+    }
+}

@@ -1,0 +1,48 @@
+//! Python bindings of the MRD validation workbench (module `mrdw._mrdw`, re-exported by
+//! the package `mrdw`). Thin wrappers: every computation is the Rust crates' own, so
+//! results are bit-identical to the CLI's. Arrays come in as numpy (converted once) and
+//! go out as numpy arrays that own their data; long solves release the GIL.
+
+mod axisym;
+mod contact;
+mod errors;
+mod rough;
+mod scene;
+
+use pyo3::prelude::*;
+
+#[pymodule]
+fn _mrdw(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add(
+        "ConvergenceError",
+        py.get_type::<errors::ConvergenceError>(),
+    )?;
+    // 3D
+    m.add_class::<contact::Contact>()?;
+    m.add_class::<contact::ContactResult>()?;
+    // roughness
+    m.add_function(wrap_pyfunction!(rough::spectrum, m)?)?;
+    m.add_function(wrap_pyfunction!(rough::line_spectrum, m)?)?;
+    m.add_function(wrap_pyfunction!(rough::surface, m)?)?;
+    m.add_function(wrap_pyfunction!(rough::line, m)?)?;
+    m.add_function(wrap_pyfunction!(rough::psd, m)?)?;
+    m.add_function(wrap_pyfunction!(rough::moments, m)?)?;
+    m.add_function(wrap_pyfunction!(rough::read_topography, m)?)?;
+    m.add_function(wrap_pyfunction!(rough::fit_line, m)?)?;
+    m.add_class::<rough::RoughLine>()?;
+    // MRD, axisymmetric
+    m.add_class::<axisym::Profile>()?;
+    m.add_function(wrap_pyfunction!(axisym::hess_inverse, m)?)?;
+    m.add_function(wrap_pyfunction!(axisym::normal, m)?)?;
+    m.add_function(wrap_pyfunction!(axisym::pressure, m)?)?;
+    m.add_function(wrap_pyfunction!(axisym::adhesion, m)?)?;
+    m.add_function(wrap_pyfunction!(axisym::pull_off, m)?)?;
+    m.add_function(wrap_pyfunction!(axisym::cattaneo_mindlin, m)?)?;
+    m.add_function(wrap_pyfunction!(axisym::damping, m)?)?;
+    // scenes
+    m.add_function(wrap_pyfunction!(scene::scenes, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::run_scene, m)?)?;
+    Ok(())
+}

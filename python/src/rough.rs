@@ -1,0 +1,387 @@
+//! Roughness: self-affine spectra (Eq. 70), synthesis (Eqs. 71-72), the 1D spectrum of
+//! MRD (Eq. 76), PSD estimators and statistics, topography files, rough lines on the
+//! foundation.
+
+use crate::errors::{mrd_err, value_error};
+use mrd::rough_contact::{fit_line as fit, RoughLine as Line, RoughState};
+use mrd::roughness::stats::{line_moments, line_psd, surface_moments, surface_psd};
+use mrd::roughness::synthesis::{self, Amplitudes, Grid};
+use mrd::roughness::SelfAffine;
+use numpy::ndarray::Array2;
+use numpy::{AllowTypeChange, PyArray1, PyArray2, PyArrayDyn, PyArrayLike1, PyArrayLikeDyn};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::f64::consts::PI;
+
+/// The normalised 2D spectrum of the arguments shared by the functions below.
+fn spectrum_of(
+    py: Python<'_>,
+    hurst: f64,
+    q0: f64,
+    qr: f64,
+    q1: f64,
+    rms_height: Option<f64>,
+    rms_slope: Option<f64>,
+) -> PyResult<SelfAffine> {
+    let s = SelfAffine::new(hurst, q0, qr, q1).map_err(|e| mrd_err(py, e))?;
+    match (rms_height, rms_slope) {
+        (Some(h), None) => s.with_rms_height(h),
+        (None, Some(g)) => s.with_rms_slope(g),
+        (None, None) => Ok(s),
+        _ => return Err(value_error("give at most one of rms_height and rms_slope")),
+    }
+    .map_err(|e| mrd_err(py, e))
+}
+
+fn amplitudes(gaussian: bool) -> Amplitudes {
+    if gaussian {
+        Amplitudes::Gaussian
+    } else {
+        Amplitudes::Deterministic
+    }
+}
+
+/// spectrum(q, hurst, q0, qr, q1, *, rms_height=None, rms_slope=None) -> ndarray
+///
+/// Isotropic self-affine 2D power spectrum C2D(q) (Eq. 70) [length^4]: zero outside
+/// [q0, q1], a plateau on [q0, qr], C0 (q / qr)^(-2H-2) above; wavenumbers in
+/// [1/length] (q = 2 pi / wavelength). Scaled to the given rms height or rms slope
+/// (unit plateau otherwise). H in [-1, 3].
+#[pyfunction]
+#[pyo3(signature = (q, hurst, q0, qr, q1, *, rms_height = None, rms_slope = None))]
+#[allow(clippy::too_many_arguments)]
+pub fn spectrum<'py>(
+    py: Python<'py>,
+    q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    hurst: f64,
+    q0: f64,
+    qr: f64,
+    q1: f64,
+    rms_height: Option<f64>,
+    rms_slope: Option<f64>,
+) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    let s = spectrum_of(py, hurst, q0, qr, q1, rms_height, rms_slope)?;
+    Ok(PyArrayDyn::from_owned_array(
+        py,
+        q.as_array().mapv(|q| s.c2d(q)),
+    ))
+}
+
+/// line_spectrum(q, hurst, q0, qr, q1, *, lam=pi, rms_height=None, rms_slope=None) -> ndarray
+///
+/// The 1D spectrum of MRD, C1D(q) = lam |q| C2D(q) (Eq. 76) [length^3], of the 2D
+/// spectrum `spectrum(...)` (rms_height, rms_slope: of the 2D surface). lam = pi keeps
+/// the rms height (Eq. 73); lambda(H) of Fig. 6 reproduces the 3D stiffness.
+#[pyfunction]
+#[pyo3(signature = (q, hurst, q0, qr, q1, *, lam = PI, rms_height = None, rms_slope = None))]
+#[allow(clippy::too_many_arguments)]
+pub fn line_spectrum<'py>(
+    py: Python<'py>,
+    q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    hurst: f64,
+    q0: f64,
+    qr: f64,
+    q1: f64,
+    lam: f64,
+    rms_height: Option<f64>,
+    rms_slope: Option<f64>,
+) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    let l = spectrum_of(py, hurst, q0, qr, q1, rms_height, rms_slope)?.to_line(lam);
+    Ok(PyArrayDyn::from_owned_array(
+        py,
+        q.as_array().mapv(|q| l.c1d(q)),
+    ))
+}
+
+fn grid_of(shape: (usize, usize), size: (f64, f64)) -> Grid {
+    Grid {
+        nx: shape.1,
+        ny: shape.0,
+        lx: size.0,
+        ly: size.1,
+    }
+}
+
+/// surface(shape, size, hurst, q0, qr, q1, *, rms_height=None, rms_slope=None, seed=0,
+///         realisation=0, gaussian=False) -> ndarray (ny, nx)
+///
+/// A periodic random-phase surface (Eq. 71) of `spectrum(...)` on a (ny, nx) grid of
+/// physical size (lx, ly). Deterministic: the same seed and realisation give the same
+/// surface, bit for bit, as the CLI's scenes. gaussian=True: Gaussian mode amplitudes
+/// (a Gaussian random field) instead of |H(q)| fixed by the spectrum.
+#[pyfunction]
+#[pyo3(signature = (shape, size, hurst, q0, qr, q1, *, rms_height = None, rms_slope = None, seed = 0, realisation = 0, gaussian = false))]
+#[allow(clippy::too_many_arguments)]
+pub fn surface<'py>(
+    py: Python<'py>,
+    shape: (usize, usize),
+    size: (f64, f64),
+    hurst: f64,
+    q0: f64,
+    qr: f64,
+    q1: f64,
+    rms_height: Option<f64>,
+    rms_slope: Option<f64>,
+    seed: u64,
+    realisation: u64,
+    gaussian: bool,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let s = spectrum_of(py, hurst, q0, qr, q1, rms_height, rms_slope)?;
+    let grid = grid_of(shape, size);
+    let h = py
+        .detach(|| synthesis::surface(&s, &grid, seed, realisation, amplitudes(gaussian)))
+        .map_err(|e| mrd_err(py, e))?;
+    let a = Array2::from_shape_vec(shape, h).map_err(|e| value_error(e.to_string()))?;
+    Ok(PyArray2::from_owned_array(py, a))
+}
+
+/// line(n, length, hurst, q0, qr, q1, *, lam=pi, rms_height=None, rms_slope=None,
+///      seed=0, realisation=0, gaussian=False) -> ndarray (n,)
+///
+/// A periodic random-phase rough line (Eq. 72) with the MRD spectrum
+/// C1D = lam q C2D (Eq. 76) of `spectrum(...)`; rms_height, rms_slope: of the 2D
+/// surface, so that the line is that surface's MRD image.
+#[pyfunction]
+#[pyo3(signature = (n, length, hurst, q0, qr, q1, *, lam = PI, rms_height = None, rms_slope = None, seed = 0, realisation = 0, gaussian = false))]
+#[allow(clippy::too_many_arguments)]
+pub fn line<'py>(
+    py: Python<'py>,
+    n: usize,
+    length: f64,
+    hurst: f64,
+    q0: f64,
+    qr: f64,
+    q1: f64,
+    lam: f64,
+    rms_height: Option<f64>,
+    rms_slope: Option<f64>,
+    seed: u64,
+    realisation: u64,
+    gaussian: bool,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    if !(lam.is_finite() && lam > 0.0) {
+        return Err(value_error(format!("lam = {lam} must be finite and > 0")));
+    }
+    let l = spectrum_of(py, hurst, q0, qr, q1, rms_height, rms_slope)?.to_line(lam);
+    let h = synthesis::line(&l, n, length, seed, realisation, amplitudes(gaussian))
+        .map_err(|e| mrd_err(py, e))?;
+    Ok(PyArray1::from_vec(py, h))
+}
+
+fn check_length(name: &str, v: f64) -> PyResult<()> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(value_error(format!("{name} = {v} must be finite and > 0")))
+    }
+}
+
+type Pairs<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
+fn pairs<'py>(py: Python<'py>, v: Vec<(f64, f64)>) -> Pairs<'py> {
+    let (q, c): (Vec<f64>, Vec<f64>) = v.into_iter().unzip();
+    (PyArray1::from_vec(py, q), PyArray1::from_vec(py, c))
+}
+
+fn finite_heights(h: &[f64]) -> PyResult<()> {
+    if h.len() < 4 {
+        return Err(value_error("need at least 4 heights"));
+    }
+    match h.iter().position(|v| !v.is_finite()) {
+        Some(i) => Err(value_error(format!("non-finite height at index {i}"))),
+        None => Ok(()),
+    }
+}
+
+/// psd(h, size, bins=32) -> (q, C)
+///
+/// PSD estimate of a periodic line (1D h, size = length L: one-sided C1D(q_k) =
+/// L / (2 pi) |H_k|^2 [length^3], k = 1 .. n/2) or surface (2D h (ny, nx), size =
+/// (lx, ly): C2D radially averaged in `bins` logarithmic bins [length^4]); q in
+/// [1/length].
+#[pyfunction]
+#[pyo3(signature = (h, size, bins = 32))]
+pub fn psd<'py>(
+    py: Python<'py>,
+    h: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    size: &Bound<'py, PyAny>,
+    bins: usize,
+) -> PyResult<Pairs<'py>> {
+    let a = h.as_array();
+    let data: Vec<f64> = a.iter().copied().collect();
+    finite_heights(&data)?;
+    match a.ndim() {
+        1 => {
+            let l: f64 = size.extract()?;
+            check_length("size", l)?;
+            Ok(pairs(py, line_psd(&data, l)))
+        }
+        2 => {
+            let (lx, ly): (f64, f64) = size.extract()?;
+            check_length("lx", lx)?;
+            check_length("ly", ly)?;
+            if bins == 0 {
+                return Err(value_error("bins must be at least 1"));
+            }
+            let (ny, nx) = (a.shape()[0], a.shape()[1]);
+            Ok(pairs(py, surface_psd(&data, nx, ny, lx, ly, bins)))
+        }
+        d => Err(value_error(format!(
+            "h must be 1D or 2D, got {d} dimensions"
+        ))),
+    }
+}
+
+/// moments(h, size) -> dict(rms_height, rms_slope, rms_curvature)
+///
+/// Spectral statistics of a periodic line (1D h, size = L) or surface (2D h, size =
+/// (lx, ly)): rms height about the mean [length], rms slope (gradient) [-] and rms
+/// curvature [1/length] (Eqs. 74-75), from the Fourier coefficients.
+#[pyfunction]
+pub fn moments<'py>(
+    py: Python<'py>,
+    h: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    size: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let a = h.as_array();
+    let data: Vec<f64> = a.iter().copied().collect();
+    finite_heights(&data)?;
+    let m = match a.ndim() {
+        1 => {
+            let l: f64 = size.extract()?;
+            check_length("size", l)?;
+            line_moments(&data, l)
+        }
+        2 => {
+            let (lx, ly): (f64, f64) = size.extract()?;
+            check_length("lx", lx)?;
+            check_length("ly", ly)?;
+            surface_moments(&data, a.shape()[1], a.shape()[0], lx, ly)
+        }
+        d => {
+            return Err(value_error(format!(
+                "h must be 1D or 2D, got {d} dimensions"
+            )))
+        }
+    };
+    let d = PyDict::new(py);
+    d.set_item("rms_height", m.rms_height)?;
+    d.set_item("rms_slope", m.rms_slope)?;
+    d.set_item("rms_curvature", m.rms_curvature)?;
+    Ok(d)
+}
+
+/// read_topography(path) -> ndarray (rows, cols)
+///
+/// A height map from `.npy` (float32/float64, C or Fortran order) or a text matrix
+/// (any other extension), read by the same code as the CLI's bem_contact output.
+#[pyfunction]
+pub fn read_topography<'py>(
+    py: Python<'py>,
+    path: std::path::PathBuf,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let m = mrd::topography::HeightMap::read(&path).map_err(|e| mrd_err(py, e))?;
+    let a =
+        Array2::from_shape_vec((m.rows, m.cols), m.data).map_err(|e| value_error(e.to_string()))?;
+    Ok(PyArray2::from_owned_array(py, a))
+}
+
+fn state_dict<'py>(py: Python<'py>, s: &RoughState) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("depth", s.depth)?;
+    d.set_item("force", s.force)?;
+    d.set_item("contacts", s.contacts)?;
+    d.set_item("contact_length", s.contact_length)?;
+    d.set_item("stiffness", s.stiffness)?;
+    d.set_item("contact_slope", s.contact_slope)?;
+    Ok(d)
+}
+
+/// A rough line on the MRD foundation (springs E* dx, Eq. 3), with exact O(log N)
+/// force- and depth-controlled queries.
+///
+/// RoughLine(heights, length, e_star)
+///
+/// heights: 1D array of the line's heights, peaks up [length]; length L [length];
+/// e_star [stress]. Spring i carries E* dx times its overlap (Eq. 3), so forces are in
+/// [stress x length^2] and stiffnesses in [stress x length], as in 3D.
+#[pyclass(module = "mrdw._mrdw", frozen)]
+pub struct RoughLine {
+    line: Line,
+}
+
+#[pymethods]
+impl RoughLine {
+    #[new]
+    fn new(
+        py: Python<'_>,
+        heights: PyArrayLike1<'_, f64, AllowTypeChange>,
+        length: f64,
+        e_star: f64,
+    ) -> PyResult<Self> {
+        let h = heights.as_array().to_vec();
+        Line::new(&h, length, e_star)
+            .map(|line| Self { line })
+            .map_err(|e| mrd_err(py, e))
+    }
+
+    /// at_force(force) -> dict(depth, force, contacts, contact_length, stiffness,
+    /// contact_slope): the state carrying `force`; stiffness k = dF/dd = E* dx m (m
+    /// springs in contact), contact_slope the rms slope over the contacts (Eq. 86).
+    fn at_force<'py>(&self, py: Python<'py>, force: f64) -> PyResult<Bound<'py, PyDict>> {
+        let s = self.line.at_force(force).map_err(|e| mrd_err(py, e))?;
+        state_dict(py, &s)
+    }
+
+    /// at_depth(depth) -> dict: the state at rigid-body approach `depth` from first
+    /// contact [length].
+    fn at_depth<'py>(&self, py: Python<'py>, depth: f64) -> PyResult<Bound<'py, PyDict>> {
+        let s = self.line.at_depth(depth).map_err(|e| mrd_err(py, e))?;
+        state_dict(py, &s)
+    }
+
+    /// Depth at which every spring touches [length].
+    #[getter]
+    fn full_contact_depth(&self) -> f64 {
+        self.line.full_contact_depth()
+    }
+
+    /// rms height of the line about its mean (Eq. 87) [length].
+    #[getter]
+    fn rms_height(&self) -> f64 {
+        self.line.rms_height
+    }
+
+    /// Reduced force f = F / (E* h L) (Eq. 90).
+    fn reduced_force(&self, force: f64) -> f64 {
+        self.line.reduced_force(force)
+    }
+
+    /// Reduced stiffness k / (E* L).
+    fn reduced_stiffness(&self, stiffness: f64) -> f64 {
+        self.line.reduced_stiffness(stiffness)
+    }
+
+    fn __len__(&self) -> usize {
+        self.line.len()
+    }
+}
+
+/// fit_line(x, y) -> dict(a, b, se_a, se_b)
+///
+/// Least-squares line y = a + b x with the standard errors of a and b (used for
+/// log k - log F fits: alpha = b, Eq. 80; and Eq. 91).
+#[pyfunction]
+pub fn fit_line<'py>(
+    py: Python<'py>,
+    x: PyArrayLike1<'py, f64, AllowTypeChange>,
+    y: PyArrayLike1<'py, f64, AllowTypeChange>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let f = fit(&x.as_array().to_vec(), &y.as_array().to_vec()).map_err(|e| mrd_err(py, e))?;
+    let d = PyDict::new(py);
+    d.set_item("a", f.a)?;
+    d.set_item("b", f.b)?;
+    d.set_item("se_a", f.se_a)?;
+    d.set_item("se_b", f.se_b)?;
+    Ok(d)
+}

@@ -1,0 +1,59 @@
+//! Scenes (the CLI's TOML case files) run from Python: every table as numpy columns.
+
+use crate::errors::compare_err;
+use compare::Scene;
+use numpy::PyArray1;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// scenes() -> list[tuple[str, str]]
+///
+/// The embedded scenes: (name, title), as `mrdw scenes` lists them.
+#[pyfunction]
+pub fn scenes() -> Vec<(String, String)> {
+    compare::scenes::EMBEDDED
+        .iter()
+        .map(|(name, text)| (name.to_string(), compare::scenes::title(text)))
+        .collect()
+}
+
+/// run_scene(scene) -> dict
+///
+/// Runs a scene (a .toml path, or an embedded scene's name) in memory, as `mrdw run`
+/// computes it, and returns {"name", "plan": {output: [stages]}, "tables": {table:
+/// {column header (with unit): ndarray}}, "results": {label.key: value}, "warnings",
+/// "failures"}. Figures are not drawn; no files are written. The GIL is released while
+/// it runs. Raises ValueError for a bad scene (the CLI's message), ConvergenceError when
+/// a solve stops short.
+#[pyfunction]
+pub fn run_scene<'py>(py: Python<'py>, scene: &str) -> PyResult<Bound<'py, PyDict>> {
+    let s = Scene::open(scene).map_err(|e| compare_err(py, e))?;
+    let report = py
+        .detach(|| compare::run(&s))
+        .map_err(|e| compare_err(py, e))?;
+    let out = PyDict::new(py);
+    out.set_item("name", &s.name)?;
+    let plan = PyDict::new(py);
+    for (label, stages) in &report.plan.outputs {
+        let names: Vec<&str> = stages.iter().map(|st| st.name()).collect();
+        plan.set_item(label, names)?;
+    }
+    out.set_item("plan", plan)?;
+    let tables = PyDict::new(py);
+    for t in report.tables() {
+        let cols = PyDict::new(py);
+        for (j, header) in t.columns.iter().enumerate() {
+            let v: Vec<f64> = t.rows.iter().map(|r| r[j]).collect();
+            cols.set_item(header, PyArray1::from_vec(py, v))?;
+        }
+        tables.set_item(&t.name, cols)?;
+    }
+    out.set_item("tables", tables)?;
+    // Results are JSON values (numbers, strings, lists): through Python's json module.
+    let json = serde_json::Value::Object(report.results()).to_string();
+    let results = py.import("json")?.call_method1("loads", (json,))?;
+    out.set_item("results", results)?;
+    out.set_item("warnings", report.warnings())?;
+    out.set_item("failures", report.failures())?;
+    Ok(out)
+}

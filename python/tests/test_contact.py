@@ -1,0 +1,204 @@
+"""3D contact from numpy: against a dense numpy solve, closed forms, the warm-start
+ladder, errors, and the GIL."""
+
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import mrdw
+
+
+def rough(n, seed=3):
+    h = mrdw.surface((n, n), (1.0, 1.0), 0.8, 2 * np.pi, 4 * np.pi, 2 * np.pi * (n // 4), seed=seed)
+    return h * (0.1 / mrdw.moments(h, (1.0, 1.0))["rms_slope"])
+
+
+def periodic_matrix(nx, ny, lx, ly, e_star):
+    """Dense periodic influence matrix: u = ifft2(2 / (E* |q|) fft2(p)), mean mode 0."""
+    kx = 2 * np.pi * np.fft.fftfreq(nx, d=lx / nx)
+    ky = 2 * np.pi * np.fft.fftfreq(ny, d=ly / ny)
+    q = np.hypot(*np.meshgrid(kx, ky))
+    c = np.zeros_like(q)
+    c[q > 0] = 2.0 / (e_star * q[q > 0])
+    k = np.empty((nx * ny, nx * ny))
+    for j in range(nx * ny):
+        e = np.zeros(nx * ny)
+        e[j] = 1.0
+        k[:, j] = np.real(np.fft.ifft2(np.fft.fft2(e.reshape(ny, nx)) * c)).ravel()
+    return k
+
+
+def active_set(k, z, force, cell_area):
+    """Force-controlled contact by an active-set method with numpy.linalg.solve:
+    K_CC p_C - d = -z_C, sum p_C cell_area = F, p >= 0, gap >= 0."""
+    n = len(z)
+    contact = z <= z.min() + 1e-12
+    for _ in range(200):
+        idx = np.flatnonzero(contact)
+        m = len(idx)
+        a = np.zeros((m + 1, m + 1))
+        a[:m, :m] = k[np.ix_(idx, idx)]
+        a[:m, m] = -1.0
+        a[m, :m] = cell_area
+        rhs = np.concatenate([-z[idx], [force]])
+        x = np.linalg.solve(a, rhs)
+        p = np.zeros(n)
+        p[idx] = x[:m]
+        d = x[m]
+        gap = k @ p + z - d
+        if p.min() < -1e-14 * p.max():
+            contact[idx[x[:m] < 0]] = False
+            continue
+        outside = (~contact) & (gap < -1e-14 * z.std())
+        if not outside.any():
+            return p, d
+        contact |= outside
+    raise RuntimeError("active set did not settle")
+
+
+def test_periodic_matches_dense_numpy_solve_16():
+    n, e_star = 16, 2.0
+    h = rough(n)
+    z = (h.max() - h).ravel()
+    force = 0.02 * e_star
+    p_ref, d_ref = active_set(periodic_matrix(n, n, 1.0, 1.0, e_star), z, force, 1.0 / n**2)
+    r = mrdw.Contact(h, e_star=e_star).solve(force=force, tolerance=1e-13)
+    assert 0 < r.contact_fraction < 1
+    peak = p_ref.max()
+    assert np.max(np.abs(r.pressure.ravel() - p_ref)) < 1e-9 * peak
+    assert abs(r.approach - d_ref) < 1e-9 * abs(d_ref)
+    assert r.force == pytest.approx(force, rel=1e-12)
+    assert r.mean_pressure == pytest.approx(force, rel=1e-12)  # area 1
+    # the gap vanishes on contact (to rounding) and is non-negative elsewhere
+    assert np.abs(r.gap[r.pressure > 0]).max() < 1e-12 * h.std()
+    assert r.gap.min() >= -1e-9 * h.std()
+
+
+def test_hertz_nonperiodic():
+    """Sphere R = 1 on a 128^2 non-periodic grid, a = L/4: approach and peak within
+    2e-4 of Hertz (the CLI's test asserts 2e-5 at 256^2)."""
+    n, lx, radius, e_star = 128, 1.0, 1.0, 1.0
+    x = (np.arange(n) + 0.5) * lx / n - lx / 2
+    xx, yy = np.meshgrid(x, x)
+    h = -(xx**2 + yy**2) / (2 * radius)
+    a = lx / 4
+    force = 4 * e_star * a**3 / (3 * radius)
+    r = mrdw.Contact(h, size=(lx, lx), e_star=e_star, periodic=False).solve(force=force)
+    d_hertz = a * a / radius
+    p0 = 2 * e_star * a / (np.pi * radius)
+    # first contact is at the highest cell centre, which sits h[0] below the apex
+    d = r.approach + (h.max() - 0.0)
+    assert d == pytest.approx(d_hertz, rel=2e-3)
+    assert r.pressure.max() == pytest.approx(p0, rel=2e-2)
+    assert r.contact_area == pytest.approx(np.pi * a * a, rel=5e-2)
+
+
+def test_control_modes_agree_and_stiffness():
+    h = rough(32)
+    c = mrdw.Contact(h, size=(1.0, 1.0), e_star=1.0)
+    by_p = c.solve(mean_pressure=0.01, tolerance=1e-12)
+    by_d = c.solve(approach=by_p.approach, tolerance=1e-12)
+    assert by_d.force == pytest.approx(by_p.force, rel=1e-8)
+    np.testing.assert_allclose(by_d.pressure, by_p.pressure, atol=1e-8 * by_p.pressure.max())
+    s = c.solve(mean_pressure=0.01, tolerance=1e-12, stiffness=True).stiffness
+    # central difference of F(d)
+    eps = 1e-4 * by_p.approach
+    f1 = c.solve(approach=by_p.approach + eps, tolerance=1e-12).force
+    f0 = c.solve(approach=by_p.approach - eps, tolerance=1e-12).force
+    assert s == pytest.approx((f1 - f0) / (2 * eps), rel=1e-3)
+    assert by_p.stiffness is None
+
+
+def test_complete_contact_and_mask():
+    h = rough(16)
+    c = mrdw.Contact(h, e_star=1.0)
+    r = c.solve(mean_pressure=3.0, stiffness=True)
+    assert r.complete_contact and r.contact_fraction == 1.0
+    assert r.stiffness == float("inf")
+    mask = np.zeros((16, 16), bool)
+    mask[4:12, 4:12] = True
+    r = mrdw.Contact(h, mask=mask).solve(mean_pressure=0.005)
+    assert np.all(r.pressure[~mask] == 0.0)
+    assert r.contact_cells <= 64
+
+
+def test_load_ladder_warm_starts_and_matches_cold():
+    h = rough(64)
+    c = mrdw.Contact(h)
+    loads = [0.01, 0.011, 0.012, 0.013]
+    warm = c.solve_many(mean_pressures=loads, tolerance=1e-11)
+    assert any(r.warm_started for r in warm[1:])
+    for p, r in zip(loads, warm):
+        cold = c.solve(mean_pressure=p, tolerance=1e-11)
+        assert r.iterations <= cold.iterations
+        np.testing.assert_allclose(r.pressure, cold.pressure, atol=1e-7 * cold.pressure.max())
+    again = c.solve(mean_pressure=0.0105, warm=warm[0], tolerance=1e-11)
+    assert again.warm_started
+
+
+def test_bad_input_raises_value_error():
+    h = rough(16)
+    with pytest.raises(ValueError, match="exactly one of"):
+        mrdw.Contact(h).solve(force=1.0, approach=0.1)
+    with pytest.raises(ValueError, match="e_star"):
+        mrdw.Contact(h, e_star=-1.0)
+    with pytest.raises(ValueError, match="size"):
+        mrdw.Contact(h, size=(0.0, 1.0))
+    bad = h.copy()
+    bad[3, 5] = np.nan
+    with pytest.raises(ValueError, match="non-finite height at row 3, column 5"):
+        mrdw.Contact(bad)
+    with pytest.raises(ValueError, match="mask"):
+        mrdw.Contact(h, mask=np.ones((4, 4), bool))
+    with pytest.raises(ValueError, match="no solution"):
+        mrdw.Contact(h).solve(approach=10.0)  # beyond complete contact of a periodic map
+    with pytest.raises(ValueError, match="2 x 2"):
+        mrdw.Contact(np.zeros((1, 8)))
+
+
+def test_iteration_cap_raises_convergence_error_with_last_iterate():
+    h = rough(64)
+    with pytest.raises(mrdw.ConvergenceError) as info:
+        mrdw.Contact(h).solve(mean_pressure=0.01, max_iterations=3)
+    e = info.value
+    assert e.iterations == 3 and e.residual > 1e-10 and e.what == "contact solve"
+    assert isinstance(e.last, mrdw.ContactResult)
+    assert e.last.pressure.shape == (64, 64)
+    assert e.last.force == pytest.approx(0.01, rel=1e-12)
+    assert "did not converge" in str(e)
+
+
+def test_solve_releases_the_gil():
+    """Another Python thread runs while a solve is under way. With a switch interval of
+    1000 s, a thread that held the GIL through the solve would keep it: the counter
+    could not move between the solver thread's two reads."""
+    h = rough(256)
+    c = mrdw.Contact(h)
+    counter = [0]
+    seen = {}
+    started = threading.Event()
+    done = threading.Event()
+
+    def work():
+        started.set()
+        before = counter[0]
+        c.solve(mean_pressure=0.01)
+        seen["moved"] = counter[0] - before
+        done.set()
+
+    old = sys.getswitchinterval()
+    sys.setswitchinterval(1000.0)
+    try:
+        t = threading.Thread(target=work)
+        t.start()
+        started.wait()
+        while not done.is_set():
+            counter[0] += 1
+            time.sleep(1e-6)  # blocks briefly, releasing the GIL so the solver can return
+        t.join()
+    finally:
+        sys.setswitchinterval(old)
+    assert seen["moved"] > 0
