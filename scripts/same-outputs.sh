@@ -22,6 +22,21 @@ cargo build --release --quiet --bin mrdw
 base_bin=$tmp/base/target/release/mrdw
 new_bin=$PWD/target/release/mrdw
 
+# summary.json without its timings (keys ending in _s, *seconds*, wall_time*).
+untimed() {
+  python3 -c '
+import json, sys
+def strip(v):
+    if isinstance(v, dict):
+        return {k: strip(x) for k, x in v.items()
+                if not (k.endswith("_s") or "seconds" in k or k.startswith("wall_time"))}
+    if isinstance(v, list):
+        return [strip(x) for x in v]
+    return v
+print(json.dumps(strip(json.load(open(sys.argv[1]))), indent=1, sort_keys=True))
+' "$1"
+}
+
 status=0
 for scene in $("$new_bin" scenes | awk '{print $1}'); do
   if [[ $scene =~ $skip ]]; then
@@ -45,8 +60,7 @@ for scene in $("$new_bin" scenes | awk '{print $1}'); do
         ncsv=$((ncsv + 1))
         cmp -s "$f" "$g" || differ+=("$name") ;;
       summary.json)
-        diff -q <(grep -v '_s"\|wall_time' "$f") <(grep -v '_s"\|wall_time' "$g") \
-          >/dev/null 2>&1 || other+=("$name") ;;
+        diff -q <(untimed "$f") <(untimed "$g") >/dev/null 2>&1 || other+=("$name") ;;
       *) cmp -s "$f" "$g" || other+=("$name") ;;
     esac
   done

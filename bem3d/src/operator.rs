@@ -144,7 +144,6 @@ fn signed(r: usize, n: usize) -> f64 {
 
 impl PeriodicHalfSpace {
     pub fn new(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Self {
-        let mut fft = Fft2::new(nx, ny);
         let kernel = spectral(nx, ny, lx, ly, |k| {
             if k > 0.0 {
                 2.0 / (e_star * k)
@@ -152,31 +151,10 @@ impl PeriodicHalfSpace {
                 0.0
             }
         });
-        let mut spec: Vec<Complex64> = kernel.iter().map(|&k| Complex64::new(k, 0.0)).collect();
-        let mut green = vec![0.0; nx * ny];
-        fft.inverse(&mut spec, &mut green);
-        Self {
-            hs: HalfSpace {
-                nx,
-                ny,
-                lx,
-                ly,
-                e_star,
-            },
-            fft,
-            kernel,
-            stiffness: stiffness_kernel(nx, ny, lx, ly, e_star),
-            spec,
-            table: Circulant {
-                px: nx,
-                py: ny,
-                values: green,
-            },
-        }
+        let stiffness = stiffness_kernel(nx, ny, lx, ly, e_star);
+        Self::from_kernels(nx, ny, lx, ly, e_star, kernel, stiffness)
     }
-}
 
-impl PeriodicHalfSpace {
     /// A periodic half-space with any real spectral compliance `c(kx, ky) > 0` for
     /// k != 0, even in k (e.g. |2 / (|k| E*(kx v))| of a sliding viscoelastic body);
     /// the k = 0 mode carries no displacement. `e_scale` is a modulus for the solver's
@@ -190,7 +168,6 @@ impl PeriodicHalfSpace {
         e_scale: f64,
         c: impl Fn(f64, f64) -> f64,
     ) -> Self {
-        let mut fft = Fft2::new(nx, ny);
         let kernel = spectral_grid(nx, ny, lx, ly, |kx, ky| {
             if kx == 0.0 && ky == 0.0 {
                 0.0
@@ -209,6 +186,21 @@ impl PeriodicHalfSpace {
                 }
             })
             .collect();
+        Self::from_kernels(nx, ny, lx, ly, e_scale, kernel, stiffness)
+    }
+
+    /// The operator of a compliance spectrum and its preconditioner (stiffness)
+    /// spectrum, with the real-space Green's table for direct sums.
+    fn from_kernels(
+        nx: usize,
+        ny: usize,
+        lx: f64,
+        ly: f64,
+        e_star: f64,
+        kernel: Vec<f64>,
+        stiffness: Vec<f64>,
+    ) -> Self {
+        let mut fft = Fft2::new(nx, ny);
         let mut spec: Vec<Complex64> = kernel.iter().map(|&k| Complex64::new(k, 0.0)).collect();
         let mut green = vec![0.0; nx * ny];
         fft.inverse(&mut spec, &mut green);
@@ -218,7 +210,7 @@ impl PeriodicHalfSpace {
                 ny,
                 lx,
                 ly,
-                e_star: e_scale,
+                e_star,
             },
             fft,
             kernel,

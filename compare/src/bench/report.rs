@@ -187,6 +187,41 @@ fn budget(o: Options) -> f64 {
     }
 }
 
+/// The one point of a semi-analytic method.
+fn semi_analytic(case: &'static str, time: Timing, error: f64) -> Ladder {
+    Ladder {
+        case,
+        method: "MRD semi-analytic",
+        resolution: "-",
+        points: vec![Point {
+            resolution: 1.0,
+            time,
+            error,
+        }],
+    }
+}
+
+/// The rungs of a ladder: `value(n)` timed at each resolution n, its relative error
+/// against `reference`.
+fn rungs(
+    resolutions: Vec<usize>,
+    budget: f64,
+    reference: f64,
+    value: impl Fn(usize) -> f64,
+) -> Vec<Point> {
+    resolutions
+        .into_iter()
+        .map(|n| {
+            let (t, v) = timed(budget, || value(n));
+            Point {
+                resolution: n as f64,
+                time: t,
+                error: rel(v, reference),
+            }
+        })
+        .collect()
+}
+
 /// A non-periodic 3D solve of heights h(x, y) (apex at the centre cell), under a mask
 /// or not, at force `f` on the unit square: the approach from first contact.
 fn solve_3d(n: usize, h: impl Fn(f64, f64) -> f64, mask_radius: Option<f64>, f: f64) -> f64 {
@@ -226,50 +261,23 @@ fn indenter_ladders(ind: &Indenter, o: Options) -> Vec<Ladder> {
     let has_rim = ind.profile.rim().is_some();
     let semi = AxisymmetricContact::new(ind.profile.clone(), E).expect("valid profile");
     let (t, d) = timed(budget(o), || semi.state_at_force(ind.force).unwrap().depth);
-    let mut out = vec![Ladder {
-        case: ind.case,
-        method: "MRD semi-analytic",
-        resolution: "-",
-        points: vec![Point {
-            resolution: 1.0,
-            time: t,
-            error: rel(d, ind.depth),
-        }],
-    }];
-    let points = springs(o)
-        .into_iter()
-        .map(|n| {
-            let (t, d) = timed(budget(o), || {
-                DiscreteAxisymmetric::new(&ind.profile, E, n, ind.half_length)
-                    .unwrap()
-                    .state_at_force(ind.force, has_rim)
-                    .unwrap()
-                    .depth
-            });
-            Point {
-                resolution: n as f64,
-                time: t,
-                error: rel(d, ind.depth),
-            }
-        })
-        .collect();
+    let mut out = vec![semi_analytic(ind.case, t, rel(d, ind.depth))];
+    let points = rungs(springs(o), budget(o), ind.depth, |n| {
+        DiscreteAxisymmetric::new(&ind.profile, E, n, ind.half_length)
+            .unwrap()
+            .state_at_force(ind.force, has_rim)
+            .unwrap()
+            .depth
+    });
     out.push(Ladder {
         case: ind.case,
         method: "MRD springs",
         resolution: "springs",
         points,
     });
-    let points = grids(o)
-        .into_iter()
-        .map(|n| {
-            let (t, d) = timed(budget(o), || solve_3d(n, ind.h3d, ind.mask, ind.force));
-            Point {
-                resolution: n as f64,
-                time: t,
-                error: rel(d, ind.depth),
-            }
-        })
-        .collect();
+    let points = rungs(grids(o), budget(o), ind.depth, |n| {
+        solve_3d(n, ind.h3d, ind.mask, ind.force)
+    });
     out.push(Ladder {
         case: ind.case,
         method: "3D non-periodic",
@@ -321,30 +329,14 @@ fn jkr_ladders(o: Options) -> Vec<Ladder> {
     let sphere = Profile::single(Shape::paraboloid(r).unwrap());
     let adh = AdhesiveContact::new(AxisymmetricContact::new(sphere, E).unwrap(), gamma).unwrap();
     let (t, p) = timed(budget(o), || adh.pull_off(a_max, Control::Force).unwrap());
-    let semi = Ladder {
-        case: "jkr",
-        method: "MRD semi-analytic",
-        resolution: "-",
-        points: vec![Point {
-            resolution: 1.0,
-            time: t,
-            error: rel(p.force, reference),
-        }],
-    };
+    let semi = semi_analytic("jkr", t, rel(p.force, reference));
     let d_max = adh.depth_at_radius(a_max).unwrap();
-    let points = springs(o)
-        .into_iter()
-        .map(|n| {
-            let (t, c) = timed(budget(o), || {
-                simulate_cycle(&adh, n / 2, 1.5 * a_max, d_max, Control::Force).unwrap()
-            });
-            Point {
-                resolution: n as f64,
-                time: t,
-                error: rel(c.pull_off.force, reference),
-            }
-        })
-        .collect();
+    let points = rungs(springs(o), budget(o), reference, |n| {
+        simulate_cycle(&adh, n / 2, 1.5 * a_max, d_max, Control::Force)
+            .unwrap()
+            .pull_off
+            .force
+    });
     vec![
         semi,
         Ladder {
@@ -372,50 +364,22 @@ fn tangential_ladders(o: Options) -> Vec<Ladder> {
             .unwrap()
             .displacement
     });
-    let cm = Ladder {
-        case: "cattaneo_mindlin",
-        method: "MRD semi-analytic",
-        resolution: "-",
-        points: vec![Point {
-            resolution: 1.0,
-            time: t,
-            error: rel(u, u_ref),
-        }],
-    };
+    let cm = semi_analytic("cattaneo_mindlin", t, rel(u, u_ref));
     let beta = E / g;
     let amp = 0.5 * mu * beta * d;
     let w_ref = rf::mindlin_damping::dissipation_exact(E, beta, r, mu, d, amp);
     let (t, w) = timed(budget(o), || {
         dissipation_semi_analytic(&sphere, E, g, mu, d, amp).unwrap()
     });
-    let semi = Ladder {
-        case: "damping",
-        method: "MRD semi-analytic",
-        resolution: "-",
-        points: vec![Point {
-            resolution: 1.0,
-            time: t,
-            error: rel(w, w_ref),
-        }],
-    };
+    let semi = semi_analytic("damping", t, rel(w, w_ref));
     let a = rf::hertz::radius(r, d);
-    let points = springs(o)
-        .into_iter()
-        .map(|n| {
-            let (t, w) = timed(budget(o), || {
-                OscillatingContact::new(&sphere, E, g, mu, d, n / 2, 1.2 * a)
-                    .unwrap()
-                    .simulate(amp, 2, 8)
-                    .unwrap()
-                    .dissipation
-            });
-            Point {
-                resolution: n as f64,
-                time: t,
-                error: rel(w, w_ref),
-            }
-        })
-        .collect();
+    let points = rungs(springs(o), budget(o), w_ref, |n| {
+        OscillatingContact::new(&sphere, E, g, mu, d, n / 2, 1.2 * a)
+            .unwrap()
+            .simulate(amp, 2, 8)
+            .unwrap()
+            .dissipation
+    });
     vec![
         cm,
         semi,

@@ -91,6 +91,15 @@ impl Material {
 
 /// Ensemble mean per velocity over the surfaces `idx` of `mu[velocity][surface]`;
 /// non-finite entries (runs that failed) are left out, NaN where none is left.
+/// The sliding velocities: `count` values log-spaced on [min, max], validated.
+pub(super) fn velocities(min: f64, max: f64, count: usize) -> Result<Vec<f64>> {
+    let ok = super::positive(min) && super::positive(max) && max >= min;
+    if !ok || !(1..=200).contains(&count) {
+        return bad("need 0 < velocity_min <= velocity_max and velocities in 1..=200");
+    }
+    Ok(mrd::friction::log_space(min, max, count))
+}
+
 pub(super) fn ensemble_mean(mu: &[Vec<f64>], idx: &[usize]) -> Vec<f64> {
     mu.iter()
         .map(|row| {

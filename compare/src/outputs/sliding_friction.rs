@@ -250,13 +250,7 @@ impl Output for SlidingFriction {
         if !positive(self.reduced_force) {
             return bad("reduced_force must be > 0");
         }
-        let ok = positive(self.velocity_min)
-            && positive(self.velocity_max)
-            && self.velocity_max >= self.velocity_min
-            && (1..=200).contains(&self.velocities);
-        if !ok {
-            return bad("need 0 < velocity_min <= velocity_max and velocities in 1..=200");
-        }
+        elastomer::velocities(self.velocity_min, self.velocity_max, self.velocities)?;
         if !(2..=10_000).contains(&self.realisations) {
             return bad("realisations must lie in 2..=10000 (for intervals)");
         }

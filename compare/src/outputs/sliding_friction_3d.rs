@@ -371,13 +371,7 @@ impl Output for SlidingFriction3d {
                 * rayon::current_num_threads() as f64,
             &format!("grid = {}", self.grid),
         )?;
-        let ok = positive(self.velocity_min)
-            && positive(self.velocity_max)
-            && self.velocity_max >= self.velocity_min
-            && (1..=200).contains(&self.velocities);
-        if !ok {
-            return bad("need 0 < velocity_min <= velocity_max and velocities in 1..=200");
-        }
+        elastomer::velocities(self.velocity_min, self.velocity_max, self.velocities)?;
         if !(2..=1000).contains(&self.realisations) {
             return bad("realisations must lie in 2..=1000 (for intervals)");
         }
