@@ -32,6 +32,7 @@ const EXAMPLES: &str = "Examples:
   mrdw run fig6-full --shard 0/4 --out shards/0    one machine's share of a sweep
   mrdw merge shards/0 shards/1 shards/2 shards/3   combine the shares into one report
   mrdw bench mrd | rough | bem | sliding | sliding3d   run time (and error) of the solvers
+  mrdw bench report [--quick]   run time against error as a report folder, reports/bench/
 
 Report folders: --out may name a new folder, an empty one, or a report folder mrdw
 wrote before (replaced as a whole); any other existing path is refused. A run holds a
