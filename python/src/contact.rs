@@ -265,6 +265,16 @@ impl Contact {
                 "e_star = {e_star} must be finite and > 0"
             )));
         }
+        let per_cell = if periodic {
+            compare::outputs::BYTES_PER_CELL_PERIODIC
+        } else {
+            compare::outputs::BYTES_PER_CELL_NON_PERIODIC
+        };
+        compare::outputs::check_memory(
+            (nx * ny) as f64 * per_cell,
+            &format!("a {ny} x {nx} contact"),
+        )
+        .map_err(|e| crate::errors::compare_err(py, e))?;
         let h: Vec<f64> = view.iter().copied().collect();
         let mask = match mask {
             None => None,

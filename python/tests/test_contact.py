@@ -157,6 +157,10 @@ def test_bad_input_raises_value_error():
         mrdw.Contact(h).solve(approach=10.0)  # beyond complete contact of a periodic map
     with pytest.raises(ValueError, match="2 x 2"):
         mrdw.Contact(np.zeros((1, 8)))
+    # a grid that cannot fit in memory is refused before anything is allocated (a
+    # broadcast view: no memory behind it)
+    with pytest.raises(ValueError, match="memory"):
+        mrdw.Contact(np.broadcast_to(0.0, (100_000, 100_000)))
 
 
 def test_iteration_cap_raises_convergence_error_with_last_iterate():

@@ -202,12 +202,12 @@ pub(crate) fn check_points(points: usize) -> Result<()> {
 /// peaks: 394 MiB at 2048^2 periodic, 236 MiB at 1024^2 non-periodic), per rough-line
 /// point.
 pub(crate) const BYTES_PER_SPRING: f64 = 64.0;
-pub(crate) const BYTES_PER_CELL_PERIODIC: f64 = 128.0;
-pub(crate) const BYTES_PER_CELL_NON_PERIODIC: f64 = 256.0;
+pub const BYTES_PER_CELL_PERIODIC: f64 = 128.0;
+pub const BYTES_PER_CELL_NON_PERIODIC: f64 = 256.0;
 
 /// Refuses work whose memory estimate exceeds 80 % of what the machine has available
 /// (MemAvailable in /proc/meminfo; no check where that cannot be read).
-pub(crate) fn check_memory(bytes: f64, what: &str) -> Result<()> {
+pub fn check_memory(bytes: f64, what: &str) -> Result<()> {
     let available = std::fs::read_to_string("/proc/meminfo").ok().and_then(|m| {
         m.lines()
             .find(|l| l.starts_with("MemAvailable:"))
