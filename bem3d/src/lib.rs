@@ -12,6 +12,7 @@ pub mod error;
 pub mod fft;
 pub mod mask;
 pub mod operator;
+mod pool;
 
 pub use error::{BemError, Result};
 pub mod sliding;

@@ -259,6 +259,15 @@ impl SlidingContact {
         opts: &SolverOptions,
         warm: Option<&SlidingSolution>,
     ) -> Result<SlidingSolution> {
+        crate::pool::on_pool(|| self.solve_on_pool(pm, opts, warm))
+    }
+
+    fn solve_on_pool(
+        &mut self,
+        pm: f64,
+        opts: &SolverOptions,
+        warm: Option<&SlidingSolution>,
+    ) -> Result<SlidingSolution> {
         if !(pm.is_finite() && pm > 0.0) {
             return Err(BemError::InvalidInput(format!(
                 "mean pressure = {pm} must be > 0"

@@ -368,6 +368,15 @@ impl<K: Compliance> ContactSolver<K> {
         opts: &SolverOptions,
         warm: Option<&Solution>,
     ) -> Result<Solution> {
+        crate::pool::on_pool(|| self.solve_on_pool(load, opts, warm))
+    }
+
+    fn solve_on_pool(
+        &mut self,
+        load: Load,
+        opts: &SolverOptions,
+        warm: Option<&Solution>,
+    ) -> Result<Solution> {
         let n = self.op.cells();
         let area = self.op.cell_area();
         let nm = self.domain_cells;
@@ -736,6 +745,10 @@ impl<K: Compliance> ContactSolver<K> {
     /// (K_CC is then K itself, whose mean mode is free: the force grows at a fixed
     /// approach). A non-finite or vanishing step is a [`BemError::Breakdown`].
     pub fn tangent_stiffness(&mut self, sol: &Solution, opts: &SolverOptions) -> Result<f64> {
+        crate::pool::on_pool(|| self.tangent_stiffness_on_pool(sol, opts))
+    }
+
+    fn tangent_stiffness_on_pool(&mut self, sol: &Solution, opts: &SolverOptions) -> Result<f64> {
         const WHAT: &str = "tangent stiffness";
         let n = self.op.cells();
         if sol.pressure.len() != n {
