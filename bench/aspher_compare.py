@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Side-by-side: mrdw against ASPHER (PyPI `aspher`) on the periodic benchmark surfaces,
-at equal accuracy, one thread against one thread and two against two. Not run by CI.
+"""Side-by-side: mrdw against ASPHER (PyPI `aspher`) and optionally Tamaas 2.9 on the
+periodic benchmark surfaces, at equal accuracy, one thread against one thread and two
+against two. Not run by CI.
 
 Set-up (ASPHER builds from source: cmake, a C++ compiler and Eigen):
 
@@ -56,6 +57,18 @@ def worker(solver, path):
         r = mrdw.Contact(h, size=(1.0, 1.0), e_star=1.0).solve(mean_pressure=0.01, tolerance=1e-10)
         t = time.perf_counter() - t0
         p, its = r.pressure, r.iterations
+    elif solver == "tamaas":
+        import tamaas as tm
+
+        tm.set_log_level(tm.LogLevel.error)
+        model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], list(h.shape))
+        model.E, model.nu = 1.0, 0.0  # E* = 1
+        t0 = time.perf_counter()
+        pk = tm.PolonskyKeerRey(model, h, 1e-10)
+        pk.max_iter = 100000
+        pk.solve(0.01)
+        t = time.perf_counter() - t0
+        p, its = model.traction.copy(), -1  # Tamaas reports iterations only in its log
     else:
         import aspher
 
@@ -89,6 +102,8 @@ def main():
     ap.add_argument("--max-n", type=int, default=1024)
     ap.add_argument("--aspher-threads", type=int, nargs="+", default=[1],
                     help="ASPHER thread counts to time (its OpenMP threads stall on some VMs)")
+    ap.add_argument("--tamaas", action="store_true",
+                    help="also time Tamaas 2.9 (PolonskyKeerRey, tolerance 1e-10, 1 thread)")
     ap.add_argument("--worker", nargs=2, help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.worker:
@@ -96,6 +111,8 @@ def main():
     files = sorted((int(m.group(1)), os.path.join(a.folder, f)) for f in os.listdir(a.folder)
                    if (m := re.match(r"surface_(\d+)\.npy$", f)))
     cases = [("mrdw", 1), ("mrdw", 2)] + [("aspher", t) for t in a.aspher_threads]
+    if a.tamaas:
+        cases.append(("tamaas", 1))
     print(f"CPU: {cpu_model()}; {a.rounds} interleaved rounds; medians [min-max]")
     print(f"{'grid':>6} | {'solver':>10} | {'time [s]':>22} | {'iters':>5} | {'Tamaas error':>12}")
     for n, path in files:
@@ -111,6 +128,8 @@ def main():
             med[(s, t)] = statistics.median(ts)
             print(f"{n:>5}^2 | {s + ' ' + str(t) + 't':>10} | {med[(s, t)]:8.3f} [{min(ts):.3f}-{max(ts):.3f}] |"
                   f" {rs[-1]['iterations']:>5} | {max(r['error'] for r in rs):12.2e}")
+        if ("tamaas", 1) in med:
+            print(f"{'':>6}   Tamaas / mrdw 1t = {med[('tamaas', 1)] / med[('mrdw', 1)]:.1f}")
         best_aspher = min(v for (s, _), v in med.items() if s == "aspher")
         one = (f"ASPHER 1t / mrdw 1t = {med[('aspher', 1)] / med[('mrdw', 1)]:.2f}; "
                if ("aspher", 1) in med else "")
