@@ -100,16 +100,7 @@ fn stiffness_kernel(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Vec<
 /// `f(|k|)` at every bin of a real 2D FFT of a periodic `ny x nx` grid of size
 /// `lx x ly`, in the transposed layout of [`Fft2`] (`(nx/2 + 1) x ny`).
 fn spectral(nx: usize, ny: usize, lx: f64, ly: f64, f: impl Fn(f64) -> f64) -> Vec<f64> {
-    let nc = nx / 2 + 1;
-    let mut s = vec![0.0; nc * ny];
-    for c in 0..nc {
-        for r in 0..ny {
-            let kx = 2.0 * PI * c as f64 / lx;
-            let ky = 2.0 * PI * signed(r, ny) / ly;
-            s[c * ny + r] = f((kx * kx + ky * ky).sqrt());
-        }
-    }
-    s
+    spectral_grid(nx, ny, lx, ly, |kx, ky| f((kx * kx + ky * ky).sqrt()))
 }
 
 /// `f(kx, ky)` (kx >= 0) at every bin of a real 2D FFT of a periodic `ny x nx` grid of

@@ -3,7 +3,7 @@
 mod common;
 
 use bem3d::{ContactSolver, Load, PeriodicHalfSpace, SlidingContact, SolverOptions};
-use common::{dense_reference, rel, rough, self_affine};
+use common::{dense_reference, max_abs_diff, rel, rough, self_affine};
 use rustfft::num_complex::Complex64;
 use std::f64::consts::PI;
 
@@ -142,14 +142,7 @@ fn rough_partial_contact_matches_a_dense_active_set_solve() {
             pm * l * l,
             l * l / (n * n) as f64,
         );
-        let err = sol
-            .contact
-            .pressure
-            .iter()
-            .zip(&p_ref)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max)
-            / pm;
+        let err = max_abs_diff(&sol.contact.pressure, &p_ref) / pm;
         let area = sol.contact.contact_cells as f64 / (n * n) as f64;
         eprintln!(
             "v {v}: err {err:e} area {area} mu {} {} outer {} inner {}",
@@ -171,14 +164,7 @@ fn a_constant_modulus_is_the_elastic_solver() {
     let slide = s.solve(0.05, &opts, None).unwrap();
     let mut e = ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 2.0), &h, None).unwrap();
     let el = e.solve(Load::MeanPressure(0.05), &opts, None).unwrap();
-    let err = slide
-        .contact
-        .pressure
-        .iter()
-        .zip(&el.pressure)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max)
-        / 0.05;
+    let err = max_abs_diff(&slide.contact.pressure, &el.pressure) / 0.05;
     eprintln!(
         "elastic: err {err:e}, mu {} {}, outer {}",
         slide.mu, slide.mu_dissipation, slide.contact.iterations
@@ -215,14 +201,7 @@ fn slow_and_fast_sliding_are_the_relaxed_and_glassy_elastic_contacts() {
             .unwrap()
             .solve(Load::MeanPressure(pm), &opts(1e-10), None)
             .unwrap();
-        let err = slide
-            .contact
-            .pressure
-            .iter()
-            .zip(&el.pressure)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max)
-            / pm;
+        let err = max_abs_diff(&slide.contact.pressure, &el.pressure) / pm;
         assert!(
             err < 1e-7,
             "v = {v:e}: pressure differs from the elastic limit by {err:e} p_mean"
@@ -248,14 +227,7 @@ fn slow_and_fast_sliding_are_the_relaxed_and_glassy_elastic_contacts() {
         .unwrap()
         .solve(Load::MeanPressure(pm_ridges), &opts(1e-10), None)
         .unwrap();
-    let err = slide
-        .contact
-        .pressure
-        .iter()
-        .zip(&el.pressure)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max)
-        / pm_ridges;
+    let err = max_abs_diff(&slide.contact.pressure, &el.pressure) / pm_ridges;
     assert!(err < 1e-7, "ridges: {err:e}");
 }
 

@@ -164,3 +164,12 @@ pub fn rms_slope(h: &[f64], n: usize, l: f64) -> f64 {
     }
     (sum / (n * n) as f64 / (n * n) as f64).sqrt()
 }
+
+/// Largest absolute difference between two fields.
+#[allow(dead_code)]
+pub fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
