@@ -9,6 +9,12 @@
 # BASE_REF is a git revision (built in a temporary worktree); the other build is the
 # work tree. SKIP_REGEX names scenes to leave out (default: fig6-full, a 48-minute run).
 # Exit status 0 when every compared file is identical.
+#
+# With RTOL set (e.g. RTOL=1e-6), a CSV that differs is compared number by number
+# instead: it passes ("close") when every value differs from the base by at most RTOL
+# times its column's largest magnitude. Columns of run statistics (iterations, times,
+# seconds) are left out of that comparison. For solver changes that move results
+# within the solver tolerance.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 base_ref=${1:?usage: scripts/same-outputs.sh BASE_REF [SKIP_REGEX]}
@@ -37,6 +43,33 @@ print(json.dumps(strip(json.load(open(sys.argv[1]))), indent=1, sort_keys=True))
 ' "$1"
 }
 
+# Largest column-scaled difference between two CSVs (prints it; exit 1 above RTOL).
+close() {
+  python3 -c '
+import csv, sys
+rtol = float(sys.argv[3])
+a = list(csv.reader(open(sys.argv[1])))
+b = list(csv.reader(open(sys.argv[2])))
+if len(a) != len(b) or a[0] != b[0]:
+    print("shape/header differ"); sys.exit(1)
+stat = ("iteration", "seconds", "time", "_s ", "(s)")
+worst = 0.0
+for c, name in enumerate(a[0]):
+    if any(w in name.lower() + " " for w in stat):
+        continue
+    try:
+        x = [float(r[c]) for r in a[1:]]; y = [float(r[c]) for r in b[1:]]
+    except (ValueError, IndexError):
+        if [r[c] for r in a[1:]] != [r[c] for r in b[1:]]:
+            print(f"text column {name} differs"); sys.exit(1)
+        continue
+    scale = max([abs(v) for v in x + y] + [1e-300])
+    worst = max([worst] + [abs(u - v) / scale for u, v in zip(x, y)])
+print(f"{worst:.1e}")
+sys.exit(0 if worst <= rtol else 1)
+' "$1" "$2" "${RTOL}"
+}
+
 status=0
 for scene in $("$new_bin" scenes | awk '{print $1}'); do
   if [[ $scene =~ $skip ]]; then
@@ -50,6 +83,8 @@ for scene in $("$new_bin" scenes | awk '{print $1}'); do
   "$base_bin" run "$scene" --out "$tmp/a/$scene" >/dev/null 2>&1
   "$new_bin" run "$scene" --out "$tmp/b/$scene" >/dev/null 2>&1
   differ=()
+  near=()
+  d=""
   other=()
   ncsv=0
   for f in "$tmp/a/$scene"/*; do
@@ -58,7 +93,13 @@ for scene in $("$new_bin" scenes | awk '{print $1}'); do
     case $name in
       *.csv)
         ncsv=$((ncsv + 1))
-        cmp -s "$f" "$g" || differ+=("$name") ;;
+        if ! cmp -s "$f" "$g"; then
+          if [ -n "${RTOL:-}" ] && d=$(close "$f" "$g"); then
+            near+=("$name ($d)")
+          else
+            differ+=("$name${d:+ ($d)}")
+          fi
+        fi ;;
       summary.json)
         diff -q <(untimed "$f") <(untimed "$g") >/dev/null 2>&1 || other+=("$name") ;;
       *) cmp -s "$f" "$g" || other+=("$name") ;;
@@ -69,7 +110,9 @@ for scene in $("$new_bin" scenes | awk '{print $1}'); do
   done
   note=""
   [ ${#other[@]} -eq 0 ] || note="; other files differ: ${other[*]}"
-  if [ ${#differ[@]} -eq 0 ]; then
+  if [ ${#differ[@]} -eq 0 ] && [ ${#near[@]} -gt 0 ]; then
+    echo "close $scene: ${near[*]}$note"
+  elif [ ${#differ[@]} -eq 0 ]; then
     echo "same  $scene ($ncsv CSVs identical$note)"
   else
     echo "DIFF  $scene: ${differ[*]}$note"
