@@ -786,7 +786,7 @@ impl<K: Compliance> ContactSolver<K> {
         let nm = self.domain_cells;
         let mean_pressure = force / (nm as f64 * self.op.cell_area());
         let fraction = START_AREA * mean_pressure / (self.op.e_star() * self.slope_rms);
-        if fraction.is_finite() && fraction < 1.0 {
+        if nm >= 2 && fraction.is_finite() && fraction < 1.0 {
             let mut zs: Vec<f64> = (0..p.len())
                 .filter(|&i| self.mask[i] > 0)
                 .map(|i| self.z[i])

@@ -198,7 +198,8 @@ fn warm_start_never_costs_more_than_cold() {
 
 /// One raised cell carries the whole load: its pressure is F / cell area and the
 /// approach is that pressure times the operator's self-influence (Love's coefficient
-/// of a cell on itself; the dense periodic matrix's diagonal for periodic grids).
+/// of a cell on itself; the dense periodic matrix's diagonal for periodic grids). The
+/// same with a mask of that one cell (a one-cell domain).
 #[test]
 fn a_single_contacting_cell() {
     let n = 16;
@@ -206,14 +207,20 @@ fn a_single_contacting_cell() {
     let mut h = vec![0.0; n * n];
     h[5 * n + 7] = 1e-3;
     let cell = (l / n as f64).powi(2);
-    for periodic in [false, true] {
+    let one: Vec<bool> = (0..n * n).map(|k| k == 5 * n + 7).collect();
+    for (periodic, mask) in [
+        (false, None),
+        (true, None),
+        (false, Some(one.clone())),
+        (true, Some(one)),
+    ] {
         let sol = if periodic {
             let mut s =
-                ContactSolver::new(PeriodicHalfSpace::new(n, n, l, l, 2.0), &h, None).unwrap();
+                ContactSolver::new(PeriodicHalfSpace::new(n, n, l, l, 2.0), &h, mask).unwrap();
             s.solve(Load::Force(f), &opts(1e-12, 1000), None).unwrap()
         } else {
             let mut s =
-                ContactSolver::new(NonPeriodicHalfSpace::new(n, n, l, l, 2.0), &h, None).unwrap();
+                ContactSolver::new(NonPeriodicHalfSpace::new(n, n, l, l, 2.0), &h, mask).unwrap();
             s.solve(Load::Force(f), &opts(1e-12, 1000), None).unwrap()
         };
         assert_eq!(sol.contact_cells, 1, "periodic = {periodic}");
