@@ -320,7 +320,7 @@ impl Contact {
     /// Solves for exactly one of: mean pressure over lx * ly [stress], total force
     /// [stress x length^2], or rigid-body approach from first contact [length].
     /// `warm`: a previous ContactResult of this Contact, used as the initial iterate
-    /// where that pays (force ratios 0.9-1.3, approach ratios 1-1.5). `stiffness`: also
+    /// where that pays (force ratios 0.9-1.05, approach ratios 1-1.05). `stiffness`: also
     /// the tangent stiffness dF/dd. Raises ValueError for bad input or an infeasible
     /// load, ConvergenceError (with `.last`) if the iteration cap is reached. The GIL is
     /// released while solving.

@@ -128,14 +128,14 @@ def test_complete_contact_and_mask():
 def test_load_ladder_warm_starts_and_matches_cold():
     h = rough(64)
     c = mrdw.Contact(h)
-    loads = [0.01, 0.011, 0.012, 0.013]
+    loads = [0.01, 0.0104, 0.0108, 0.0112]  # 4 % steps: inside the warm-start window
     warm = c.solve_many(mean_pressures=loads, tolerance=1e-11)
     assert any(r.warm_started for r in warm[1:])
     for p, r in zip(loads, warm):
         cold = c.solve(mean_pressure=p, tolerance=1e-11)
         assert r.iterations <= cold.iterations
         np.testing.assert_allclose(r.pressure, cold.pressure, atol=1e-7 * cold.pressure.max())
-    again = c.solve(mean_pressure=0.0105, warm=warm[0], tolerance=1e-11)
+    again = c.solve(mean_pressure=0.0103, warm=warm[0], tolerance=1e-11)
     assert again.warm_started
 
 
