@@ -107,9 +107,10 @@ def worker(solver, geometry, pm, mode):
         model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], list(h.shape))
         model.E, model.nu = 1.0, 0.0  # E* = 1
         t0 = time.perf_counter()
+        if not periodic:  # the operator is registered on the model before the solver
+            tm.ModelFactory.registerNonPeriodic(model, "dcfft")
         pk = tm.PolonskyKeerRey(model, h, 1e-10)
         if not periodic:
-            tm.ModelFactory.registerNonPeriodic(model, "dcfft")
             pk.setIntegralOperator("dcfft")
         pk.max_iter = 100000
         pk.solve(pm)
