@@ -81,7 +81,6 @@ pub struct PeriodicHalfSpace {
     kernel: Vec<f64>,
     /// Its inverse, the preconditioner (see [`stiffness_kernel`]).
     stiffness: Vec<f64>,
-    spec: Vec<Complex64>,
     /// The same operator in real space: `u = table (*) p`, circular.
     table: Circulant,
 }
@@ -206,7 +205,6 @@ impl PeriodicHalfSpace {
             fft,
             kernel,
             stiffness,
-            spec,
             table: Circulant {
                 px: nx,
                 py: ny,
@@ -224,11 +222,8 @@ impl Compliance for PeriodicHalfSpace {
         true
     }
     fn apply(&mut self, p: &[f64], u: &mut [f64]) {
-        self.fft.forward(p, &mut self.spec);
-        for (s, k) in self.spec.iter_mut().zip(&self.kernel) {
-            *s *= *k;
-        }
-        self.fft.inverse(&mut self.spec, u);
+        let dims = (self.hs.nx, self.hs.ny);
+        self.fft.convolve(p, dims, &self.kernel, u);
     }
     fn add_point_loads(&mut self, loads: &[(usize, f64)], u: &mut [f64]) {
         self.table.add_point_loads(self.hs.nx, loads, u);
@@ -239,11 +234,8 @@ impl Compliance for PeriodicHalfSpace {
     /// The exact inverse of K on mean-free fields (Vollebregt 2014 uses the same idea:
     /// an FFT-based approximate inverse, restricted by the solver to the contact set).
     fn precondition(&mut self, g: &mut [f64]) {
-        self.fft.forward(g, &mut self.spec);
-        for (s, k) in self.spec.iter_mut().zip(&self.stiffness) {
-            *s *= *k;
-        }
-        self.fft.inverse(&mut self.spec, g);
+        let dims = (self.hs.nx, self.hs.ny);
+        self.fft.convolve_in_place(g, dims, &self.stiffness);
     }
 }
 
@@ -311,14 +303,12 @@ pub struct NonPeriodicHalfSpace {
     hs: HalfSpace,
     fft: Fft2,
     kernel: Vec<f64>,
-    spec: Vec<Complex64>,
     /// Love's coefficients on the padded grid, for direct sums.
     table: Circulant,
     /// Preconditioner: the periodic stiffness on the unpadded grid, with its own
-    /// transform and spectrum.
+    /// transform.
     pre_fft: Fft2,
     stiffness: Vec<f64>,
-    pre_spec: Vec<Complex64>,
 }
 
 impl NonPeriodicHalfSpace {
@@ -368,13 +358,11 @@ impl NonPeriodicHalfSpace {
             },
             fft,
             kernel,
-            spec,
             table: Circulant {
                 px,
                 py,
                 values: k_real,
             },
-            pre_spec: vec![Complex64::default(); (nx / 2 + 1) * ny],
             pre_fft: Fft2::new(nx, ny),
             stiffness: stiffness_kernel(nx, ny, lx, ly, e_star),
         }
@@ -393,11 +381,7 @@ impl Compliance for NonPeriodicHalfSpace {
         // forward; only the first ny rows and nx columns of the result are computed
         // back (the rest carries wrap-around values).
         let (nx, ny) = (self.hs.nx, self.hs.ny);
-        self.fft.forward_padded(p, nx, ny, &mut self.spec);
-        for (s, k) in self.spec.iter_mut().zip(&self.kernel) {
-            *s *= *k;
-        }
-        self.fft.inverse_cropped(&mut self.spec, u, nx, ny);
+        self.fft.convolve(p, (nx, ny), &self.kernel, u);
     }
     fn add_point_loads(&mut self, loads: &[(usize, f64)], u: &mut [f64]) {
         self.table.add_point_loads(self.hs.nx, loads, u);
@@ -411,11 +395,8 @@ impl Compliance for NonPeriodicHalfSpace {
     /// across the boundary, which the padding removes from K but not from M (a
     /// quarter of the cost of an application of K).
     fn precondition(&mut self, g: &mut [f64]) {
-        self.pre_fft.forward(g, &mut self.pre_spec);
-        for (s, k) in self.pre_spec.iter_mut().zip(&self.stiffness) {
-            *s *= *k;
-        }
-        self.pre_fft.inverse(&mut self.pre_spec, g);
+        let dims = (self.hs.nx, self.hs.ny);
+        self.pre_fft.convolve_in_place(g, dims, &self.stiffness);
     }
 }
 

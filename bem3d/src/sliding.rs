@@ -187,16 +187,12 @@ impl SlidingContact {
 
     /// out = (kernel * p) in real space.
     fn apply(&mut self, kernel_is_full: bool, p: &[f64], out: &mut [f64]) {
-        self.fft.forward(p, &mut self.spec);
         let k = if kernel_is_full {
             &self.c
         } else {
             &self.c_minus_b
         };
-        for (s, c) in self.spec.iter_mut().zip(k) {
-            *s *= c;
-        }
-        self.fft.inverse(&mut self.spec, out);
+        self.fft.convolve(p, (self.nx, self.ny), k, out);
     }
 
     /// The sliding problem's residual (the elastic criterion with the true K), the
