@@ -17,6 +17,8 @@ mod pool;
 pub use error::{BemError, Result};
 pub mod sliding;
 pub mod solver;
-pub use operator::{Compliance, DenseCompliance, NonPeriodicHalfSpace, PeriodicHalfSpace};
+pub use operator::{
+    Compliance, DenseCompliance, NonPeriodicHalfSpace, Operand, PeriodicHalfSpace, Spectral,
+};
 pub use sliding::{SlidingContact, SlidingSolution};
 pub use solver::{ContactSolver, Load, Solution, SolverOptions};

@@ -20,6 +20,23 @@ pub struct HalfSpace {
     pub e_star: f64,
 }
 
+/// Which of an operator's two convolutions a fused application uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Operand {
+    /// K itself.
+    Compliance,
+    /// The preconditioner M.
+    Preconditioner,
+}
+
+/// An FFT-based operator's transform and symbol, for fused applications
+/// ([`Fft2::load_rows`], [`Fft2::finish_rows`]) on rows of `dims = (width, rows)`.
+pub struct Spectral<'a> {
+    pub fft: &'a mut Fft2,
+    pub symbol: &'a [f64],
+    pub dims: (usize, usize),
+}
+
 /// A linear surface compliance operator.
 pub trait Compliance: Send {
     fn half_space(&self) -> &HalfSpace;
@@ -67,6 +84,12 @@ pub trait Compliance: Send {
     /// Polonsky-Keer.
     fn precondition(&mut self, g: &mut [f64]) {
         let _ = g;
+    }
+    /// The transform and symbol that apply K or M as one convolution, if the operator
+    /// is one (the solver then fuses its sweeps into the transform's row passes).
+    fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
+        let _ = which;
+        None
     }
     fn cell_area(&self) -> f64 {
         self.lx() * self.ly() / self.cells() as f64
@@ -237,6 +260,17 @@ impl Compliance for PeriodicHalfSpace {
         let dims = (self.hs.nx, self.hs.ny);
         self.fft.convolve_in_place(g, dims, &self.stiffness);
     }
+    fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
+        let symbol = match which {
+            Operand::Compliance => &self.kernel,
+            Operand::Preconditioner => &self.stiffness,
+        };
+        Some(Spectral {
+            fft: &mut self.fft,
+            symbol,
+            dims: (self.hs.nx, self.hs.ny),
+        })
+    }
 }
 
 /// Below this many loads a direct real-space sum beats an FFT-pair application of a
@@ -397,6 +431,21 @@ impl Compliance for NonPeriodicHalfSpace {
     fn precondition(&mut self, g: &mut [f64]) {
         let dims = (self.hs.nx, self.hs.ny);
         self.pre_fft.convolve_in_place(g, dims, &self.stiffness);
+    }
+    fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
+        let dims = (self.hs.nx, self.hs.ny);
+        Some(match which {
+            Operand::Compliance => Spectral {
+                fft: &mut self.fft,
+                symbol: &self.kernel,
+                dims,
+            },
+            Operand::Preconditioner => Spectral {
+                fft: &mut self.pre_fft,
+                symbol: &self.stiffness,
+                dims,
+            },
+        })
     }
 }
 
