@@ -37,6 +37,9 @@ pub struct Fft2 {
 /// Rows per task of the row passes.
 const ROW_CHUNK: usize = 16;
 
+/// Rows per tile of the column pass's gather.
+const TILE: usize = 32;
+
 /// Target size of a column block in complex values (256 KiB: in a core's L2 cache).
 const COLUMN_BLOCK: usize = 16_384;
 
@@ -199,7 +202,7 @@ impl Fft2 {
             .par_chunks_mut(nc * ROW_CHUNK)
             .zip(items)
             .map_init(
-                // realfft overwrites its input: rows are padded in a copy.
+                // realfft overwrites its input: padded rows are copied first.
                 || {
                     (
                         r2c.make_scratch_vec(),
@@ -210,10 +213,16 @@ impl Fft2 {
                 |(scratch, values, row), (out, item)| {
                     let count = out.len() / nc;
                     let sums = load(item, &mut values[..count * width]);
-                    for (b, s) in out.chunks_mut(nc).zip(values.chunks(width)) {
-                        row[..width].copy_from_slice(s);
-                        row[width..].iter_mut().for_each(|v| *v = 0.0);
-                        r2c.process_with_scratch(row, b, scratch).expect("row fft");
+                    for (b, s) in out.chunks_mut(nc).zip(values.chunks_mut(width)) {
+                        let input = if width == nx {
+                            s
+                        } else {
+                            row[..width].copy_from_slice(s);
+                            row[width..].iter_mut().for_each(|v| *v = 0.0);
+                            &mut row[..]
+                        };
+                        r2c.process_with_scratch(input, b, scratch)
+                            .expect("row fft");
                     }
                     sums
                 },
@@ -272,10 +281,15 @@ impl Fft2 {
             |scratch, (b, block)| {
                 let c0 = b * per;
                 let width = block.len() / ny;
-                for r in 0..filled {
-                    let row = &src[r * nc + c0..r * nc + c0 + width];
-                    for (c, v) in row.iter().enumerate() {
-                        block[c * ny + r] = *v;
+                // In tiles of TILE rows: each column's stretch is written whole, from
+                // rows the tile keeps in cache.
+                for r0 in (0..filled).step_by(TILE) {
+                    let r1 = (r0 + TILE).min(filled);
+                    for c in 0..width {
+                        let col = &mut block[c * ny + r0..c * ny + r1];
+                        for (k, v) in col.iter_mut().enumerate() {
+                            *v = src[(r0 + k) * nc + c0 + c];
+                        }
                     }
                 }
                 for col in block.chunks_mut(ny) {
@@ -346,10 +360,15 @@ impl Fft2 {
                         if nx.is_multiple_of(2) {
                             a[nc - 1].im = 0.0;
                         }
-                        c2r.process_with_scratch(a, full, scratch)
-                            .expect("row ifft");
-                        for (o, v) in o.iter_mut().zip(full.iter()) {
-                            *o = v * norm;
+                        if width == nx {
+                            c2r.process_with_scratch(a, o, scratch).expect("row ifft");
+                            o.iter_mut().for_each(|v| *v *= norm);
+                        } else {
+                            c2r.process_with_scratch(a, full, scratch)
+                                .expect("row ifft");
+                            for (o, v) in o.iter_mut().zip(full.iter()) {
+                                *o = v * norm;
+                            }
                         }
                     }
                     store(item, &values[..count * width])

@@ -8,9 +8,11 @@
 //! rough: 300 -> 70). Each iteration applies K once (to the direction) and M once; the
 //! displacement `K p` is carried along (see [`ContactSolver::solve`]). Both are
 //! convolutions, and the sweeps that produce their inputs or consume their outputs run
-//! inside the transforms' row passes ([`Fft2::load_rows`]), on rows still in cache:
-//! measured at 1024^2 (one thread, 68 iterations) the four applications with their
-//! sweeps went from 2.47 s to 2.29 s per solve (about 7 %; the transforms dominate).
+//! inside the transforms' row passes ([`Fft2::load_rows`]), on rows still in cache: an
+//! iteration streams the grid about 35 times instead of 41. In interleaved A/B runs on
+//! the 2-core development VM (256^2-1024^2, 1 and 2 threads) the solve time did not
+//! change measurably: there the transforms dominate and the sweeps were not limited by
+//! memory bandwidth.
 //!
 //! The direction is `t = y + beta t` with Polak-Ribiere+'s
 //! `beta = max(0, <q, y - y_prev> / <q_prev, y_prev>)` (Gilbert & Nocedal 1992, SIAM J.

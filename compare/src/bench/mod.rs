@@ -116,18 +116,26 @@ pub fn reference_surface(n: usize) -> Vec<f64> {
     h
 }
 
+/// One convolution on an `nx x ny` grid (a forward and an inverse transform with a
+/// product between, as the operators apply K and M).
 fn fft_pair_time(nx: usize, ny: usize) -> f64 {
     let mut f = bem3d::fft::Fft2::new(nx, ny);
     let x: Vec<f64> = (0..nx * ny).map(|k| (k % 7) as f64).collect();
-    let mut spec = vec![Default::default(); f.spectrum_len()];
+    let symbol = vec![0.5; f.spectrum_len()];
     let mut y = vec![0.0; nx * ny];
-    time_it(
-        || {
-            f.forward(&x, &mut spec);
-            f.inverse(&mut spec, &mut y);
-        },
-        0.3,
-    )
+    time_it(|| f.convolve(&x, (nx, ny), &symbol, &mut y), 0.3)
+}
+
+/// Time of one application of K and of M (the preconditioner) of `op`, in seconds:
+/// with the solve's iterations they split an iteration into K, M and the rest (the
+/// sweeps, fresh `K p` where the projection changed many cells, the set-up's share).
+fn operator_times<K: bem3d::Compliance>(mut op: K) -> (f64, f64) {
+    let n = op.cells();
+    let x: Vec<f64> = (0..n).map(|k| (k % 7) as f64).collect();
+    let mut y = vec![0.0; n];
+    let k = time_it(|| op.apply(&x, &mut y), 0.3);
+    let m = time_it(|| op.precondition(&mut y), 0.3);
+    (k, m)
 }
 
 /// Peak resident memory of this process in MiB (Linux VmHWM), if readable.
@@ -155,10 +163,16 @@ pub fn run_bem_case(
         tolerance: 1e-12,
         max_iterations: 100_000,
     };
-    let pair = if kind == "periodic" {
-        fft_pair_time(n, n)
+    let (pair, (k_time, m_time)) = if kind == "periodic" {
+        (
+            fft_pair_time(n, n),
+            operator_times(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0)),
+        )
     } else {
-        fft_pair_time(2 * n, 2 * n)
+        (
+            fft_pair_time(2 * n, 2 * n),
+            operator_times(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0)),
+        )
     };
     let base_mem = peak_memory_mib().unwrap_or(0.0);
     let (t, sol, err) = if kind == "periodic" {
@@ -193,7 +207,7 @@ pub fn run_bem_case(
             pm.write_npy(&dir.join(format!("mrdw_pressure_{n}.npy")))
                 .unwrap();
         }
-        writeln!(w, "RESULT kind=periodic n={n} time={t:e} iterations={} pair={pair:e} mem={:.1} base_mem={base_mem:.1} err_pressure_l2={:e} err_approach={:e} area={:e}",
+        writeln!(w, "RESULT kind=periodic n={n} time={t:e} iterations={} pair={pair:e} k={k_time:e} m={m_time:e} mem={:.1} base_mem={base_mem:.1} err_pressure_l2={:e} err_approach={:e} area={:e}",
             sol.iterations, mem, (num / den).sqrt(), ((sol.approach - refsol.approach) / refsol.approach).abs(), sol.contact_area)?;
         return Ok(());
     } else {
@@ -221,7 +235,7 @@ pub fn run_bem_case(
         );
         (t, sol, err)
     };
-    writeln!(w, "RESULT kind=hertz n={n} time={t:e} iterations={} pair={pair:e} mem={:.1} base_mem={base_mem:.1} err_peak={:e} err_approach={:e}",
+    writeln!(w, "RESULT kind=hertz n={n} time={t:e} iterations={} pair={pair:e} k={k_time:e} m={m_time:e} mem={:.1} base_mem={base_mem:.1} err_peak={:e} err_approach={:e}",
         sol.iterations, peak_memory_mib().unwrap_or(0.0), err.0, err.1)?;
     Ok(())
 }
@@ -276,7 +290,7 @@ fn print_bem_table(w: &mut dyn Write, lines: &[String]) -> std::io::Result<()> {
     };
     writeln!(
         w,
-        "{:>9} | {:>6} | {:>9} | {:>6} | {:>10} | {:>11} | {:>10} | {:>9} | {:>10} | {:>10}",
+        "{:>9} | {:>6} | {:>9} | {:>6} | {:>10} | {:>11} | {:>10} | {:>8} | {:>8} | {:>9} | {:>9} | {:>10} | {:>10}",
         "case",
         "grid",
         "time [s]",
@@ -284,11 +298,14 @@ fn print_bem_table(w: &mut dyn Write, lines: &[String]) -> std::io::Result<()> {
         "t/iter [s]",
         "t/iter/FFT",
         "t/FFT",
+        "K [ms]",
+        "M [ms]",
+        "rest [ms]",
         "mem [MiB]",
         "error 1",
         "error 2"
     )?;
-    writeln!(w, "{}", "-".repeat(117))?;
+    writeln!(w, "{}", "-".repeat(152))?;
     for l in lines {
         let kind = if l.contains("kind=periodic") {
             "periodic"
@@ -296,6 +313,7 @@ fn print_bem_table(w: &mut dyn Write, lines: &[String]) -> std::io::Result<()> {
             "hertz"
         };
         let (t, it, pair) = (field(l, "time"), field(l, "iterations"), field(l, "pair"));
+        let (k, m) = (field(l, "k"), field(l, "m"));
         let (e1, e2) = if kind == "periodic" {
             (field(l, "err_pressure_l2"), field(l, "err_approach"))
         } else {
@@ -303,7 +321,7 @@ fn print_bem_table(w: &mut dyn Write, lines: &[String]) -> std::io::Result<()> {
         };
         writeln!(
             w,
-"{:>9} | {:>6} | {:>9.3} | {:>6} | {:>10.3e} | {:>11.2} | {:>10.0} | {:>9.0} | {:>10.2e} | {:>10.2e}",
+"{:>9} | {:>6} | {:>9.3} | {:>6} | {:>10.3e} | {:>11.2} | {:>10.0} | {:>8.3} | {:>8.3} | {:>9.3} | {:>9.0} | {:>10.2e} | {:>10.2e}",
             kind,
             format!("{}^2", field(l, "n")),
             t,
@@ -311,6 +329,9 @@ fn print_bem_table(w: &mut dyn Write, lines: &[String]) -> std::io::Result<()> {
             t / it.max(1.0),
             t / it.max(1.0) / pair,
             t / pair,
+            k * 1e3,
+            m * 1e3,
+            (t / it.max(1.0) - k - m) * 1e3,
             field(l, "mem") - 0.0,
             e1,
             e2
@@ -331,7 +352,7 @@ fn print_bem_table(w: &mut dyn Write, lines: &[String]) -> std::io::Result<()> {
     )?;
     writeln!(
         w,
-        "t/iter/FFT: time per iteration over one forward+inverse FFT pair of the (padded) grid"
+        "t/iter/FFT: time per iteration over one FFT pair (a convolution) of the (padded) grid"
     )?;
     writeln!(
         w,
@@ -340,6 +361,14 @@ fn print_bem_table(w: &mut dyn Write, lines: &[String]) -> std::io::Result<()> {
     writeln!(
         w,
         "  changed too many cells); t/FFT: the whole solve (set-up included) in FFT-pair times;"
+    )?;
+    writeln!(
+        w,
+        "K, M: one application of the operator and of the preconditioner alone; rest = t/iter - K - M"
+    )?;
+    writeln!(
+        w,
+        "  (the sweeps not fused into K and M, fresh K p, the set-up's share per iteration);"
     )?;
     writeln!(
         w,
