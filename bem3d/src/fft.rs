@@ -5,8 +5,9 @@
 //! spectrum, `(nx/2 + 1) x ny`, and transformed there while they are in cache. Inverse
 //! reverses the steps, the row pass gathering its rows from the spectrum.
 //! [`Fft2::convolve`] multiplies each column block by a symbol and transforms it back
-//! inside the column pass, so a convolution streams the grid four times (input, row
-//! buffer twice, output) instead of a separate forward, product and inverse.
+//! inside the column pass, so a convolution streams the grid six times (the input; the
+//! row buffer and the spectrum, each written and read once; the output), without the
+//! separate passes of a forward transform, a product and an inverse transform.
 //! Plans are created once; rows and column blocks are split over rayon threads. Each
 //! output value is computed by the same sequence of operations whatever the thread
 //! count, so results are bit-identical.
@@ -32,6 +33,18 @@ pub struct Fft2 {
     work: Vec<Complex64>,
     /// Row width and count held in `rows` by [`Fft2::load_rows`].
     loaded: Option<(usize, usize)>,
+}
+
+/// Hooks of a plain transform: a chunk copied in from `src` ...
+fn copy_in(src: &[f64], values: &mut [f64]) -> [f64; 0] {
+    values.copy_from_slice(src);
+    []
+}
+
+/// ... and out to `dst`.
+fn copy_out(dst: &mut [f64], values: &[f64]) -> [f64; 0] {
+    dst.copy_from_slice(values);
+    []
 }
 
 /// Rows per task of the row passes.
@@ -86,10 +99,7 @@ impl Fft2 {
         spec: &mut [Complex64],
     ) {
         let chunk = width * ROW_CHUNK;
-        self.load_rows((width, rows), input.par_chunks(chunk), |src, row| {
-            row.copy_from_slice(src);
-            [0.0; 0]
-        });
+        self.load_rows((width, rows), input.par_chunks(chunk), copy_in);
         let (_, rows) = self.loaded.take().expect("rows just loaded");
         self.column_pass::<f64>(spec, rows, None);
     }
@@ -118,10 +128,7 @@ impl Fft2 {
         );
         let chunk = width * ROW_CHUNK;
         let items = output[..rows.min(ny) * width].par_chunks_mut(chunk);
-        self.row_pass_inverse(spec, width, rows.min(ny), items, |dst, row| {
-            dst.copy_from_slice(row);
-            [0.0; 0]
-        });
+        self.row_pass_inverse(spec, width, rows.min(ny), items, copy_out);
     }
 
     /// `output = inverse(symbol * forward(input))` (zero-padded input and cropped
@@ -139,14 +146,8 @@ impl Fft2 {
         Complex64: MulAssign<S>,
     {
         let chunk = width * ROW_CHUNK;
-        self.load_rows((width, rows), input.par_chunks(chunk), |src, row| {
-            row.copy_from_slice(src);
-            [0.0; 0]
-        });
-        self.finish_rows(symbol, output.par_chunks_mut(chunk), |dst, row| {
-            dst.copy_from_slice(row);
-            [0.0; 0]
-        });
+        self.load_rows((width, rows), input.par_chunks(chunk), copy_in);
+        self.finish_rows(symbol, output.par_chunks_mut(chunk), copy_out);
     }
 
     /// [`Self::convolve`] with the output in place of the input.
@@ -156,14 +157,8 @@ impl Fft2 {
         Complex64: MulAssign<S>,
     {
         let chunk = dims.0 * ROW_CHUNK;
-        self.load_rows(dims, data.par_chunks(chunk), |src, row| {
-            row.copy_from_slice(src);
-            [0.0; 0]
-        });
-        self.finish_rows(symbol, data.par_chunks_mut(chunk), |dst, row| {
-            dst.copy_from_slice(row);
-            [0.0; 0]
-        });
+        self.load_rows(dims, data.par_chunks(chunk), copy_in);
+        self.finish_rows(symbol, data.par_chunks_mut(chunk), copy_out);
     }
 
     /// Rows per chunk of [`Self::load_rows`] and [`Self::finish_rows`].

@@ -172,8 +172,8 @@ const START_AREA: f64 = 6.0;
 /// Independent accumulators per chunk: the sums vectorise, and their order is fixed.
 const LANES: usize = 4;
 
-/// Sums `N` per-chunk partial results in chunk order (deterministic for any thread
-/// count); `max_slot` combines that entry by max instead of sum.
+/// Maps each chunk with `f` (in parallel) and sums the `N` partial results with
+/// [`sum_parts`].
 fn reduce<const N: usize, I, F>(iter: I, f: F, max_slot: Option<usize>) -> [f64; N]
 where
     I: IntoParallelIterator,
@@ -181,11 +181,7 @@ where
     F: Fn(I::Item) -> [f64; N] + Sync + Send,
 {
     let parts: Vec<[f64; N]> = iter.into_par_iter().map(f).collect();
-    let mut acc = [0.0f64; N];
-    for p in parts {
-        combine(&mut acc, &p, max_slot);
-    }
-    acc
+    sum_parts(&parts, max_slot)
 }
 
 fn combine<const N: usize>(acc: &mut [f64; N], p: &[f64; N], max_slot: Option<usize>) {
@@ -225,7 +221,8 @@ fn lanes<const N: usize>(
     out
 }
 
-/// Sums per-chunk partial results in chunk order (see [`reduce`]).
+/// Sums per-chunk partial results in chunk order (deterministic for any thread count);
+/// `max_slot` combines that entry by max instead of sum.
 fn sum_parts<const N: usize>(parts: &[[f64; N]], max_slot: Option<usize>) -> [f64; N] {
     let mut acc = [0.0f64; N];
     for p in parts {
@@ -825,11 +822,7 @@ impl<K: Compliance> ContactSolver<K> {
                     })
                 })
                 .collect();
-            let mut sums = [0.0; 2];
-            for part in &parts {
-                combine(&mut sums, part, None);
-            }
-            let [total, changed] = sums;
+            let [total, changed] = sum_parts(&parts, None);
             let too_many = changed > limit as f64;
             if !too_many {
                 for (b, part) in parts.iter().enumerate() {
