@@ -244,6 +244,11 @@ impl Fft2 {
         F: Fn(I::Item, &[f64]) -> [f64; B] + Sync,
     {
         let (width, rows) = self.loaded.take().expect("finish_rows without load_rows");
+        assert_eq!(
+            symbol.len(),
+            self.spectrum_len(),
+            "symbol length against the spectrum's (nx/2 + 1) * ny"
+        );
         let mut work = std::mem::take(&mut self.work);
         work.resize(self.spectrum_len(), Complex64::default());
         self.column_pass(&mut work, rows, Some(symbol));
