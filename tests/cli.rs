@@ -664,11 +664,16 @@ fn bench_report_quick_fits_the_known_orders() {
         let v = r(k);
         assert!((lo..=hi).contains(&v), "{k} = {v} outside [{lo}, {hi}]");
     }
-    // Rough: the references are finite and each method's error falls with time.
+    // Rough: the references are finite and each method's error falls with its work
+    // (cells or points times realisations). Not with time: the MRD rungs take
+    // sub-millisecond tasks, whose times the tests running beside this one can reorder
+    // (the time slope once came out positive on CI); speed belongs to benchmarks.
     assert!((0.3..0.8).contains(&r("rough_alpha_reference_3d")));
     assert!((0.3..0.8).contains(&r("rough_alpha_reference_mrd")));
-    assert!(r("rough_error_time_slope_3d") < 0.0);
-    assert!(r("rough_error_time_slope_mrd") < 0.0);
+    assert!(r("rough_error_work_slope_3d") < 0.0);
+    assert!(r("rough_error_work_slope_mrd") < 0.0);
+    assert!(r("rough_error_time_slope_3d").is_finite());
+    assert!(r("rough_error_time_slope_mrd").is_finite());
     let csv = read_csv(&out.join("bench_error_time.csv"));
     assert!(csv.rows.len() >= 20);
     let text = std::fs::read_to_string(out.join("bench_error_time.csv")).unwrap();

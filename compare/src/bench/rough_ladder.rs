@@ -283,5 +283,29 @@ impl RoughLadder {
         if let Some(s) = slope(true) {
             sec.scalar("rough_error_time_slope_mrd", s);
         }
+        // The same against the work (cells or points times realisations): free of
+        // timing noise, which sub-millisecond MRD rungs are not.
+        let work_slope = |mrd: bool| {
+            let pts: Vec<(f64, f64)> = self
+                .errors(mrd)
+                .into_iter()
+                .zip(&self.rungs)
+                .map(|((_, e), r)| {
+                    let size = if mrd {
+                        (16 * r.grid) as f64
+                    } else {
+                        (r.grid * r.grid) as f64
+                    };
+                    (size * r.realisations as f64, e)
+                })
+                .collect();
+            log_slope(&pts)
+        };
+        if let Some(s) = work_slope(false) {
+            sec.scalar("rough_error_work_slope_3d", s);
+        }
+        if let Some(s) = work_slope(true) {
+            sec.scalar("rough_error_work_slope_mrd", s);
+        }
     }
 }
