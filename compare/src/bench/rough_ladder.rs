@@ -19,6 +19,9 @@ use crate::scene::Scene;
 
 const HURST: f64 = 0.7;
 
+/// MRD points per line for each cell along the 3D grid's side.
+const POINTS_1D: usize = 16;
+
 /// One hurst_sweep run: alpha (with its 95 % interval) and the time of each side.
 #[derive(Debug, Clone, Copy)]
 struct Sweep {
@@ -32,7 +35,7 @@ fn sweep(grid: usize, r3: usize, r1: usize, loads: usize) -> Result<Sweep> {
     let text = format!(
         "name = \"bench-rough\"\n[units]\nlength = \"1\"\nstress = \"1\"\n[material]\ne_star = 1.0\n\
          [[outputs]]\nkind = \"hurst_sweep\"\nhurst = [{HURST}]\ngrid = {grid}\n\
-         realisations_3d = {r3}\nrealisations_1d = {r1}\npoints_1d_factor = 16\n\
+         realisations_3d = {r3}\nrealisations_1d = {r1}\npoints_1d_factor = {POINTS_1D}\n\
          loads = {loads}\nseed = 2026\n"
     );
     let scene = Scene::parse(&text, "<bench report>", None)?;
@@ -102,7 +105,12 @@ pub fn run(o: Options) -> Result<RoughLadder> {
     Ok(RoughLadder {
         rungs,
         ref_3d: (reference.alpha_3d, reference.seconds_3d, g, r3),
-        ref_mrd: (reference.alpha_mrd, reference.seconds_mrd, g * 16, r1),
+        ref_mrd: (
+            reference.alpha_mrd,
+            reference.seconds_mrd,
+            g * POINTS_1D,
+            r1,
+        ),
     })
 }
 
@@ -186,7 +194,7 @@ impl RoughLadder {
         let mut t = Table::new("bench_rough", &cols);
         t.notes = notes.to_vec();
         t.notes.push(format!(
-            "rough punch of the Hurst sweep at H = {HURST} (hurst_sweep scenes, seed 2026): method_id 0 = 3D (grid^2 cells), 1 = MRD (16 grid points per line); alpha_error = |alpha - alpha of the reference row| (reference = 1); time: that method's task time in the sweep (synthesis, solves and stiffness of every realisation, summed over threads: CPU seconds)"
+            "rough punch of the Hurst sweep at H = {HURST} (hurst_sweep scenes, seed 2026): method_id 0 = 3D (grid^2 cells), 1 = MRD ({POINTS_1D} grid points per line); alpha_error = |alpha - alpha of the reference row| (reference = 1); time: that method's task time in the sweep (synthesis, solves and stiffness of every realisation, summed over threads: CPU seconds)"
         ));
         for r in &self.rungs {
             let s = &r.sweep;
@@ -207,7 +215,7 @@ impl RoughLadder {
             t.push(vec![
                 1.0,
                 r.grid as f64,
-                16.0 * r.grid as f64,
+                (POINTS_1D * r.grid) as f64,
                 r.realisations as f64,
                 s.seconds_mrd,
                 s.alpha_mrd[0],
@@ -224,7 +232,7 @@ impl RoughLadder {
         ]);
         t.push(vec![
             1.0,
-            (n1 / 16) as f64,
+            (n1 / POINTS_1D) as f64,
             n1 as f64,
             r1 as f64,
             t1,
@@ -292,7 +300,7 @@ impl RoughLadder {
                 .zip(&self.rungs)
                 .map(|((_, e), r)| {
                     let size = if mrd {
-                        (16 * r.grid) as f64
+                        (POINTS_1D * r.grid) as f64
                     } else {
                         (r.grid * r.grid) as f64
                     };
