@@ -590,3 +590,97 @@ fn preconditioned_incremental_solver_matches_plain_polonsky_keer() {
     );
     check(&fast, plain, 1.3, "masked sphere, approach control");
 }
+
+/// Small contact sets are solved restricted to a candidate set with a dense K between
+/// its cells (solver module docs); the answer must be the full-grid iteration's, to the
+/// tolerance: periodic rough surfaces at 0.1-0.3 % contact under force control and at a
+/// fixed approach, and a non-periodic sphere at a small load, on 128^2.
+#[test]
+fn restricted_solve_matches_the_full_grid_solve() {
+    let n = 128;
+    let o = SolverOptions {
+        tolerance: 1e-10,
+        max_iterations: 10_000,
+    };
+    let rough_h = common::self_affine(n, 0.8, 5);
+    let ball = sphere(n, 1.0, 1.0);
+    let periodic = || PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
+    let free = || NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
+    let check = |a: &Solution, b: &Solution, what: &str| {
+        assert!(a.restricted && !b.restricted, "{what}: paths");
+        assert!(
+            a.residual <= 1e-10 && b.residual <= 1e-10,
+            "{what}: residuals"
+        );
+        let pmax = b.pressure.iter().fold(0.0f64, |m, &v| m.max(v));
+        let dp = common::max_abs_diff(&a.pressure, &b.pressure);
+        assert!(
+            dp <= 1e-8 * pmax,
+            "{what}: pressure differs by {dp:e} of {pmax:e}"
+        );
+        assert!(rel(a.approach, b.approach) < 1e-8, "{what}: approach");
+        assert!(rel(a.force, b.force) < 1e-12, "{what}: force");
+        assert_eq!(a.contact_cells, b.contact_cells, "{what}: contact cells");
+        eprintln!(
+            "{what}: {} contact cells, {} restricted iterations against {} full-grid ones",
+            a.contact_cells, a.iterations, b.iterations
+        );
+    };
+    for pm in [1e-4, 3e-4] {
+        let a = ContactSolver::new(periodic(), &rough_h, None)
+            .unwrap()
+            .solve(Load::MeanPressure(pm), &o, None)
+            .unwrap();
+        let b = ContactSolver::new(common::FullGridOnly(periodic()), &rough_h, None)
+            .unwrap()
+            .solve(Load::MeanPressure(pm), &o, None)
+            .unwrap();
+        check(&a, &b, &format!("rough, mean pressure {pm}"));
+        // The same state at its approach.
+        let c = ContactSolver::new(periodic(), &rough_h, None)
+            .unwrap()
+            .solve(Load::Approach(b.approach), &o, None)
+            .unwrap();
+        assert!(
+            c.restricted && rel(c.force, b.force) < 1e-8,
+            "approach control"
+        );
+    }
+    let a = ContactSolver::new(free(), &ball, None)
+        .unwrap()
+        .solve(Load::Force(2e-5), &o, None)
+        .unwrap();
+    let b = ContactSolver::new(common::FullGridOnly(free()), &ball, None)
+        .unwrap()
+        .solve(Load::Force(2e-5), &o, None)
+        .unwrap();
+    check(&a, &b, "sphere, force 2e-5");
+    // Above the set's limit (3 sqrt(cells) = 384 here) the solve is the full one.
+    let high = ContactSolver::new(periodic(), &rough_h, None)
+        .unwrap()
+        .solve(Load::MeanPressure(1e-2), &o, None)
+        .unwrap();
+    assert!(!high.restricted && high.contact_cells > 384);
+}
+
+/// The restricted path is bit-identical for any thread count too.
+#[test]
+fn restricted_solve_is_bit_identical_whatever_the_thread_count() {
+    let n = 96;
+    let h = common::self_affine(n, 0.8, 7);
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let sol = ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None)
+                .unwrap()
+                .solve(Load::MeanPressure(2e-4), &SolverOptions::default(), None)
+                .unwrap();
+            assert!(sol.restricted);
+            (sol.pressure, sol.approach.to_bits())
+        })
+    };
+    assert_eq!(run(1), run(3));
+}

@@ -135,6 +135,12 @@ impl ContactResult {
     fn warm_started(&self) -> bool {
         self.sol.warm_started
     }
+    /// Whether the solve ran restricted to a small candidate set of cells (low contact
+    /// fractions; `iterations` then counts applications of a dense K between them).
+    #[getter]
+    fn restricted(&self) -> bool {
+        self.sol.restricted
+    }
     fn __repr__(&self) -> String {
         format!(
             "ContactResult(force={:.6e}, approach={:.6e}, contact_fraction={:.4e}, mean_gap={:.6e}, iterations={}, residual={:.2e})",

@@ -206,3 +206,12 @@ def test_solve_releases_the_gil():
     finally:
         sys.setswitchinterval(old)
     assert seen["moved"] > 0
+
+
+def test_low_contact_runs_restricted_and_says_so():
+    h = rough(64)
+    c = mrdw.Contact(h)
+    low = c.solve(mean_pressure=1e-4)
+    assert low.restricted and 0 < low.contact_cells < 3 * 64
+    assert low.residual <= 1e-10
+    assert not c.solve(mean_pressure=0.05).restricted

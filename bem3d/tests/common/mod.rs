@@ -1,6 +1,8 @@
 //! Surfaces and measures shared by the solver's tests.
 #![allow(dead_code, clippy::needless_range_loop)]
 
+use bem3d::operator::HalfSpace;
+use bem3d::{Compliance, Operand, Spectral};
 use std::f64::consts::PI;
 
 pub fn rel(a: f64, b: f64) -> f64 {
@@ -172,4 +174,32 @@ pub fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
         .zip(b)
         .map(|(x, y)| (x - y).abs())
         .fold(0.0, f64::max)
+}
+
+/// An operator without a real-space table: the solver cannot restrict it, so it always
+/// runs the full-grid iteration (the independent path for the restricted solves).
+pub struct FullGridOnly<K>(pub K);
+
+impl<K: Compliance> Compliance for FullGridOnly<K> {
+    fn half_space(&self) -> &HalfSpace {
+        self.0.half_space()
+    }
+    fn is_periodic(&self) -> bool {
+        self.0.is_periodic()
+    }
+    fn apply(&mut self, p: &[f64], u: &mut [f64]) {
+        self.0.apply(p, u)
+    }
+    fn add_point_loads(&mut self, loads: &[(usize, f64)], u: &mut [f64]) {
+        self.0.add_point_loads(loads, u)
+    }
+    fn point_load_limit(&self) -> usize {
+        self.0.point_load_limit()
+    }
+    fn precondition(&mut self, g: &mut [f64]) {
+        self.0.precondition(g)
+    }
+    fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
+        self.0.spectral(which)
+    }
 }

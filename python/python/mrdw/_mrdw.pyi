@@ -61,6 +61,10 @@ class ContactResult:
     def complete_contact(self) -> bool: ...
     @property
     def warm_started(self) -> bool: ...
+    @property
+    def restricted(self) -> bool:
+        """Solved restricted to a small candidate set (low contact fractions;
+        `iterations` then counts applications of a dense K between its cells)."""
 
 class Contact:
     """Frictionless normal contact of a rigid rough surface on an elastic half-space

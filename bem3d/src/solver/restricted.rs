@@ -1,0 +1,199 @@
+//! Small contact sets: the solve restricted to a candidate set C of cells, K between
+//! them as a dense matrix ([`Compliance::restricted`]), inside an outer loop that grows
+//! C until no cell outside it interpenetrates.
+//!
+//! At a contact fraction of 0.1 % a 1024^2 grid has about a thousand cells in contact,
+//! and an application of `K_CC` (C: a few thousand cells) costs a fraction of a
+//! full-grid convolution. Each round solves the contact problem on C with the same
+//! projected conjugate-gradient iteration (unpreconditioned: a dense operator has no
+//! spectral form), scatters the pressure to the grid, applies K on the whole grid once
+//! (FFT) and evaluates the solver's criterion there: converged, or the cells outside C
+//! with negative gap join C. Rounds solve to a loose tolerance while C still changes,
+//! then to the requested one. The reported solution is checked on the full grid like
+//! any other; a set that outgrows the limit, or an inner solve that does not converge,
+//! hands its pressure to the full solve as a start.
+
+use super::{lanes, reduce, ContactSolver, Refresh, Solution, SolverOptions};
+use crate::error::{BemError, Result};
+use crate::operator::{Compliance, DenseCompliance};
+use rayon::prelude::*;
+
+/// The restricted start covers this many times `p / (E* h')` of the domain (the full
+/// solve's start covers [`super::START_AREA`] times; a smaller set is cheaper here, and
+/// the rounds add what it misses).
+const START_AREA: f64 = 4.0;
+/// Largest candidate set: this many times the square root of the domain's cell count
+/// (a dense application then costs at most about 9 domain sweeps) ...
+const CELLS_PER_ROOT: f64 = 3.0;
+/// ... and at most this many cells (a 128 MiB matrix).
+const MAX_CELLS: usize = 4096;
+/// Tolerance of the rounds while C may still grow.
+const LOOSE: f64 = 1e-4;
+const MAX_ROUNDS: usize = 16;
+
+/// Outcome of [`ContactSolver::solve_restricted`].
+pub(super) enum Restricted {
+    Solved(Solution),
+    /// Gave up (set too large, no convergence): the last pressure, as a start.
+    Start(Vec<f64>),
+    /// Not applicable (no real-space table, or the start set is already too large).
+    NotTried,
+}
+
+impl<K: Compliance> ContactSolver<K> {
+    /// Restricted solve from a cold start (module docs), under force control
+    /// (`target_force`) or at the approach `fixed_approach`.
+    pub(super) fn solve_restricted(
+        &mut self,
+        target_force: Option<f64>,
+        fixed_approach: f64,
+        opts: &SolverOptions,
+    ) -> Result<Restricted> {
+        let n = self.op.cells();
+        let limit = ((CELLS_PER_ROOT * (self.domain_cells as f64).sqrt()) as usize).min(MAX_CELLS);
+        // The start set's size first (a uniform start covers the domain).
+        let estimate = match target_force {
+            Some(f) => {
+                let fraction = self.start_fraction(f, START_AREA);
+                if fraction.is_finite() && fraction < 1.0 {
+                    (fraction * self.domain_cells as f64).ceil() as usize
+                } else {
+                    self.domain_cells
+                }
+            }
+            None => (0..n)
+                .into_par_iter()
+                .filter(|&i| self.mask[i] > 0 && self.z[i] < fixed_approach)
+                .count(),
+        };
+        if estimate > limit {
+            return Ok(Restricted::NotTried);
+        }
+        let mut p = vec![0.0; n];
+        match target_force {
+            Some(f) => self.cold_start(&mut p, f, START_AREA),
+            None => self.overlap_start(&mut p, fixed_approach),
+        }
+        let mut cells: Vec<usize> = (0..n).filter(|&i| p[i] > 0.0).collect();
+        if cells.is_empty() || cells.len() > limit || self.op.restricted(&[]).is_none() {
+            return Ok(Restricted::NotTried);
+        }
+        if let Some(f) = target_force {
+            let s: f64 = p.iter().sum::<f64>() * self.op.cell_area();
+            p.iter_mut().for_each(|v| *v *= f / s);
+        }
+        let (hx, hy) = (
+            self.op.lx() / self.op.nx() as f64,
+            self.op.ly() / self.op.ny() as f64,
+        );
+        let mut member = vec![false; n];
+        let mut iterations = 0;
+        let mut tight = false;
+        for _ in 0..MAX_ROUNDS {
+            cells.iter().for_each(|&i| member[i] = true);
+            let Some(matrix) = self.op.restricted(&cells) else {
+                return Ok(Restricted::NotTried);
+            };
+            let dense = DenseCompliance::from_matrix(cells.len(), hx, hy, self.op.e_star(), matrix);
+            let z = cells.iter().map(|&i| self.z[i]).collect();
+            let mut inner = ContactSolver::on_cells(dense, z, self.h_rms, self.overlap_stiffness);
+            let inner_opts = SolverOptions {
+                // Half the tolerance: the grid's K p differs from K_CC p by rounding.
+                tolerance: if tight {
+                    0.5 * opts.tolerance
+                } else {
+                    opts.tolerance.max(LOOSE)
+                },
+                max_iterations: opts.max_iterations.saturating_sub(iterations).max(1),
+            };
+            let start = cells.iter().map(|&i| p[i]).collect();
+            let sol = match inner.iterate(start, target_force, fixed_approach, &inner_opts, false) {
+                Ok(sol) => sol,
+                Err(BemError::NoConvergence { .. }) => return Ok(Restricted::Start(p)),
+                Err(e) => return Err(e),
+            };
+            iterations += sol.iterations;
+            p.iter_mut().for_each(|v| *v = 0.0);
+            cells
+                .iter()
+                .zip(&sol.pressure)
+                .for_each(|(&i, &v)| p[i] = v);
+            // The whole grid: w = K p + z, the approach, the criterion.
+            self.op.apply(&p, &mut self.w);
+            let [sum_g, nc] = self.pass_a(&mut p, 1.0, Refresh::AddZ, fixed_approach);
+            let approach = match target_force {
+                Some(_) if nc > 0.0 => fixed_approach + sum_g / nc,
+                _ => fixed_approach,
+            };
+            let residual = self.criterion(&p, approach);
+            if residual <= opts.tolerance {
+                let mut sol = self.finish(p, approach, iterations, residual);
+                sol.restricted = true;
+                return Ok(Restricted::Solved(sol));
+            }
+            let (w, mask) = (&self.w, &self.mask);
+            let entering: Vec<usize> = (0..n)
+                .into_par_iter()
+                .filter(|&i| mask[i] > 0 && !member[i] && w[i] - approach < 0.0)
+                .collect();
+            if entering.is_empty() {
+                if tight {
+                    return Ok(Restricted::Start(p));
+                }
+                tight = true;
+                continue;
+            }
+            cells.extend(entering);
+            cells.sort_unstable();
+            if cells.len() > limit {
+                return Ok(Restricted::Start(p));
+            }
+        }
+        Ok(Restricted::Start(p))
+    }
+
+    /// A solver for the problem restricted to some cells: `op` between them, their `z`,
+    /// and the criterion's and the re-admission's scales of the whole domain.
+    fn on_cells(op: K, z: Vec<f64>, h_rms: f64, overlap_stiffness: f64) -> Self {
+        let n = z.len();
+        Self {
+            overlap_stiffness,
+            op,
+            w: z.clone(),
+            z,
+            h_rms,
+            domain_cells: n,
+            z_mean: 0.0,
+            slope_rms: 0.0,
+            t: vec![0.0; n],
+            r: vec![0.0; n],
+            y_prev: vec![0.0; n],
+            loads: Vec::new(),
+            fallback: [Vec::new(), Vec::new()],
+            mask: vec![1; n],
+        }
+    }
+
+    /// The convergence criterion (module docs) of `p` with `w = K p + z` up to date.
+    fn criterion(&self, p: &[f64], approach: f64) -> f64 {
+        let ch = self.chunk();
+        let [pg, ps, worst] = reduce(
+            (
+                p.par_chunks(ch),
+                self.w.par_chunks(ch),
+                self.mask.par_chunks(ch),
+            ),
+            |(p, w, m)| {
+                lanes(p.len(), Some(2), |i, acc: &mut [f64; 3]| {
+                    let gi = m[i] as f64 * (w[i] - approach);
+                    acc[0] += p[i] * gi.abs();
+                    acc[1] += p[i];
+                    acc[2] = acc[2].max(-gi);
+                })
+            },
+            Some(2),
+        );
+        let h_rms = self.h_rms;
+        (if ps > 0.0 { pg / (ps * h_rms) } else { 0.0 }).max(worst / h_rms)
+    }
+}
