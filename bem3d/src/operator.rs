@@ -306,13 +306,23 @@ impl Circulant {
     fn restricted(&self, nx: usize, cells: &[usize]) -> Vec<f64> {
         let (px, py, n) = (self.px, self.py, cells.len());
         let mut m = vec![0.0; n * n];
-        m.par_chunks_mut(n.max(1)).zip(cells).for_each(|(row, &a)| {
-            let (ia, ja) = (a % nx, a / nx);
-            for (v, &b) in row.iter_mut().zip(cells) {
-                let (ib, jb) = (b % nx, b / nx);
-                *v = self.values[((ja + py - jb) % py) * px + (ia + px - ib) % px];
+        let at: Vec<(usize, usize)> = cells.iter().map(|&c| (c % nx, c / nx)).collect();
+        // (a + period - b) mod period for a, b < period, without a division.
+        let wrap = |a: usize, b: usize, period: usize| {
+            let d = a + period - b;
+            if d >= period {
+                d - period
+            } else {
+                d
             }
-        });
+        };
+        m.par_chunks_mut(n.max(1))
+            .zip(&at)
+            .for_each(|(row, &(ia, ja))| {
+                for (v, &(ib, jb)) in row.iter_mut().zip(&at) {
+                    *v = self.values[wrap(ja, jb, py) * px + wrap(ia, ib, px)];
+                }
+            });
         m
     }
 

@@ -577,6 +577,20 @@ impl<K: Compliance> ContactSolver<K> {
             }
         }
         let warm = warm.filter(|w| warm_pays(w, load, target_force));
+        let fixed_approach = match load {
+            Load::Approach(d) => d,
+            _ => 0.0,
+        };
+        let loaded = target_force.unwrap_or(fixed_approach) > 0.0;
+        if warm.is_none() && loaded {
+            match self.solve_restricted(target_force, fixed_approach, opts)? {
+                Restricted::Solved(sol) => return Ok(sol),
+                Restricted::Start(p) => {
+                    return self.iterate(p, target_force, fixed_approach, opts, false)
+                }
+                Restricted::NotTried => {}
+            }
+        }
         let m = |i: usize| self.mask[i] as f64;
         let mut p = vec![0.0; n];
         match (warm, load) {
@@ -604,17 +618,6 @@ impl<K: Compliance> ContactSolver<K> {
             if d == 0.0 || p.iter().all(|&v| v == 0.0) {
                 // No overlap anywhere: the first contact is at d = 0.
                 return Ok(self.finish_unloaded(d));
-            }
-        }
-        let fixed_approach = match load {
-            Load::Approach(d) => d,
-            _ => 0.0,
-        };
-        if warm.is_none() {
-            match self.solve_restricted(target_force, fixed_approach, opts)? {
-                Restricted::Solved(sol) => return Ok(sol),
-                Restricted::Start(q) => p = q,
-                Restricted::NotTried => {}
             }
         }
         self.iterate(p, target_force, fixed_approach, opts, warm.is_some())

@@ -655,6 +655,27 @@ fn restricted_solve_matches_the_full_grid_solve() {
         .solve(Load::Force(2e-5), &o, None)
         .unwrap();
     check(&a, &b, "sphere, force 2e-5");
+    // A circular mask (a rough punch): only its cells may carry pressure.
+    let mask: Vec<bool> = (0..n * n)
+        .map(|k| {
+            let (x, y) = ((k % n) as f64 - 64.0, (k / n) as f64 - 64.0);
+            x * x + y * y < 40.0 * 40.0
+        })
+        .collect();
+    let a = ContactSolver::new(periodic(), &rough_h, Some(mask.clone()))
+        .unwrap()
+        .solve(Load::MeanPressure(1e-4), &o, None)
+        .unwrap();
+    let b = ContactSolver::new(
+        common::FullGridOnly(periodic()),
+        &rough_h,
+        Some(mask.clone()),
+    )
+    .unwrap()
+    .solve(Load::MeanPressure(1e-4), &o, None)
+    .unwrap();
+    check(&a, &b, "masked rough, mean pressure 1e-4");
+    assert!((0..n * n).all(|k| mask[k] || a.pressure[k] == 0.0));
     // Above the set's limit (3 sqrt(cells) = 384 here) the solve is the full one.
     let high = ContactSolver::new(periodic(), &rough_h, None)
         .unwrap()

@@ -14,7 +14,7 @@
 //! hands its pressure to the full solve as a start.
 
 use super::{lanes, reduce, ContactSolver, Refresh, Solution, SolverOptions};
-use crate::error::{BemError, Result};
+use crate::error::Result;
 use crate::operator::{Compliance, DenseCompliance};
 use rayon::prelude::*;
 
@@ -42,7 +42,7 @@ pub(super) enum Restricted {
 
 impl<K: Compliance> ContactSolver<K> {
     /// Restricted solve from a cold start (module docs), under force control
-    /// (`target_force`) or at the approach `fixed_approach`.
+    /// (`target_force` > 0) or at the approach `fixed_approach` > 0.
     pub(super) fn solve_restricted(
         &mut self,
         target_force: Option<f64>,
@@ -66,7 +66,7 @@ impl<K: Compliance> ContactSolver<K> {
                 .filter(|&i| self.mask[i] > 0 && self.z[i] < fixed_approach)
                 .count(),
         };
-        if estimate > limit {
+        if estimate == 0 || estimate > limit {
             return Ok(Restricted::NotTried);
         }
         let mut p = vec![0.0; n];
@@ -89,14 +89,23 @@ impl<K: Compliance> ContactSolver<K> {
         let mut member = vec![false; n];
         let mut iterations = 0;
         let mut tight = false;
+        // The solver on the current set (kept while the set holds).
+        let mut inner: Option<ContactSolver<DenseCompliance>> = None;
         for _ in 0..MAX_ROUNDS {
-            cells.iter().for_each(|&i| member[i] = true);
-            let Some(matrix) = self.op.restricted(&cells) else {
+            if inner.is_none() {
+                cells.iter().for_each(|&i| member[i] = true);
+                let Some(matrix) = self.op.restricted(&cells) else {
+                    return Ok(Restricted::NotTried);
+                };
+                let e_star = self.op.e_star();
+                let dense = DenseCompliance::from_matrix(cells.len(), hx, hy, e_star, matrix);
+                let z = cells.iter().map(|&i| self.z[i]).collect();
+                let (h_rms, stiffness) = (self.h_rms, self.overlap_stiffness);
+                inner = Some(ContactSolver::on_cells(dense, z, h_rms, stiffness));
+            }
+            let Some(solver) = inner.as_mut() else {
                 return Ok(Restricted::NotTried);
             };
-            let dense = DenseCompliance::from_matrix(cells.len(), hx, hy, self.op.e_star(), matrix);
-            let z = cells.iter().map(|&i| self.z[i]).collect();
-            let mut inner = ContactSolver::on_cells(dense, z, self.h_rms, self.overlap_stiffness);
             let inner_opts = SolverOptions {
                 // Half the tolerance: the grid's K p differs from K_CC p by rounding.
                 tolerance: if tight {
@@ -107,10 +116,11 @@ impl<K: Compliance> ContactSolver<K> {
                 max_iterations: opts.max_iterations.saturating_sub(iterations).max(1),
             };
             let start = cells.iter().map(|&i| p[i]).collect();
-            let sol = match inner.iterate(start, target_force, fixed_approach, &inner_opts, false) {
+            let sol = match solver.iterate(start, target_force, fixed_approach, &inner_opts, false)
+            {
                 Ok(sol) => sol,
-                Err(BemError::NoConvergence { .. }) => return Ok(Restricted::Start(p)),
-                Err(e) => return Err(e),
+                // The full iteration takes over (and reports its own failure, if any).
+                Err(_) => return Ok(Restricted::Start(p)),
             };
             iterations += sol.iterations;
             p.iter_mut().for_each(|v| *v = 0.0);
@@ -145,6 +155,7 @@ impl<K: Compliance> ContactSolver<K> {
             }
             cells.extend(entering);
             cells.sort_unstable();
+            inner = None;
             if cells.len() > limit {
                 return Ok(Restricted::Start(p));
             }
