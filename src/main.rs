@@ -90,7 +90,8 @@ enum Command {
         /// Largest log10 of the number of springs (mrd).
         #[arg(long, default_value_t = 6)]
         max_exp: u32,
-        /// Largest grid side (bem): periodic 128.. and Hertz 128.. up to this.
+        /// Largest grid side (bem): periodic 128.. up to this; the periodic surfaces at
+        /// 0.1 % contact ("sparse") and Hertz 128.. up to min(this, 1024).
         #[arg(long, default_value_t = 1024)]
         max_n: usize,
         /// Also write the periodic surfaces and our pressures as .npy here (bem), for
@@ -108,6 +109,7 @@ enum Command {
     /// Internal: one benchmark case in a fresh process (for its peak memory).
     #[command(hide = true)]
     BenchCase {
+        #[arg(value_parser = ["periodic", "sparse", "hertz"])]
         kind: String,
         n: usize,
         #[arg(long)]
@@ -119,7 +121,8 @@ enum Command {
 enum BenchTarget {
     /// Normal solves and oscillation cycles on N = 1e3 .. 1e6 springs.
     Mrd,
-    /// The 3D solver: periodic self-affine 128^2.. and non-periodic Hertz 128^2..
+    /// The 3D solver: periodic self-affine 128^2.. (at 20 % and, "sparse", 0.1 % contact)
+    /// and non-periodic Hertz 128^2..
     Bem,
     /// Rough lines: generation and a 100-point k(F) curve, N = 1e3 .. 1e7.
     Rough,

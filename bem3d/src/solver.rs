@@ -69,7 +69,7 @@
 //! stop if the criterion holds there, else add the interpenetrating cells outside C.
 //! It is the same fixed point, checked on the full grid; [`Solution::restricted`] says
 //! when it ran. Measured on the benchmark surfaces at 0.1 % contact (one thread, Intel
-//! Xeon VM): 256^2 0.041 -> 0.007 s, 512^2 0.22 -> 0.041-0.045 s, 1024^2 1.25 -> 0.42-0.45
+//! Xeon VM): 256^2 0.041 -> 0.004-0.007 s, 512^2 0.22 -> 0.035 s, 1024^2 1.25 -> 0.30-0.32
 //! s (35, 46, 64 dense applications in all rounds); at 1 % contact and above the set
 //! exceeds the limit from 512^2 up and nothing changes.
 //!
