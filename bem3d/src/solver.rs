@@ -87,7 +87,6 @@ use crate::operator::{Compliance, Operand};
 use rayon::prelude::*;
 
 mod restricted;
-use restricted::Restricted;
 
 /// The load prescribed to a solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -583,12 +582,8 @@ impl<K: Compliance> ContactSolver<K> {
         };
         let loaded = target_force.unwrap_or(fixed_approach) > 0.0;
         if warm.is_none() && loaded {
-            match self.solve_restricted(target_force, fixed_approach, opts)? {
-                Restricted::Solved(sol) => return Ok(sol),
-                Restricted::Start(p) => {
-                    return self.iterate(p, target_force, fixed_approach, opts, false)
-                }
-                Restricted::NotTried => {}
+            if let Some(sol) = self.solve_restricted(target_force, fixed_approach, opts) {
+                return Ok(sol);
             }
         }
         let m = |i: usize| self.mask[i] as f64;

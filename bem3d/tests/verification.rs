@@ -593,13 +593,15 @@ fn preconditioned_incremental_solver_matches_plain_polonsky_keer() {
 
 /// Small contact sets are solved restricted to a candidate set with a dense K between
 /// its cells (solver module docs); the answer must be the full-grid iteration's, to the
-/// tolerance: periodic rough surfaces at 0.1-0.3 % contact under force control and at a
-/// fixed approach, and a non-periodic sphere at a small load, on 128^2.
+/// tolerance (1e-12 here: at 1e-10 the sphere's two answers differ by 2e-8 of the peak,
+/// both meeting it): periodic rough surfaces at 0.1-0.4 % contact under force control
+/// and at a fixed approach, a masked one, and a non-periodic sphere at a small load
+/// (its start set of a few cells grows over rounds), on 128^2.
 #[test]
 fn restricted_solve_matches_the_full_grid_solve() {
     let n = 128;
     let o = SolverOptions {
-        tolerance: 1e-10,
+        tolerance: 1e-12,
         max_iterations: 10_000,
     };
     let rough_h = common::self_affine(n, 0.8, 5);
@@ -609,21 +611,25 @@ fn restricted_solve_matches_the_full_grid_solve() {
     let check = |a: &Solution, b: &Solution, what: &str| {
         assert!(a.restricted && !b.restricted, "{what}: paths");
         assert!(
-            a.residual <= 1e-10 && b.residual <= 1e-10,
+            a.residual <= 1e-12 && b.residual <= 1e-12,
             "{what}: residuals"
         );
         let pmax = b.pressure.iter().fold(0.0f64, |m, &v| m.max(v));
         let dp = common::max_abs_diff(&a.pressure, &b.pressure);
         assert!(
-            dp <= 1e-8 * pmax,
+            dp <= 1e-9 * pmax,
             "{what}: pressure differs by {dp:e} of {pmax:e}"
         );
-        assert!(rel(a.approach, b.approach) < 1e-8, "{what}: approach");
+        assert!(rel(a.approach, b.approach) < 1e-9, "{what}: approach");
         assert!(rel(a.force, b.force) < 1e-12, "{what}: force");
         assert_eq!(a.contact_cells, b.contact_cells, "{what}: contact cells");
         eprintln!(
-            "{what}: {} contact cells, {} restricted iterations against {} full-grid ones",
-            a.contact_cells, a.iterations, b.iterations
+            "{what}: {} contact cells, {} restricted iterations against {} full-grid ones; \
+             pressures differ by {:.1e} of the peak",
+            a.contact_cells,
+            a.iterations,
+            b.iterations,
+            dp / pmax
         );
     };
     for pm in [1e-4, 3e-4] {

@@ -8,13 +8,15 @@
 //! projected conjugate-gradient iteration (unpreconditioned: a dense operator has no
 //! spectral form), scatters the pressure to the grid, applies K on the whole grid once
 //! (FFT) and evaluates the solver's criterion there: converged, or the cells outside C
-//! with negative gap join C. Rounds solve to a loose tolerance while C still changes,
-//! then to the requested one. The reported solution is checked on the full grid like
-//! any other; a set that outgrows the limit, or an inner solve that does not converge,
-//! hands its pressure to the full solve as a start.
+//! with negative gap join C (the deepest first, at most doubling C per round: a set
+//! much too small carries the load on too few cells, and the overlap it leaves spreads
+//! far beyond the contact). Rounds solve to a loose tolerance while C still changes
+//! much, then to the requested one. The reported solution is checked on the full grid like
+//! any other. The attempt is given up, and the full solve runs from its own start as
+//! it did before, when the set outgrows the limit (or half the overlap outside it would),
+//! or an inner solve does not converge.
 
 use super::{lanes, reduce, ContactSolver, Refresh, Solution, SolverOptions};
-use crate::error::Result;
 use crate::operator::{Compliance, DenseCompliance};
 use rayon::prelude::*;
 
@@ -29,26 +31,20 @@ const CELLS_PER_ROOT: f64 = 3.0;
 const MAX_CELLS: usize = 4096;
 /// Tolerance of the rounds while C may still grow.
 const LOOSE: f64 = 1e-4;
-const MAX_ROUNDS: usize = 16;
-
-/// Outcome of [`ContactSolver::solve_restricted`].
-pub(super) enum Restricted {
-    Solved(Solution),
-    /// Gave up (set too large, no convergence): the last pressure, as a start.
-    Start(Vec<f64>),
-    /// Not applicable (no real-space table, or the start set is already too large).
-    NotTried,
-}
+const MAX_ROUNDS: usize = 24;
+/// Cells a round may add at least (else: as many as the set holds).
+const MIN_GROWTH: usize = 64;
 
 impl<K: Compliance> ContactSolver<K> {
     /// Restricted solve from a cold start (module docs), under force control
-    /// (`target_force` > 0) or at the approach `fixed_approach` > 0.
+    /// (`target_force` > 0) or at the approach `fixed_approach` > 0. None: not
+    /// applicable, or given up (the full iteration then runs from its own start).
     pub(super) fn solve_restricted(
         &mut self,
         target_force: Option<f64>,
         fixed_approach: f64,
         opts: &SolverOptions,
-    ) -> Result<Restricted> {
+    ) -> Option<Solution> {
         let n = self.op.cells();
         let limit = ((CELLS_PER_ROOT * (self.domain_cells as f64).sqrt()) as usize).min(MAX_CELLS);
         // The start set's size first (a uniform start covers the domain).
@@ -67,7 +63,7 @@ impl<K: Compliance> ContactSolver<K> {
                 .count(),
         };
         if estimate == 0 || estimate > limit {
-            return Ok(Restricted::NotTried);
+            return None;
         }
         let mut p = vec![0.0; n];
         match target_force {
@@ -76,7 +72,7 @@ impl<K: Compliance> ContactSolver<K> {
         }
         let mut cells: Vec<usize> = (0..n).filter(|&i| p[i] > 0.0).collect();
         if cells.is_empty() || cells.len() > limit || self.op.restricted(&[]).is_none() {
-            return Ok(Restricted::NotTried);
+            return None;
         }
         if let Some(f) = target_force {
             let s: f64 = p.iter().sum::<f64>() * self.op.cell_area();
@@ -94,18 +90,14 @@ impl<K: Compliance> ContactSolver<K> {
         for _ in 0..MAX_ROUNDS {
             if inner.is_none() {
                 cells.iter().for_each(|&i| member[i] = true);
-                let Some(matrix) = self.op.restricted(&cells) else {
-                    return Ok(Restricted::NotTried);
-                };
+                let matrix = self.op.restricted(&cells)?;
                 let e_star = self.op.e_star();
                 let dense = DenseCompliance::from_matrix(cells.len(), hx, hy, e_star, matrix);
                 let z = cells.iter().map(|&i| self.z[i]).collect();
                 let (h_rms, stiffness) = (self.h_rms, self.overlap_stiffness);
                 inner = Some(ContactSolver::on_cells(dense, z, h_rms, stiffness));
             }
-            let Some(solver) = inner.as_mut() else {
-                return Ok(Restricted::NotTried);
-            };
+            let solver = inner.as_mut()?;
             let inner_opts = SolverOptions {
                 // Half the tolerance: the grid's K p differs from K_CC p by rounding.
                 tolerance: if tight {
@@ -120,7 +112,7 @@ impl<K: Compliance> ContactSolver<K> {
             {
                 Ok(sol) => sol,
                 // The full iteration takes over (and reports its own failure, if any).
-                Err(_) => return Ok(Restricted::Start(p)),
+                Err(_) => return None,
             };
             iterations += sol.iterations;
             p.iter_mut().for_each(|v| *v = 0.0);
@@ -139,28 +131,46 @@ impl<K: Compliance> ContactSolver<K> {
             if residual <= opts.tolerance {
                 let mut sol = self.finish(p, approach, iterations, residual);
                 sol.restricted = true;
-                return Ok(Restricted::Solved(sol));
+                return Some(sol);
             }
             let (w, mask) = (&self.w, &self.mask);
-            let entering: Vec<usize> = (0..n)
+            let mut entering: Vec<(f64, usize)> = (0..n)
                 .into_par_iter()
                 .filter(|&i| mask[i] > 0 && !member[i] && w[i] - approach < 0.0)
+                .map(|i| (w[i] - approach, i))
                 .collect();
+            // A set much too small carries the load on too few cells: the approach
+            // overshoots and the overlap spreads far beyond the contact (for a sphere
+            // the overlap at the right approach covers twice the contact already).
+            // Give up when even half the overlap would not fit; else the deepest cells
+            // join first, at most doubling the set per round.
+            if cells.len() + entering.len() / 2 > limit {
+                return None;
+            }
+            let room = cells.len().max(MIN_GROWTH);
+            if entering.len() > room {
+                entering
+                    .select_nth_unstable_by(room, |a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                entering.truncate(room);
+            }
             if entering.is_empty() {
                 if tight {
-                    return Ok(Restricted::Start(p));
+                    return None;
                 }
                 tight = true;
                 continue;
             }
-            cells.extend(entering);
+            cells.extend(entering.iter().map(|&(_, i)| i));
             cells.sort_unstable();
             inner = None;
             if cells.len() > limit {
-                return Ok(Restricted::Start(p));
+                return None;
             }
+            // Near the answer already: the next rounds solve to the tolerance (a loose
+            // solve would stop at once, the few new cells being shallow).
+            tight |= residual <= LOOSE;
         }
-        Ok(Restricted::Start(p))
+        None
     }
 
     /// A solver for the problem restricted to some cells: `op` between them, their `z`,
