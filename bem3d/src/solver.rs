@@ -508,8 +508,9 @@ impl<K: Compliance> ContactSolver<K> {
     /// the module docs; [`Solution::warm_started`] says whether it was used). A cold
     /// solve with a small start set runs restricted to a candidate set first (module
     /// docs, [`Solution::restricted`]); if that set outgrows its limit or its solve does
-    /// not converge, its last pressure starts the full iteration below (which then has
-    /// `max_iterations` of its own).
+    /// not converge, the attempt is dropped and the full iteration below runs from its
+    /// own start with `max_iterations` of its own (the attempt spends at most
+    /// `max_iterations` dense iterations over at most 24 rounds).
     ///
     /// Each iteration applies K once, to the conjugate direction t: `K p` moves by
     /// `-tau K t` and, where the projection clips a cell or re-admits an interpenetrating
@@ -910,8 +911,9 @@ impl<K: Compliance> ContactSolver<K> {
     }
 
     /// Cold start under force control (module docs): p = (d - z)+ on the domain, d the
-    /// height quantile whose overlap covers `START_AREA p / (E* h')` of it; the rescale
-    /// to the force follows. Uniform pressure when the heights have no slope.
+    /// height quantile whose overlap covers `start_area p / (E* h')` of it ([`START_AREA`]
+    /// for the full iteration); the rescale to the force follows. Uniform pressure when
+    /// the heights have no slope.
     fn cold_start(&self, p: &mut [f64], force: f64, start_area: f64) {
         let nm = self.domain_cells;
         let fraction = self.start_fraction(force, start_area);

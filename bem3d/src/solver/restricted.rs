@@ -11,10 +11,10 @@
 //! with negative gap join C (the deepest first, at most doubling C per round: a set
 //! much too small carries the load on too few cells, and the overlap it leaves spreads
 //! far beyond the contact). Rounds solve to a loose tolerance while C still changes
-//! much, then to the requested one. The reported solution is checked on the full grid like
-//! any other. The attempt is given up, and the full solve runs from its own start as
-//! it did before, when the set outgrows the limit (or half the overlap outside it would),
-//! or an inner solve does not converge.
+//! much, then to the requested one. The reported solution is checked on the full grid
+//! like any other. The attempt is given up, and the full solve runs from its own start
+//! as it did before, when the set outgrows the limit (or half the overlap outside it
+//! would), or an inner solve does not converge.
 
 use super::{lanes, reduce, ContactSolver, Refresh, Solution, SolverOptions};
 use crate::operator::{Compliance, DenseCompliance};
