@@ -357,13 +357,22 @@ impl<K: Compliance> ContactSolver<K> {
         // Stiffness of the longest wavelength, E* / sqrt(lx ly) (up to pi): the scale of
         // a re-admitted cell's pressure per unit overlap.
         let overlap_stiffness = op.e_star() / (op.lx() * op.ly()).sqrt();
-        let mut solver = Self {
+        let mask = mask.iter().map(|&m| m as u8).collect();
+        let mut solver = Self::with_buffers(op, mask, overlap_stiffness);
+        solver.set_heights(heights)?;
+        Ok(solver)
+    }
+
+    /// A solver with zeroed buffers for `op`'s cells and no heights yet.
+    fn with_buffers(op: K, mask: Vec<u8>, overlap_stiffness: f64) -> Self {
+        let n = op.cells();
+        Self {
             overlap_stiffness,
             op,
             w: vec![0.0; n],
             z: vec![0.0; n],
             h_rms: 0.0,
-            domain_cells: mask.iter().filter(|&&m| m).count(),
+            domain_cells: mask.iter().filter(|&&m| m > 0).count(),
             z_mean: 0.0,
             slope_rms: 0.0,
             t: vec![0.0; n],
@@ -371,10 +380,8 @@ impl<K: Compliance> ContactSolver<K> {
             y_prev: vec![0.0; n],
             loads: Vec::new(),
             fallback: [Vec::new(), Vec::new()],
-            mask: mask.iter().map(|&m| m as u8).collect(),
-        };
-        solver.set_heights(heights)?;
-        Ok(solver)
+            mask,
+        }
     }
 
     /// Replaces the height map (same grid and mask), keeping the operator and buffers.

@@ -413,11 +413,7 @@ fn bit_identical_whatever_the_thread_count() {
     let n = 64;
     let h = rough(n, n, 11);
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        common::on_threads(threads, || {
             let mut s =
                 ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None)
                     .unwrap();
@@ -696,11 +692,7 @@ fn restricted_solve_is_bit_identical_whatever_the_thread_count() {
     let n = 96;
     let h = common::self_affine(n, 0.8, 7);
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        common::on_threads(threads, || {
             let sol = ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None)
                 .unwrap()
                 .solve(Load::MeanPressure(2e-4), &SolverOptions::default(), None)

@@ -176,23 +176,11 @@ impl<K: Compliance> ContactSolver<K> {
     /// A solver for the problem restricted to some cells: `op` between them, their `z`,
     /// and the criterion's and the re-admission's scales of the whole domain.
     fn on_cells(op: K, z: Vec<f64>, h_rms: f64, overlap_stiffness: f64) -> Self {
-        let n = z.len();
-        Self {
-            overlap_stiffness,
-            op,
-            w: z.clone(),
-            z,
-            h_rms,
-            domain_cells: n,
-            z_mean: 0.0,
-            slope_rms: 0.0,
-            t: vec![0.0; n],
-            r: vec![0.0; n],
-            y_prev: vec![0.0; n],
-            loads: Vec::new(),
-            fallback: [Vec::new(), Vec::new()],
-            mask: vec![1; n],
-        }
+        let mut solver = Self::with_buffers(op, vec![1; z.len()], overlap_stiffness);
+        solver.w.copy_from_slice(&z);
+        solver.z = z;
+        solver.h_rms = h_rms;
+        solver
     }
 
     /// The convergence criterion (module docs) of `p` with `w = K p + z` up to date.

@@ -203,3 +203,12 @@ impl<K: Compliance> Compliance for FullGridOnly<K> {
         self.0.spectral(which)
     }
 }
+
+/// `f` on a rayon pool of `threads` threads (for the thread-count determinism tests).
+pub fn on_threads<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) -> R {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("a thread pool")
+        .install(f)
+}
