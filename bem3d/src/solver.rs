@@ -69,9 +69,9 @@
 //! stop if the criterion holds there, else add the interpenetrating cells outside C.
 //! It is the same fixed point, checked on the full grid; [`Solution::restricted`] says
 //! when it ran. Measured on the benchmark surfaces at 0.1 % contact (one thread, Intel
-//! Xeon VM): 256^2 0.041 -> 0.004-0.007 s, 512^2 0.22 -> 0.035 s, 1024^2 1.25 -> 0.30-0.32
-//! s (35, 46, 64 dense applications in all rounds); Hertz at 0.1 % contact (2 threads)
-//! 512^2 0.37 -> 0.09 s, 1024^2 1.49 -> 0.44-0.52 s. At 1 % contact and above the set
+//! Xeon VM): 256^2 0.041 -> 0.004-0.007 s, 512^2 0.22 -> 0.027-0.035 s, 1024^2 1.25 ->
+//! 0.28-0.32 s (35, 46, 64 dense applications in all rounds); Hertz at 0.1 % contact
+//! (2 threads) 512^2 0.37 -> 0.09-0.11 s, 1024^2 1.49 -> 0.44-0.52 s. At 1 % contact and above the set
 //! exceeds the limit from 512^2 up: rough surfaces skip the attempt, a sphere gives it
 //! up after one round (then the full solve as before, same iterations).
 //!
