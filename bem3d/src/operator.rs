@@ -515,8 +515,9 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 
 impl DenseCompliance {
     /// `n` cells of size `hx x hy` in one row with the given row-major `n x n` matrix
-    /// (e.g. [`Compliance::restricted`] of a larger operator).
-    pub fn from_matrix(n: usize, hx: f64, hy: f64, e_star: f64, matrix: Vec<f64>) -> Self {
+    /// (e.g. [`Compliance::restricted`] of a larger operator; crate-internal: the size
+    /// is asserted, not a user input).
+    pub(crate) fn from_matrix(n: usize, hx: f64, hy: f64, e_star: f64, matrix: Vec<f64>) -> Self {
         assert_eq!(matrix.len(), n * n, "matrix must be n x n");
         Self {
             hs: HalfSpace {
