@@ -87,6 +87,14 @@ pub trait Compliance: Send {
         let _ = cells;
         None
     }
+    /// The same half-space on a window of `wx x wy` cells of this grid (same cells and
+    /// modulus): between cells of the window K is then the same (up to rounding), for
+    /// solves restricted to a window that holds the whole contact; None if the operator
+    /// has no such restriction (a periodic one couples the window to its images).
+    fn window(&self, wx: usize, wy: usize) -> Option<NonPeriodicHalfSpace> {
+        let _ = (wx, wy);
+        None
+    }
     /// Preconditioner, in place: `g <- M g` with M an approximate inverse of K (a
     /// surface stiffness). The default, the identity, leaves the solver plain
     /// Polonsky-Keer.
@@ -383,12 +391,9 @@ pub struct NonPeriodicHalfSpace {
 
 impl NonPeriodicHalfSpace {
     pub fn new(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Self {
-        let (px, py) = (2 * nx, 2 * ny);
         let (hx, hy) = (lx / nx as f64, ly / ny as f64);
-        let mut fft = Fft2::new(px, py);
         // Love's coefficient is even in x and y: one quadrant of offsets (0..nx, 0..ny),
-        // rows in parallel, then mirrored into the wrap-around layout of the padded
-        // grid (offset nx and ny, never reached, stay zero).
+        // rows in parallel.
         let quadrant: Vec<f64> = (0..ny)
             .into_par_iter()
             .flat_map_iter(|j| {
@@ -398,6 +403,25 @@ impl NonPeriodicHalfSpace {
                 })
             })
             .collect();
+        Self::from_quadrant(
+            HalfSpace {
+                nx,
+                ny,
+                lx,
+                ly,
+                e_star,
+            },
+            &quadrant,
+        )
+    }
+
+    /// The operator from its coefficients at offsets (0..nx, 0..ny) (row-major, row
+    /// length nx), mirrored into the wrap-around layout of the padded grid (offsets nx
+    /// and ny, never reached, stay zero).
+    fn from_quadrant(hs: HalfSpace, quadrant: &[f64]) -> Self {
+        let (nx, ny) = (hs.nx, hs.ny);
+        let (px, py) = (2 * nx, 2 * ny);
+        let mut fft = Fft2::new(px, py);
         let mut k_real = vec![0.0; px * py];
         for j in 0..py {
             let oy = match j {
@@ -419,13 +443,7 @@ impl NonPeriodicHalfSpace {
         // The kernel is even in x and y, so its spectrum is real.
         let kernel = spec.iter().map(|c| c.re).collect();
         Self {
-            hs: HalfSpace {
-                nx,
-                ny,
-                lx,
-                ly,
-                e_star,
-            },
+            hs,
             fft,
             kernel,
             table: Circulant {
@@ -434,7 +452,7 @@ impl NonPeriodicHalfSpace {
                 values: k_real,
             },
             pre_fft: Fft2::new(nx, ny),
-            stiffness: stiffness_kernel(nx, ny, lx, ly, e_star),
+            stiffness: stiffness_kernel(nx, ny, hs.lx, hs.ly, hs.e_star),
         }
     }
 }
@@ -458,6 +476,26 @@ impl Compliance for NonPeriodicHalfSpace {
     }
     fn restricted(&self, cells: &[usize]) -> Option<Vec<f64>> {
         Some(self.table.restricted(self.hs.nx, cells))
+    }
+    /// Love's coefficients of the window's offsets, copied from this grid's table.
+    fn window(&self, wx: usize, wy: usize) -> Option<NonPeriodicHalfSpace> {
+        let hs = self.hs;
+        if wx == 0 || wy == 0 || wx > hs.nx || wy > hs.ny {
+            return None;
+        }
+        let px = self.table.px;
+        let quadrant: Vec<f64> = (0..wy)
+            .flat_map(|j| self.table.values[j * px..j * px + wx].iter().copied())
+            .collect();
+        let (hx, hy) = (hs.lx / hs.nx as f64, hs.ly / hs.ny as f64);
+        let window = HalfSpace {
+            nx: wx,
+            ny: wy,
+            lx: wx as f64 * hx,
+            ly: wy as f64 * hy,
+            e_star: hs.e_star,
+        };
+        Some(NonPeriodicHalfSpace::from_quadrant(window, &quadrant))
     }
     fn point_load_limit(&self) -> usize {
         // A direct sum runs over the n cells, the transforms over the 4n padded ones

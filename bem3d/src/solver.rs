@@ -89,6 +89,7 @@ use crate::operator::{Compliance, Operand};
 use rayon::prelude::*;
 
 mod restricted;
+mod window;
 
 /// The load prescribed to a solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -592,6 +593,9 @@ impl<K: Compliance> ContactSolver<K> {
         };
         let loaded = target_force.unwrap_or(fixed_approach) > 0.0;
         if warm.is_none() && loaded {
+            if let Some(sol) = self.solve_windowed(target_force, fixed_approach, opts) {
+                return Ok(sol);
+            }
             if let Some(sol) = self.solve_restricted(target_force, fixed_approach, opts) {
                 return Ok(sol);
             }

@@ -95,7 +95,8 @@ impl<K: Compliance> ContactSolver<K> {
                 let dense = DenseCompliance::from_matrix(cells.len(), hx, hy, e_star, matrix);
                 let z = cells.iter().map(|&i| self.z[i]).collect();
                 let (h_rms, stiffness) = (self.h_rms, self.overlap_stiffness);
-                inner = Some(ContactSolver::on_cells(dense, z, h_rms, stiffness));
+                let mask = vec![1; cells.len()];
+                inner = Some(ContactSolver::on_part(dense, mask, z, h_rms, stiffness));
             }
             let solver = inner.as_mut()?;
             let inner_opts = SolverOptions {
@@ -173,10 +174,17 @@ impl<K: Compliance> ContactSolver<K> {
         None
     }
 
-    /// A solver for the problem restricted to some cells: `op` between them, their `z`,
-    /// and the criterion's and the re-admission's scales of the whole domain.
-    fn on_cells(op: K, z: Vec<f64>, h_rms: f64, overlap_stiffness: f64) -> Self {
-        let mut solver = Self::with_buffers(op, vec![1; z.len()], overlap_stiffness);
+    /// A solver for the problem restricted to part of the grid: `op` between its cells,
+    /// their mask and `z`, and the criterion's and the re-admission's scales of the
+    /// whole domain.
+    pub(super) fn on_part(
+        op: K,
+        mask: Vec<u8>,
+        z: Vec<f64>,
+        h_rms: f64,
+        overlap_stiffness: f64,
+    ) -> Self {
+        let mut solver = Self::with_buffers(op, mask, overlap_stiffness);
         solver.w.copy_from_slice(&z);
         solver.z = z;
         solver.h_rms = h_rms;
@@ -184,7 +192,7 @@ impl<K: Compliance> ContactSolver<K> {
     }
 
     /// The convergence criterion (module docs) of `p` with `w = K p + z` up to date.
-    fn criterion(&self, p: &[f64], approach: f64) -> f64 {
+    pub(super) fn criterion(&self, p: &[f64], approach: f64) -> f64 {
         let ch = self.chunk();
         let [pg, ps, worst] = reduce(
             (

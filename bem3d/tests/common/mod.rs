@@ -176,31 +176,48 @@ pub fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// An operator without a real-space table: the solver cannot restrict it, so it always
-/// runs the full-grid iteration (the independent path for the restricted solves).
-pub struct FullGridOnly<K>(pub K);
+/// An operator without windows, and without a real-space table unless `table`: the
+/// solver then cannot restrict it to a window (nor to a candidate set), the independent
+/// path for the restricted solves.
+pub struct Unrestricted<K> {
+    op: K,
+    table: bool,
+}
 
-impl<K: Compliance> Compliance for FullGridOnly<K> {
+/// Always the full-grid iteration.
+pub fn full_grid_only<K>(op: K) -> Unrestricted<K> {
+    Unrestricted { op, table: false }
+}
+
+/// No windows, but candidate sets.
+pub fn no_window<K>(op: K) -> Unrestricted<K> {
+    Unrestricted { op, table: true }
+}
+
+impl<K: Compliance> Compliance for Unrestricted<K> {
     fn half_space(&self) -> &HalfSpace {
-        self.0.half_space()
+        self.op.half_space()
     }
     fn is_periodic(&self) -> bool {
-        self.0.is_periodic()
+        self.op.is_periodic()
     }
     fn apply(&mut self, p: &[f64], u: &mut [f64]) {
-        self.0.apply(p, u)
+        self.op.apply(p, u)
     }
     fn add_point_loads(&mut self, loads: &[(usize, f64)], u: &mut [f64]) {
-        self.0.add_point_loads(loads, u)
+        self.op.add_point_loads(loads, u)
     }
     fn point_load_limit(&self) -> usize {
-        self.0.point_load_limit()
+        self.op.point_load_limit()
+    }
+    fn restricted(&self, cells: &[usize]) -> Option<Vec<f64>> {
+        self.op.restricted(cells).filter(|_| self.table)
     }
     fn precondition(&mut self, g: &mut [f64]) {
-        self.0.precondition(g)
+        self.op.precondition(g)
     }
     fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
-        self.0.spectral(which)
+        self.op.spectral(which)
     }
 }
 
