@@ -61,19 +61,32 @@
 //! together (restarts and uniform start -> Polak-Ribiere+ and this start): 20 % contact
 //! 29, 33, 39 -> 20, 25, 26; 1 % 54, 63, 77 -> 15, 18, 21; 0.1 % 62, 82, 107 -> 13, 15, 19.
 //!
-//! Small contact sets (module `restricted`): a cold solve whose start set (the overlap
-//! covering `4 p / (E* h')`, or the overlap at the prescribed approach) holds at most
-//! `3 sqrt(N)` cells (and 4096) runs the same iteration restricted to a candidate set C,
-//! K between its cells a dense matrix from the operator's real-space table
-//! ([`Compliance::restricted`]), in rounds: solve on C, apply K on the whole grid once,
-//! stop if the criterion holds there, else add the interpenetrating cells outside C.
-//! It is the same fixed point, checked on the full grid; [`Solution::restricted`] says
-//! when it ran. Measured on the benchmark surfaces at 0.1 % contact (one thread, Intel
-//! Xeon VM): 256^2 0.041 -> 0.004-0.007 s, 512^2 0.22 -> 0.027-0.035 s, 1024^2 1.25 ->
-//! 0.28-0.32 s (35, 46, 64 dense applications in all rounds); Hertz at 0.1 % contact
-//! (2 threads) 512^2 0.37 -> 0.09-0.11 s, 1024^2 1.49 -> 0.44-0.52 s. At 1 % contact and above the set
-//! exceeds the limit from 512^2 up: rough surfaces skip the attempt, a sphere gives it
-//! up after one round (then the full solve as before, same iterations).
+//! Compact contacts on the non-periodic half-space (module `window`): a cold solve
+//! whose start (the overlap covering `3 p / (E* h')`, or the overlap at the prescribed
+//! approach) fits, with a margin, in a box of at most 0.7 of the grid runs the same
+//! iteration on that window, with the operator's own transforms at the window's size
+//! ([`Compliance::window`]), in rounds: solve on the window, apply K on the whole grid
+//! once, stop if the criterion holds there, else grow the window to the
+//! interpenetrating cells. Measured on a sphere (R = 1 on the unit square, one thread,
+//! Intel Xeon VM, solve only, 3 interleaved runs without -> with the window): 512^2 at
+//! 20 %, 1 % and 0.1 % contact 0.51-0.55 -> 0.17-0.19 s, 0.37-0.57 -> 0.05-0.08 s,
+//! 0.06-0.07 (candidate set) -> 0.04-0.06 s; 1024^2 2.8-3.3 -> 0.87-1.16 s, 2.6-2.7 ->
+//! 0.28-0.31 s, 0.39-0.48 (candidate set) -> 0.23-0.24 s.
+//!
+//! Small contact sets (module `restricted`): otherwise, a cold solve whose start set
+//! (the overlap covering `4 p / (E* h')`, or the overlap at the prescribed approach)
+//! holds at most `3 sqrt(N)` cells (and 4096) runs the same iteration restricted to a
+//! candidate set C, K between its cells a dense matrix from the operator's real-space
+//! table ([`Compliance::restricted`]), in rounds: solve on C, apply K on the whole grid
+//! once, stop if the criterion holds there, else add the interpenetrating cells outside
+//! C. Measured on the benchmark surfaces at 0.1 % contact (one thread, Intel Xeon VM):
+//! 256^2 0.041 -> 0.004-0.007 s, 512^2 0.22 -> 0.027-0.035 s, 1024^2 1.25 -> 0.28-0.32 s
+//! (35, 46, 64 dense applications in all rounds). At 1 % contact and above the set
+//! exceeds the limit from 512^2 up: rough surfaces skip the attempt (then the full
+//! solve as before, same iterations).
+//!
+//! Both are the same fixed point as the full iteration, checked on the full grid;
+//! [`Solution::restricted`] says when one of them ran.
 //!
 //! Warm starts: a previous [`Solution`] is used as the initial iterate only where it
 //! pays, i.e. for small load steps: force ratios in [0.9, 1.05] and approach ratios in
@@ -141,9 +154,10 @@ pub struct Solution {
     pub domain_cells: usize,
     /// Whether the previous solution given as a warm start was used (see module docs).
     pub warm_started: bool,
-    /// Whether the solve ran restricted to a small candidate set of cells (a few
-    /// thousand at most, a dense K between them; see the module docs). Its
-    /// `iterations` then count applications of that dense K, not of the FFT operator.
+    /// Whether the solve ran restricted to part of the grid (module docs): a window
+    /// around a compact contact (its `iterations` then count iterations on the window,
+    /// summed over its rounds) or a small candidate set of cells (a few thousand at
+    /// most; `iterations` then count applications of a dense K between them).
     pub restricted: bool,
 }
 
@@ -514,11 +528,13 @@ impl<K: Compliance> ContactSolver<K> {
 
     /// Solves for `load`, starting from a previous solution `warm` where that pays (see
     /// the module docs; [`Solution::warm_started`] says whether it was used). A cold
-    /// solve with a small start set runs restricted to a candidate set first (module
-    /// docs, [`Solution::restricted`]); if that set outgrows its limit or its solve does
-    /// not converge, the attempt is dropped and the full iteration below runs from its
-    /// own start with `max_iterations` of its own (the attempt spends at most
-    /// `max_iterations` dense iterations over at most 24 rounds).
+    /// solve of a compact contact runs on a window first, one with a small start set
+    /// restricted to a candidate set (module docs, [`Solution::restricted`]); if the
+    /// window or the set outgrows its limit or a round does not converge, the attempt is
+    /// dropped and the next path (last: the full iteration below) runs from its own
+    /// start with `max_iterations` of its own (an attempt spends at most
+    /// `max_iterations` iterations, over at most 8 rounds for a window and 24 for a
+    /// set).
     ///
     /// Each iteration applies K once, to the conjugate direction t: `K p` moves by
     /// `-tau K t` and, where the projection clips a cell or re-admits an interpenetrating

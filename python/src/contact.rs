@@ -135,8 +135,10 @@ impl ContactResult {
     fn warm_started(&self) -> bool {
         self.sol.warm_started
     }
-    /// Whether the solve ran restricted to a small candidate set of cells (low contact
-    /// fractions; `iterations` then counts applications of a dense K between them).
+    /// Whether the solve ran restricted to part of the grid: a window around a compact
+    /// contact on the non-periodic half-space (`iterations` then count iterations on the
+    /// window), or a small candidate set of cells at low contact fractions
+    /// (`iterations` then count applications of a dense K between them).
     #[getter]
     fn restricted(&self) -> bool {
         self.sol.restricted

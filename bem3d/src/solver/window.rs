@@ -9,29 +9,35 @@
 //! grid. Between cells of the window the influence coefficients are the grid's own
 //! (Love's kernel depends on the offset only), so the window's problem has the same
 //! solution as the grid's as soon as that solution carries no pressure outside it.
-//! Each round solves on the window with the same preconditioned iteration, scatters the
-//! pressure, applies K on the whole grid once and evaluates the solver's criterion
-//! there: converged, or the window grows to hold the interpenetrating cells. The
-//! reported solution is checked on the full grid like any other. Spread contacts
-//! (rough surfaces: their start covers the grid) skip it at the cost of one bounding
-//! box; a window that would exceed half the grid's cells, or a round that does not
-//! converge, gives the attempt up.
+//! Each round solves on the window with the same preconditioned iteration (to a loose
+//! tolerance while the window may still grow, then to half the requested one),
+//! scatters the pressure, applies K on the whole grid once and evaluates the solver's
+//! criterion there: converged, or the window grows to hold the interpenetrating cells
+//! (none: the next round solves to the tolerance). The reported solution is checked on
+//! the full grid like any other. Spread contacts (rough surfaces: their start covers
+//! the grid) skip it at the cost of one start and its bounding box; a window that
+//! would exceed [`MAX_FRACTION`] of the grid's cells, or a round that does not
+//! converge, gives the attempt up (the next path runs from its own start).
 
 use super::{ContactSolver, Refresh, Solution, SolverOptions};
 use crate::operator::{Compliance, NonPeriodicHalfSpace};
 
-/// The start's overlap covers this many times `p / (E* h')` of the domain (half the
-/// full solve's [`super::START_AREA`]: a sphere at 20 % contact then starts on a window
-/// of 0.32 of the grid instead of 0.71; measured on a sphere at 0.1-30 % contact, 512^2
-/// and 1024^2, the start at 6 or 2 took 0.7-2.6x as long). A start that misses part of
-/// the contact costs a round on a small window.
+/// The start's overlap covers this many times `p / (E* h')` of the domain under force
+/// control (half the full solve's [`super::START_AREA`]). Measured on a sphere (R = 1
+/// on the unit square, one thread, 512^2 and 1024^2), solve times at 0.1 %, 1 %, 20 %
+/// and 30 % contact with 6 / 3 / 2 here: 1024^2 0.24 / 0.17 / 0.20 s, 0.27 / 0.21 /
+/// 0.35 s, 2.9 (no window: the start's box exceeds the limit) / 0.84 / 1.74 s, 3.1 (no
+/// window) / 1.98 / 0.92 s; 512^2 within 0.03 s at 0.1-1 %, 0.59 (none) / 0.18 / 0.28 s
+/// at 20 %. A start that misses part of the contact costs a loose round on a small
+/// window.
 const START_AREA: f64 = 3.0;
-/// Largest window, as a fraction of the grid's cells (its transforms then cost at most
-/// about half of the grid's, and the rounds' full-grid checks are paid on top).
+/// Largest window, as a fraction of the grid's cells: the window's transforms then
+/// cost at most 0.7 of the grid's per iteration, and its rounds add about three
+/// full-grid applications of K (a sphere at 20 % contact on 1024^2 takes 26 iterations
+/// either way).
 const MAX_FRACTION: f64 = 0.7;
 /// Cells added on each side of the start's bounding box, as a fraction of its width
-/// (at least [`MIN_MARGIN`]): the start's overlap covers [`START_AREA`] times the
-/// expected contact, so the contact rarely reaches the margin.
+/// (at least [`MIN_MARGIN`]).
 const MARGIN: f64 = 0.125;
 const MIN_MARGIN: usize = 2;
 const MAX_ROUNDS: usize = 8;

@@ -235,7 +235,7 @@ impl Output for BemContact {
         t.missing_ok = true;
         t.infinite_ok = true;
         t.notes.push(format!(
-            "{} {ny} x {nx} map from {} over {lx} x {ly}; E* = {e}; tolerance {:e} (criterion: bem3d::solver docs){}; converged = 0: the last iterate at max_iterations; iterations of solves with few contact cells count applications of a dense K between a small candidate set (restricted solves, bem3d::solver docs)",
+            "{} {ny} x {nx} map from {} over {lx} x {ly}; E* = {e}; tolerance {:e} (criterion: bem3d::solver docs){}; converged = 0: the last iterate at max_iterations; iterations of restricted solves count iterations on a window around a compact contact (non-periodic) or applications of a dense K between a small candidate set (few contact cells; bem3d::solver docs)",
             if self.periodic { "periodic" } else { "non-periodic" },
             path.display(),
             self.tolerance,

@@ -63,8 +63,10 @@ class ContactResult:
     def warm_started(self) -> bool: ...
     @property
     def restricted(self) -> bool:
-        """Solved restricted to a small candidate set (low contact fractions;
-        `iterations` then counts applications of a dense K between its cells)."""
+        """Solved restricted to part of the grid: a window around a compact contact
+        on the non-periodic half-space (`iterations` then count iterations on the
+        window), or a small candidate set at low contact fractions (`iterations` then
+        count applications of a dense K between its cells)."""
 
 class Contact:
     """Frictionless normal contact of a rigid rough surface on an elastic half-space

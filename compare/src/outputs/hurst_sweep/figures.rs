@@ -185,7 +185,7 @@ fn solves_table(spec: &HurstSweep, r: &Results, label: &str) -> Table {
         .map(String::from),
     );
     t.notes.push(format!(
-        "every 3D solve of the sweep: tolerance {:e} (criterion: bem3d::solver docs); unconverged solves (converged = 0, the residual reached) and failed stiffness solves are left out of the curves; iterations of solves with few contact cells count applications of a dense K between a small candidate set (restricted solves, bem3d::solver docs)",
+        "every 3D solve of the sweep: tolerance {:e} (criterion: bem3d::solver docs); unconverged solves (converged = 0, the residual reached) and failed stiffness solves are left out of the curves; iterations of restricted solves count iterations on a window around a compact contact (non-periodic) or applications of a dense K between a small candidate set (few contact cells; bem3d::solver docs)",
         spec.tolerance
     ));
     for (h, g, real, k, s) in &r.solves {
