@@ -18,7 +18,8 @@ pub use error::{BemError, Result};
 pub mod sliding;
 pub mod solver;
 pub use operator::{
-    Compliance, DenseCompliance, NonPeriodicHalfSpace, Operand, PeriodicHalfSpace, Spectral,
+    Compliance, DenseCompliance, NonPeriodicHalfSpace, Operand, PeriodicHalfSpace, Precision,
+    Spectral, Transform,
 };
 pub use sliding::{SlidingContact, SlidingSolution};
 pub use solver::{ContactSolver, Load, Solution, SolverOptions};

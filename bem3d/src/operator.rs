@@ -32,9 +32,76 @@ pub enum Operand {
 /// An FFT-based operator's transform and symbol, for fused applications
 /// ([`Fft2::load_rows`], [`Fft2::finish_rows`]) on rows of `dims = (width, rows)`.
 pub struct Spectral<'a> {
-    pub fft: &'a mut Fft2,
-    pub symbol: &'a [f64],
+    pub transform: Transform<'a>,
     pub dims: (usize, usize),
+}
+
+/// A transform and its symbol, in double or single precision.
+pub enum Transform<'a> {
+    Double(&'a mut Fft2<f64>, &'a [f64]),
+    Single(&'a mut Fft2<f32>, &'a [f32]),
+}
+
+/// The precision of a preconditioner's transform.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Precision {
+    /// f32 transforms (the default): the preconditioner only shapes the search
+    /// directions, so its rounding (1e-7 relative) does not reach the solution, which is
+    /// judged on K in double precision; its transforms cost about half.
+    #[default]
+    Single,
+    /// f64 transforms, as K's (for comparison).
+    Double,
+}
+
+/// A preconditioner M: a real symbol (a surface stiffness) with its own transform.
+enum Stiffness {
+    Single(Fft2<f32>, Vec<f32>),
+    Double(Fft2<f64>, Vec<f64>),
+}
+
+impl Stiffness {
+    /// `symbol` on an `nx x ny` transform in `precision`.
+    fn new(nx: usize, ny: usize, symbol: Vec<f64>, precision: Precision) -> Self {
+        match precision {
+            Precision::Single => Self::Single(
+                Fft2::new(nx, ny),
+                symbol.iter().map(|&v| v as f32).collect(),
+            ),
+            Precision::Double => Self::Double(Fft2::new(nx, ny), symbol),
+        }
+    }
+
+    fn precision(&self) -> Precision {
+        match self {
+            Self::Single(..) => Precision::Single,
+            Self::Double(..) => Precision::Double,
+        }
+    }
+
+    /// The symbol in double precision (for a change of precision).
+    fn symbol(&self) -> Vec<f64> {
+        match self {
+            Self::Single(_, s) => s.iter().map(|&v| v as f64).collect(),
+            Self::Double(_, s) => s.clone(),
+        }
+    }
+
+    /// `g <- M g` on rows of `dims`.
+    fn apply(&mut self, g: &mut [f64], dims: (usize, usize)) {
+        match self {
+            Self::Single(fft, s) => fft.convolve_in_place(g, dims, s),
+            Self::Double(fft, s) => fft.convolve_in_place(g, dims, s),
+        }
+    }
+
+    fn spectral(&mut self, dims: (usize, usize)) -> Spectral<'_> {
+        let transform = match self {
+            Self::Single(fft, s) => Transform::Single(fft, s),
+            Self::Double(fft, s) => Transform::Double(fft, s),
+        };
+        Spectral { transform, dims }
+    }
 }
 
 /// A linear surface compliance operator.
@@ -119,7 +186,7 @@ pub struct PeriodicHalfSpace {
     fft: Fft2,
     kernel: Vec<f64>,
     /// Its inverse, the preconditioner (see [`stiffness_kernel`]).
-    stiffness: Vec<f64>,
+    stiffness: Stiffness,
     /// The same operator in real space: `u = table (*) p`, circular.
     table: Circulant,
 }
@@ -243,13 +310,20 @@ impl PeriodicHalfSpace {
             },
             fft,
             kernel,
-            stiffness,
+            stiffness: Stiffness::new(nx, ny, stiffness, Precision::default()),
             table: Circulant {
                 px: nx,
                 py: ny,
                 values: green,
             },
         }
+    }
+
+    /// The preconditioner's transforms in `precision` (default single).
+    pub fn with_preconditioner(mut self, precision: Precision) -> Self {
+        let (nx, ny) = (self.hs.nx, self.hs.ny);
+        self.stiffness = Stiffness::new(nx, ny, self.stiffness.symbol(), precision);
+        self
     }
 }
 
@@ -277,17 +351,16 @@ impl Compliance for PeriodicHalfSpace {
     /// an FFT-based approximate inverse, restricted by the solver to the contact set).
     fn precondition(&mut self, g: &mut [f64]) {
         let dims = (self.hs.nx, self.hs.ny);
-        self.fft.convolve_in_place(g, dims, &self.stiffness);
+        self.stiffness.apply(g, dims);
     }
     fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
-        let symbol = match which {
-            Operand::Compliance => &self.kernel,
-            Operand::Preconditioner => &self.stiffness,
-        };
-        Some(Spectral {
-            fft: &mut self.fft,
-            symbol,
-            dims: (self.hs.nx, self.hs.ny),
+        let dims = (self.hs.nx, self.hs.ny);
+        Some(match which {
+            Operand::Compliance => Spectral {
+                transform: Transform::Double(&mut self.fft, &self.kernel),
+                dims,
+            },
+            Operand::Preconditioner => self.stiffness.spectral(dims),
         })
     }
 }
@@ -385,8 +458,7 @@ pub struct NonPeriodicHalfSpace {
     table: Circulant,
     /// Preconditioner: the periodic stiffness on the unpadded grid, with its own
     /// transform.
-    pre_fft: Fft2,
-    stiffness: Vec<f64>,
+    stiffness: Stiffness,
 }
 
 impl NonPeriodicHalfSpace {
@@ -412,13 +484,14 @@ impl NonPeriodicHalfSpace {
                 e_star,
             },
             &quadrant,
+            Precision::default(),
         )
     }
 
     /// The operator from its coefficients at offsets (0..nx, 0..ny) (row-major, row
     /// length nx), mirrored into the wrap-around layout of the padded grid (offsets nx
     /// and ny, never reached, stay zero).
-    fn from_quadrant(hs: HalfSpace, quadrant: &[f64]) -> Self {
+    fn from_quadrant(hs: HalfSpace, quadrant: &[f64], precision: Precision) -> Self {
         let (nx, ny) = (hs.nx, hs.ny);
         let (px, py) = (2 * nx, 2 * ny);
         let mut fft = Fft2::new(px, py);
@@ -451,9 +524,20 @@ impl NonPeriodicHalfSpace {
                 py,
                 values: k_real,
             },
-            pre_fft: Fft2::new(nx, ny),
-            stiffness: stiffness_kernel(nx, ny, hs.lx, hs.ly, hs.e_star),
+            stiffness: Stiffness::new(
+                nx,
+                ny,
+                stiffness_kernel(nx, ny, hs.lx, hs.ly, hs.e_star),
+                precision,
+            ),
         }
+    }
+
+    /// The preconditioner's transforms in `precision` (default single).
+    pub fn with_preconditioner(mut self, precision: Precision) -> Self {
+        let (nx, ny) = (self.hs.nx, self.hs.ny);
+        self.stiffness = Stiffness::new(nx, ny, self.stiffness.symbol(), precision);
+        self
     }
 }
 
@@ -495,7 +579,10 @@ impl Compliance for NonPeriodicHalfSpace {
             ly: wy as f64 * hy,
             e_star: hs.e_star,
         };
-        Some(NonPeriodicHalfSpace::from_quadrant(window, &quadrant))
+        let precision = self.stiffness.precision();
+        Some(NonPeriodicHalfSpace::from_quadrant(
+            window, &quadrant, precision,
+        ))
     }
     fn point_load_limit(&self) -> usize {
         // A direct sum runs over the n cells, the transforms over the 4n padded ones
@@ -507,21 +594,16 @@ impl Compliance for NonPeriodicHalfSpace {
     /// quarter of the cost of an application of K).
     fn precondition(&mut self, g: &mut [f64]) {
         let dims = (self.hs.nx, self.hs.ny);
-        self.pre_fft.convolve_in_place(g, dims, &self.stiffness);
+        self.stiffness.apply(g, dims);
     }
     fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
         let dims = (self.hs.nx, self.hs.ny);
         Some(match which {
             Operand::Compliance => Spectral {
-                fft: &mut self.fft,
-                symbol: &self.kernel,
+                transform: Transform::Double(&mut self.fft, &self.kernel),
                 dims,
             },
-            Operand::Preconditioner => Spectral {
-                fft: &mut self.pre_fft,
-                symbol: &self.stiffness,
-                dims,
-            },
+            Operand::Preconditioner => self.stiffness.spectral(dims),
         })
     }
 }

@@ -5,10 +5,16 @@
 //! the operator's approximate inverse ([`Compliance::precondition`]: the spectral
 //! stiffness E*|k|/2; an FFT-based preconditioner in the spirit of Vollebregt 2014,
 //! J. Comput. Phys. 257). On the benchmark surfaces M cuts the iterations 3-5x (512^2
-//! rough: 300 -> 70). Each iteration applies K once (to the direction) and M once; the
+//! rough: 300 -> 70). M's transforms run in single precision ([`crate::Precision`]): it
+//! only shapes the directions, and the criterion is evaluated on K in double precision,
+//! so the fixed point is the same; measured (benchmark surfaces, 256^2-1024^2, 1 %
+//! and 20 % contact) the iterations were the same as with M in double precision, the
+//! solutions within 1e-9 of the peak pressure, and the solves 0.95-1.34x as long
+//! (interleaved runs, one and two threads; an f32 transform pair costs 0.68-0.86 of
+//! an f64 one at 256^2-2048^2). Each iteration applies K once (to the direction) and M once; the
 //! displacement `K p` is carried along (see [`ContactSolver::solve`]). Both are
 //! convolutions, and the sweeps that produce their inputs or consume their outputs run
-//! inside the transforms' row passes ([`Fft2::load_rows`]), on rows still in cache: an
+//! inside the transforms' row passes ([`Fft2::load_rows`](crate::fft::Fft2::load_rows)), on rows still in cache: an
 //! iteration streams the grid about 35 times instead of 41. In interleaved A/B runs on
 //! the 2-core development VM (256^2-1024^2, 1 and 2 threads) the solve time did not
 //! change measurably: there the transforms dominate and the sweeps were not limited by
@@ -97,8 +103,8 @@
 //! window the solve starts cold.
 
 use crate::error::{BemError, Result};
-use crate::fft::Fft2;
-use crate::operator::{Compliance, Operand};
+use crate::fft::ROWS_PER_CHUNK;
+use crate::operator::{Compliance, Operand, Transform};
 use rayon::prelude::*;
 
 mod restricted;
@@ -266,8 +272,8 @@ fn sum_parts<const N: usize>(parts: &[[f64; N]], max_slot: Option<usize>) -> [f6
     acc
 }
 
-/// First half of a fused application of K or M ([`Fft2::load_rows`]): `load(item,
-/// values)` produces the input a chunk of [`Fft2::ROWS_PER_CHUNK`] rows at a time from
+/// First half of a fused application of K or M ([`Fft2::load_rows`](crate::fft::Fft2::load_rows)): `load(item,
+/// values)` produces the input a chunk of [`ROWS_PER_CHUNK`] rows at a time from
 /// the caller's items. Operators without a spectral form collect the input in
 /// `fallback` instead (same chunks, same sums).
 fn load_fused<K, I, F, const A: usize>(
@@ -283,9 +289,12 @@ where
     I::Iter: IndexedParallelIterator,
     F: Fn(I::Item, &mut [f64]) -> [f64; A] + Sync,
 {
-    let (n, chunk) = (op.cells(), Fft2::ROWS_PER_CHUNK * op.nx());
+    let (n, chunk) = (op.cells(), ROWS_PER_CHUNK * op.nx());
     if let Some(s) = op.spectral(which) {
-        return s.fft.load_rows(s.dims, items, load);
+        return match s.transform {
+            Transform::Double(fft, _) => fft.load_rows(s.dims, items, load),
+            Transform::Single(fft, _) => fft.load_rows(s.dims, items, load),
+        };
     }
     fallback[0].resize(n, 0.0);
     fallback[0]
@@ -296,7 +305,7 @@ where
 }
 
 /// Second half of a fused application: the operator applied to the loaded input,
-/// handed to `store(item, values)` a chunk at a time ([`Fft2::finish_rows`]).
+/// handed to `store(item, values)` a chunk at a time ([`Fft2::finish_rows`](crate::fft::Fft2::finish_rows)).
 fn finish_fused<K, I, F, const B: usize>(
     op: &mut K,
     which: Operand,
@@ -310,9 +319,12 @@ where
     I::Iter: IndexedParallelIterator,
     F: Fn(I::Item, &[f64]) -> [f64; B] + Sync,
 {
-    let (n, chunk) = (op.cells(), Fft2::ROWS_PER_CHUNK * op.nx());
+    let (n, chunk) = (op.cells(), ROWS_PER_CHUNK * op.nx());
     if let Some(s) = op.spectral(which) {
-        return s.fft.finish_rows(s.symbol, items, store);
+        return match s.transform {
+            Transform::Double(fft, symbol) => fft.finish_rows(symbol, items, store),
+            Transform::Single(fft, symbol) => fft.finish_rows(symbol, items, store),
+        };
     }
     let [input, output] = fallback;
     match which {
@@ -701,7 +713,7 @@ impl<K: Compliance> ContactSolver<K> {
             // Pass B, fused into M's row pass: the gap `g = w - approach` on the domain,
             // the criterion's terms (sum p |g|, sum p, max -g) and the residual
             // `q = [p > 0] g`, with its sum, as M's input.
-            let fc = Fft2::ROWS_PER_CHUNK * self.op.nx();
+            let fc = ROWS_PER_CHUNK * self.op.nx();
             let parts = load_fused(
                 &mut self.op,
                 Operand::Preconditioner,
