@@ -9,7 +9,7 @@
 //! only shapes the directions, and the criterion is evaluated on K in double precision,
 //! so the fixed point is the same; measured (benchmark surfaces, 256^2-1024^2, 1 %
 //! and 20 % contact) the iterations were the same as with M in double precision, the
-//! solutions within 1e-9 of the peak pressure, and the solves 0.95-1.34x as long
+//! solutions within 1e-9 of the peak pressure, and the speed-up 0.95-1.34x
 //! (interleaved runs, one and two threads; an f32 transform pair costs 0.68-0.86 of
 //! an f64 one at 256^2-2048^2). Each iteration applies K once (to the direction) and M once; the
 //! displacement `K p` is carried along (see [`ContactSolver::solve`]). Both are
