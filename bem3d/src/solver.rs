@@ -9,9 +9,10 @@
 //! only shapes the directions, and the criterion is evaluated on K in double precision,
 //! so the fixed point is the same; measured (benchmark surfaces, 256^2-1024^2, 1 %
 //! and 20 % contact) the iterations were the same as with M in double precision, the
-//! solutions within 1e-9 of the peak pressure, and the speed-up 0.95-1.34x
-//! (interleaved runs, one and two threads; an f32 transform pair costs 0.68-0.86 of
-//! an f64 one at 256^2-2048^2). Each iteration applies K once (to the direction) and M once; the
+//! solutions within 1e-9 of the peak pressure; the speed-up is 1.13-1.17x at 2048^2
+//! (one thread, 20 % contact, against one f64 transform shared by K and M) and within
+//! the noise (0.95-1.13x) at 256^2-1024^2; an f32 convolution costs 0.68-0.86 of an
+//! f64 one. Each iteration applies K once (to the direction) and M once; the
 //! displacement `K p` is carried along (see [`ContactSolver::solve`]). Both are
 //! convolutions, and the sweeps that produce their inputs or consume their outputs run
 //! inside the transforms' row passes ([`Fft2::load_rows`](crate::fft::Fft2::load_rows)), on rows still in cache: an
