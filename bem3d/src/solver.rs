@@ -76,9 +76,9 @@
 //! once, stop if the criterion holds there, else grow the window to the
 //! interpenetrating cells. Measured on a sphere (R = 1 on the unit square, one thread,
 //! Intel Xeon VM, solve only, 3 interleaved runs without -> with the window): 512^2 at
-//! 20 %, 1 % and 0.1 % contact 0.51-0.55 -> 0.17-0.19 s, 0.37-0.57 -> 0.05-0.08 s,
-//! 0.06-0.07 (candidate set) -> 0.04-0.06 s; 1024^2 2.8-3.3 -> 0.87-1.16 s, 2.6-2.7 ->
-//! 0.28-0.31 s, 0.39-0.48 (candidate set) -> 0.23-0.24 s.
+//! 20 %, 1 % and 0.1 % contact 0.36-0.47 -> 0.13-0.15 s, 0.26-0.27 -> 0.04 s, 0.05-0.08
+//! (candidate set) -> 0.04-0.05 s; 1024^2 2.2-2.9 -> 0.71-0.93 s, 1.9-2.4 -> 0.21-0.27 s,
+//! 0.36-0.39 (candidate set) -> 0.17-0.21 s.
 //!
 //! Small contact sets (module `restricted`): otherwise, a cold solve whose start set
 //! (the overlap covering `4 p / (E* h')`, or the overlap at the prescribed approach)

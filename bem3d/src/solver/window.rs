@@ -171,11 +171,14 @@ impl<K: Compliance> ContactSolver<K> {
             };
             // Near the answer already: the next round solves to the tolerance.
             tight |= residual <= LOOSE;
+            // The next window holds those cells and the pressure carried so far (which
+            // may lie in this window's margin).
+            let held = bounding_box(nx, (0..n).filter(|&i| p[i] > 0.0)).unwrap_or(grow);
             bounds = (
-                bounds.0.min(grow.0),
-                bounds.1.max(grow.1),
-                bounds.2.min(grow.2),
-                bounds.3.max(grow.3),
+                bounds.0.min(grow.0).min(held.0),
+                bounds.1.max(grow.1).max(held.1),
+                bounds.2.min(grow.2).min(held.2),
+                bounds.3.max(grow.3).max(held.3),
             );
         }
         None
