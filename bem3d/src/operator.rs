@@ -95,10 +95,18 @@ impl Stiffness {
         }
     }
 
-    fn spectral(&mut self, dims: (usize, usize)) -> Spectral<'_> {
-        let transform = match self {
-            Self::Single(fft, s) => Transform::Single(fft, s),
-            Self::Double(fft, s) => Transform::Double(fft, s),
+    /// K (its transform and symbol) or this M, as the solver's fused applications take
+    /// them.
+    fn pair<'a>(
+        &'a mut self,
+        which: Operand,
+        (fft, kernel): (&'a mut Fft2, &'a [f64]),
+        dims: (usize, usize),
+    ) -> Spectral<'a> {
+        let transform = match (which, self) {
+            (Operand::Compliance, _) => Transform::Double(fft, kernel),
+            (Operand::Preconditioner, Self::Single(fft, s)) => Transform::Single(fft, s),
+            (Operand::Preconditioner, Self::Double(fft, s)) => Transform::Double(fft, s),
         };
         Spectral { transform, dims }
     }
@@ -355,13 +363,10 @@ impl Compliance for PeriodicHalfSpace {
     }
     fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
         let dims = (self.hs.nx, self.hs.ny);
-        Some(match which {
-            Operand::Compliance => Spectral {
-                transform: Transform::Double(&mut self.fft, &self.kernel),
-                dims,
-            },
-            Operand::Preconditioner => self.stiffness.spectral(dims),
-        })
+        Some(
+            self.stiffness
+                .pair(which, (&mut self.fft, &self.kernel), dims),
+        )
     }
 }
 
@@ -598,13 +603,10 @@ impl Compliance for NonPeriodicHalfSpace {
     }
     fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
         let dims = (self.hs.nx, self.hs.ny);
-        Some(match which {
-            Operand::Compliance => Spectral {
-                transform: Transform::Double(&mut self.fft, &self.kernel),
-                dims,
-            },
-            Operand::Preconditioner => self.stiffness.spectral(dims),
-        })
+        Some(
+            self.stiffness
+                .pair(which, (&mut self.fft, &self.kernel), dims),
+        )
     }
 }
 

@@ -604,30 +604,7 @@ fn restricted_solve_matches_the_full_grid_solve() {
     let ball = sphere(n, 1.0, 1.0);
     let periodic = || PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
     let free = || NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
-    let check = |a: &Solution, b: &Solution, what: &str| {
-        assert!(a.restricted && !b.restricted, "{what}: paths");
-        assert!(
-            a.residual <= 1e-12 && b.residual <= 1e-12,
-            "{what}: residuals"
-        );
-        let pmax = b.pressure.iter().fold(0.0f64, |m, &v| m.max(v));
-        let dp = common::max_abs_diff(&a.pressure, &b.pressure);
-        assert!(
-            dp <= 1e-9 * pmax,
-            "{what}: pressure differs by {dp:e} of {pmax:e}"
-        );
-        assert!(rel(a.approach, b.approach) < 1e-9, "{what}: approach");
-        assert!(rel(a.force, b.force) < 1e-12, "{what}: force");
-        assert_eq!(a.contact_cells, b.contact_cells, "{what}: contact cells");
-        eprintln!(
-            "{what}: {} contact cells, {} restricted iterations against {} full-grid ones; \
-             pressures differ by {:.1e} of the peak",
-            a.contact_cells,
-            a.iterations,
-            b.iterations,
-            dp / pmax
-        );
-    };
+    let check = matches_full_grid;
     for pm in [1e-4, 3e-4] {
         let a = ContactSolver::new(periodic(), &rough_h, None)
             .unwrap()
@@ -687,6 +664,34 @@ fn restricted_solve_matches_the_full_grid_solve() {
     assert!(!high.restricted && high.contact_cells > 384);
 }
 
+/// A restricted solve `a` (window or candidate set) against the full-grid solve `b` of
+/// the same problem, both at tolerance 1e-12: 1e-9 of the peak pressure, approach 1e-9,
+/// force 1e-12, the same contact cells.
+fn matches_full_grid(a: &Solution, b: &Solution, what: &str) {
+    assert!(a.restricted && !b.restricted, "{what}: paths");
+    assert!(
+        a.residual <= 1e-12 && b.residual <= 1e-12,
+        "{what}: residuals"
+    );
+    let pmax = b.pressure.iter().fold(0.0f64, |m, &v| m.max(v));
+    let dp = common::max_abs_diff(&a.pressure, &b.pressure);
+    assert!(
+        dp <= 1e-9 * pmax,
+        "{what}: pressure differs by {dp:e} of {pmax:e}"
+    );
+    assert!(rel(a.approach, b.approach) < 1e-9, "{what}: approach");
+    assert!(rel(a.force, b.force) < 1e-12, "{what}: force");
+    assert_eq!(a.contact_cells, b.contact_cells, "{what}: contact cells");
+    eprintln!(
+        "{what}: {} contact cells, {} restricted iterations against {} full-grid ones; \
+         pressures differ by {:.1e} of the peak",
+        a.contact_cells,
+        a.iterations,
+        b.iterations,
+        dp / pmax
+    );
+}
+
 /// The restricted path is bit-identical for any thread count too.
 #[test]
 fn restricted_solve_is_bit_identical_whatever_the_thread_count() {
@@ -717,30 +722,7 @@ fn windowed_solve_matches_the_full_grid_solve() {
         max_iterations: 10_000,
     };
     let free = || NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
-    let check = |a: &Solution, b: &Solution, what: &str| {
-        assert!(a.restricted && !b.restricted, "{what}: paths");
-        assert!(
-            a.residual <= 1e-12 && b.residual <= 1e-12,
-            "{what}: residuals"
-        );
-        let pmax = b.pressure.iter().fold(0.0f64, |m, &v| m.max(v));
-        let dp = common::max_abs_diff(&a.pressure, &b.pressure);
-        assert!(
-            dp <= 1e-9 * pmax,
-            "{what}: pressure differs by {dp:e} of {pmax:e}"
-        );
-        assert!(rel(a.approach, b.approach) < 1e-9, "{what}: approach");
-        assert!(rel(a.force, b.force) < 1e-12, "{what}: force");
-        assert_eq!(a.contact_cells, b.contact_cells, "{what}: contact cells");
-        eprintln!(
-            "{what}: {} contact cells, {} windowed iterations against {} full-grid ones; \
-             pressures differ by {:.1e} of the peak",
-            a.contact_cells,
-            a.iterations,
-            b.iterations,
-            dp / pmax
-        );
-    };
+    let check = matches_full_grid;
     let pair = |h: &[f64], mask: Option<Vec<bool>>, load: Load| {
         let a = ContactSolver::new(free(), h, mask.clone())
             .unwrap()

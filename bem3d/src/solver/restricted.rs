@@ -121,14 +121,7 @@ impl<K: Compliance> ContactSolver<K> {
                 .iter()
                 .zip(&sol.pressure)
                 .for_each(|(&i, &v)| p[i] = v);
-            // The whole grid: w = K p + z, the approach, the criterion.
-            self.op.apply(&p, &mut self.w);
-            let [sum_g, nc] = self.pass_a(&mut p, 1.0, Refresh::AddZ, fixed_approach);
-            let approach = match target_force {
-                Some(_) if nc > 0.0 => fixed_approach + sum_g / nc,
-                _ => fixed_approach,
-            };
-            let residual = self.criterion(&p, approach);
+            let (approach, residual) = self.on_grid(&mut p, target_force, fixed_approach);
             if residual <= opts.tolerance {
                 let mut sol = self.finish(p, approach, iterations, residual);
                 sol.restricted = true;
@@ -191,8 +184,26 @@ impl<K: Compliance> ContactSolver<K> {
         solver
     }
 
+    /// A pressure solved on part of the grid, on the whole grid: `w = K p + z` there,
+    /// the approach (under force control the mean gap over the contact) and the
+    /// criterion (module docs).
+    pub(super) fn on_grid(
+        &mut self,
+        p: &mut [f64],
+        target_force: Option<f64>,
+        fixed_approach: f64,
+    ) -> (f64, f64) {
+        self.op.apply(p, &mut self.w);
+        let [sum_g, nc] = self.pass_a(p, 1.0, Refresh::AddZ, fixed_approach);
+        let approach = match target_force {
+            Some(_) if nc > 0.0 => fixed_approach + sum_g / nc,
+            _ => fixed_approach,
+        };
+        (approach, self.criterion(p, approach))
+    }
+
     /// The convergence criterion (module docs) of `p` with `w = K p + z` up to date.
-    pub(super) fn criterion(&self, p: &[f64], approach: f64) -> f64 {
+    fn criterion(&self, p: &[f64], approach: f64) -> f64 {
         let ch = self.chunk();
         let [pg, ps, worst] = reduce(
             (

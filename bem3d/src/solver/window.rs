@@ -19,7 +19,7 @@
 //! would exceed [`MAX_FRACTION`] of the grid's cells, or a round that does not
 //! converge, gives the attempt up (the next path runs from its own start).
 
-use super::{ContactSolver, Refresh, Solution, SolverOptions};
+use super::{ContactSolver, Solution, SolverOptions};
 use crate::operator::{Compliance, NonPeriodicHalfSpace};
 
 /// The start's overlap covers this many times `p / (E* h')` of the domain under force
@@ -142,14 +142,7 @@ impl<K: Compliance> ContactSolver<K> {
                 let at = (y0 + r) * nx + x0;
                 p[at..at + wx].copy_from_slice(row);
             }
-            // The whole grid: w = K p + z, the approach, the criterion.
-            self.op.apply(&p, &mut self.w);
-            let [sum_g, nc] = self.pass_a(&mut p, 1.0, Refresh::AddZ, fixed_approach);
-            let approach = match target_force {
-                Some(_) if nc > 0.0 => fixed_approach + sum_g / nc,
-                _ => fixed_approach,
-            };
-            let residual = self.criterion(&p, approach);
+            let (approach, residual) = self.on_grid(&mut p, target_force, fixed_approach);
             if residual <= opts.tolerance {
                 let mut sol = self.finish(p, approach, iterations, residual);
                 sol.restricted = true;
