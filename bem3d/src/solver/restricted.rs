@@ -29,11 +29,25 @@ const START_AREA: f64 = 4.0;
 const CELLS_PER_ROOT: f64 = 3.0;
 /// ... and at most this many cells (a 128 MiB matrix).
 const MAX_CELLS: usize = 4096;
-/// Tolerance of the rounds while C may still grow.
-const LOOSE: f64 = 1e-4;
+/// Tolerance of the rounds while C (or a window) may still grow.
+pub(super) const LOOSE: f64 = 1e-4;
 const MAX_ROUNDS: usize = 24;
 /// Cells a round may add at least (else: as many as the set holds).
 const MIN_GROWTH: usize = 64;
+
+/// Options of a round on part of the grid (a candidate set or a window): [`LOOSE`]
+/// while the part may still grow, else half the requested tolerance (the grid's K p
+/// differs from the part's by rounding); the iterations left of `opts` after `spent`.
+pub(super) fn round_options(opts: &SolverOptions, tight: bool, spent: usize) -> SolverOptions {
+    SolverOptions {
+        tolerance: if tight {
+            0.5 * opts.tolerance
+        } else {
+            opts.tolerance.max(LOOSE)
+        },
+        max_iterations: opts.max_iterations.saturating_sub(spent).max(1),
+    }
+}
 
 impl<K: Compliance> ContactSolver<K> {
     /// Restricted solve from a cold start (module docs), under force control
@@ -99,15 +113,7 @@ impl<K: Compliance> ContactSolver<K> {
                 inner = Some(ContactSolver::on_part(dense, mask, z, h_rms, stiffness));
             }
             let solver = inner.as_mut()?;
-            let inner_opts = SolverOptions {
-                // Half the tolerance: the grid's K p differs from K_CC p by rounding.
-                tolerance: if tight {
-                    0.5 * opts.tolerance
-                } else {
-                    opts.tolerance.max(LOOSE)
-                },
-                max_iterations: opts.max_iterations.saturating_sub(iterations).max(1),
-            };
+            let inner_opts = round_options(opts, tight, iterations);
             let start = cells.iter().map(|&i| p[i]).collect();
             let sol = match solver.iterate(start, target_force, fixed_approach, &inner_opts, false)
             {

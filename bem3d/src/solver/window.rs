@@ -19,6 +19,7 @@
 //! would exceed [`MAX_FRACTION`] of the grid's cells, or a round that does not
 //! converge, gives the attempt up (the next path runs from its own start).
 
+use super::restricted::{round_options, LOOSE};
 use super::{ContactSolver, Solution, SolverOptions};
 use crate::operator::{Compliance, NonPeriodicHalfSpace};
 
@@ -41,8 +42,6 @@ const MAX_FRACTION: f64 = 0.7;
 const MARGIN: f64 = 0.125;
 const MIN_MARGIN: usize = 2;
 const MAX_ROUNDS: usize = 8;
-/// Tolerance of the rounds while the window may still grow.
-const LOOSE: f64 = 1e-4;
 
 /// A box of cells `[x0, x0 + wx) x [y0, y0 + wy)`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -122,16 +121,7 @@ impl<K: Compliance> ContactSolver<K> {
                 inner = Some((win, self.on_window(op, win)));
             }
             let (_, solver) = inner.as_mut()?;
-            let inner_opts = SolverOptions {
-                // Half the tolerance: the grid's K p differs from the window's by
-                // rounding.
-                tolerance: if tight {
-                    0.5 * opts.tolerance
-                } else {
-                    opts.tolerance.max(LOOSE)
-                },
-                max_iterations: opts.max_iterations.saturating_sub(iterations).max(1),
-            };
+            let inner_opts = round_options(opts, tight, iterations);
             let start = gather(&p, nx, win);
             let sol = solver
                 .iterate(start, target_force, fixed_approach, &inner_opts, false)
