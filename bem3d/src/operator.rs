@@ -47,7 +47,8 @@ pub enum Transform<'a> {
 pub enum Precision {
     /// f32 transforms (the default): the preconditioner only shapes the search
     /// directions, so its rounding (1e-7 relative) does not reach the solution, which is
-    /// judged on K in double precision; its transforms cost about half.
+    /// judged on K in double precision; an f32 convolution costs 0.68-0.86 of an f64
+    /// one (256^2-2048^2, one thread, Intel Xeon VM).
     #[default]
     Single,
     /// f64 transforms, as K's (for comparison).
