@@ -15,7 +15,9 @@ Set-up (ASPHER builds from source: cmake, a C++ compiler and Eigen):
         [--pressures 0.01 5e-4 5e-5] [--hertz 512 1024] [--hertz-fractions 0.2 0.01]
 
 Rough rows: the periodic benchmark surfaces at the given mean pressures (0.01, 5e-4 and
-5e-5 E* give about 20 %, 1 % and 0.1 % contact). Hertz rows: a sphere of radius 1 on the
+5e-5 E* give about 20 %, 1 % and 0.1 % contact); with `--half-spaces free` the same
+surfaces on the free (non-periodic) half-space (rows "free"; the surface is not
+repeated, so its edges are edges). Hertz rows: a sphere of radius 1 on the
 free (non-periodic) half-space, side 1, loaded to the contact fraction asked for.
 Each timed solve runs in a fresh worker process with its thread count fixed
 (RAYON_NUM_THREADS for mrdw, OMP_NUM_THREADS for ASPHER); rounds interleave the solvers.
@@ -89,6 +91,8 @@ def worker(solver, geometry, pm, mode):
     pm = float(pm)
     if geometry.startswith("hertz:"):
         h, periodic = hertz_surface(int(geometry[6:])), False
+    elif geometry.startswith("free:"):
+        h, periodic = np.load(geometry[5:]), False
     else:
         h, periodic = np.load(geometry), True
     n = h.shape[0]
@@ -160,7 +164,7 @@ def compare(a, geometry, n, pm, cases):
         for c in cases:
             res[c].append(run(c, geometry, pm))
     med = {}
-    kind = "Hertz" if geometry.startswith("hertz:") else "rough"
+    kind = {"hertz": "Hertz", "free": "free"}.get(geometry.split(":")[0], "rough")
     frac = res[cases[0]][-1]["fraction"]
     for c, rs in res.items():
         ts = [r["time"] for r in rs]
@@ -187,6 +191,10 @@ def main():
     ap.add_argument("--pressures", type=float, nargs="+", default=[0.01],
                     help="mean pressures / E* on the rough surfaces (0.01, 5e-4, 5e-5: about "
                          "20 %%, 1 %% and 0.1 %% contact)")
+    ap.add_argument("--half-spaces", nargs="+", choices=["periodic", "free"],
+                    default=["periodic"],
+                    help="rough rows on the periodic half-space and/or the free one (the "
+                         "same surfaces, not repeated: rows 'free')")
     ap.add_argument("--hertz", type=int, nargs="*", default=[],
                     help="also non-periodic Hertz rows on these grids (sphere R = 1, side 1)")
     ap.add_argument("--hertz-fractions", type=float, nargs="+", default=[0.2],
@@ -214,7 +222,9 @@ def main():
     for n, path in files:
         if a.min_n <= n <= a.max_n:
             for pm in a.pressures:
-                compare(a, path, n, pm, cases)
+                for half_space in a.half_spaces:
+                    geometry = path if half_space == "periodic" else f"free:{path}"
+                    compare(a, geometry, n, pm, cases)
     for n in a.hertz:
         for frac in a.hertz_fractions:
             radius = np.sqrt(frac / np.pi)  # contact radius on the unit square

@@ -163,6 +163,13 @@ pub trait Compliance: Send {
         let _ = cells;
         None
     }
+    /// K of the cell pressures `loads` (cell, pressure) at the listed cells only, by
+    /// direct sums over the real-space table (each value sums the loads in list order);
+    /// None if the operator has no table. Costs `at.len() * loads.len()` products.
+    fn displacements_at(&self, at: &[usize], loads: &[(usize, f64)]) -> Option<Vec<f64>> {
+        let _ = (at, loads);
+        None
+    }
     /// The same half-space on a window of `wx x wy` cells of this grid (same cells and
     /// modulus): between cells of the window K is then the same (up to rounding), for
     /// solves restricted to a window that holds the whole contact; None if the operator
@@ -353,6 +360,9 @@ impl Compliance for PeriodicHalfSpace {
     fn restricted(&self, cells: &[usize]) -> Option<Vec<f64>> {
         Some(self.table.restricted(self.hs.nx, cells))
     }
+    fn displacements_at(&self, at: &[usize], loads: &[(usize, f64)]) -> Option<Vec<f64>> {
+        Some(self.table.displacements_at(self.hs.nx, at, loads))
+    }
     fn point_load_limit(&self) -> usize {
         POINT_LOAD_LIMIT
     }
@@ -394,15 +404,6 @@ impl Circulant {
         let (px, py, n) = (self.px, self.py, cells.len());
         let mut m = vec![0.0; n * n];
         let at: Vec<(usize, usize)> = cells.iter().map(|&c| (c % nx, c / nx)).collect();
-        // (a + period - b) mod period for a, b < period, without a division.
-        let wrap = |a: usize, b: usize, period: usize| {
-            let d = a + period - b;
-            if d >= period {
-                d - period
-            } else {
-                d
-            }
-        };
         m.par_chunks_mut(n.max(1))
             .zip(&at)
             .for_each(|(row, &(ia, ja))| {
@@ -411,6 +412,22 @@ impl Circulant {
                 }
             });
         m
+    }
+
+    /// The sums over `loads` at the cells `at` only (see
+    /// [`Compliance::displacements_at`]), on a grid of row length `nx`.
+    fn displacements_at(&self, nx: usize, at: &[usize], loads: &[(usize, f64)]) -> Vec<f64> {
+        let (px, py) = (self.px, self.py);
+        let src: Vec<(usize, usize, f64)> =
+            loads.iter().map(|&(c, v)| (c % nx, c / nx, v)).collect();
+        at.par_iter()
+            .map(|&c| {
+                let (i, j) = (c % nx, c / nx);
+                src.iter()
+                    .map(|&(il, jl, v)| self.values[wrap(j, jl, py) * px + wrap(i, il, px)] * v)
+                    .sum()
+            })
+            .collect()
     }
 
     /// `u += sum over loads` on a grid of row length `nx` (`u.len() / nx` rows). Each
@@ -434,6 +451,16 @@ impl Circulant {
                 }
             }
         });
+    }
+}
+
+/// `(a + period - b) mod period` for `a, b < period`, without a division.
+fn wrap(a: usize, b: usize, period: usize) -> usize {
+    let d = a + period - b;
+    if d >= period {
+        d - period
+    } else {
+        d
     }
 }
 
@@ -592,6 +619,9 @@ impl Compliance for NonPeriodicHalfSpace {
     }
     fn restricted(&self, cells: &[usize]) -> Option<Vec<f64>> {
         Some(self.table.restricted(self.hs.nx, cells))
+    }
+    fn displacements_at(&self, at: &[usize], loads: &[(usize, f64)]) -> Option<Vec<f64>> {
+        Some(self.table.displacements_at(self.hs.nx, at, loads))
     }
     /// Love's coefficients of the window's offsets, copied from this grid's table.
     fn window(&self, wx: usize, wy: usize) -> Option<NonPeriodicHalfSpace> {
@@ -837,28 +867,47 @@ mod tests {
                 for (a, b) in got.iter().zip(&want) {
                     assert!((a - b).abs() <= 1e-12 * scale, "{nx}x{ny}: {a} vs {b}");
                 }
+                // The same sums at a few cells only (operators with a table).
+                let at = [n - 1, 0, nx, n / 2, 1];
+                if let Some(u) = op.displacements_at(&at, &loads) {
+                    for (&c, u) in at.iter().zip(&u) {
+                        let b = want[c] - base[c];
+                        assert!(
+                            (u - b).abs() <= 1e-12 * scale,
+                            "{nx}x{ny} at {c}: {u} vs {b}"
+                        );
+                    }
+                }
             }
         }
+        // Both FFT operators have a table.
+        let (at, loads) = ([3usize], [(5usize, 1.0)]);
+        assert!(PeriodicHalfSpace::new(4, 4, 1.0, 1.0, 1.0)
+            .displacements_at(&at, &loads)
+            .is_some());
+        assert!(NonPeriodicHalfSpace::new(4, 4, 1.0, 1.0, 1.0)
+            .displacements_at(&at, &loads)
+            .is_some());
     }
 
     #[test]
     fn love_coefficient_matches_50_digit_values() {
         // Love's formula for a cell of half-width 1/2 evaluated with mpmath at 50 digits
-        // (the same four sides, each as two asinh): offsets from the centre cell to the
-        // far field of a 4096^2 grid. Two asinh per side in f64 are 1.8e-10 off at
-        // (1000, 999).
+        // (the same four sides, each as two asinh; rounded to the nearest f64): offsets
+        // from the centre cell to the far field of a 4096^2 grid. Two asinh per side in
+        // f64 are 1.8e-10 off at (1000, 999).
         let want = [
-            (0.0, 0.0, 3.525_494_348_078_172_190_95),
-            (1.0, 0.0, 1.038_049_735_904_756_021_30),
-            (1.0, 1.0, 7.246_974_381_343_299_631_55e-1),
-            (3.0, 2.0, 2.782_588_155_883_611_857_89e-1),
-            (10.0, 7.0, 8.194_614_720_844_571_598_15e-2),
-            (100.0, 3.0, 9.995_544_645_346_316_620_09e-3),
-            (1000.0, 0.0, 1.000_000_041_666_662_979_26e-3),
-            (1000.0, 999.0, 7.074_604_376_747_299_335_28e-4),
-            (2047.0, 2047.0, 3.454_356_544_710_393_225_36e-4),
-            (4095.0, 1.0, 2.442_002_375_257_293_095_98e-4),
-            (12.0, 511.0, 1.956_408_100_176_101_980_82e-3),
+            (0.0, 0.0, 3.525494348078172),
+            (1.0, 0.0, 1.038049735904756),
+            (1.0, 1.0, 0.72469743813433),
+            (3.0, 2.0, 0.2782588155883612),
+            (10.0, 7.0, 0.08194614720844572),
+            (100.0, 3.0, 0.009995544645346317),
+            (1000.0, 0.0, 0.001000000041666663),
+            (1000.0, 999.0, 0.0007074604376747299),
+            (2047.0, 2047.0, 0.0003454356544710393),
+            (4095.0, 1.0, 0.0002442002375257293),
+            (12.0, 511.0, 0.001956408100176102),
         ];
         for (x, y, v) in want {
             for (x, y) in [(x, y), (y, x), (-x, y)] {

@@ -13,8 +13,11 @@
 //! tolerance while the window may still grow, then to half the requested one),
 //! scatters the pressure, applies K on the whole grid once and evaluates the solver's
 //! criterion there: converged, or the window grows to hold the interpenetrating cells
-//! (none: the next round solves to the tolerance). The reported solution is checked on
-//! the full grid like any other. Spread contacts (rough surfaces: their start covers
+//! (none: the next round solves to the tolerance). Only cells below the approach can
+//! interpenetrate (the kernel is positive): when they are few, their gaps come from
+//! direct sums instead, and a round that finds some (or a loose round that finds none)
+//! skips the grid's application. The reported solution is checked on the full grid
+//! like any other. Spread contacts (rough surfaces: their start covers
 //! the grid) skip it at the cost of one start and its bounding box; a window that
 //! would exceed [`MAX_FRACTION`] of the grid's cells, or a round that does not
 //! converge, gives the attempt up (the next path runs from its own start).
@@ -50,6 +53,13 @@ struct Window {
     y0: usize,
     wx: usize,
     wy: usize,
+}
+
+impl Window {
+    /// Whether the cell (x, y) lies in the box.
+    fn holds(&self, x: usize, y: usize) -> bool {
+        (self.x0..self.x0 + self.wx).contains(&x) && (self.y0..self.y0 + self.wy).contains(&y)
+    }
 }
 
 /// Smallest number >= n of the form 2^a 3^b 5^c (fast transform lengths).
@@ -132,20 +142,35 @@ impl<K: Compliance> ContactSolver<K> {
                 let at = (y0 + r) * nx + x0;
                 p[at..at + wx].copy_from_slice(row);
             }
-            let (approach, residual) = self.on_grid(&mut p, target_force, fixed_approach);
-            if residual <= opts.tolerance {
-                let mut sol = self.finish(p, approach, iterations, residual);
-                sol.restricted = true;
-                return Some(sol);
-            }
+            // The interpenetrating cells outside the window, and the criterion: by direct
+            // sums where they pay (gaps_outside), else on the whole grid.
+            let (grow, residual) = match self.gaps_outside(&p, win, sol.approach) {
+                Some(gaps) if gaps.iter().any(|&(_, g)| g < 0.0) => {
+                    let worst = gaps.iter().fold(0.0f64, |m, &(_, g)| m.max(-g));
+                    let cells = gaps.iter().filter(|&&(_, g)| g < 0.0).map(|&(i, _)| i);
+                    (
+                        bounding_box(nx, cells),
+                        sol.residual.max(worst / self.h_rms),
+                    )
+                }
+                // None: a loose round goes on to the tight one without the grid's check.
+                Some(_) if !tight => (None, sol.residual),
+                _ => {
+                    let (approach, residual) = self.on_grid(&mut p, target_force, fixed_approach);
+                    if residual <= opts.tolerance {
+                        let mut sol = self.finish(p, approach, iterations, residual);
+                        sol.restricted = true;
+                        return Some(sol);
+                    }
+                    let (w, mask) = (&self.w, &self.mask);
+                    let outside = (0..n).filter(|&i| {
+                        !win.holds(i % nx, i / nx) && mask[i] > 0 && w[i] - approach < 0.0
+                    });
+                    (bounding_box(nx, outside), residual)
+                }
+            };
             // Interpenetrating cells outside the window join it.
-            let (w, mask) = (&self.w, &self.mask);
-            let outside = (0..n).filter(|&i| {
-                let (x, y) = (i % nx, i / nx);
-                let inside = (x0..x0 + wx).contains(&x) && (y0..y0 + wy).contains(&y);
-                !inside && mask[i] > 0 && w[i] - approach < 0.0
-            });
-            let Some(grow) = bounding_box(nx, outside) else {
+            let Some(grow) = grow else {
                 if tight {
                     return None;
                 }
@@ -165,6 +190,33 @@ impl<K: Compliance> ContactSolver<K> {
             );
         }
         None
+    }
+
+    /// The gaps `(cell, g)` of the cells outside `win` that may interpenetrate at
+    /// `approach` with the pressure `p` (held by the window): those below the approach
+    /// (z < approach; elsewhere g >= z - approach >= 0, Love's kernel being positive),
+    /// K p there by direct sums. None when the sums would cost more than one product
+    /// per grid cell (an application of K on the grid costs several times that) or the
+    /// operator has no real-space table.
+    fn gaps_outside(&self, p: &[f64], win: Window, approach: f64) -> Option<Vec<(usize, f64)>> {
+        let nx = self.op.nx();
+        let at: Vec<usize> = (0..p.len())
+            .filter(|&i| self.mask[i] > 0 && self.z[i] < approach && !win.holds(i % nx, i / nx))
+            .collect();
+        let loads: Vec<(usize, f64)> = (0..p.len())
+            .filter(|&i| p[i] > 0.0)
+            .map(|i| (i, p[i]))
+            .collect();
+        if at.len().saturating_mul(loads.len()) > p.len() {
+            return None;
+        }
+        let u = self.op.displacements_at(&at, &loads)?;
+        Some(
+            at.into_iter()
+                .zip(u)
+                .map(|(i, u)| (i, u + self.z[i] - approach))
+                .collect(),
+        )
     }
 
     /// A solver for the problem on a window: `op` its half-space, the grid's heights
