@@ -555,21 +555,19 @@ impl NonPeriodicHalfSpace {
         let (px, py) = (2 * nx, 2 * ny);
         let mut fft = Fft2::new(px, py);
         let mut k_real = vec![0.0; px * py];
-        for j in 0..py {
+        k_real.par_chunks_mut(px).enumerate().for_each(|(j, row)| {
             let oy = match j {
                 j if j < ny => j,
                 j if j > ny => py - j,
-                _ => continue,
+                _ => return,
             };
-            for i in 0..px {
-                let ox = match i {
-                    i if i < nx => i,
-                    i if i > nx => px - i,
-                    _ => continue,
-                };
-                k_real[j * px + i] = quadrant[oy * nx + ox];
+            let src = &quadrant[oy * nx..(oy + 1) * nx];
+            // Offsets 0..nx, then (nx: zero) nx-1 down to 1.
+            row[..nx].copy_from_slice(src);
+            for (v, s) in row[nx + 1..].iter_mut().zip(src[1..].iter().rev()) {
+                *v = *s;
             }
-        }
+        });
         let mut spec = vec![Complex64::default(); fft.spectrum_len()];
         fft.forward(&k_real, &mut spec);
         // The kernel is even in x and y, so its spectrum is real.
