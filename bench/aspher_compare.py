@@ -12,7 +12,8 @@ Set-up (ASPHER builds from source: cmake, a C++ compiler and Eigen):
     pip install ./python                       # mrdw's Python package
     cargo run --release -- bench bem --max-n 2048 --write-surfaces /tmp/bem
     python bench/aspher_compare.py /tmp/bem [--rounds 3] [--max-n 1024] \
-        [--pressures 0.01 5e-4 5e-5] [--hertz 512 1024] [--hertz-fractions 0.2 0.01]
+        [--pressures 0.01 5e-4 5e-5] [--half-spaces periodic free] \
+        [--hertz 512 1024] [--hertz-fractions 0.2 0.01]
 
 Rough rows: the periodic benchmark surfaces at the given mean pressures (0.01, 5e-4 and
 5e-5 E* give about 20 %, 1 % and 0.1 % contact); with `--half-spaces free` the same
