@@ -127,12 +127,11 @@ impl<K: Compliance> ContactSolver<K> {
                 .iter()
                 .zip(&sol.pressure)
                 .for_each(|(&i, &v)| p[i] = v);
-            let (approach, residual) = self.on_grid(&mut p, target_force, fixed_approach);
-            if residual <= opts.tolerance {
-                let mut sol = self.finish(p, approach, iterations, residual);
-                sol.restricted = true;
-                return Some(sol);
-            }
+            let (approach, residual) =
+                match self.on_grid(&mut p, target_force, fixed_approach, iterations, opts) {
+                    Ok(sol) => return Some(sol),
+                    Err(found) => found,
+                };
             let (w, mask) = (&self.w, &self.mask);
             let mut entering: Vec<(f64, usize)> = (0..n)
                 .into_par_iter()
@@ -190,22 +189,31 @@ impl<K: Compliance> ContactSolver<K> {
         solver
     }
 
-    /// A pressure solved on part of the grid, on the whole grid: `w = K p + z` there,
-    /// the approach (under force control the mean gap over the contact) and the
-    /// criterion (module docs).
+    /// A pressure solved on part of the grid (after `iterations` in all), on the whole
+    /// grid: `w = K p + z` there, the approach (under force control the mean gap over
+    /// the contact) and the criterion (module docs). The restricted solution if the
+    /// criterion meets the tolerance (`p` is taken), else the approach and criterion.
     pub(super) fn on_grid(
         &mut self,
-        p: &mut [f64],
+        p: &mut Vec<f64>,
         target_force: Option<f64>,
         fixed_approach: f64,
-    ) -> (f64, f64) {
+        iterations: usize,
+        opts: &SolverOptions,
+    ) -> std::result::Result<Solution, (f64, f64)> {
         self.op.apply(p, &mut self.w);
         let [sum_g, nc] = self.pass_a(p, 1.0, Refresh::AddZ, fixed_approach);
         let approach = match target_force {
             Some(_) if nc > 0.0 => fixed_approach + sum_g / nc,
             _ => fixed_approach,
         };
-        (approach, self.criterion(p, approach))
+        let residual = self.criterion(p, approach);
+        if residual > opts.tolerance {
+            return Err((approach, residual));
+        }
+        let mut sol = self.finish(std::mem::take(p), approach, iterations, residual);
+        sol.restricted = true;
+        Ok(sol)
     }
 
     /// The convergence criterion (module docs) of `p` with `w = K p + z` up to date.

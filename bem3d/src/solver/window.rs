@@ -156,12 +156,16 @@ impl<K: Compliance> ContactSolver<K> {
                 // None: a loose round goes on to the tight one without the grid's check.
                 Some(_) if !tight => (None, sol.residual),
                 _ => {
-                    let (approach, residual) = self.on_grid(&mut p, target_force, fixed_approach);
-                    if residual <= opts.tolerance {
-                        let mut sol = self.finish(p, approach, iterations, residual);
-                        sol.restricted = true;
-                        return Some(sol);
-                    }
+                    let (approach, residual) = match self.on_grid(
+                        &mut p,
+                        target_force,
+                        fixed_approach,
+                        iterations,
+                        opts,
+                    ) {
+                        Ok(sol) => return Some(sol),
+                        Err(found) => found,
+                    };
                     let (w, mask) = (&self.w, &self.mask);
                     let outside = (0..n).filter(|&i| {
                         !win.holds(i % nx, i / nx) && mask[i] > 0 && w[i] - approach < 0.0
