@@ -195,8 +195,12 @@ pub struct ContactSolver<K: Compliance> {
     /// Conjugate direction and its image `K t`.
     t: Vec<f64>,
     r: Vec<f64>,
-    /// The previous iteration's projected preconditioned residual (Polak-Ribiere's beta).
+    /// The previous iteration's projected preconditioned residual (Polak-Ribiere's beta);
+    /// between M's application and the next direction, this iteration's raw `M q`.
     y_prev: Vec<f64>,
+    /// 1 where p > 0 (the contact set), written by pass A: the sweeps that need only
+    /// the set read one byte per cell instead of p.
+    active: Vec<u8>,
     /// Per-iteration corrections of the projected step (cell, pressure change).
     loads: Vec<(usize, f64)>,
     /// Input and output of fused applications of an operator without a spectral form.
@@ -406,6 +410,7 @@ impl<K: Compliance> ContactSolver<K> {
             t: vec![0.0; n],
             r: vec![0.0; n],
             y_prev: vec![0.0; n],
+            active: vec![0; n],
             loads: Vec::new(),
             fallback: [Vec::new(), Vec::new()],
             mask,
@@ -506,7 +511,8 @@ impl<K: Compliance> ContactSolver<K> {
     }
 
     /// Pass A: brings `w` up to date (`refresh`, then the pending force rescale of p
-    /// and K p) and sums `w - offset` and the cell count over the contact set (p > 0).
+    /// and K p), marks the contact set (p > 0) in `active` and sums `w - offset` and
+    /// the cell count over it.
     fn pass_a(&mut self, p: &mut [f64], scale: f64, refresh: Refresh, offset: f64) -> [f64; 2] {
         let ch = self.chunk();
         let (loads, add_z) = match refresh {
@@ -523,13 +529,15 @@ impl<K: Compliance> ContactSolver<K> {
                 p.par_chunks_mut(ch),
                 self.z.par_chunks(ch),
                 self.w.par_chunks_mut(ch),
+                self.active.par_chunks_mut(ch),
             ),
-            |(p, z, w)| {
+            |(p, z, w, act)| {
                 lanes(p.len(), None, |i, acc: &mut [f64; 2]| {
                     let pi = p[i] * scale;
                     p[i] = pi;
                     let wi = scale * w[i] + zf * z[i];
                     w[i] = wi;
+                    act[i] = (pi > 0.0) as u8;
                     let a = if pi > 0.0 { 1.0 } else { 0.0 };
                     acc[0] += a * (wi - offset);
                     acc[1] += a;
@@ -763,27 +771,26 @@ impl<K: Compliance> ContactSolver<K> {
                 break;
             }
             it += 1;
-            // Preconditioned residual y = M q into r, with the sums of the projected
+            // Preconditioned residual y = M q, with the sums of the projected
             // y = [p > 0] (M q - ybar), ybar its contact mean under force control (the
-            // direction keeps the total force).
+            // direction keeps the total force); y replaces y_prev once read.
             let parts = finish_fused(
                 &mut self.op,
                 Operand::Preconditioner,
                 &mut self.fallback,
                 (
-                    p.par_chunks(fc),
+                    self.active.par_chunks(fc),
                     self.w.par_chunks(fc),
-                    self.y_prev.par_chunks(fc),
-                    self.r.par_chunks_mut(fc),
+                    self.y_prev.par_chunks_mut(fc),
                 ),
-                |(p, w, y_prev, r), y| {
-                    r.copy_from_slice(y);
-                    lanes(p.len(), None, |i, acc: &mut [f64; 3]| {
-                        let a = if p[i] > 0.0 { 1.0 } else { 0.0 };
+                |(act, w, y_prev), y| {
+                    lanes(act.len(), None, |i, acc: &mut [f64; 3]| {
+                        let a = act[i] as f64;
                         let q = a * (w[i] - approach);
                         acc[0] += a * y[i];
                         acc[1] += q * y[i];
                         acc[2] += q * y_prev[i];
+                        y_prev[i] = y[i];
                     })
                 },
             );
@@ -803,22 +810,21 @@ impl<K: Compliance> ContactSolver<K> {
             };
             gy_old = gy;
             // Conjugate direction t = y + beta t, with <q, t> and sum t, as K's input;
-            // y is kept.
+            // the projected y is kept.
             let parts = load_fused(
                 &mut self.op,
                 Operand::Compliance,
                 &mut self.fallback,
                 (
-                    p.par_chunks(fc),
+                    self.active.par_chunks(fc),
                     self.w.par_chunks(fc),
-                    self.r.par_chunks(fc),
                     self.t.par_chunks_mut(fc),
                     self.y_prev.par_chunks_mut(fc),
                 ),
-                |(p, w, y, t, y_prev), out| {
-                    lanes(p.len(), None, |i, acc: &mut [f64; 2]| {
-                        let a = if p[i] > 0.0 { 1.0 } else { 0.0 };
-                        let yi = a * (y[i] - ybar);
+                |(act, w, t, y_prev), out| {
+                    lanes(act.len(), None, |i, acc: &mut [f64; 2]| {
+                        let a = act[i] as f64;
+                        let yi = a * (y_prev[i] - ybar);
                         y_prev[i] = yi;
                         let ti = yi + a * beta * t[i];
                         t[i] = ti;
@@ -836,14 +842,14 @@ impl<K: Compliance> ContactSolver<K> {
                 Operand::Compliance,
                 &mut self.fallback,
                 (
-                    p.par_chunks(fc),
+                    self.active.par_chunks(fc),
                     self.t.par_chunks(fc),
                     self.r.par_chunks_mut(fc),
                 ),
-                |(p, t, r), kt| {
+                |(act, t, r), kt| {
                     r.copy_from_slice(kt);
-                    lanes(p.len(), None, |i, acc: &mut [f64; 2]| {
-                        let a = if p[i] > 0.0 { 1.0 } else { 0.0 };
+                    lanes(act.len(), None, |i, acc: &mut [f64; 2]| {
+                        let a = act[i] as f64;
                         acc[0] += a * kt[i];
                         acc[1] += kt[i] * t[i];
                     })
