@@ -27,6 +27,7 @@ use std::sync::Arc;
 /// The precision a transform computes in (f64 or f32); rows arrive and leave as f64.
 pub trait FftFloat: FftNum + Default + NumAssign {
     fn of_f64(x: f64) -> Self;
+    fn to_f64(self) -> f64;
     /// `src` as a row of this type: `src` itself for f64, converted into `buf` else.
     fn row<'a>(src: &'a mut [f64], buf: &'a mut [Self]) -> &'a mut [Self];
     /// Where a transform writes a row bound for `dst`: `dst` itself for f64, `buf` else.
@@ -40,6 +41,9 @@ pub trait FftFloat: FftNum + Default + NumAssign {
 impl FftFloat for f64 {
     fn of_f64(x: f64) -> Self {
         x
+    }
+    fn to_f64(self) -> f64 {
+        self
     }
     fn row<'a>(src: &'a mut [f64], _: &'a mut [f64]) -> &'a mut [f64] {
         src
@@ -60,6 +64,9 @@ impl FftFloat for f64 {
 impl FftFloat for f32 {
     fn of_f64(x: f64) -> Self {
         x as f32
+    }
+    fn to_f64(self) -> f64 {
+        self as f64
     }
     fn row<'a>(src: &'a mut [f64], buf: &'a mut [f32]) -> &'a mut [f32] {
         for (b, v) in buf.iter_mut().zip(src.iter()) {
@@ -94,6 +101,9 @@ pub struct Fft2<T: FftFloat = f64> {
     work: Vec<Complex<T>>,
     /// Row width and count held in `rows` by [`Fft2::load_rows`].
     loaded: Option<(usize, usize)>,
+    /// Row width and count of a convolution held in `work` by
+    /// [`Fft2::transform_columns`], awaiting [`Fft2::store_rows`].
+    convolved: Option<(usize, usize)>,
 }
 
 /// Hooks of a plain transform: a chunk copied in from `src` ...
@@ -136,6 +146,7 @@ impl<T: FftFloat> Fft2<T> {
             rows: vec![Complex::default(); ny * nc],
             work: Vec::new(),
             loaded: None,
+            convolved: None,
         }
     }
 
@@ -165,7 +176,7 @@ impl<T: FftFloat> Fft2<T> {
         let chunk = width * ROW_CHUNK;
         self.load_rows((width, rows), input.par_chunks(chunk), copy_in);
         let (_, rows) = self.loaded.take().expect("rows just loaded");
-        self.column_pass::<T>(spec, rows, None);
+        self.column_pass::<T>(spec, rows, None, None);
     }
 
     /// Inverse transform of `spec` (`nc x ny`, destroyed) into `output` (`ny x nx`),
@@ -306,6 +317,50 @@ impl<T: FftFloat> Fft2<T> {
         I::Iter: IndexedParallelIterator,
         F: Fn(I::Item, &[f64]) -> [f64; B] + Sync,
     {
+        self.convolve_columns(symbol, None);
+        self.store_rows(items, store)
+    }
+
+    /// [`Self::finish_rows`] in two steps, for a caller that needs a number of the
+    /// whole convolution before its rows come back: this one transforms the loaded
+    /// rows along columns, multiplies by the real `symbol` and transforms back, and
+    /// returns `<x, s * x>`, the input x against its convolution (Parseval:
+    /// `sum |x_hat|^2 s / (nx ny)` over the spectrum, the conjugate half's columns
+    /// counted by doubling), summed in a fixed order; [`Self::store_rows`] then
+    /// finishes. The result is the same as [`Self::finish_rows`]'s, bit for bit.
+    pub fn transform_columns<S>(&mut self, symbol: &[S]) -> f64
+    where
+        S: Copy + Sync + Into<f64>,
+        Complex<T>: MulAssign<S>,
+    {
+        self.convolve_columns(symbol, Some(|s: S| s.into()))
+    }
+
+    /// Second step of [`Self::transform_columns`]: the convolution's rows, handed to
+    /// `store` as [`Self::finish_rows`] hands them.
+    pub fn store_rows<I, F, const B: usize>(&mut self, items: I, store: F) -> Vec<[f64; B]>
+    where
+        I: IntoParallelIterator,
+        I::Iter: IndexedParallelIterator,
+        F: Fn(I::Item, &[f64]) -> [f64; B] + Sync,
+    {
+        let (width, rows) = self
+            .convolved
+            .take()
+            .expect("store_rows without transform_columns");
+        let work = std::mem::take(&mut self.work);
+        let sums = self.row_pass_inverse(&work, width, rows, items, store);
+        self.work = work;
+        sums
+    }
+
+    /// The column pass of a convolution of the loaded rows into `work`; with `weigh`
+    /// (a real symbol's value), also `<x, s * x>` (see [`Self::transform_columns`]).
+    fn convolve_columns<S>(&mut self, symbol: &[S], weigh: Option<fn(S) -> f64>) -> f64
+    where
+        S: Copy + Sync,
+        Complex<T>: MulAssign<S>,
+    {
         let (width, rows) = self.loaded.take().expect("finish_rows without load_rows");
         assert_eq!(
             symbol.len(),
@@ -314,10 +369,10 @@ impl<T: FftFloat> Fft2<T> {
         );
         let mut work = std::mem::take(&mut self.work);
         work.resize(self.spectrum_len(), Complex::default());
-        self.column_pass(&mut work, rows, Some(symbol));
-        let sums = self.row_pass_inverse(&work, width, rows, items, store);
+        let energy = self.column_pass(&mut work, rows, Some(symbol), weigh);
         self.work = work;
-        sums
+        self.convolved = Some((width, rows));
+        energy
     }
 
     /// Columns per block of the column pass: about [`COLUMN_BLOCK`] values.
@@ -327,48 +382,76 @@ impl<T: FftFloat> Fft2<T> {
 
     /// Column pass: gathers each block of columns of the row buffer (its first `filled`
     /// rows; the others count as zero) into `spec` (`nc x ny`) and transforms it; with
-    /// a symbol, multiplies and transforms back (unnormalised) while in cache.
-    fn column_pass<S>(&self, spec: &mut [Complex<T>], filled: usize, symbol: Option<&[S]>)
+    /// a symbol, multiplies and transforms back (unnormalised) while in cache. With
+    /// `weigh`, returns `<x, s * x>` (see [`Self::transform_columns`]; else 0): per
+    /// block, then the blocks in order.
+    fn column_pass<S>(
+        &self,
+        spec: &mut [Complex<T>],
+        filled: usize,
+        symbol: Option<&[S]>,
+        weigh: Option<fn(S) -> f64>,
+    ) -> f64
     where
         S: Copy + Sync,
         Complex<T>: MulAssign<S>,
     {
-        let (ny, nc) = (self.ny, self.nc);
+        let (nx, ny, nc) = (self.nx, self.ny, self.nc);
+        // Columns 0 and nx/2 (even nx) are their own conjugates; the others stand for
+        // two.
+        let twice = |c: usize| c > 0 && !(nx % 2 == 0 && c == nc - 1);
         let per = self.columns_per_block();
         let (fwd, inv, src) = (&self.fwd_y, &self.inv_y, &self.rows);
         let scratch_len = fwd
             .get_inplace_scratch_len()
             .max(inv.get_inplace_scratch_len());
-        spec.par_chunks_mut(ny * per).enumerate().for_each_init(
-            || vec![Complex::default(); scratch_len],
-            |scratch, (b, block)| {
-                let c0 = b * per;
-                let width = block.len() / ny;
-                // In tiles of TILE rows: each column's stretch is written whole, from
-                // rows the tile keeps in cache.
-                for r0 in (0..filled).step_by(TILE) {
-                    let r1 = (r0 + TILE).min(filled);
-                    for c in 0..width {
-                        let col = &mut block[c * ny + r0..c * ny + r1];
-                        for (k, v) in col.iter_mut().enumerate() {
-                            *v = src[(r0 + k) * nc + c0 + c];
+        let parts: Vec<f64> = spec
+            .par_chunks_mut(ny * per)
+            .enumerate()
+            .map_init(
+                || vec![Complex::default(); scratch_len],
+                |scratch, (b, block)| {
+                    let c0 = b * per;
+                    let width = block.len() / ny;
+                    // In tiles of TILE rows: each column's stretch is written whole, from
+                    // rows the tile keeps in cache.
+                    for r0 in (0..filled).step_by(TILE) {
+                        let r1 = (r0 + TILE).min(filled);
+                        for c in 0..width {
+                            let col = &mut block[c * ny + r0..c * ny + r1];
+                            for (k, v) in col.iter_mut().enumerate() {
+                                *v = src[(r0 + k) * nc + c0 + c];
+                            }
                         }
                     }
-                }
-                for col in block.chunks_mut(ny) {
-                    col[filled..]
-                        .iter_mut()
-                        .for_each(|v| *v = Complex::default());
-                }
-                fwd.process_with_scratch(block, scratch);
-                if let Some(s) = symbol {
-                    for (v, k) in block.iter_mut().zip(&s[c0 * ny..]) {
-                        *v *= *k;
+                    for col in block.chunks_mut(ny) {
+                        col[filled..]
+                            .iter_mut()
+                            .for_each(|v| *v = Complex::default());
                     }
-                    inv.process_with_scratch(block, scratch);
-                }
-            },
-        );
+                    fwd.process_with_scratch(block, scratch);
+                    let mut energy = 0.0;
+                    if let Some(s) = symbol {
+                        if let Some(weigh) = weigh {
+                            for (c, col) in block.chunks(ny).enumerate() {
+                                let e: f64 = col
+                                    .iter()
+                                    .zip(&s[(c0 + c) * ny..])
+                                    .map(|(v, &k)| v.norm_sqr().to_f64() * weigh(k))
+                                    .sum();
+                                energy += if twice(c0 + c) { 2.0 * e } else { e };
+                            }
+                        }
+                        for (v, k) in block.iter_mut().zip(&s[c0 * ny..]) {
+                            *v *= *k;
+                        }
+                        inv.process_with_scratch(block, scratch);
+                    }
+                    energy
+                },
+            )
+            .collect();
+        parts.iter().sum::<f64>() / (nx * ny) as f64
     }
 
     /// Complex-to-real transforms of the first `rows` rows, gathered from `spec` (`nc x
@@ -518,6 +601,48 @@ mod tests {
             f.inverse_cropped(&mut spec, &mut expected, w, rows);
             f.convolve(&x, (w, rows), &complex, &mut got);
             assert_eq!(got, expected, "{nx}x{ny} complex");
+        }
+    }
+
+    #[test]
+    fn column_step_gives_the_energy_and_the_same_convolution() {
+        // <x, s * x> from the spectrum against the direct sum over the grid (odd and
+        // even widths: the self-conjugate columns; padded and cropped), and the two
+        // steps' rows against convolve bit for bit; in both precisions.
+        for &(nx, ny, w, rows) in &[
+            (8usize, 6usize, 8usize, 6usize),
+            (7, 5, 7, 5),
+            (9, 12, 9, 12),
+            (64, 48, 40, 30),
+        ] {
+            let x: Vec<f64> = (0..w * rows)
+                .map(|k| ((k * 7919) % 97) as f64 / 97.0 - 0.3)
+                .collect();
+            let mut f = Fft2::<f64>::new(nx, ny);
+            let symbol: Vec<f64> = (0..f.spectrum_len())
+                .map(|k| 1.0 + (k % 13) as f64)
+                .collect();
+            let mut expected = vec![0.0; w * rows];
+            f.convolve(&x, (w, rows), &symbol, &mut expected);
+            let direct: f64 = x.iter().zip(&expected).map(|(a, b)| a * b).sum();
+            let chunk = w * ROWS_PER_CHUNK;
+            f.load_rows((w, rows), x.par_chunks(chunk), copy_in);
+            let energy = f.transform_columns(&symbol);
+            let mut got = vec![0.0; w * rows];
+            f.store_rows(got.par_chunks_mut(chunk), copy_out);
+            assert_eq!(got, expected, "{nx}x{ny}");
+            assert!(
+                (energy - direct).abs() <= 1e-13 * direct.abs(),
+                "{nx}x{ny}: {energy} vs {direct}"
+            );
+            let mut single = Fft2::<f32>::new(nx, ny);
+            let symbol32: Vec<f32> = symbol.iter().map(|&v| v as f32).collect();
+            single.load_rows((w, rows), x.par_chunks(chunk), copy_in);
+            let energy32 = single.transform_columns(&symbol32);
+            assert!(
+                (energy32 - direct).abs() <= 1e-6 * direct.abs(),
+                "{nx}x{ny} f32: {energy32} vs {direct}"
+            );
         }
     }
 

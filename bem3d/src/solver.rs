@@ -15,11 +15,13 @@
 //! f64 one. Each iteration applies K once (to the direction) and M once; the
 //! displacement `K p` is carried along (see [`ContactSolver::solve`]). Both are
 //! convolutions, and the sweeps that produce their inputs or consume their outputs run
-//! inside the transforms' row passes ([`Fft2::load_rows`](crate::fft::Fft2::load_rows)), on rows still in cache: an
-//! iteration streams the grid about 35 times instead of 41. In interleaved A/B runs on
-//! the 2-core development VM (256^2-1024^2, 1 and 2 threads) the solve time did not
-//! change measurably: there the transforms dominate and the sweeps were not limited by
-//! memory bandwidth.
+//! inside the transforms' row passes ([`Fft2::load_rows`](crate::fft::Fft2::load_rows)), on rows still in cache. K's
+//! column pass also returns `<t, K t>` (Parseval, [`Fft2::transform_columns`](crate::fft::Fft2::transform_columns)), so the
+//! step length is known before K t's rows come back and the projected update runs in
+//! K's inverse row pass (K t is never stored); the sweeps that need only the contact
+//! set read a one-byte flag instead of p. Measured (interleaved A/B, one thread, the
+//! 1024^2 benchmark surface, Intel Xeon VM): the flag 4-5 % of the solve, the fused
+//! update 7-9 % more, at 1 % and 20 % contact.
 //!
 //! The direction is `t = y + beta t` with Polak-Ribiere+'s
 //! `beta = max(0, <q, y - y_prev> / <q_prev, y_prev>)` (Gilbert & Nocedal 1992, SIAM J.
@@ -343,6 +345,52 @@ where
         }
     }
     output
+        .par_chunks(chunk)
+        .zip(items)
+        .map(|(values, item)| store(item, values))
+        .collect()
+}
+
+/// First step of K's application to the loaded input t when the caller needs
+/// `<t, K t>` before K t's rows ([`Fft2::transform_columns`](crate::fft::Fft2::transform_columns): from the spectrum; an
+/// operator without a spectral form applies K and sums, in a fixed order); the rows
+/// follow with [`store_fused`].
+fn energy_fused<K: Compliance>(op: &mut K, fallback: &mut [Vec<f64>; 2]) -> f64 {
+    if let Some(s) = op.spectral(Operand::Compliance) {
+        return match s.transform {
+            Transform::Double(fft, symbol) => fft.transform_columns(symbol),
+            Transform::Single(fft, symbol) => fft.transform_columns(symbol),
+        };
+    }
+    let n = op.cells();
+    let [input, output] = fallback;
+    output.resize(n, 0.0);
+    op.apply(input, output);
+    input.iter().zip(output.iter()).map(|(a, b)| a * b).sum()
+}
+
+/// Second step of [`energy_fused`]: K t handed to `store(item, values)` a chunk at a
+/// time, as [`finish_fused`] hands it.
+fn store_fused<K, I, F, const B: usize>(
+    op: &mut K,
+    fallback: &mut [Vec<f64>; 2],
+    items: I,
+    store: F,
+) -> Vec<[f64; B]>
+where
+    K: Compliance,
+    I: IntoParallelIterator,
+    I::Iter: IndexedParallelIterator,
+    F: Fn(I::Item, &[f64]) -> [f64; B] + Sync,
+{
+    let chunk = ROWS_PER_CHUNK * op.nx();
+    if let Some(s) = op.spectral(Operand::Compliance) {
+        return match s.transform {
+            Transform::Double(fft, _) => fft.store_rows(items, store),
+            Transform::Single(fft, _) => fft.store_rows(items, store),
+        };
+    }
+    fallback[1]
         .par_chunks(chunk)
         .zip(items)
         .map(|(values, item)| store(item, values))
@@ -687,13 +735,14 @@ impl<K: Compliance> ContactSolver<K> {
         // <q, y> of the previous iteration (0: no direction yet).
         let mut gy_old = 0.0;
         self.t.iter_mut().for_each(|v| *v = 0.0);
+        // Sum of t over the contact set of the coming iteration (pass D).
+        let mut t_on_set = 0.0;
         let mut residual;
         // Pending factor of the load constraint: p and K p are rescaled lazily in pass A
         // (K is linear), saving a sweep.
         let mut scale = 1.0;
         let h_rms = self.h_rms;
         let limit = self.op.point_load_limit();
-        let chunk = self.chunk();
         // w = K p: pass A adds z.
         self.op.apply(&p, &mut self.w);
         let mut refresh_z = true;
@@ -809,8 +858,14 @@ impl<K: Compliance> ContactSolver<K> {
                 0.0
             };
             gy_old = gy;
-            // Conjugate direction t = y + beta t, with <q, t> and sum t, as K's input;
-            // the projected y is kept.
+            // Conjugate direction t = y + beta t, with <q, t>, as K's input; the
+            // projected y is kept. Under force control the old t is first projected too
+            // (its mean over the contact set removed), so that t sums to zero there.
+            let tbar = if force_control && nc > 0.0 {
+                t_on_set / nc
+            } else {
+                0.0
+            };
             let parts = load_fused(
                 &mut self.op,
                 Operand::Compliance,
@@ -822,48 +877,25 @@ impl<K: Compliance> ContactSolver<K> {
                     self.y_prev.par_chunks_mut(fc),
                 ),
                 |(act, w, t, y_prev), out| {
-                    lanes(act.len(), None, |i, acc: &mut [f64; 2]| {
+                    lanes(act.len(), None, |i, acc: &mut [f64; 1]| {
                         let a = act[i] as f64;
                         let yi = a * (y_prev[i] - ybar);
                         y_prev[i] = yi;
-                        let ti = yi + a * beta * t[i];
+                        let ti = yi + a * beta * (t[i] - tbar);
                         t[i] = ti;
                         out[i] = ti;
                         acc[0] += ti * (w[i] - approach);
-                        acc[1] += ti;
                     })
                 },
             );
-            let [num, st] = sum_parts(&parts, None);
-            // K t into r, fused with pass C: the step length (force control: K t shifted
-            // by its contact mean).
-            let parts = finish_fused(
-                &mut self.op,
-                Operand::Compliance,
-                &mut self.fallback,
-                (
-                    self.active.par_chunks(fc),
-                    self.t.par_chunks(fc),
-                    self.r.par_chunks_mut(fc),
-                ),
-                |(act, t, r), kt| {
-                    r.copy_from_slice(kt);
-                    lanes(act.len(), None, |i, acc: &mut [f64; 2]| {
-                        let a = act[i] as f64;
-                        acc[0] += a * kt[i];
-                        acc[1] += kt[i] * t[i];
-                    })
-                },
-            );
-            let [sr, srt] = sum_parts(&parts, None);
-            let rbar = if force_control && nc > 0.0 {
-                sr / nc
-            } else {
-                0.0
-            };
-            let den = srt - rbar * st;
-            let tau = if den > 0.0 && num.is_finite() {
-                num / den
+            let [num] = sum_parts(&parts, None);
+            // K t, its rows fused with pass D below: the step length needs <t, K t> over
+            // the whole grid first, which K's column pass gives (Parseval). Under force
+            // control t sums to zero on the contact set, so the step needs no shift of
+            // K t by a contact mean.
+            let tkt = energy_fused(&mut self.op, &mut self.fallback);
+            let tau = if tkt > 0.0 && num.is_finite() {
+                num / tkt
             } else {
                 0.0
             };
@@ -877,18 +909,20 @@ impl<K: Compliance> ContactSolver<K> {
             // inverse self-compliance as the scale cost 5-9 % more iterations). With unit
             // E* and size this is Polonsky & Keer's -tau g.
             let step = self.overlap_stiffness * if tau > 0.0 { tau } else { 1.0 / nm as f64 };
-            // Per chunk: total pressure, changed cells; the change p_new - (p - tau t)
-            // itself replaces K t in r once w has used it.
-            let parts: Vec<[f64; 2]> = (
-                p.par_chunks_mut(chunk),
-                self.t.par_chunks(chunk),
-                self.r.par_chunks_mut(chunk),
-                self.w.par_chunks_mut(chunk),
-                self.mask.par_chunks(chunk),
-            )
-                .into_par_iter()
-                .map(|(p, t, r, w, m)| {
-                    lanes(p.len(), None, |i, acc: &mut [f64; 2]| {
+            // Per chunk: total pressure, changed cells, t summed over the new contact
+            // set; the change p_new - (p - tau t) goes to r.
+            let parts = store_fused(
+                &mut self.op,
+                &mut self.fallback,
+                (
+                    p.par_chunks_mut(fc),
+                    self.t.par_chunks(fc),
+                    self.r.par_chunks_mut(fc),
+                    self.w.par_chunks_mut(fc),
+                    self.mask.par_chunks(fc),
+                ),
+                |(p, t, r, w, m), kt| {
+                    lanes(p.len(), None, |i, acc: &mut [f64; 3]| {
                         let gi = w[i] - approach;
                         let act = p[i] > 0.0;
                         let raw = p[i] - tau * t[i];
@@ -903,20 +937,22 @@ impl<K: Compliance> ContactSolver<K> {
                         };
                         let change = pi - raw;
                         p[i] = pi;
-                        w[i] -= tau * r[i];
+                        w[i] -= tau * kt[i];
                         r[i] = change;
                         acc[0] += pi;
                         acc[1] += if change != 0.0 { 1.0 } else { 0.0 };
+                        acc[2] += if pi > 0.0 { t[i] } else { 0.0 };
                     })
-                })
-                .collect();
-            let [total, changed] = sum_parts(&parts, None);
+                },
+            );
+            let [total, changed, t_set] = sum_parts(&parts, None);
+            t_on_set = t_set;
             let too_many = changed > limit as f64;
             if !too_many {
                 for (b, part) in parts.iter().enumerate() {
                     if part[1] > 0.0 {
-                        let start = b * chunk;
-                        let end = (start + chunk).min(n);
+                        let start = b * fc;
+                        let end = (start + fc).min(n);
                         loads.extend(
                             (start..end)
                                 .filter(|&i| self.r[i] != 0.0)
