@@ -27,6 +27,10 @@ pub enum Operand {
     Compliance,
     /// The preconditioner M.
     Preconditioner,
+    /// K with single-precision transforms where the operator has them (else K
+    /// itself): for the solver's early iterations, whose rounding (1e-7 relative) its
+    /// double-precision iterations and final check remove.
+    ComplianceSingle,
 }
 
 /// An FFT-based operator's transform and symbol, for fused applications
@@ -55,19 +59,22 @@ pub enum Precision {
     Double,
 }
 
-/// A preconditioner M: a real symbol (a surface stiffness) with its own transform.
+/// A preconditioner M: a real symbol (a surface stiffness) with its own transform; in
+/// single precision also K's symbol on the same grid, if K lives there (else empty).
 enum Stiffness {
-    Single(Fft2<f32>, Vec<f32>),
+    Single(Fft2<f32>, Vec<f32>, Vec<f32>),
     Double(Fft2<f64>, Vec<f64>),
 }
 
 impl Stiffness {
-    /// `symbol` on an `nx x ny` transform in `precision`.
-    fn new(nx: usize, ny: usize, symbol: Vec<f64>, precision: Precision) -> Self {
+    /// `symbol` on an `nx x ny` transform in `precision`, with K's symbol `kernel` on
+    /// the same grid (empty: K lives on another grid).
+    fn new(nx: usize, ny: usize, symbol: Vec<f64>, kernel: &[f64], precision: Precision) -> Self {
         match precision {
             Precision::Single => Self::Single(
                 Fft2::new(nx, ny),
                 symbol.iter().map(|&v| v as f32).collect(),
+                kernel.iter().map(|&v| v as f32).collect(),
             ),
             Precision::Double => Self::Double(Fft2::new(nx, ny), symbol),
         }
@@ -83,7 +90,7 @@ impl Stiffness {
     /// The symbol in double precision (for a change of precision).
     fn symbol(&self) -> Vec<f64> {
         match self {
-            Self::Single(_, s) => s.iter().map(|&v| v as f64).collect(),
+            Self::Single(_, s, _) => s.iter().map(|&v| v as f64).collect(),
             Self::Double(_, s) => s.clone(),
         }
     }
@@ -91,7 +98,7 @@ impl Stiffness {
     /// `g <- M g` on rows of `dims`.
     fn apply(&mut self, g: &mut [f64], dims: (usize, usize)) {
         match self {
-            Self::Single(fft, s) => fft.convolve_in_place(g, dims, s),
+            Self::Single(fft, s, _) => fft.convolve_in_place(g, dims, s),
             Self::Double(fft, s) => fft.convolve_in_place(g, dims, s),
         }
     }
@@ -104,9 +111,16 @@ impl Stiffness {
         (fft, kernel): (&'a mut Fft2, &'a [f64]),
         dims: (usize, usize),
     ) -> Spectral<'a> {
+        // K in single precision only where the transform carries its symbol.
+        let which = match self {
+            Self::Single(_, _, k) if !k.is_empty() => which,
+            _ if which == Operand::ComplianceSingle => Operand::Compliance,
+            _ => which,
+        };
         let transform = match (which, self) {
-            (Operand::Compliance, _) => Transform::Double(fft, kernel),
-            (Operand::Preconditioner, Self::Single(fft, s)) => Transform::Single(fft, s),
+            (Operand::ComplianceSingle, Self::Single(fft, _, k)) => Transform::Single(fft, k),
+            (Operand::Compliance | Operand::ComplianceSingle, _) => Transform::Double(fft, kernel),
+            (Operand::Preconditioner, Self::Single(fft, s, _)) => Transform::Single(fft, s),
             (Operand::Preconditioner, Self::Double(fft, s)) => Transform::Double(fft, s),
         };
         Spectral { transform, dims }
@@ -316,6 +330,7 @@ impl PeriodicHalfSpace {
         let mut spec: Vec<Complex64> = kernel.iter().map(|&k| Complex64::new(k, 0.0)).collect();
         let mut green = vec![0.0; nx * ny];
         fft.inverse(&mut spec, &mut green);
+        let stiffness = Stiffness::new(nx, ny, stiffness, &kernel, Precision::default());
         Self {
             hs: HalfSpace {
                 nx,
@@ -326,7 +341,7 @@ impl PeriodicHalfSpace {
             },
             fft,
             kernel,
-            stiffness: Stiffness::new(nx, ny, stiffness, Precision::default()),
+            stiffness,
             table: Circulant {
                 px: nx,
                 py: ny,
@@ -335,10 +350,12 @@ impl PeriodicHalfSpace {
         }
     }
 
-    /// The preconditioner's transforms in `precision` (default single).
+    /// The preconditioner's transforms in `precision` (default single; single also
+    /// gives the solver's early iterations K in single precision,
+    /// [`Operand::ComplianceSingle`]).
     pub fn with_preconditioner(mut self, precision: Precision) -> Self {
         let (nx, ny) = (self.hs.nx, self.hs.ny);
-        self.stiffness = Stiffness::new(nx, ny, self.stiffness.symbol(), precision);
+        self.stiffness = Stiffness::new(nx, ny, self.stiffness.symbol(), &self.kernel, precision);
         self
     }
 }
@@ -507,6 +524,10 @@ pub struct NonPeriodicHalfSpace {
     /// Preconditioner: the periodic stiffness on the unpadded grid, with its own
     /// transform.
     stiffness: Stiffness,
+    /// K's padded transform and symbol in single precision
+    /// ([`Operand::ComplianceSingle`]), made on first use when the preconditioner is
+    /// single precision.
+    single: Option<Box<(Fft2<f32>, Vec<f32>)>>,
 }
 
 impl NonPeriodicHalfSpace {
@@ -581,19 +602,23 @@ impl NonPeriodicHalfSpace {
                 py,
                 values: k_real,
             },
+            // K lives on the padded grid: M's transform does not serve it.
             stiffness: Stiffness::new(
                 nx,
                 ny,
                 stiffness_kernel(nx, ny, hs.lx, hs.ly, hs.e_star),
+                &[],
                 precision,
             ),
+            single: None,
         }
     }
 
     /// The preconditioner's transforms in `precision` (default single).
     pub fn with_preconditioner(mut self, precision: Precision) -> Self {
         let (nx, ny) = (self.hs.nx, self.hs.ny);
-        self.stiffness = Stiffness::new(nx, ny, self.stiffness.symbol(), precision);
+        self.stiffness = Stiffness::new(nx, ny, self.stiffness.symbol(), &[], precision);
+        self.single = None;
         self
     }
 }
@@ -658,6 +683,20 @@ impl Compliance for NonPeriodicHalfSpace {
     }
     fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
         let dims = (self.hs.nx, self.hs.ny);
+        if which == Operand::ComplianceSingle && self.stiffness.precision() == Precision::Single {
+            let (px, py) = (2 * dims.0, 2 * dims.1);
+            let kernel = &self.kernel;
+            let (fft, k) = &mut **self.single.get_or_insert_with(|| {
+                Box::new((
+                    Fft2::new(px, py),
+                    kernel.iter().map(|&v| v as f32).collect(),
+                ))
+            });
+            return Some(Spectral {
+                transform: Transform::Single(fft, k),
+                dims,
+            });
+        }
         Some(
             self.stiffness
                 .pair(which, (&mut self.fft, &self.kernel), dims),

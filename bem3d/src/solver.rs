@@ -12,7 +12,14 @@
 //! solutions within 1e-9 of the peak pressure; the speed-up is 1.13-1.17x at 2048^2
 //! (one thread, 20 % contact, against one f64 transform shared by K and M) and within
 //! the noise (0.95-1.13x) at 256^2-1024^2; an f32 convolution costs 0.68-0.86 of an
-//! f64 one. Each iteration applies K once (to the direction) and M once; the
+//! f64 one. K's transforms run in single precision too while the criterion is above
+//! `SINGLE_UNTIL` (1e-4, where the operator has them: [`Operand::ComplianceSingle`]);
+//! there the displacement carries rounding of about 1e-7 relative, far below the
+//! residual, and the iteration then goes on in double precision from a fresh `K p`, so
+//! the final iterations and the convergence check see K in double precision only.
+//! Measured (benchmark surfaces, one thread, interleaved A/B): the same iterations,
+//! 14-18 % less time at 1024^2 periodic and 14-23 % on the free half-space, at 1 % and
+//! 20 % contact. Each iteration applies K once (to the direction) and M once; the
 //! displacement `K p` is carried along (see [`ContactSolver::solve`]). Both are
 //! convolutions, and the sweeps that produce their inputs or consume their outputs run
 //! inside the transforms' row passes ([`Fft2::load_rows`](crate::fft::Fft2::load_rows)), on rows still in cache. K's
@@ -107,7 +114,7 @@
 
 use crate::error::{BemError, Result};
 use crate::fft::ROWS_PER_CHUNK;
-use crate::operator::{Compliance, Operand, Transform};
+use crate::operator::{Compliance, Operand, Spectral, Transform};
 use rayon::prelude::*;
 
 mod restricted;
@@ -216,6 +223,13 @@ const CHUNK: usize = 16_384;
 /// Cold start under force control: the initial overlap covers this many times
 /// `p / (E* h')` of the domain (module docs).
 const START_AREA: f64 = 6.0;
+
+/// Residual below which the iteration leaves K's single-precision transforms
+/// ([`Operand::ComplianceSingle`]) for double precision, from a fresh K p (module
+/// docs). Measured on the 512^2 benchmark surface at 1 % and 20 % contact: the same
+/// iterations with 1e-3, 1e-4 and 1e-5 (1e-5 one more at 20 %), against 9 and 16 more
+/// with K in single precision to the end.
+const SINGLE_UNTIL: f64 = 1e-4;
 
 /// Independent accumulators per chunk: the sums vectorise, and their order is fixed.
 const LANES: usize = 4;
@@ -335,7 +349,7 @@ where
     }
     let [input, output] = fallback;
     match which {
-        Operand::Compliance => {
+        Operand::Compliance | Operand::ComplianceSingle => {
             output.resize(n, 0.0);
             op.apply(input, output);
         }
@@ -355,8 +369,8 @@ where
 /// `<t, K t>` before K t's rows ([`Fft2::transform_columns`](crate::fft::Fft2::transform_columns): from the spectrum; an
 /// operator without a spectral form applies K and sums, in a fixed order); the rows
 /// follow with [`store_fused`].
-fn energy_fused<K: Compliance>(op: &mut K, fallback: &mut [Vec<f64>; 2]) -> f64 {
-    if let Some(s) = op.spectral(Operand::Compliance) {
+fn energy_fused<K: Compliance>(op: &mut K, which: Operand, fallback: &mut [Vec<f64>; 2]) -> f64 {
+    if let Some(s) = op.spectral(which) {
         return match s.transform {
             Transform::Double(fft, symbol) => fft.transform_columns(symbol),
             Transform::Single(fft, symbol) => fft.transform_columns(symbol),
@@ -373,6 +387,7 @@ fn energy_fused<K: Compliance>(op: &mut K, fallback: &mut [Vec<f64>; 2]) -> f64 
 /// time, as [`finish_fused`] hands it.
 fn store_fused<K, I, F, const B: usize>(
     op: &mut K,
+    which: Operand,
     fallback: &mut [Vec<f64>; 2],
     items: I,
     store: F,
@@ -384,7 +399,7 @@ where
     F: Fn(I::Item, &[f64]) -> [f64; B] + Sync,
 {
     let chunk = ROWS_PER_CHUNK * op.nx();
-    if let Some(s) = op.spectral(Operand::Compliance) {
+    if let Some(s) = op.spectral(which) {
         return match s.transform {
             Transform::Double(fft, _) => fft.store_rows(items, store),
             Transform::Single(fft, _) => fft.store_rows(items, store),
@@ -395,6 +410,18 @@ where
         .zip(items)
         .map(|(values, item)| store(item, values))
         .collect()
+}
+
+/// A fused application's input copied from a chunk of an array ...
+fn copy_in(src: &[f64], values: &mut [f64]) -> [f64; 0] {
+    values.copy_from_slice(src);
+    []
+}
+
+/// ... and its output to one.
+fn copy_out(dst: &mut [f64], values: &[f64]) -> [f64; 0] {
+    dst.copy_from_slice(values);
+    []
 }
 
 /// Whether starting from `warm` pays for `load` (module docs: small load steps only).
@@ -737,6 +764,15 @@ impl<K: Compliance> ContactSolver<K> {
         self.t.iter_mut().for_each(|v| *v = 0.0);
         // Sum of t over the contact set of the coming iteration (pass D).
         let mut t_on_set = 0.0;
+        // K in single precision while the residual is above SINGLE_UNTIL, where the
+        // operator has it.
+        let mut single = matches!(
+            self.op.spectral(Operand::ComplianceSingle),
+            Some(Spectral {
+                transform: Transform::Single(..),
+                ..
+            })
+        );
         let mut residual;
         // Pending factor of the load constraint: p and K p are rescaled lazily in pass A
         // (K is linear), saving a sweep.
@@ -803,6 +839,15 @@ impl<K: Compliance> ContactSolver<K> {
                     reason: "non-finite residual",
                 });
             }
+            if single && residual <= SINGLE_UNTIL {
+                // Double precision from here on, from a fresh K p (the direction is
+                // kept).
+                single = false;
+                self.op.apply(&p, &mut self.w);
+                refresh_z = true;
+                exact = true;
+                continue;
+            }
             if residual <= opts.tolerance {
                 if exact {
                     self.loads = loads;
@@ -866,9 +911,14 @@ impl<K: Compliance> ContactSolver<K> {
             } else {
                 0.0
             };
+            let k_op = if single {
+                Operand::ComplianceSingle
+            } else {
+                Operand::Compliance
+            };
             let parts = load_fused(
                 &mut self.op,
-                Operand::Compliance,
+                k_op,
                 &mut self.fallback,
                 (
                     self.active.par_chunks(fc),
@@ -893,7 +943,7 @@ impl<K: Compliance> ContactSolver<K> {
             // the whole grid first, which K's column pass gives (Parseval). Under force
             // control t sums to zero on the contact set, so the step needs no shift of
             // K t by a contact mean.
-            let tkt = energy_fused(&mut self.op, &mut self.fallback);
+            let tkt = energy_fused(&mut self.op, k_op, &mut self.fallback);
             let tau = if tkt > 0.0 && num.is_finite() {
                 num / tkt
             } else {
@@ -913,6 +963,7 @@ impl<K: Compliance> ContactSolver<K> {
             // set; the change p_new - (p - tau t) goes to r.
             let parts = store_fused(
                 &mut self.op,
+                k_op,
                 &mut self.fallback,
                 (
                     p.par_chunks_mut(fc),
@@ -961,7 +1012,24 @@ impl<K: Compliance> ContactSolver<K> {
                     }
                 }
             }
-            if too_many {
+            if too_many && single {
+                load_fused(
+                    &mut self.op,
+                    k_op,
+                    &mut self.fallback,
+                    p.par_chunks(fc),
+                    copy_in,
+                );
+                finish_fused(
+                    &mut self.op,
+                    k_op,
+                    &mut self.fallback,
+                    self.w.par_chunks_mut(fc),
+                    copy_out,
+                );
+                refresh_z = true;
+                exact = false;
+            } else if too_many {
                 self.op.apply(&p, &mut self.w);
                 refresh_z = true;
                 exact = true;

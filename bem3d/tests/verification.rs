@@ -801,10 +801,12 @@ fn windowed_solve_is_bit_identical_whatever_the_thread_count() {
     assert_eq!(run(1), run(3));
 }
 
-/// The preconditioner's transforms run in single precision by default; the solution is
-/// judged on K in double precision, so it is the double-precision preconditioner's
-/// solution to the solver's tolerance: periodic rough surface at about 20 % and 1 %
-/// contact, a sphere on the free half-space (full grid), same iterations within 10 %.
+/// The preconditioner's transforms run in single precision by default, and so do K's in
+/// the iterations before the criterion reaches 1e-4 (`Operand::ComplianceSingle`); the
+/// last iterations and the final check use K in double precision, so the solution is
+/// the all-double iteration's (`Precision::Double`: neither in single precision) to the
+/// solver's tolerance: periodic rough surface at about 20 % and 1 % contact, a sphere
+/// on the free half-space (full grid), same iterations within 10 %.
 #[test]
 fn single_precision_preconditioner_reaches_the_same_solution() {
     let n = 128;
@@ -836,6 +838,22 @@ fn single_precision_preconditioner_reaches_the_same_solution() {
             .unwrap()
             .transform
     ));
+    // K in single precision for the early iterations: with the default (single)
+    // preconditioner only, on both half-spaces; K itself stays double.
+    for p in [Precision::Single, Precision::Double] {
+        let (mut a, mut b) = (periodic(p), free(p));
+        let want = p == Precision::Single;
+        assert_eq!(
+            single(a.spectral(Operand::ComplianceSingle).unwrap().transform),
+            want
+        );
+        assert_eq!(
+            single(b.spectral(Operand::ComplianceSingle).unwrap().transform),
+            want
+        );
+        assert!(!single(a.spectral(Operand::Compliance).unwrap().transform));
+        assert!(!single(b.spectral(Operand::Compliance).unwrap().transform));
+    }
     let check = |a: Solution, b: Solution, what: &str| {
         assert!(!a.restricted && !b.restricted, "{what}: paths");
         let dp = same_solution(&a, &b, what);
