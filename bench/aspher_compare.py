@@ -28,8 +28,11 @@ path, in each precision mode asked for: `double` and `float_then_double`, its fl
 contact identification with a double polish). Equal accuracy is judged by ONE routine on
 both final pressure fields: Tamaas' error |sum(p g)| / (sum(p) std(h, ddof=1)), g the gap
 of p (periodic: compliance 2 / (E* |q|) by numpy FFT; non-periodic: Love's cell
-displacements on a zero-padded grid), shifted to min 0. mrdw runs at tolerance 1e-10,
-ASPHER at 1e-11 (needed to meet the same measure, see shared notes on peer solvers).
+displacements on a zero-padded grid), shifted to min 0. mrdw runs at tolerance 1e-10
+(`--mrdw-tolerance`: its criterion bounds the mean gap and the deepest interpenetration
+separately, while this measure adds the deepest interpenetration to every contact cell's
+gap, so a field meeting 1e-10 by ours can read up to about 2e-10 here), ASPHER at 1e-11
+(needed to meet the same measure, see shared notes on peer solvers).
 """
 import argparse
 import json
@@ -102,7 +105,8 @@ def worker(solver, geometry, pm, mode):
 
         t0 = time.perf_counter()
         r = mrdw.Contact(h, size=(1.0, 1.0), e_star=1.0, periodic=periodic).solve(
-            mean_pressure=pm, tolerance=1e-10, max_iterations=100000)
+            mean_pressure=pm, tolerance=float(mode),
+            max_iterations=100000)
         t = time.perf_counter() - t0
         p, its, frac = r.pressure, r.iterations, r.contact_fraction
     elif solver == "tamaas":
@@ -173,7 +177,7 @@ def compare(a, geometry, n, pm, cases):
         print(f"{kind:>5} {n:>5}^2 {100 * frac:6.2f}% | {label(c):>18} | {med[c]:8.3f} "
               f"[{min(ts):.3f}-{max(ts):.3f}] | {rs[-1]['iterations']:>5} | "
               f"{max(r['error'] for r in rs):12.2e}", flush=True)
-    m1, m2 = med[("mrdw", 1, "-")], med[("mrdw", 2, "-")]
+    m1, m2 = (next(v for (s, t, _), v in med.items() if s == "mrdw" and t == k) for k in (1, 2))
     if ("tamaas", 1, "-") in med:
         print(f"{'':>20}   Tamaas / mrdw 1t = {med[('tamaas', 1, '-')] / m1:.1f}")
     one = min((v for (s, t, _), v in med.items() if s == "aspher" and t == 1), default=None)
@@ -206,11 +210,15 @@ def main():
                     help="ASPHER precision modes to time (its fastest counts as ASPHER)")
     ap.add_argument("--tamaas", action="store_true",
                     help="also time Tamaas 2.9 (PolonskyKeerRey, tolerance 1e-10, 1 thread)")
+    ap.add_argument("--mrdw-tolerance", type=float, default=1e-10,
+                    help="mrdw's own criterion (default 1e-10; its measure and Tamaas' "
+                         "differ: lower it where Tamaas' measure of our field exceeds 1e-10)")
     ap.add_argument("--worker", nargs=4, help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.worker:
         return worker(*a.worker)
-    cases = [("mrdw", 1, "-"), ("mrdw", 2, "-")]
+    tol = repr(a.mrdw_tolerance)
+    cases = [("mrdw", 1, tol), ("mrdw", 2, tol)]
     cases += [("aspher", t, m) for t in a.aspher_threads for m in a.aspher_modes]
     if a.tamaas:
         cases.append(("tamaas", 1, "-"))
