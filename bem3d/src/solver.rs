@@ -201,8 +201,10 @@ pub struct ContactSolver<K: Compliance> {
     overlap_stiffness: f64,
     /// `K p + z`: the gap at zero approach, kept up to date incrementally.
     w: Vec<f64>,
-    /// Conjugate direction and its image `K t`.
+    /// Conjugate direction.
     t: Vec<f64>,
+    /// Each cell's departure of the projected step from `p - tau t` (pass D), read for
+    /// the point-load corrections of `K p`.
     r: Vec<f64>,
     /// The previous iteration's projected preconditioned residual (Polak-Ribiere's beta);
     /// between M's application and the next direction, this iteration's raw `M q`.
