@@ -317,14 +317,24 @@ impl<T: FftFloat> Fft2<T> {
         I::Iter: IndexedParallelIterator,
         F: Fn(I::Item, &[f64]) -> [f64; B] + Sync,
     {
-        self.convolve_columns(symbol, None);
+        self.convolve_columns(symbol);
         self.store_rows(items, store)
     }
 
-    /// [`Self::finish_rows`] in two steps, for a caller that needs a number of the
-    /// whole convolution before its rows come back: this one transforms the loaded
-    /// rows along columns, multiplies by the real `symbol` and transforms back, and
-    /// returns `<x, s * x>`, the input x against its convolution (Parseval:
+    /// [`Self::finish_rows`] in two steps: this one transforms the loaded rows along
+    /// columns, multiplies by `symbol` and transforms back; [`Self::store_rows`] then
+    /// hands the rows out.
+    pub fn convolve_columns<S>(&mut self, symbol: &[S])
+    where
+        S: Copy + Sync,
+        Complex<T>: MulAssign<S>,
+    {
+        self.column_step(symbol, None);
+    }
+
+    /// [`Self::convolve_columns`] for a caller that needs a number of the whole
+    /// convolution before its rows come back: with a real `symbol`, also returns
+    /// `<x, s * x>`, the input x against its convolution (Parseval:
     /// `sum |x_hat|^2 s / (nx ny)` over the spectrum, the conjugate half's columns
     /// counted by doubling), summed in a fixed order; [`Self::store_rows`] then
     /// finishes. The result is the same as [`Self::finish_rows`]'s, bit for bit.
@@ -333,11 +343,11 @@ impl<T: FftFloat> Fft2<T> {
         S: Copy + Sync + Into<f64>,
         Complex<T>: MulAssign<S>,
     {
-        self.convolve_columns(symbol, Some(|s: S| s.into()))
+        self.column_step(symbol, Some(|s: S| s.into()))
     }
 
-    /// Second step of [`Self::transform_columns`]: the convolution's rows, handed to
-    /// `store` as [`Self::finish_rows`] hands them.
+    /// Second step of [`Self::convolve_columns`] or [`Self::transform_columns`]: the
+    /// convolution's rows, handed to `store` as [`Self::finish_rows`] hands them.
     pub fn store_rows<I, F, const B: usize>(&mut self, items: I, store: F) -> Vec<[f64; B]>
     where
         I: IntoParallelIterator,
@@ -356,7 +366,7 @@ impl<T: FftFloat> Fft2<T> {
 
     /// The column pass of a convolution of the loaded rows into `work`; with `weigh`
     /// (a real symbol's value), also `<x, s * x>` (see [`Self::transform_columns`]).
-    fn convolve_columns<S>(&mut self, symbol: &[S], weigh: Option<fn(S) -> f64>) -> f64
+    fn column_step<S>(&mut self, symbol: &[S], weigh: Option<fn(S) -> f64>) -> f64
     where
         S: Copy + Sync,
         Complex<T>: MulAssign<S>,
@@ -528,6 +538,18 @@ mod tests {
     use super::*;
     use rustfft::num_complex::Complex64;
 
+    /// Test input: `len` values in [-0.3, 0.7) without a pattern a transform favours.
+    fn ramp(len: usize) -> Vec<f64> {
+        (0..len)
+            .map(|k| ((k * 7919) % 97) as f64 / 97.0 - 0.3)
+            .collect()
+    }
+
+    /// Test symbol: `len` real values 1..=13.
+    fn steps(len: usize) -> Vec<f64> {
+        (0..len).map(|k| 1.0 + (k % 13) as f64).collect()
+    }
+
     fn naive_dft(x: &[f64], nx: usize, ny: usize, kx: usize, ky: usize) -> Complex64 {
         let mut s = Complex64::default();
         for j in 0..ny {
@@ -544,9 +566,7 @@ mod tests {
     #[test]
     fn matches_naive_dft_and_round_trips() {
         for &(nx, ny) in &[(8usize, 6usize), (7, 5), (16, 16), (9, 12)] {
-            let x: Vec<f64> = (0..nx * ny)
-                .map(|k| ((k * 7919) % 97) as f64 / 97.0 - 0.3)
-                .collect();
+            let x = ramp(nx * ny);
             let mut f = Fft2::new(nx, ny);
             let mut spec = vec![Complex64::default(); f.spectrum_len()];
             f.forward(&x, &mut spec);
@@ -576,13 +596,9 @@ mod tests {
             (7, 5, 4, 3),
             (64, 2048, 40, 1500),
         ] {
-            let x: Vec<f64> = (0..w * rows)
-                .map(|k| ((k * 7919) % 97) as f64 / 97.0 - 0.3)
-                .collect();
+            let x = ramp(w * rows);
             let mut f = Fft2::new(nx, ny);
-            let real: Vec<f64> = (0..f.spectrum_len())
-                .map(|k| 1.0 + (k % 13) as f64)
-                .collect();
+            let real: Vec<f64> = steps(f.spectrum_len());
             let complex: Vec<Complex64> =
                 real.iter().map(|&v| Complex64::new(v, 0.5 - v)).collect();
             let mut spec = vec![Complex64::default(); f.spectrum_len()];
@@ -615,13 +631,9 @@ mod tests {
             (9, 12, 9, 12),
             (64, 48, 40, 30),
         ] {
-            let x: Vec<f64> = (0..w * rows)
-                .map(|k| ((k * 7919) % 97) as f64 / 97.0 - 0.3)
-                .collect();
+            let x = ramp(w * rows);
             let mut f = Fft2::<f64>::new(nx, ny);
-            let symbol: Vec<f64> = (0..f.spectrum_len())
-                .map(|k| 1.0 + (k % 13) as f64)
-                .collect();
+            let symbol: Vec<f64> = steps(f.spectrum_len());
             let mut expected = vec![0.0; w * rows];
             f.convolve(&x, (w, rows), &symbol, &mut expected);
             let direct: f64 = x.iter().zip(&expected).map(|(a, b)| a * b).sum();
@@ -651,14 +663,10 @@ mod tests {
         // Padded and cropped too; the f32 result within a few f32 ulps of the output's
         // scale (|symbol| <= 13, inputs O(1)).
         for &(nx, ny, w, rows) in &[(16usize, 12usize, 16usize, 12usize), (64, 48, 40, 30)] {
-            let x: Vec<f64> = (0..w * rows)
-                .map(|k| ((k * 7919) % 97) as f64 / 97.0 - 0.3)
-                .collect();
+            let x = ramp(w * rows);
             let mut double = Fft2::<f64>::new(nx, ny);
             let mut single = Fft2::<f32>::new(nx, ny);
-            let symbol: Vec<f64> = (0..double.spectrum_len())
-                .map(|k| 1.0 + (k % 13) as f64)
-                .collect();
+            let symbol: Vec<f64> = steps(double.spectrum_len());
             let symbol32: Vec<f32> = symbol.iter().map(|&v| v as f32).collect();
             let (mut a, mut b) = (vec![0.0; w * rows], vec![0.0; w * rows]);
             double.convolve(&x, (w, rows), &symbol, &mut a);

@@ -342,13 +342,37 @@ where
     I::Iter: IndexedParallelIterator,
     F: Fn(I::Item, &[f64]) -> [f64; B] + Sync,
 {
-    let (n, chunk) = (op.cells(), ROWS_PER_CHUNK * op.nx());
+    apply_fused(op, which, fallback, false);
+    store_fused(op, which, fallback, items, store)
+}
+
+/// The second half's first step: the operator applied to the loaded input x (the
+/// transforms' column pass, [`Fft2::convolve_columns`](crate::fft::Fft2::convolve_columns); an operator without a spectral
+/// form applies itself into `fallback`). With `energy` (K only), returns `<x, K x>`
+/// (Parseval, [`Fft2::transform_columns`](crate::fft::Fft2::transform_columns); the fallback sums in a fixed order) for a
+/// caller that needs it before the rows, else 0; the rows follow with [`store_fused`].
+fn apply_fused<K: Compliance>(
+    op: &mut K,
+    which: Operand,
+    fallback: &mut [Vec<f64>; 2],
+    energy: bool,
+) -> f64 {
+    debug_assert!(!energy || which != Operand::Preconditioner);
     if let Some(s) = op.spectral(which) {
-        return match s.transform {
-            Transform::Double(fft, symbol) => fft.finish_rows(symbol, items, store),
-            Transform::Single(fft, symbol) => fft.finish_rows(symbol, items, store),
+        return match (s.transform, energy) {
+            (Transform::Double(fft, symbol), true) => fft.transform_columns(symbol),
+            (Transform::Single(fft, symbol), true) => fft.transform_columns(symbol),
+            (Transform::Double(fft, symbol), false) => {
+                fft.convolve_columns(symbol);
+                0.0
+            }
+            (Transform::Single(fft, symbol), false) => {
+                fft.convolve_columns(symbol);
+                0.0
+            }
         };
     }
+    let n = op.cells();
     let [input, output] = fallback;
     match which {
         Operand::Compliance | Operand::ComplianceSingle => {
@@ -360,33 +384,15 @@ where
             std::mem::swap(input, output);
         }
     }
-    output
-        .par_chunks(chunk)
-        .zip(items)
-        .map(|(values, item)| store(item, values))
-        .collect()
-}
-
-/// First step of K's application to the loaded input t when the caller needs
-/// `<t, K t>` before K t's rows ([`Fft2::transform_columns`](crate::fft::Fft2::transform_columns): from the spectrum; an
-/// operator without a spectral form applies K and sums, in a fixed order); the rows
-/// follow with [`store_fused`].
-fn energy_fused<K: Compliance>(op: &mut K, which: Operand, fallback: &mut [Vec<f64>; 2]) -> f64 {
-    if let Some(s) = op.spectral(which) {
-        return match s.transform {
-            Transform::Double(fft, symbol) => fft.transform_columns(symbol),
-            Transform::Single(fft, symbol) => fft.transform_columns(symbol),
-        };
+    if energy {
+        input.iter().zip(output.iter()).map(|(a, b)| a * b).sum()
+    } else {
+        0.0
     }
-    let n = op.cells();
-    let [input, output] = fallback;
-    output.resize(n, 0.0);
-    op.apply(input, output);
-    input.iter().zip(output.iter()).map(|(a, b)| a * b).sum()
 }
 
-/// Second step of [`energy_fused`]: K t handed to `store(item, values)` a chunk at a
-/// time, as [`finish_fused`] hands it.
+/// The second half's second step (after [`apply_fused`]): the result handed to
+/// `store(item, values)` a chunk at a time.
 fn store_fused<K, I, F, const B: usize>(
     op: &mut K,
     which: Operand,
@@ -945,7 +951,7 @@ impl<K: Compliance> ContactSolver<K> {
             // the whole grid first, which K's column pass gives (Parseval). Under force
             // control t sums to zero on the contact set, so the step needs no shift of
             // K t by a contact mean.
-            let tkt = energy_fused(&mut self.op, k_op, &mut self.fallback);
+            let tkt = apply_fused(&mut self.op, k_op, &mut self.fallback, true);
             let tau = if tkt > 0.0 && num.is_finite() {
                 num / tkt
             } else {
