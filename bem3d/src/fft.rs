@@ -102,7 +102,8 @@ pub struct Fft2<T: FftFloat = f64> {
     /// Row width and count held in `rows` by [`Fft2::load_rows`].
     loaded: Option<(usize, usize)>,
     /// Row width and count of a convolution held in `work` by
-    /// [`Fft2::transform_columns`], awaiting [`Fft2::store_rows`].
+    /// [`Fft2::convolve_columns`] or [`Fft2::transform_columns`], awaiting
+    /// [`Fft2::store_rows`].
     convolved: Option<(usize, usize)>,
 }
 
@@ -357,7 +358,7 @@ impl<T: FftFloat> Fft2<T> {
         let (width, rows) = self
             .convolved
             .take()
-            .expect("store_rows without transform_columns");
+            .expect("store_rows without convolve_columns");
         let work = std::mem::take(&mut self.work);
         let sums = self.row_pass_inverse(&work, width, rows, items, store);
         self.work = work;
@@ -371,7 +372,7 @@ impl<T: FftFloat> Fft2<T> {
         S: Copy + Sync,
         Complex<T>: MulAssign<S>,
     {
-        let (width, rows) = self.loaded.take().expect("finish_rows without load_rows");
+        let (width, rows) = self.loaded.take().expect("column step without load_rows");
         assert_eq!(
             symbol.len(),
             self.spectrum_len(),
