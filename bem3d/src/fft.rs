@@ -108,13 +108,13 @@ pub struct Fft2<T: FftFloat = f64> {
 }
 
 /// Hooks of a plain transform: a chunk copied in from `src` ...
-fn copy_in(src: &[f64], values: &mut [f64]) -> [f64; 0] {
+pub(crate) fn copy_in(src: &[f64], values: &mut [f64]) -> [f64; 0] {
     values.copy_from_slice(src);
     []
 }
 
 /// ... and out to `dst`.
-fn copy_out(dst: &mut [f64], values: &[f64]) -> [f64; 0] {
+pub(crate) fn copy_out(dst: &mut [f64], values: &[f64]) -> [f64; 0] {
     dst.copy_from_slice(values);
     []
 }

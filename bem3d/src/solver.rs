@@ -113,7 +113,7 @@
 //! window the solve starts cold.
 
 use crate::error::{BemError, Result};
-use crate::fft::ROWS_PER_CHUNK;
+use crate::fft::{copy_in, copy_out, ROWS_PER_CHUNK};
 use crate::operator::{Compliance, Operand, Spectral, Transform};
 use rayon::prelude::*;
 
@@ -418,18 +418,6 @@ where
         .zip(items)
         .map(|(values, item)| store(item, values))
         .collect()
-}
-
-/// A fused application's input copied from a chunk of an array ...
-fn copy_in(src: &[f64], values: &mut [f64]) -> [f64; 0] {
-    values.copy_from_slice(src);
-    []
-}
-
-/// ... and its output to one.
-fn copy_out(dst: &mut [f64], values: &[f64]) -> [f64; 0] {
-    dst.copy_from_slice(values);
-    []
 }
 
 /// Whether starting from `warm` pays for `load` (module docs: small load steps only).
