@@ -118,6 +118,7 @@ use crate::operator::{Compliance, Operand, Spectral, Transform};
 use rayon::prelude::*;
 
 mod restricted;
+mod sweeps;
 mod window;
 
 /// The load prescribed to a solve.
@@ -233,9 +234,6 @@ const START_AREA: f64 = 6.0;
 /// with K in single precision to the end.
 const SINGLE_UNTIL: f64 = 1e-4;
 
-/// Independent accumulators per chunk: the sums vectorise, and their order is fixed.
-const LANES: usize = 4;
-
 /// Maps each chunk with `f` (in parallel) and sums the `N` partial results with
 /// [`sum_parts`].
 fn reduce<const N: usize, I, F>(iter: I, f: F, max_slot: Option<usize>) -> [f64; N]
@@ -256,33 +254,6 @@ fn combine<const N: usize>(acc: &mut [f64; N], p: &[f64; N], max_slot: Option<us
             acc[k] += p[k];
         }
     }
-}
-
-/// Runs `body(i, acc)` for `i` in `0..len` over [`LANES`] accumulators (lane `i % LANES`,
-/// the tail in lane 0) and combines them in lane order.
-#[inline(always)]
-fn lanes<const N: usize>(
-    len: usize,
-    max_slot: Option<usize>,
-    mut body: impl FnMut(usize, &mut [f64; N]),
-) -> [f64; N] {
-    let mut acc = [[0.0f64; N]; LANES];
-    let full = len - len % LANES;
-    let mut i = 0;
-    while i < full {
-        for (l, a) in acc.iter_mut().enumerate() {
-            body(i + l, a);
-        }
-        i += LANES;
-    }
-    for k in full..len {
-        body(k, &mut acc[0]);
-    }
-    let mut out = acc[0];
-    for a in &acc[1..] {
-        combine(&mut out, a, max_slot);
-    }
-    out
 }
 
 /// Sums per-chunk partial results in chunk order (deterministic for any thread count);
@@ -602,18 +573,7 @@ impl<K: Compliance> ContactSolver<K> {
                 self.w.par_chunks_mut(ch),
                 self.active.par_chunks_mut(ch),
             ),
-            |(p, z, w, act)| {
-                lanes(p.len(), None, |i, acc: &mut [f64; 2]| {
-                    let pi = p[i] * scale;
-                    p[i] = pi;
-                    let wi = scale * w[i] + zf * z[i];
-                    w[i] = wi;
-                    act[i] = (pi > 0.0) as u8;
-                    let a = if pi > 0.0 { 1.0 } else { 0.0 };
-                    acc[0] += a * (wi - offset);
-                    acc[1] += a;
-                })
-            },
+            |(p, z, w, act)| sweeps::rescale(p, z, w, act, scale, zf, offset),
             None,
         )
     }
@@ -813,17 +773,7 @@ impl<K: Compliance> ContactSolver<K> {
                     self.w.par_chunks(fc),
                     self.mask.par_chunks(fc),
                 ),
-                |(p, w, m), q| {
-                    lanes(p.len(), Some(2), |i, acc: &mut [f64; 4]| {
-                        let gi = m[i] as f64 * (w[i] - approach);
-                        let a = if p[i] > 0.0 { 1.0 } else { 0.0 };
-                        acc[0] += p[i] * gi.abs();
-                        acc[1] += p[i];
-                        acc[2] = acc[2].max(-gi);
-                        q[i] = a * gi;
-                        acc[3] += a * gi;
-                    })
-                },
+                |(p, w, m), q| sweeps::residual(p, w, m, q, approach),
             );
             let [pg, ps, worst, sum_q] = sum_parts(&parts, Some(2));
             residual = (if ps > 0.0 { pg / (ps * h_rms) } else { 0.0 }).max(worst / h_rms);
@@ -873,16 +823,7 @@ impl<K: Compliance> ContactSolver<K> {
                     self.w.par_chunks(fc),
                     self.y_prev.par_chunks_mut(fc),
                 ),
-                |(act, w, y_prev), y| {
-                    lanes(act.len(), None, |i, acc: &mut [f64; 3]| {
-                        let a = act[i] as f64;
-                        let q = a * (w[i] - approach);
-                        acc[0] += a * y[i];
-                        acc[1] += q * y[i];
-                        acc[2] += q * y_prev[i];
-                        y_prev[i] = y[i];
-                    })
-                },
+                |(act, w, y_prev), y| sweeps::preconditioned(act, w, y_prev, y, approach),
             );
             let [sum_y, qy, qy_prev] = sum_parts(&parts, None);
             let ybar = if force_control && nc > 0.0 {
@@ -907,6 +848,12 @@ impl<K: Compliance> ContactSolver<K> {
             } else {
                 0.0
             };
+            let dir = sweeps::Direction {
+                ybar,
+                tbar,
+                beta,
+                approach,
+            };
             let k_op = if single {
                 Operand::ComplianceSingle
             } else {
@@ -922,17 +869,7 @@ impl<K: Compliance> ContactSolver<K> {
                     self.t.par_chunks_mut(fc),
                     self.y_prev.par_chunks_mut(fc),
                 ),
-                |(act, w, t, y_prev), out| {
-                    lanes(act.len(), None, |i, acc: &mut [f64; 1]| {
-                        let a = act[i] as f64;
-                        let yi = a * (y_prev[i] - ybar);
-                        y_prev[i] = yi;
-                        let ti = yi + a * beta * (t[i] - tbar);
-                        t[i] = ti;
-                        out[i] = ti;
-                        acc[0] += ti * (w[i] - approach);
-                    })
-                },
+                |(act, w, t, y_prev), out| sweeps::direction(act, w, t, y_prev, out, dir),
             );
             let [num] = sum_parts(&parts, None);
             // K t, its rows fused with pass D below: the step length needs <t, K t> over
@@ -957,6 +894,11 @@ impl<K: Compliance> ContactSolver<K> {
             let step = self.overlap_stiffness * if tau > 0.0 { tau } else { 1.0 / nm as f64 };
             // Per chunk: total pressure, changed cells, t summed over the new contact
             // set; the change p_new - (p - tau t) goes to r.
+            let upd = sweeps::Update {
+                tau,
+                approach,
+                step,
+            };
             let parts = store_fused(
                 &mut self.op,
                 k_op,
@@ -968,29 +910,7 @@ impl<K: Compliance> ContactSolver<K> {
                     self.w.par_chunks_mut(fc),
                     self.mask.par_chunks(fc),
                 ),
-                |(p, t, r, w, m), kt| {
-                    lanes(p.len(), None, |i, acc: &mut [f64; 3]| {
-                        let gi = w[i] - approach;
-                        let act = p[i] > 0.0;
-                        let raw = p[i] - tau * t[i];
-                        let enter = !act & (m[i] > 0) & (gi < 0.0);
-                        // Inactive cells have p = t = 0, so raw = 0 there.
-                        let pi = if act {
-                            raw.max(0.0)
-                        } else if enter {
-                            -step * gi
-                        } else {
-                            0.0
-                        };
-                        let change = pi - raw;
-                        p[i] = pi;
-                        w[i] -= tau * kt[i];
-                        r[i] = change;
-                        acc[0] += pi;
-                        acc[1] += if change != 0.0 { 1.0 } else { 0.0 };
-                        acc[2] += if pi > 0.0 { t[i] } else { 0.0 };
-                    })
-                },
+                |(p, t, r, w, m), kt| sweeps::update(p, t, r, w, m, kt, upd),
             );
             let [total, changed, t_set] = sum_parts(&parts, None);
             t_on_set = t_set;

@@ -16,7 +16,7 @@
 //! as it did before, when the set outgrows the limit (or half the overlap outside it
 //! would), or an inner solve does not converge.
 
-use super::{lanes, reduce, ContactSolver, Refresh, Solution, SolverOptions};
+use super::{reduce, ContactSolver, Refresh, Solution, SolverOptions};
 use crate::operator::{Compliance, DenseCompliance};
 use rayon::prelude::*;
 
@@ -225,14 +225,7 @@ impl<K: Compliance> ContactSolver<K> {
                 self.w.par_chunks(ch),
                 self.mask.par_chunks(ch),
             ),
-            |(p, w, m)| {
-                lanes(p.len(), Some(2), |i, acc: &mut [f64; 3]| {
-                    let gi = m[i] as f64 * (w[i] - approach);
-                    acc[0] += p[i] * gi.abs();
-                    acc[1] += p[i];
-                    acc[2] = acc[2].max(-gi);
-                })
-            },
+            |(p, w, m)| super::sweeps::criterion_terms(p, w, m, approach),
             Some(2),
         );
         let h_rms = self.h_rms;
