@@ -382,7 +382,7 @@ mod tests {
                     .wrapping_mul(6364136223846793005)
                     .wrapping_add(1442695040888963407);
                 let v = (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
-                if s % 3 == 0 {
+                if s.is_multiple_of(3) {
                     0.0
                 } else {
                     v
