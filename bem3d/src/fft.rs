@@ -125,8 +125,9 @@ const ROW_CHUNK: usize = 16;
 /// Rows per chunk of [`Fft2::load_rows`] and [`Fft2::finish_rows`].
 pub const ROWS_PER_CHUNK: usize = ROW_CHUNK;
 
-/// Rows per tile of the column pass's gather.
-const TILE: usize = 32;
+/// Rows (columns) gathered at a time by the column pass (the inverse row pass): each
+/// column (row) of the destination receives this many consecutive values per visit.
+const GATHER: usize = 8;
 
 /// Target size of a column block in complex values (256 KiB: in a core's L2 cache).
 const COLUMN_BLOCK: usize = 16_384;
@@ -424,15 +425,27 @@ impl<T: FftFloat> Fft2<T> {
                 |scratch, (b, block)| {
                     let c0 = b * per;
                     let width = block.len() / ny;
-                    // In tiles of TILE rows: each column's stretch is written whole, from
-                    // rows the tile keeps in cache.
-                    for r0 in (0..filled).step_by(TILE) {
-                        let r1 = (r0 + TILE).min(filled);
-                        for c in 0..width {
-                            let col = &mut block[c * ny + r0..c * ny + r1];
-                            for (k, v) in col.iter_mut().enumerate() {
-                                *v = src[(r0 + k) * nc + c0 + c];
+                    // GATHER rows at a time: their stretches of this block's columns
+                    // are read whole and written as GATHER consecutive values of each
+                    // column.
+                    let stretch = |r: usize| &src[r * nc + c0..r * nc + c0 + width];
+                    let mut r0 = 0;
+                    while r0 + GATHER <= filled {
+                        let rows: [&[Complex<T>]; GATHER] =
+                            std::array::from_fn(|k| stretch(r0 + k));
+                        for (c, col) in block.chunks_exact_mut(ny).enumerate() {
+                            let dst: &mut [Complex<T>; GATHER] = (&mut col[r0..r0 + GATHER])
+                                .try_into()
+                                .expect("GATHER values");
+                            for (d, row) in dst.iter_mut().zip(&rows) {
+                                *d = row[c];
                             }
+                        }
+                        r0 += GATHER;
+                    }
+                    for r in r0..filled {
+                        for (col, v) in block.chunks_exact_mut(ny).zip(stretch(r)) {
+                            col[r] = *v;
                         }
                     }
                     for col in block.chunks_mut(ny) {
@@ -502,9 +515,27 @@ impl<T: FftFloat> Fft2<T> {
                 |(scratch, buf, full, values), (b, item)| {
                     let r0 = b * ROW_CHUNK;
                     let count = ROW_CHUNK.min(rows - r0);
-                    for c in 0..nc {
-                        for (k, v) in spec[c * ny + r0..c * ny + r0 + count].iter().enumerate() {
-                            buf[k * nc + c] = *v;
+                    // GATHER columns at a time: their stretches of this chunk's rows
+                    // are read whole and written as GATHER consecutive values of each
+                    // row.
+                    let stretch = |c: usize| &spec[c * ny + r0..c * ny + r0 + count];
+                    let mut c0 = 0;
+                    while c0 + GATHER <= nc {
+                        let cols: [&[Complex<T>]; GATHER] =
+                            std::array::from_fn(|j| stretch(c0 + j));
+                        for (k, row) in buf.chunks_exact_mut(nc).take(count).enumerate() {
+                            let dst: &mut [Complex<T>; GATHER] = (&mut row[c0..c0 + GATHER])
+                                .try_into()
+                                .expect("GATHER values");
+                            for (d, col) in dst.iter_mut().zip(&cols) {
+                                *d = col[k];
+                            }
+                        }
+                        c0 += GATHER;
+                    }
+                    for c in c0..nc {
+                        for (row, v) in buf.chunks_exact_mut(nc).zip(stretch(c)) {
+                            row[c] = *v;
                         }
                     }
                     for (a, o) in buf
