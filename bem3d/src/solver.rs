@@ -391,6 +391,14 @@ where
         .collect()
 }
 
+/// A zeroed buffer of `n` values whose pages are written now, in parallel. A buffer
+/// from `vec![0; n]` maps the shared zero page until first written; where a solve
+/// reads it before writing (`y_prev`), each page's first write then copies it and
+/// flushes the other threads' TLBs (measured: ~4 % of a two-thread solve at 1024^2).
+fn touched<T: Copy + Default + Send>(n: usize) -> Vec<T> {
+    (0..n).into_par_iter().map(|_| T::default()).collect()
+}
+
 /// Whether starting from `warm` pays for `load` (module docs: small load steps only).
 fn warm_pays(warm: &Solution, load: Load, target_force: Option<f64>) -> bool {
     let ratio = match (load, target_force) {
@@ -443,16 +451,16 @@ impl<K: Compliance> ContactSolver<K> {
         Self {
             overlap_stiffness,
             op,
-            w: vec![0.0; n],
-            z: vec![0.0; n],
+            w: touched(n),
+            z: touched(n),
             h_rms: 0.0,
             domain_cells: mask.iter().filter(|&&m| m > 0).count(),
             z_mean: 0.0,
             slope_rms: 0.0,
-            t: vec![0.0; n],
-            r: vec![0.0; n],
-            y_prev: vec![0.0; n],
-            active: vec![0; n],
+            t: touched(n),
+            r: touched(n),
+            y_prev: touched(n),
+            active: touched(n),
             loads: Vec::new(),
             fallback: [Vec::new(), Vec::new()],
             mask,
