@@ -125,9 +125,40 @@ const ROW_CHUNK: usize = 16;
 /// Rows per chunk of [`Fft2::load_rows`] and [`Fft2::finish_rows`].
 pub const ROWS_PER_CHUNK: usize = ROW_CHUNK;
 
-/// Rows (columns) gathered at a time by the column pass (the inverse row pass): each
-/// column (row) of the destination receives this many consecutive values per visit.
+/// Stretches [`transpose`] reads at a time: each visit of a destination line writes
+/// this many consecutive values.
 const GATHER: usize = 8;
+
+/// Writes `stretch(j)[i]` to `dst[i * stride + j]` for `j` in `0..m` and every `i` of the
+/// stretch (all stretches equally long, `dst` holding that many lines of `stride`):
+/// [`GATHER`] stretches at a time, each cut once, instead of one bounds-checked strided
+/// read per value.
+#[inline(always)]
+fn transpose<'s, C: Copy + 's>(
+    dst: &mut [C],
+    stride: usize,
+    m: usize,
+    stretch: impl Fn(usize) -> &'s [C],
+) {
+    let mut j0 = 0;
+    while j0 + GATHER <= m {
+        let s: [&[C]; GATHER] = std::array::from_fn(|k| stretch(j0 + k));
+        for (i, line) in dst.chunks_exact_mut(stride).take(s[0].len()).enumerate() {
+            let d: &mut [C; GATHER] = (&mut line[j0..j0 + GATHER])
+                .try_into()
+                .expect("GATHER values");
+            for (d, s) in d.iter_mut().zip(&s) {
+                *d = s[i];
+            }
+        }
+        j0 += GATHER;
+    }
+    for j in j0..m {
+        for (line, v) in dst.chunks_exact_mut(stride).zip(stretch(j)) {
+            line[j] = *v;
+        }
+    }
+}
 
 /// Target size of a column block in complex values (256 KiB: in a core's L2 cache).
 const COLUMN_BLOCK: usize = 16_384;
@@ -425,29 +456,10 @@ impl<T: FftFloat> Fft2<T> {
                 |scratch, (b, block)| {
                     let c0 = b * per;
                     let width = block.len() / ny;
-                    // GATHER rows at a time: their stretches of this block's columns
-                    // are read whole and written as GATHER consecutive values of each
-                    // column.
-                    let stretch = |r: usize| &src[r * nc + c0..r * nc + c0 + width];
-                    let mut r0 = 0;
-                    while r0 + GATHER <= filled {
-                        let rows: [&[Complex<T>]; GATHER] =
-                            std::array::from_fn(|k| stretch(r0 + k));
-                        for (c, col) in block.chunks_exact_mut(ny).enumerate() {
-                            let dst: &mut [Complex<T>; GATHER] = (&mut col[r0..r0 + GATHER])
-                                .try_into()
-                                .expect("GATHER values");
-                            for (d, row) in dst.iter_mut().zip(&rows) {
-                                *d = row[c];
-                            }
-                        }
-                        r0 += GATHER;
-                    }
-                    for r in r0..filled {
-                        for (col, v) in block.chunks_exact_mut(ny).zip(stretch(r)) {
-                            col[r] = *v;
-                        }
-                    }
+                    // Row r's stretch of this block's columns becomes entry r of each.
+                    transpose(block, ny, filled, |r| {
+                        &src[r * nc + c0..r * nc + c0 + width]
+                    });
                     for col in block.chunks_mut(ny) {
                         col[filled..]
                             .iter_mut()
@@ -515,29 +527,8 @@ impl<T: FftFloat> Fft2<T> {
                 |(scratch, buf, full, values), (b, item)| {
                     let r0 = b * ROW_CHUNK;
                     let count = ROW_CHUNK.min(rows - r0);
-                    // GATHER columns at a time: their stretches of this chunk's rows
-                    // are read whole and written as GATHER consecutive values of each
-                    // row.
-                    let stretch = |c: usize| &spec[c * ny + r0..c * ny + r0 + count];
-                    let mut c0 = 0;
-                    while c0 + GATHER <= nc {
-                        let cols: [&[Complex<T>]; GATHER] =
-                            std::array::from_fn(|j| stretch(c0 + j));
-                        for (k, row) in buf.chunks_exact_mut(nc).take(count).enumerate() {
-                            let dst: &mut [Complex<T>; GATHER] = (&mut row[c0..c0 + GATHER])
-                                .try_into()
-                                .expect("GATHER values");
-                            for (d, col) in dst.iter_mut().zip(&cols) {
-                                *d = col[k];
-                            }
-                        }
-                        c0 += GATHER;
-                    }
-                    for c in c0..nc {
-                        for (row, v) in buf.chunks_exact_mut(nc).zip(stretch(c)) {
-                            row[c] = *v;
-                        }
-                    }
+                    // Column c's stretch of this chunk's rows becomes entry c of each.
+                    transpose(buf, nc, nc, |c| &spec[c * ny + r0..c * ny + r0 + count]);
                     for (a, o) in buf
                         .chunks_mut(nc)
                         .zip(values[..count * width].chunks_mut(width))
