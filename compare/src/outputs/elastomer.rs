@@ -66,14 +66,15 @@ impl Material {
 
     /// Checks the constants; the Prony series of G(t).
     pub(super) fn validate(&self) -> Result<Prony> {
-        let shear = self.shear().ctx("material")?;
-        if shear.relaxed <= 0.0 {
-            return bad("the material needs a relaxed modulus (g0 or g_inf > 0): under a constant normal force it would creep without end");
-        }
+        // The term count first: the discretisation allocates `terms` nodes.
         if let Material::Eq84 { terms, .. } = self {
             if !(4..=64).contains(terms) {
                 return bad(format!("material.terms = {terms} must lie in 4..=64"));
             }
+        }
+        let shear = self.shear().ctx("material")?;
+        if shear.relaxed <= 0.0 {
+            return bad("the material needs a relaxed modulus (g0 or g_inf > 0): under a constant normal force it would creep without end");
         }
         Ok(shear)
     }
@@ -239,6 +240,24 @@ pub(super) fn fit_shift(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A huge term count is refused before the discretisation allocates its nodes
+    /// (the fuzz test found 4294967296 asking for 32 GiB and aborting).
+    #[test]
+    fn term_count_is_checked_before_use() {
+        for terms in [0, 3, 65, 4_294_967_296] {
+            let m = Material::Eq84 {
+                g0: 1.0,
+                g1: 1000.0,
+                tau1: 1e-2,
+                tau2: 1e2,
+                s: 2.0,
+                terms,
+            };
+            let err = m.validate().unwrap_err().to_string();
+            assert!(err.contains("material.terms"), "{terms}: {err}");
+        }
+    }
 
     #[test]
     fn fits_recover_xi_and_a_frequency_factor() {
