@@ -241,34 +241,31 @@ pub(super) fn fit_shift(
 mod tests {
     use super::*;
 
+    /// The tests' Eq. (84) material with `terms` Prony terms.
+    fn eq84(terms: usize) -> Material {
+        Material::Eq84 {
+            g0: 1.0,
+            g1: 1000.0,
+            tau1: 1e-2,
+            tau2: 1e2,
+            s: 2.0,
+            terms,
+        }
+    }
+
     /// A huge term count is refused before the discretisation allocates its nodes
     /// (the fuzz test found 4294967296 asking for 32 GiB and aborting).
     #[test]
     fn term_count_is_checked_before_use() {
         for terms in [0, 3, 65, 4_294_967_296] {
-            let m = Material::Eq84 {
-                g0: 1.0,
-                g1: 1000.0,
-                tau1: 1e-2,
-                tau2: 1e2,
-                s: 2.0,
-                terms,
-            };
-            let err = m.validate().unwrap_err().to_string();
+            let err = eq84(terms).validate().unwrap_err().to_string();
             assert!(err.contains("material.terms"), "{terms}: {err}");
         }
     }
 
     #[test]
     fn fits_recover_xi_and_a_frequency_factor() {
-        let m = Material::Eq84 {
-            g0: 1.0,
-            g1: 1000.0,
-            tau1: 1e-2,
-            tau2: 1e2,
-            s: 2.0,
-            terms: 16,
-        };
+        let m = eq84(16);
         let vs = mrd::friction::log_space(1e-5, 10.0, 13);
         let (k, gz) = (25.0, 0.05);
         // Synthetic ensemble: 0.7 x Eq. (82) at 3 k, +-5 % per surface, one failed run.
