@@ -35,18 +35,13 @@ impl<const N: usize> Sums<N> {
         }
     }
 
-    /// The lanes added in order (sum `max_slot` combined by max instead).
+    /// The lanes added in order (sum `max_slot` combined by max instead; the solver's
+    /// [`combine`](super::combine)).
     fn total(self, max_slot: Option<usize>) -> [f64; N] {
-        let mut out = [0.0; N];
-        for (k, (o, lanes)) in out.iter_mut().zip(&self.0).enumerate() {
-            *o = lanes[0];
-            for &v in &lanes[1..] {
-                *o = if Some(k) == max_slot {
-                    o.max(v)
-                } else {
-                    *o + v
-                };
-            }
+        let lane = |l: usize| -> [f64; N] { std::array::from_fn(|k| self.0[k][l]) };
+        let mut out = lane(0);
+        for l in 1..LANES {
+            super::combine(&mut out, &lane(l), max_slot);
         }
         out
     }
