@@ -209,7 +209,7 @@ impl<T: FftFloat> Fft2<T> {
         let chunk = width * ROW_CHUNK;
         self.load_rows((width, rows), input.par_chunks(chunk), copy_in);
         let (_, rows) = self.loaded.take().expect("rows just loaded");
-        self.column_pass::<T>(spec, rows, None, None);
+        self.column_pass::<T>(spec, rows, None, None, false);
     }
 
     /// Inverse transform of `spec` (`nc x ny`, destroyed) into `output` (`ny x nx`),
@@ -362,7 +362,7 @@ impl<T: FftFloat> Fft2<T> {
         S: Copy + Sync,
         Complex<T>: MulAssign<S>,
     {
-        self.column_step(symbol, None);
+        self.column_step(symbol, None, true);
     }
 
     /// [`Self::convolve_columns`] for a caller that needs a number of the whole
@@ -376,7 +376,20 @@ impl<T: FftFloat> Fft2<T> {
         S: Copy + Sync + Into<f64>,
         Complex<T>: MulAssign<S>,
     {
-        self.column_step(symbol, Some(|s: S| s.into()))
+        self.column_step(symbol, Some(|s: S| s.into()), true)
+    }
+
+    /// `<x, s * x>` of the loaded rows as [`Self::transform_columns`] returns it (bit
+    /// for bit), without the convolution: the column pass stops after the forward
+    /// transform, and no rows follow (the loaded rows are consumed).
+    pub fn column_energy<S>(&mut self, symbol: &[S]) -> f64
+    where
+        S: Copy + Sync + Into<f64>,
+        Complex<T>: MulAssign<S>,
+    {
+        let energy = self.column_step(symbol, Some(|s: S| s.into()), false);
+        self.convolved = None;
+        energy
     }
 
     /// Second step of [`Self::convolve_columns`] or [`Self::transform_columns`]: the
@@ -398,8 +411,9 @@ impl<T: FftFloat> Fft2<T> {
     }
 
     /// The column pass of a convolution of the loaded rows into `work`; with `weigh`
-    /// (a real symbol's value), also `<x, s * x>` (see [`Self::transform_columns`]).
-    fn column_step<S>(&mut self, symbol: &[S], weigh: Option<fn(S) -> f64>) -> f64
+    /// (a real symbol's value), also `<x, s * x>` (see [`Self::transform_columns`]);
+    /// without `back`, only that number (the pass stops after the forward transform).
+    fn column_step<S>(&mut self, symbol: &[S], weigh: Option<fn(S) -> f64>, back: bool) -> f64
     where
         S: Copy + Sync,
         Complex<T>: MulAssign<S>,
@@ -412,7 +426,7 @@ impl<T: FftFloat> Fft2<T> {
         );
         let mut work = std::mem::take(&mut self.work);
         work.resize(self.spectrum_len(), Complex::default());
-        let energy = self.column_pass(&mut work, rows, Some(symbol), weigh);
+        let energy = self.column_pass(&mut work, rows, Some(symbol), weigh, back);
         self.work = work;
         self.convolved = Some((width, rows));
         energy
@@ -425,15 +439,16 @@ impl<T: FftFloat> Fft2<T> {
 
     /// Column pass: gathers each block of columns of the row buffer (its first `filled`
     /// rows; the others count as zero) into `spec` (`nc x ny`) and transforms it; with
-    /// a symbol, multiplies and transforms back (unnormalised) while in cache. With
-    /// `weigh`, returns `<x, s * x>` (see [`Self::transform_columns`]; else 0): per
-    /// block, then the blocks in order.
+    /// a symbol and `back`, multiplies and transforms back (unnormalised) while in
+    /// cache. With a symbol and `weigh`, returns `<x, s * x>` (see
+    /// [`Self::transform_columns`]; else 0): per block, then the blocks in order.
     fn column_pass<S>(
         &self,
         spec: &mut [Complex<T>],
         filled: usize,
         symbol: Option<&[S]>,
         weigh: Option<fn(S) -> f64>,
+        back: bool,
     ) -> f64
     where
         S: Copy + Sync,
@@ -478,10 +493,12 @@ impl<T: FftFloat> Fft2<T> {
                                 energy += if twice(c0 + c) { 2.0 * e } else { e };
                             }
                         }
-                        for (v, k) in block.iter_mut().zip(&s[c0 * ny..]) {
-                            *v *= *k;
+                        if back {
+                            for (v, k) in block.iter_mut().zip(&s[c0 * ny..]) {
+                                *v *= *k;
+                            }
+                            inv.process_with_scratch(block, scratch);
                         }
-                        inv.process_with_scratch(block, scratch);
                     }
                     energy
                 },
@@ -678,6 +695,17 @@ mod tests {
                 (energy32 - direct).abs() <= 1e-6 * direct.abs(),
                 "{nx}x{ny} f32: {energy32} vs {direct}"
             );
+            // The energy alone: the same number bit for bit, and the transform is
+            // ready for the next convolution.
+            f.load_rows((w, rows), x.par_chunks(chunk), copy_in);
+            assert_eq!(f.column_energy(&symbol).to_bits(), energy.to_bits());
+            single.load_rows((w, rows), x.par_chunks(chunk), copy_in);
+            assert_eq!(
+                single.column_energy(&symbol32).to_bits(),
+                energy32.to_bits()
+            );
+            f.convolve(&x, (w, rows), &symbol, &mut got);
+            assert_eq!(got, expected, "{nx}x{ny} after the energy alone");
         }
     }
 

@@ -269,27 +269,9 @@ pub(super) fn update(
     u: Update,
 ) -> [f64; 3] {
     let cell = |p: &mut f64, t: f64, r: &mut f64, w: &mut f64, m: u8, kt: f64, s: &mut [f64; 3]| {
-        let gi = *w - u.approach;
-        let act = *p > 0.0;
-        let raw = *p - u.tau * t;
-        let enter = !act & (m > 0) & (gi < 0.0);
-        // Inactive cells have p = t = 0, so raw = 0 there.
-        // (max(raw, 0) as a select: vectorizes; a NaN raw gives 0, as f64::max would.)
-        let clipped = if raw > 0.0 { raw } else { 0.0 };
-        let pi = if act {
-            clipped
-        } else if enter {
-            -u.step * gi
-        } else {
-            0.0
-        };
-        let change = pi - raw;
-        *p = pi;
+        let change = project(p, t, *w, m, u, s);
         *w -= u.tau * kt;
         *r = change;
-        s[0] += pi;
-        s[1] += if change != 0.0 { 1.0 } else { 0.0 };
-        s[2] += if pi > 0.0 { t } else { 0.0 };
     };
     let n = p.len();
     let (pb, pt) = p.as_chunks_mut::<LANES>();
@@ -324,6 +306,70 @@ pub(super) fn update(
         sums.lane(0, |s| cell(p, *t, r, w, *m, *k, s));
     }
     sums.total(None)
+}
+
+/// Pass D without K t, for an iteration whose `K p` is recomputed from scratch: the
+/// projected update of [`update`] (the same p and sums, bit for bit), p also written to
+/// `values` (the fresh `K p`'s input); w is read for the gap, neither w nor r written.
+#[inline(never)]
+pub(super) fn advance(
+    p: &mut [f64],
+    t: &[f64],
+    w: &[f64],
+    mask: &[u8],
+    values: &mut [f64],
+    u: Update,
+) -> [f64; 3] {
+    let cell = |p: &mut f64, t: f64, w: f64, m: u8, v: &mut f64, s: &mut [f64; 3]| {
+        project(p, t, w, m, u, s);
+        *v = *p;
+    };
+    let n = p.len();
+    let (pb, pt) = p.as_chunks_mut::<LANES>();
+    let (tb, tt) = t[..n].as_chunks::<LANES>();
+    let (wb, wt) = w[..n].as_chunks::<LANES>();
+    let (mb, mt) = mask[..n].as_chunks::<LANES>();
+    let (vb, vt) = values[..n].as_chunks_mut::<LANES>();
+    let mut sums = Sums::new();
+    let blocks = pb.iter_mut().zip(tb).zip(wb).zip(mb).zip(vb.iter_mut());
+    for ((((p, t), w), m), v) in blocks {
+        for l in 0..LANES {
+            sums.lane(l, |s| cell(&mut p[l], t[l], w[l], m[l], &mut v[l], s));
+        }
+    }
+    let last = pt.iter_mut().zip(tt).zip(wt).zip(mt).zip(vt.iter_mut());
+    for ((((p, t), w), m), v) in last {
+        sums.lane(0, |s| cell(p, *t, *w, *m, v, s));
+    }
+    sums.total(None)
+}
+
+/// One cell of pass D: `p` becomes `max(p - tau t, 0)` on the contact set, `-step g` on
+/// a re-admitted cell (in the domain, without pressure, gap `g = w - approach < 0`), 0
+/// elsewhere; adds the new p, whether it departs from `p - tau t` and t where the new p
+/// is positive to the sums; returns the departure (the new p minus `p - tau t`).
+#[inline(always)]
+fn project(p: &mut f64, t: f64, w: f64, m: u8, u: Update, s: &mut [f64; 3]) -> f64 {
+    let gi = w - u.approach;
+    let act = *p > 0.0;
+    let raw = *p - u.tau * t;
+    let enter = !act & (m > 0) & (gi < 0.0);
+    // Inactive cells have p = t = 0, so raw = 0 there.
+    // (max(raw, 0) as a select: vectorizes; a NaN raw gives 0, as f64::max would.)
+    let clipped = if raw > 0.0 { raw } else { 0.0 };
+    let pi = if act {
+        clipped
+    } else if enter {
+        -u.step * gi
+    } else {
+        0.0
+    };
+    let change = pi - raw;
+    *p = pi;
+    s[0] += pi;
+    s[1] += if change != 0.0 { 1.0 } else { 0.0 };
+    s[2] += if pi > 0.0 { t } else { 0.0 };
+    change
 }
 
 /// `max(a, b)` as a select (vectorizes); a NaN `b` leaves `a`, as `f64::max` would.
@@ -515,6 +561,12 @@ mod tests {
                 bits(in_lane_order(&cells, None)),
                 "update, n = {n}"
             );
+
+            // Pass D without K t: the same pressures and sums, p also in the output.
+            let (mut q, mut out) = (p0.clone(), vec![9.0; n]);
+            let again = advance(&mut q, &t0, &w0, &mask, &mut out, u);
+            assert_eq!((&q, &out), (&p, &p), "advance, n = {n}");
+            assert_eq!(bits(again), bits(got), "advance, n = {n}");
         }
     }
 }
