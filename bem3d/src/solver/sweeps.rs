@@ -150,22 +150,23 @@ pub(super) fn residual(
 }
 
 /// After M: with `y = M q` and q recomputed from `active` and `w`, the sums of y over
-/// the contact set, `<q, y>` and `<q, y_prev>`; y then replaces `y_prev`.
+/// the contact set, `<q, y>` and `<q, y_prev>`; y then replaces `y_prev` (rounded to
+/// single precision, as M computes it).
 #[inline(never)]
 pub(super) fn preconditioned(
     active: &[u8],
     w: &[f64],
-    y_prev: &mut [f64],
+    y_prev: &mut [f32],
     y: &[f64],
     approach: f64,
 ) -> [f64; 3] {
-    let cell = |act: u8, w: f64, y_prev: &mut f64, y: f64, s: &mut [f64; 3]| {
+    let cell = |act: u8, w: f64, y_prev: &mut f32, y: f64, s: &mut [f64; 3]| {
         let a = act as f64;
         let q = a * (w - approach);
         s[0] += a * y;
         s[1] += q * y;
-        s[2] += q * *y_prev;
-        *y_prev = y;
+        s[2] += q * *y_prev as f64;
+        *y_prev = y as f32;
     };
     let n = active.len();
     let (ab, at) = active.as_chunks::<LANES>();
@@ -195,23 +196,24 @@ pub(super) struct Direction {
 }
 
 /// The direction pass: y projected (`[p > 0] (y - ybar)`, kept in `y_prev`), the new
-/// conjugate direction `t = y + beta [p > 0] (t - tbar)`, also written to `out` (K's
-/// input); returns `<t, w - approach>`.
+/// conjugate direction `t = y + beta [p > 0] (t - tbar)` rounded to single precision,
+/// also written to `out` (K's input); returns `<t, w - approach>` (of the rounded t).
 #[inline(never)]
 pub(super) fn direction(
     active: &[u8],
     w: &[f64],
-    t: &mut [f64],
-    y_prev: &mut [f64],
+    t: &mut [f32],
+    y_prev: &mut [f32],
     out: &mut [f64],
     d: Direction,
 ) -> [f64; 1] {
-    let cell = |act: u8, w: f64, t: &mut f64, y_prev: &mut f64, out: &mut f64, s: &mut [f64; 1]| {
+    let cell = |act: u8, w: f64, t: &mut f32, y_prev: &mut f32, out: &mut f64, s: &mut [f64; 1]| {
         let a = act as f64;
-        let yi = a * (*y_prev - d.ybar);
-        *y_prev = yi;
-        let ti = yi + a * d.beta * (*t - d.tbar);
-        *t = ti;
+        let yi = a * (*y_prev as f64 - d.ybar);
+        *y_prev = yi as f32;
+        // t as stored: K's input, the update and <q, t> all see the same direction.
+        let ti = (yi + a * d.beta * (*t as f64 - d.tbar)) as f32 as f64;
+        *t = ti as f32;
         *out = ti;
         s[0] += ti * (w - d.approach);
     };
@@ -261,15 +263,15 @@ pub(super) struct Update {
 #[inline(never)]
 pub(super) fn update(
     p: &mut [f64],
-    t: &[f64],
+    t: &[f32],
     r: &mut [f64],
     w: &mut [f64],
     mask: &[u8],
     kt: &[f64],
     u: Update,
 ) -> [f64; 3] {
-    let cell = |p: &mut f64, t: f64, r: &mut f64, w: &mut f64, m: u8, kt: f64, s: &mut [f64; 3]| {
-        let change = project(p, t, *w, m, u, s);
+    let cell = |p: &mut f64, t: f32, r: &mut f64, w: &mut f64, m: u8, kt: f64, s: &mut [f64; 3]| {
+        let change = project(p, t as f64, *w, m, u, s);
         *w -= u.tau * kt;
         *r = change;
     };
@@ -314,14 +316,14 @@ pub(super) fn update(
 #[inline(never)]
 pub(super) fn advance(
     p: &mut [f64],
-    t: &[f64],
+    t: &[f32],
     w: &[f64],
     mask: &[u8],
     values: &mut [f64],
     u: Update,
 ) -> [f64; 3] {
-    let cell = |p: &mut f64, t: f64, w: f64, m: u8, v: &mut f64, s: &mut [f64; 3]| {
-        project(p, t, w, m, u, s);
+    let cell = |p: &mut f64, t: f32, w: f64, m: u8, v: &mut f64, s: &mut [f64; 3]| {
+        project(p, t as f64, w, m, u, s);
         *v = *p;
     };
     let n = p.len();
@@ -443,10 +445,10 @@ mod tests {
     fn passes_match_their_cell_by_cell_form() {
         for n in [0, 1, 3, 4, 5, 8, 13, 64, 67] {
             let p0: Vec<f64> = field(n, 1).iter().map(|v| v.max(0.0)).collect();
-            let t0: Vec<f64> = p0
+            let t0: Vec<f32> = p0
                 .iter()
                 .zip(field(n, 2))
-                .map(|(&p, v)| if p > 0.0 { v } else { 0.0 })
+                .map(|(&p, v)| if p > 0.0 { v as f32 } else { 0.0 })
                 .collect();
             let w0 = field(n, 3);
             let z = field(n, 4);
@@ -492,17 +494,18 @@ mod tests {
             );
 
             // After M.
-            let mut yp = field(n, 7);
+            let mut yp: Vec<f32> = field(n, 7).iter().map(|&v| v as f32).collect();
             let yp0 = yp.clone();
             let got = preconditioned(&act, &w0, &mut yp, &y, approach);
             let cells: Vec<[f64; 3]> = (0..n)
                 .map(|i| {
                     let on = act[i] as f64;
                     let q = on * (w0[i] - approach);
-                    [on * y[i], q * y[i], q * yp0[i]]
+                    [on * y[i], q * y[i], q * yp0[i] as f64]
                 })
                 .collect();
-            assert_eq!(yp, y);
+            let y32: Vec<f32> = y.iter().map(|&v| v as f32).collect();
+            assert_eq!(yp, y32);
             assert_eq!(
                 bits(got),
                 bits(in_lane_order(&cells, None)),
@@ -521,10 +524,10 @@ mod tests {
             let mut cells = vec![];
             for i in 0..n {
                 let on = act[i] as f64;
-                let yi = on * (yp0[i] - d.ybar);
-                let ti = yi + on * d.beta * (t0[i] - d.tbar);
-                assert_eq!((yp[i], t[i], out[i]), (yi, ti, ti));
-                cells.push([ti * (w0[i] - approach)]);
+                let yi = on * (yp0[i] as f64 - d.ybar);
+                let ti = (yi + on * d.beta * (t0[i] as f64 - d.tbar)) as f32;
+                assert_eq!((yp[i], t[i], out[i]), (yi as f32, ti, ti as f64));
+                cells.push([ti as f64 * (w0[i] - approach)]);
             }
             assert_eq!(
                 bits(got),
@@ -543,7 +546,7 @@ mod tests {
             let mut cells = vec![];
             for i in 0..n {
                 let g = w0[i] - approach;
-                let raw = p0[i] - u.tau * t0[i];
+                let raw = p0[i] - u.tau * t0[i] as f64;
                 let pi = if p0[i] > 0.0 {
                     raw.max(0.0)
                 } else if mask[i] > 0 && g < 0.0 {
@@ -554,7 +557,7 @@ mod tests {
                 assert_eq!((p[i], r[i]), (pi, pi - raw));
                 assert_eq!(w[i], w0[i] - u.tau * kt[i]);
                 let changed = if pi != raw { 1.0 } else { 0.0 };
-                cells.push([pi, changed, if pi > 0.0 { t0[i] } else { 0.0 }]);
+                cells.push([pi, changed, if pi > 0.0 { t0[i] as f64 } else { 0.0 }]);
             }
             assert_eq!(
                 bits(got),
