@@ -225,7 +225,8 @@ pub struct ContactSolver<K: Compliance> {
     /// update read the stored values.
     t: Vec<f32>,
     /// Each cell's departure of the projected step from `p - tau t` (pass D), read for
-    /// the point-load corrections of `K p`.
+    /// the point-load corrections of `K p`; zero between iterations (pass D writes only
+    /// the changed cells, the iteration clears them once read).
     r: Vec<f64>,
     /// The previous iteration's projected preconditioned residual (Polak-Ribiere's beta);
     /// between M's application and the next direction, this iteration's raw `M q`; in
@@ -997,7 +998,23 @@ impl<K: Compliance> ContactSolver<K> {
                     |(p, t, r, w, m), kt| sweeps::update(p, t, r, w, m, kt, upd),
                 );
                 let changed = sum_parts(&parts, None)[1];
-                if changed > limit as f64 {
+                let too_many = changed > limit as f64;
+                // The changes as point loads (unless too many), and r zero again.
+                for (b, part) in parts.iter().enumerate() {
+                    if part[1] > 0.0 {
+                        let start = b * fc;
+                        let end = (start + fc).min(n);
+                        for (i, r) in self.r[start..end].iter_mut().enumerate() {
+                            if *r != 0.0 {
+                                if !too_many {
+                                    loads.push((start + i, *r));
+                                }
+                                *r = 0.0;
+                            }
+                        }
+                    }
+                }
+                if too_many {
                     // A fresh K p (in K's precision).
                     if single {
                         load_fused(
@@ -1020,17 +1037,6 @@ impl<K: Compliance> ContactSolver<K> {
                     refresh_z = true;
                     exact = !single;
                 } else {
-                    for (b, part) in parts.iter().enumerate() {
-                        if part[1] > 0.0 {
-                            let start = b * fc;
-                            let end = (start + fc).min(n);
-                            loads.extend(
-                                (start..end)
-                                    .filter(|&i| self.r[i] != 0.0)
-                                    .map(|i| (i, self.r[i])),
-                            );
-                        }
-                    }
                     exact = false;
                 }
                 parts

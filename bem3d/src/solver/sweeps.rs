@@ -258,8 +258,11 @@ pub(super) struct Update {
 
 /// Pass D: the projected update `p = max(p - tau t, 0)` on the contact set, cells of
 /// the domain (`mask`) without pressure and with negative gap re-admitted at
-/// `-step g`, `w -= tau K t`; the change against `p - tau t` goes to `r`. Returns the
-/// total pressure, the number of changed cells and the sum of t over the new set.
+/// `-step g`, `w -= tau K t`; the change against `p - tau t` goes to `r`, written only
+/// in the blocks of [`LANES`] cells that have a change (the caller keeps r zero between
+/// passes, so r holds the changes and zeros).
+/// Returns the total pressure, the number of changed cells and the sum of t over the
+/// new set.
 #[inline(never)]
 pub(super) fn update(
     p: &mut [f64],
@@ -270,10 +273,10 @@ pub(super) fn update(
     kt: &[f64],
     u: Update,
 ) -> [f64; 3] {
-    let cell = |p: &mut f64, t: f32, r: &mut f64, w: &mut f64, m: u8, kt: f64, s: &mut [f64; 3]| {
+    let cell = |p: &mut f64, t: f32, w: &mut f64, m: u8, kt: f64, s: &mut [f64; 3]| {
         let change = project(p, t as f64, *w, m, u, s);
         *w -= u.tau * kt;
-        *r = change;
+        change
     };
     let n = p.len();
     let (pb, pt) = p.as_chunks_mut::<LANES>();
@@ -291,10 +294,16 @@ pub(super) fn update(
         .zip(mb)
         .zip(kb);
     for (((((p, t), r), w), m), k) in blocks {
+        let mut change = [0.0; LANES];
         for l in 0..LANES {
             sums.lane(l, |s| {
-                cell(&mut p[l], t[l], &mut r[l], &mut w[l], m[l], k[l], s)
+                change[l] = cell(&mut p[l], t[l], &mut w[l], m[l], k[l], s);
             });
+        }
+        // r is written only in blocks with a change (one branch per block, rarely
+        // taken: r's other cells are neither read nor written; they hold zero).
+        if change != [0.0; LANES] {
+            *r = change;
         }
     }
     let last = pt
@@ -305,7 +314,12 @@ pub(super) fn update(
         .zip(mt)
         .zip(kt);
     for (((((p, t), r), w), m), k) in last {
-        sums.lane(0, |s| cell(p, *t, r, w, *m, *k, s));
+        sums.lane(0, |s| {
+            let change = cell(p, *t, w, *m, *k, s);
+            if change != 0.0 {
+                *r = change;
+            }
+        });
     }
     sums.total(None)
 }
@@ -541,7 +555,8 @@ mod tests {
                 approach,
                 step: 2.0,
             };
-            let (mut p, mut w, mut r) = (p0.clone(), w0.clone(), vec![9.0; n]);
+            // r starts at zero, as the solver keeps it.
+            let (mut p, mut w, mut r) = (p0.clone(), w0.clone(), vec![0.0; n]);
             let got = update(&mut p, &t0, &mut r, &mut w, &mask, &kt, u);
             let mut cells = vec![];
             for i in 0..n {
