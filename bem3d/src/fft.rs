@@ -387,9 +387,7 @@ impl<T: FftFloat> Fft2<T> {
         S: Copy + Sync + Into<f64>,
         Complex<T>: MulAssign<S>,
     {
-        let energy = self.column_step(symbol, Some(|s: S| s.into()), false);
-        self.convolved = None;
-        energy
+        self.column_step(symbol, Some(|s: S| s.into()), false)
     }
 
     /// Second step of [`Self::convolve_columns`] or [`Self::transform_columns`]: the
@@ -428,7 +426,9 @@ impl<T: FftFloat> Fft2<T> {
         work.resize(self.spectrum_len(), Complex::default());
         let energy = self.column_pass(&mut work, rows, Some(symbol), weigh, back);
         self.work = work;
-        self.convolved = Some((width, rows));
+        if back {
+            self.convolved = Some((width, rows));
+        }
         energy
     }
 

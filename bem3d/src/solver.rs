@@ -40,10 +40,11 @@
 //! 10 and 14 iterations at 512^2 and 1024^2), K p is recomputed after each update;
 //! such an iteration needs K t for `<t, K t>` only: K's column pass stops there
 //! ([`Fft2::column_energy`](crate::fft::Fft2::column_energy)) and the update runs in
-//! the fresh K p's row pass. Which iterations these are is predicted from the last
-//! update's changed cells (more than twice the point-load limit, every change for an
-//! operator without point loads; a wrong guess costs time, not accuracy: K p is then
-//! fresh where point loads would have updated it). Results are the same bit for bit
+//! the fresh K p's row pass (operators with transforms only: a dense K would be applied
+//! twice). Which iterations these are is predicted from the last update's changed
+//! cells (more than twice the point-load limit; a cold start counts as many); a wrong
+//! guess costs time, not accuracy: K p is then fresh where point loads would have
+//! updated it. Results are the same bit for bit
 //! where the guess holds (checked: the rough benchmark solves at 0.1-20 % contact,
 //! 256^2-1024^2, periodic and free); Hertz windows differ by rounding (their rounds
 //! start with a fresh guess and few changes). Measured (1 % contact, 1024^2, one
