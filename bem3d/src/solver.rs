@@ -24,9 +24,10 @@
 //! `<q, t>` all read the stored t, so p and `K p` move consistently, and only the
 //! direction is rounded (a search direction need not be exact). Measured on the
 //! benchmark surfaces (0.1-20 % contact, 512^2 and 1024^2, periodic; 1 % and 20 % free
-//! at 1024^2): the same iterations, peak pressures within 2e-12 relative; 4-5 % less
-//! time at 1024^2 (one thread, interleaved A/B: three of the sweeps' streams halved).
-//! Each iteration applies K once (to the direction) and M once; the
+//! at 1024^2): the same iterations, peak pressures within 2e-12 relative (3e-11 on
+//! the candidate-set path at 0.1 %, 512^2); 4-5 % less time at 1024^2 (one thread,
+//! interleaved A/B: three of the sweeps' streams halved). Each iteration applies K
+//! once (to the direction) and M once; the
 //! displacement `K p` is carried along (see [`ContactSolver::solve`]). Both are
 //! convolutions, and the sweeps that produce their inputs or consume their outputs run
 //! inside the transforms' row passes ([`Fft2::load_rows`](crate::fft::Fft2::load_rows)), on rows still in cache. K's
