@@ -616,6 +616,41 @@ impl<K: Compliance> ContactSolver<K> {
         )
     }
 
+    /// The second half of a fresh `K p` (in `k_op`'s precision) whose input is loaded:
+    /// K p into `w` (pass A then adds z).
+    fn finish_into_w(&mut self, k_op: Operand) {
+        let fc = ROWS_PER_CHUNK * self.op.nx();
+        finish_fused(
+            &mut self.op,
+            k_op,
+            &mut self.fallback,
+            self.w.par_chunks_mut(fc),
+            copy_out,
+        );
+    }
+
+    /// Reads the changes pass D wrote to `r` in the chunks whose sums (`parts`, per
+    /// chunk: total, changed cells, ...) count any, appending them to `loads` when
+    /// given, and sets them back to zero (r is zero between passes).
+    fn take_changes(&mut self, parts: &[[f64; 3]], mut loads: Option<&mut Vec<(usize, f64)>>) {
+        let fc = ROWS_PER_CHUNK * self.op.nx();
+        for (b, part) in parts.iter().enumerate() {
+            if part[1] == 0.0 {
+                continue;
+            }
+            let start = b * fc;
+            let end = (start + fc).min(self.r.len());
+            for (i, r) in self.r[start..end].iter_mut().enumerate() {
+                if *r != 0.0 {
+                    if let Some(l) = loads.as_deref_mut() {
+                        l.push((start + i, *r));
+                    }
+                    *r = 0.0;
+                }
+            }
+        }
+    }
+
     /// Solves for `load`, starting from a previous solution `warm` where that pays (see
     /// the module docs; [`Solution::warm_started`] says whether it was used). A cold
     /// solve of a compact contact runs on a window first, one with a small start set
@@ -749,7 +784,6 @@ impl<K: Compliance> ContactSolver<K> {
         opts: &SolverOptions,
         warm_started: bool,
     ) -> Result<Solution> {
-        let n = self.op.cells();
         let area = self.op.cell_area();
         let nm = self.domain_cells;
         let force_control = target_force.is_some();
@@ -975,13 +1009,7 @@ impl<K: Compliance> ContactSolver<K> {
                     ),
                     |(p, t, w, m), values| sweeps::advance(p, t, w, m, values, upd),
                 );
-                finish_fused(
-                    &mut self.op,
-                    k_op,
-                    &mut self.fallback,
-                    self.w.par_chunks_mut(fc),
-                    copy_out,
-                );
+                self.finish_into_w(k_op);
                 refresh_z = true;
                 exact = !single;
                 parts
@@ -1002,20 +1030,7 @@ impl<K: Compliance> ContactSolver<K> {
                 let changed = sum_parts(&parts, None)[1];
                 let too_many = changed > limit as f64;
                 // The changes as point loads (unless too many), and r zero again.
-                for (b, part) in parts.iter().enumerate() {
-                    if part[1] > 0.0 {
-                        let start = b * fc;
-                        let end = (start + fc).min(n);
-                        for (i, r) in self.r[start..end].iter_mut().enumerate() {
-                            if *r != 0.0 {
-                                if !too_many {
-                                    loads.push((start + i, *r));
-                                }
-                                *r = 0.0;
-                            }
-                        }
-                    }
-                }
+                self.take_changes(&parts, (!too_many).then_some(&mut loads));
                 if too_many {
                     // A fresh K p (in K's precision).
                     if single {
@@ -1026,13 +1041,7 @@ impl<K: Compliance> ContactSolver<K> {
                             p.par_chunks(fc),
                             copy_in,
                         );
-                        finish_fused(
-                            &mut self.op,
-                            k_op,
-                            &mut self.fallback,
-                            self.w.par_chunks_mut(fc),
-                            copy_out,
-                        );
+                        self.finish_into_w(k_op);
                     } else {
                         self.op.apply(&p, &mut self.w);
                     }
