@@ -20,6 +20,17 @@ pub struct HalfSpace {
     pub e_star: f64,
 }
 
+/// The half-space on a grid of half the cells per side, if both sides are even.
+fn halved(hs: &HalfSpace) -> Option<HalfSpace> {
+    (hs.nx.is_multiple_of(2) && hs.ny.is_multiple_of(2) && hs.nx > 0 && hs.ny > 0).then_some(
+        HalfSpace {
+            nx: hs.nx / 2,
+            ny: hs.ny / 2,
+            ..*hs
+        },
+    )
+}
+
 /// Which of an operator's two convolutions a fused application uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Operand {
@@ -190,6 +201,15 @@ pub trait Compliance: Send {
     /// has no such restriction (a periodic one couples the window to its images).
     fn window(&self, wx: usize, wy: usize) -> Option<NonPeriodicHalfSpace> {
         let _ = (wx, wy);
+        None
+    }
+    /// The same half-space on a grid of half the cells per side (each cell the union of
+    /// 2 x 2 cells of this grid; same size and modulus), for the solver's nested start;
+    /// None if the operator has no such form (the default) or a side is odd.
+    fn coarse(&self) -> Option<Self>
+    where
+        Self: Sized,
+    {
         None
     }
     /// Preconditioner, in place: `g <- M g` with M an approximate inverse of K (a
@@ -363,6 +383,10 @@ impl PeriodicHalfSpace {
 impl Compliance for PeriodicHalfSpace {
     fn half_space(&self) -> &HalfSpace {
         &self.hs
+    }
+    fn coarse(&self) -> Option<Self> {
+        let hs = halved(&self.hs)?;
+        Some(Self::new(hs.nx, hs.ny, hs.lx, hs.ly, hs.e_star))
     }
     fn is_periodic(&self) -> bool {
         true
@@ -626,6 +650,10 @@ impl NonPeriodicHalfSpace {
 impl Compliance for NonPeriodicHalfSpace {
     fn half_space(&self) -> &HalfSpace {
         &self.hs
+    }
+    fn coarse(&self) -> Option<Self> {
+        let hs = halved(&self.hs)?;
+        Some(Self::new(hs.nx, hs.ny, hs.lx, hs.ly, hs.e_star))
     }
     fn is_periodic(&self) -> bool {
         false

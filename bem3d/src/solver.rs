@@ -15,11 +15,19 @@
 //! f64 one. K's transforms run in single precision too while the criterion is above
 //! `SINGLE_UNTIL` (1e-4, where the operator has them: [`Operand::ComplianceSingle`]);
 //! there the displacement carries rounding of about 1e-7 relative, far below the
-//! residual, and the iteration then goes on in double precision from a fresh `K p`, so
-//! the final iterations and the convergence check see K in double precision only.
+//! residual, and the iteration then goes on from a fresh `K p` in double precision.
 //! Measured (benchmark surfaces, one thread, interleaved A/B): the same iterations,
 //! 14-18 % less time at 1024^2 periodic and 14-23 % on the free half-space, at 1 % and
-//! 20 % contact. The direction t and the preconditioned residual (M's output, single
+//! 20 % contact. After that K t (the direction's, one per iteration) stays in single
+//! precision; only `K p` is recomputed in double precision: at 1e-4, again at
+//! `REFRESH_AGAIN` (1e-7) and before convergence is reported. Carried along by
+//! `- tau K t`, `K p` then takes rounding of about 1e-6 of its change since the last
+//! recomputation, which shrinks with the residual (about 1e-10 after 1e-4, 1e-13 after
+//! 1e-7), and the final check sees a fresh double-precision `K p` as before. Measured
+//! on the benchmark surfaces (512^2 and 1024^2 periodic at 1 % and 20 % contact, free
+//! at 1 %; AMD EPYC VM): the same iterations, peak pressures within 2e-13 relative of
+//! the iteration with K t in double precision after 1e-4 (within 3e-11 without the
+//! second recomputation). The direction t and the preconditioned residual (M's output, single
 //! precision already) are stored in single precision: K's input, the update and
 //! `<q, t>` all read the stored t, so p and `K p` move consistently, and only the
 //! direction is rounded (a search direction need not be exact). Measured on the
@@ -97,6 +105,24 @@
 //! but for 0.1 % at 256^2 with 3: 15). Non-periodic Hertz (256^2-1024^2), both changes
 //! together (restarts and uniform start -> Polak-Ribiere+ and this start): 20 % contact
 //! 29, 33, 39 -> 20, 25, 26; 1 % 54, 63, 77 -> 15, 18, 21; 0.1 % 62, 82, 107 -> 13, 15, 19.
+//!
+//! Nested start: a cold solve under force control on the full grid, with both sides
+//! even and at least `NESTED_MIN` (512) cells and no mask, first solves the same load
+//! on the grid coarsened 2 x 2 ([`Compliance::coarse`]; heights averaged over each
+//! coarse cell's four cells) to `NESTED_TOLERANCE` (1e-3), and starts from that
+//! pressure, each coarse cell's value on its four cells, instead of the overlap start
+//! (the coarse grid's solver is kept for later solves; its own cold start may nest
+//! again). Asperities finer than the coarse cells are not in that start, so the fine
+//! iteration begins at a residual of a few 1e-2 whatever the coarse tolerance, and
+//! gains its iterations while the contact set forms. Measured on the benchmark surfaces
+//! (one thread, AMD EPYC VM; iterations cold -> nested; the coarse solve costs about a
+//! quarter of its iterations in fine ones): periodic 512^2 at 1 % and 20 % contact 33
+//! -> 28, 47 -> 39; 1024^2 37 -> 32, 67 -> 54; 2048^2 at 0.1 %, 1 % and 20 % 32 -> 28,
+//! 51 -> 40, 92 -> 74; free 512^2 and 1024^2 at 1 % 35 -> 28, 41 -> 36; solve time
+//! 3-11 % less at 512^2, 9-14 % at 1024^2 (free 1024^2: within the noise). At 256^2
+//! it saved one iteration in 21 and 36 (a loss), hence the size limit. On a surface
+//! rough down to the cell size (the tests') the coarse grid sees less of it: 512^2 at
+//! 0.4 % and 8 % contact 27 -> 26 and 49 -> 44.
 //!
 //! Compact contacts on the non-periodic half-space (module `window`): a cold solve
 //! whose start (the overlap covering `3 p / (E* h')`, or the overlap at the prescribed
@@ -241,6 +267,12 @@ pub struct ContactSolver<K: Compliance> {
     loads: Vec<(usize, f64)>,
     /// Input and output of fused applications of an operator without a spectral form.
     fallback: [Vec<f64>; 2],
+    /// The solver on the grid coarsened 2 x 2, for nested starts (built on first use;
+    /// dropped with the heights).
+    coarse: Option<Box<ContactSolver<K>>>,
+    /// Whether cold solves under force control may start from the coarse grid's
+    /// solution (module docs; on by default).
+    nested: bool,
 }
 
 /// Sweep chunk, in cells (rounded to whole rows): fixed, so that partial sums (and
@@ -251,12 +283,33 @@ const CHUNK: usize = 16_384;
 /// `p / (E* h')` of the domain (module docs).
 const START_AREA: f64 = 6.0;
 
-/// Residual below which the iteration leaves K's single-precision transforms
-/// ([`Operand::ComplianceSingle`]) for double precision, from a fresh K p (module
-/// docs). Measured on the 512^2 benchmark surface at 1 % and 20 % contact: the same
-/// iterations with 1e-3, 1e-4 and 1e-5 (1e-5 one more at 20 %), against 9 and 16 more
-/// with K in single precision to the end.
+/// Nested start (module docs): grids with at least this many cells per side (and
+/// even sides) start from their 2 x 2 coarsening's solution.
+const NESTED_MIN: usize = 512;
+
+/// Tolerance of the nested start's coarse solve: the fine iteration starts from about
+/// the same residual whether the coarse solve stops at 1e-2, 1e-3 or 1e-10 (the coarse
+/// grid cannot resolve the fine contact set; measured on the 1024^2 benchmark surface
+/// at 1 % contact: 4.0e-2 in each case).
+const NESTED_TOLERANCE: f64 = 1e-3;
+
+/// Iteration cap of the nested start's coarse solve (it takes 10-30 on the benchmark
+/// surfaces); a coarse solve that does not converge leaves the cold start.
+const NESTED_MAX_ITERATIONS: usize = 200;
+
+/// Residual below which the displacement `K p` is recomputed in double precision and
+/// from then on carried along with K t in single precision only (module docs); before,
+/// K's single-precision transforms ([`Operand::ComplianceSingle`]) serve every
+/// application. Measured on the 512^2 benchmark surface at 1 % and 20 % contact: the
+/// same iterations with 1e-3, 1e-4 and 1e-5 (1e-5 one more at 20 %), against 9 and 16
+/// more with K p never recomputed in double precision before the final check.
 const SINGLE_UNTIL: f64 = 1e-4;
+
+/// Residual below which `K p` is recomputed in double precision once more (module
+/// docs): the single-precision K t moves it by rounding of about 1e-6 of the
+/// displacement's change since the last recomputation, which scales with the residual
+/// then (1e-4: about 1e-10, at the tolerance; 1e-7: about 1e-13).
+const REFRESH_AGAIN: f64 = 1e-7;
 
 /// Maps each chunk with `f` (in parallel) and sums the `N` partial results with
 /// [`sum_parts`].
@@ -494,6 +547,8 @@ impl<K: Compliance> ContactSolver<K> {
             loads: Vec::new(),
             fallback: [Vec::new(), Vec::new()],
             mask,
+            coarse: None,
+            nested: true,
         }
     }
 
@@ -537,7 +592,13 @@ impl<K: Compliance> ContactSolver<K> {
         self.slope_rms = self.rms_slope(heights);
         self.z = heights.iter().map(|h| hmax - h).collect();
         self.w.copy_from_slice(&self.z);
+        self.coarse = None;
         Ok(())
+    }
+
+    /// Turns the nested start (module docs) on or off for the following solves.
+    pub fn set_nested_start(&mut self, on: bool) {
+        self.nested = on;
     }
 
     /// Rms slope sqrt(<(dh/dx)^2> + <(dh/dy)^2>), each mean over the pairs of adjacent
@@ -741,17 +802,22 @@ impl<K: Compliance> ContactSolver<K> {
                 return Ok(sol);
             }
         }
-        let m = |i: usize| self.mask[i] as f64;
         let mut p = vec![0.0; n];
         match (warm, load) {
             (Some(w), _) => {
                 for i in 0..n {
-                    p[i] = m(i) * w.pressure[i].max(0.0);
+                    p[i] = self.mask[i] as f64 * w.pressure[i].max(0.0);
                 }
             }
             (None, Load::Approach(d)) => self.overlap_start(&mut p, d),
-            (None, _) => self.cold_start(&mut p, target_force.unwrap_or(0.0), START_AREA),
+            (None, _) => {
+                let force = target_force.unwrap_or(0.0);
+                if !(force > 0.0 && self.nested_start(&mut p, force, opts)) {
+                    self.cold_start(&mut p, force, START_AREA);
+                }
+            }
         }
+        let m = |i: usize| self.mask[i] as f64;
         if let Some(w) = target_force {
             if w == 0.0 {
                 return Ok(self.finish_unloaded(0.0));
@@ -803,8 +869,8 @@ impl<K: Compliance> ContactSolver<K> {
             });
         // Sum of t over the contact set of the coming iteration (pass D).
         let mut t_on_set = 0.0;
-        // K in single precision while the residual is above SINGLE_UNTIL, where the
-        // operator has it.
+        // K p carried along in single precision while the residual is above
+        // SINGLE_UNTIL, where the operator has single-precision transforms.
         let mut single = matches!(
             self.op.spectral(Operand::ComplianceSingle),
             Some(Spectral {
@@ -813,6 +879,9 @@ impl<K: Compliance> ContactSolver<K> {
             })
         );
         let mut residual;
+        // Residual below which K p is recomputed in double precision once more (-inf:
+        // no more).
+        let mut refresh_below = f64::NEG_INFINITY;
         // Pending factor of the load constraint: p and K p are rescaled lazily in pass A
         // (K is linear), saving a sweep.
         let mut scale = 1.0;
@@ -873,9 +942,14 @@ impl<K: Compliance> ContactSolver<K> {
                     reason: "non-finite residual",
                 });
             }
-            if single && residual <= SINGLE_UNTIL {
-                // Double precision from here on, from a fresh K p (the direction is
-                // kept).
+            if single && residual <= SINGLE_UNTIL || residual <= refresh_below {
+                // K p in double precision from here on, from a fresh one (the direction
+                // is kept), and once more below REFRESH_AGAIN.
+                refresh_below = if single && residual > REFRESH_AGAIN {
+                    REFRESH_AGAIN
+                } else {
+                    f64::NEG_INFINITY
+                };
                 single = false;
                 self.op.apply(&p, &mut self.w);
                 refresh_z = true;
@@ -947,9 +1021,11 @@ impl<K: Compliance> ContactSolver<K> {
             } else {
                 Operand::Compliance
             };
+            // K t in single precision to the end, where the operator has it (module docs).
+            let kt_op = Operand::ComplianceSingle;
             let parts = load_fused(
                 &mut self.op,
-                k_op,
+                kt_op,
                 &mut self.fallback,
                 (
                     self.active.par_chunks(fc),
@@ -969,9 +1045,9 @@ impl<K: Compliance> ContactSolver<K> {
             // its energy only (predicted from the last iteration's changes, module docs).
             let fresh = skips && changed_last > (2 * limit) as f64;
             let tkt = if fresh {
-                energy_fused(&mut self.op, k_op, &mut self.fallback)
+                energy_fused(&mut self.op, kt_op, &mut self.fallback)
             } else {
-                apply_fused(&mut self.op, k_op, &mut self.fallback, true)
+                apply_fused(&mut self.op, kt_op, &mut self.fallback, true)
             };
             let tau = if tkt > 0.0 && num.is_finite() {
                 num / tkt
@@ -1016,7 +1092,7 @@ impl<K: Compliance> ContactSolver<K> {
             } else {
                 let parts = store_fused(
                     &mut self.op,
-                    k_op,
+                    kt_op,
                     &mut self.fallback,
                     (
                         p.par_chunks_mut(fc),
@@ -1102,6 +1178,54 @@ impl<K: Compliance> ContactSolver<K> {
                 .zip(&self.mask)
                 .for_each(|(v, &m)| *v = m as f64);
         }
+    }
+
+    /// Nested start under force control (module docs): the load solved to
+    /// [`NESTED_TOLERANCE`] on the grid coarsened 2 x 2 (heights averaged over each
+    /// coarse cell's four cells), each coarse cell's pressure given to its four cells.
+    /// False, with p untouched, where it does not apply: nesting off, a side below
+    /// [`NESTED_MIN`] or odd, a mask, an operator without a coarse form, or a coarse
+    /// solve that fails (the cold start then runs as without it).
+    fn nested_start(&mut self, p: &mut [f64], force: f64, opts: &SolverOptions) -> bool {
+        let (nx, ny) = (self.op.nx(), self.op.ny());
+        if !self.nested
+            || nx < NESTED_MIN
+            || ny < NESTED_MIN
+            || self.domain_cells != self.op.cells()
+        {
+            return false;
+        }
+        let cx = nx / 2;
+        if self.coarse.is_none() {
+            let Some(op) = self.op.coarse() else {
+                return false;
+            };
+            let z = &self.z;
+            let heights: Vec<f64> = (0..cx * (ny / 2))
+                .map(|k| {
+                    let i = 2 * (k / cx) * nx + 2 * (k % cx);
+                    -0.25 * (z[i] + z[i + 1] + z[i + nx] + z[i + nx + 1])
+                })
+                .collect();
+            match ContactSolver::new(op, &heights, None) {
+                Ok(s) => self.coarse = Some(Box::new(s)),
+                Err(_) => return false,
+            }
+        }
+        let Some(coarse) = self.coarse.as_deref_mut() else {
+            return false;
+        };
+        let loose = SolverOptions {
+            tolerance: NESTED_TOLERANCE.max(opts.tolerance),
+            max_iterations: opts.max_iterations.min(NESTED_MAX_ITERATIONS),
+        };
+        let Ok(sol) = coarse.solve_on_pool(Load::Force(force), &loose, None) else {
+            return false;
+        };
+        for (k, v) in p.iter_mut().enumerate() {
+            *v = sol.pressure[(k / nx / 2) * cx + (k % nx) / 2];
+        }
+        true
     }
 
     /// The fraction of the domain the cold start's overlap covers (may be >= 1 or not

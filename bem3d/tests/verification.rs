@@ -802,9 +802,9 @@ fn windowed_solve_is_bit_identical_whatever_the_thread_count() {
 }
 
 /// The preconditioner's transforms run in single precision by default, and so do K's in
-/// the iterations before the criterion reaches 1e-4 (`Operand::ComplianceSingle`); the
-/// last iterations and the final check use K in double precision, so the solution is
-/// the all-double iteration's (`Precision::Double`: neither in single precision) to the
+/// the iterations before the criterion reaches 1e-4 (`Operand::ComplianceSingle`) and
+/// K t's after; K p is then recomputed in double precision (at 1e-4, 1e-7 and for the
+/// final check), so the solution is the all-double iteration's (`Precision::Double`: neither in single precision) to the
 /// solver's tolerance: periodic rough surface at about 20 % and 1 % contact, a sphere
 /// on the free half-space (full grid), same iterations within 10 %.
 #[test]
@@ -887,4 +887,84 @@ fn single_precision_preconditioner_reaches_the_same_solution() {
             .unwrap()
     };
     check(solve(Precision::Single), solve(Precision::Double), "sphere");
+}
+
+/// The nested start (a cold solve under force control on a grid of 512 cells a side or
+/// more first solves the load loosely on the grid coarsened 2 x 2) reaches the cold
+/// start's solution to the solver's tolerance, in fewer iterations: a rough surface at
+/// about 1 % and 20 % contact on the periodic and the free half-space, at 1e-12. It is
+/// bit-identical for any thread count, and a mask turns it off.
+#[test]
+fn nested_start_reaches_the_cold_starts_solution_in_fewer_iterations() {
+    let n = 512;
+    let h = common::self_affine(n, 0.8, 9);
+    let o = SolverOptions {
+        tolerance: 1e-12,
+        max_iterations: 10_000,
+    };
+    fn solve<K: Compliance>(
+        op: K,
+        h: &[f64],
+        pm: f64,
+        nested: bool,
+        o: &SolverOptions,
+    ) -> Solution {
+        let mut s = ContactSolver::new(op, h, None).unwrap();
+        s.set_nested_start(nested);
+        s.solve(Load::MeanPressure(pm), o, None).unwrap()
+    }
+    // The full-grid iteration (no candidate set at the lower load).
+    let periodic = || common::full_grid_only(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0));
+    let free = || common::full_grid_only(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0));
+    let check = |a: Solution, b: Solution, what: &str| {
+        assert!(!a.restricted && !b.restricted, "{what}: paths");
+        assert!(
+            a.residual <= 1e-12 && b.residual <= 1e-12,
+            "{what}: residuals"
+        );
+        let dp = same_solution(&a, &b, what);
+        assert!(
+            a.iterations < b.iterations,
+            "{what}: {} iterations nested against {} cold",
+            a.iterations,
+            b.iterations
+        );
+        eprintln!(
+            "{what}: {} contact cells, {} iterations nested against {} cold; pressures \
+             within {dp:.1e} of the peak",
+            a.contact_cells, a.iterations, b.iterations
+        );
+    };
+    for pm in [5e-4, 1e-2] {
+        check(
+            solve(periodic(), &h, pm, true, &o),
+            solve(periodic(), &h, pm, false, &o),
+            &format!("periodic at {pm}"),
+        );
+    }
+    check(
+        solve(free(), &h, 5e-4, true, &o),
+        solve(free(), &h, 5e-4, false, &o),
+        "free at 5e-4",
+    );
+    let run = |threads: usize| {
+        common::on_threads(threads, || {
+            let sol = solve(periodic(), &h, 5e-4, true, &SolverOptions::default());
+            (sol.pressure, sol.approach.to_bits(), sol.iterations)
+        })
+    };
+    assert_eq!(run(1), run(3));
+    // With a mask (here every cell but one) the start is the cold one: the same solve,
+    // bit for bit, with nesting on or off.
+    let mut mask = vec![true; n * n];
+    mask[0] = false;
+    let masked = |nested: bool| {
+        let mut s = ContactSolver::new(periodic(), &h, Some(mask.clone())).unwrap();
+        s.set_nested_start(nested);
+        let sol = s
+            .solve(Load::MeanPressure(5e-4), &SolverOptions::default(), None)
+            .unwrap();
+        (sol.pressure, sol.iterations)
+    };
+    assert_eq!(masked(true), masked(false));
 }

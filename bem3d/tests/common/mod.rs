@@ -219,6 +219,10 @@ impl<K: Compliance> Compliance for Unrestricted<K> {
     fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
         self.op.spectral(which)
     }
+    fn coarse(&self) -> Option<Self> {
+        let table = self.table;
+        self.op.coarse().map(|op| Unrestricted { op, table })
+    }
 }
 
 /// `f` on a rayon pool of `threads` threads (for the thread-count determinism tests).
