@@ -3,16 +3,16 @@
 //!
 //! The search direction is built from the preconditioned residual `[p > 0] M g`, with M
 //! the operator's approximate inverse ([`Compliance::precondition`]: the spectral
-//! stiffness E*|k|/2; an FFT-based preconditioner in the spirit of Vollebregt 2014,
-//! J. Comput. Phys. 257). On the benchmark surfaces M cuts the iterations 3-5x (512^2
+//! stiffness E*|k|/2; an FFT-based preconditioner in the spirit of Vollebregt 2014, J.
+//! Comput. Phys. 257). On the benchmark surfaces M cuts the iterations 3-5x (512^2
 //! rough: 300 -> 70). M's transforms run in single precision ([`crate::Precision`]): it
 //! only shapes the directions, and the criterion is evaluated on K in double precision,
-//! so the fixed point is the same; measured (benchmark surfaces, 256^2-1024^2, 1 %
-//! and 20 % contact) the iterations were the same as with M in double precision, the
+//! so the fixed point is the same; measured (benchmark surfaces, 256^2-1024^2, 1 % and
+//! 20 % contact) the iterations were the same as with M in double precision, the
 //! solutions within 1e-9 of the peak pressure; the speed-up is 1.13-1.17x at 2048^2
 //! (one thread, 20 % contact, against one f64 transform shared by K and M) and within
-//! the noise (0.95-1.13x) at 256^2-1024^2; an f32 convolution costs 0.68-0.86 of an
-//! f64 one. K's transforms run in single precision too while the criterion is above
+//! the noise (0.95-1.13x) at 256^2-1024^2; an f32 convolution costs 0.68-0.86 of an f64
+//! one. K's transforms run in single precision too while the criterion is above
 //! `SINGLE_UNTIL` (1e-4, where the operator has them: [`Operand::ComplianceSingle`]);
 //! there the displacement carries rounding of about 1e-7 relative, far below the
 //! residual, and the iteration then goes on from a fresh `K p` in double precision.
@@ -20,44 +20,44 @@
 //! 14-18 % less time at 1024^2 periodic and 14-23 % on the free half-space, at 1 % and
 //! 20 % contact. After that K t (the direction's, one per iteration) stays in single
 //! precision; only `K p` is recomputed in double precision: at 1e-4, again at
-//! `REFRESH_AGAIN` (1e-7) and before convergence is reported. Carried along by
-//! `- tau K t`, `K p` then takes rounding of about 1e-6 of its change since the last
+//! `REFRESH_AGAIN` (1e-7) and before convergence is reported. Carried along by `- tau K
+//! t`, `K p` then takes rounding of about 1e-6 of its change since the last
 //! recomputation, which shrinks with the residual (about 1e-10 after 1e-4, 1e-13 after
 //! 1e-7), and the final check sees a fresh double-precision `K p` as before. Measured
 //! on the benchmark surfaces (512^2 and 1024^2 periodic at 1 % and 20 % contact, free
 //! at 1 %; AMD EPYC VM): the same iterations, peak pressures within 2e-13 relative of
 //! the iteration with K t in double precision after 1e-4 (within 3e-11 without the
-//! second recomputation). The direction t and the preconditioned residual (M's output, single
-//! precision already) are stored in single precision: K's input, the update and
+//! second recomputation). The direction t and the preconditioned residual (M's output,
+//! single precision already) are stored in single precision: K's input, the update and
 //! `<q, t>` all read the stored t, so p and `K p` move consistently, and only the
 //! direction is rounded (a search direction need not be exact). Measured on the
 //! benchmark surfaces (0.1-20 % contact, 512^2 and 1024^2, periodic; 1 % and 20 % free
-//! at 1024^2): the same iterations, peak pressures within 2e-12 relative (3e-11 on
-//! the candidate-set path at 0.1 %, 512^2); 4-5 % less time at 1024^2 (one thread,
-//! interleaved A/B: three of the sweeps' streams halved). Each iteration applies K
-//! once (to the direction) and M once; the
-//! displacement `K p` is carried along (see [`ContactSolver::solve`]). Both are
-//! convolutions, and the sweeps that produce their inputs or consume their outputs run
-//! inside the transforms' row passes ([`Fft2::load_rows`](crate::fft::Fft2::load_rows)), on rows still in cache. K's
-//! column pass also returns `<t, K t>` (Parseval, [`Fft2::transform_columns`](crate::fft::Fft2::transform_columns)), so the
-//! step length is known before K t's rows come back and the projected update runs in
-//! K's inverse row pass (K t is never stored); the sweeps that need only the contact
-//! set read a one-byte flag instead of p. Measured (interleaved A/B, one thread, the
-//! 1024^2 benchmark surface, Intel Xeon VM): the flag 4-5 % of the solve, the fused
-//! update 7-9 % more, at 1 % and 20 % contact. While the contact set still changes in
-//! more cells than point loads can follow (after a cold start at 1 % contact: the first
-//! 10 and 14 iterations at 512^2 and 1024^2), K p is recomputed after each update;
-//! such an iteration needs K t for `<t, K t>` only: K's column pass stops there
+//! at 1024^2): the same iterations, peak pressures within 2e-12 relative (3e-11 on the
+//! candidate-set path at 0.1 %, 512^2); 4-5 % less time at 1024^2 (one thread,
+//! interleaved A/B: three of the sweeps' streams halved). Each iteration applies K once
+//! (to the direction) and M once; the displacement `K p` is carried along (see
+//! [`ContactSolver::solve`]). Both are convolutions, and the sweeps that produce their
+//! inputs or consume their outputs run inside the transforms' row passes
+//! ([`Fft2::load_rows`](crate::fft::Fft2::load_rows)), on rows still in cache. K's
+//! column pass also returns `<t, K t>` (Parseval,
+//! [`Fft2::transform_columns`](crate::fft::Fft2::transform_columns)), so the step
+//! length is known before K t's rows come back and the projected update runs in K's
+//! inverse row pass (K t is never stored); the sweeps that need only the contact set
+//! read a one-byte flag instead of p. Measured (interleaved A/B, one thread, the 1024^2
+//! benchmark surface, Intel Xeon VM): the flag 4-5 % of the solve, the fused update 7-9
+//! % more, at 1 % and 20 % contact. While the contact set still changes in more cells
+//! than point loads can follow (after a cold start at 1 % contact: the first 10 and 14
+//! iterations at 512^2 and 1024^2), K p is recomputed after each update; such an
+//! iteration needs K t for `<t, K t>` only: K's column pass stops there
 //! ([`Fft2::column_energy`](crate::fft::Fft2::column_energy)) and the update runs in
 //! the fresh K p's row pass (operators with transforms only: a dense K would be applied
-//! twice). Which iterations these are is predicted from the last update's changed
-//! cells (more than twice the point-load limit; a cold start counts as many); a wrong
-//! guess costs time, not accuracy: K p is then fresh where point loads would have
-//! updated it. Results are the same bit for bit
-//! where the guess holds (checked: the rough benchmark solves at 0.1-20 % contact,
-//! 256^2-1024^2, periodic and free); Hertz windows differ by rounding (their rounds
-//! start with a fresh guess and few changes). Measured (1 % contact, 1024^2, one
-//! thread, interleaved A/B): 4-5 % less time, periodic and free.
+//! twice). Which iterations these are is predicted from the last update's changed cells
+//! (more than twice the point-load limit; a cold start counts as many); a wrong guess
+//! costs time, not accuracy: K p is then fresh where point loads would have updated it.
+//! Results are the same bit for bit where the guess holds (checked: the rough benchmark
+//! solves at 0.1-20 % contact, 256^2-1024^2, periodic and free); Hertz windows differ
+//! by rounding (their rounds start with a fresh guess and few changes). Measured (1 %
+//! contact, 1024^2, one thread, interleaved A/B): 4-5 % less time, periodic and free.
 //!
 //! The direction is `t = y + beta t` with Polak-Ribiere+'s
 //! `beta = max(0, <q, y - y_prev> / <q_prev, y_prev>)` (Gilbert & Nocedal 1992, SIAM J.
@@ -111,18 +111,20 @@
 //! on the grid coarsened 2 x 2 ([`Compliance::coarse`]; heights averaged over each
 //! coarse cell's four cells) to `NESTED_TOLERANCE` (1e-3), and starts from that
 //! pressure, each coarse cell's value on its four cells, instead of the overlap start
-//! (the coarse grid's solver is kept for later solves; its own cold start may nest
-//! again). Asperities finer than the coarse cells are not in that start, so the fine
-//! iteration begins at a residual of a few 1e-2 whatever the coarse tolerance, and
-//! gains its iterations while the contact set forms. Measured on the benchmark surfaces
-//! (one thread, AMD EPYC VM; iterations cold -> nested; the coarse solve costs about a
-//! quarter of its iterations in fine ones): periodic 512^2 at 1 % and 20 % contact 33
-//! -> 28, 47 -> 39; 1024^2 37 -> 32, 67 -> 54; 2048^2 at 0.1 %, 1 % and 20 % 32 -> 28,
-//! 51 -> 40, 92 -> 74; free 512^2 and 1024^2 at 1 % 35 -> 28, 41 -> 36; solve time
-//! 3-11 % less at 512^2, 9-14 % at 1024^2 (free 1024^2: within the noise). At 256^2
-//! it saved one iteration in 21 and 36 (a loss), hence the size limit. On a surface
-//! rough down to the cell size (the tests') the coarse grid sees less of it: 512^2 at
-//! 0.4 % and 8 % contact 27 -> 26 and 49 -> 44.
+//! (the coarse grid's solver is kept for later solves; its own cold start nests again
+//! from `COARSE_NESTED_MIN`, 256 cells a side). Asperities finer than the coarse cells
+//! are not in that start, so the fine iteration begins at a residual of a few 1e-2
+//! whatever the coarse tolerance, and gains its iterations while the contact set forms.
+//! Measured on the benchmark surfaces (one thread, AMD EPYC VM; iterations cold ->
+//! nested; the coarse solve costs about a quarter of its iterations in fine ones):
+//! periodic 512^2 at 1 % and 20 % contact 33 -> 28, 47 -> 39; 1024^2 37 -> 32, 67 ->
+//! 54; 2048^2 at 0.1 %, 1 % and 20 % 32 -> 28, 51 -> 40, 92 -> 74; free 512^2 and
+//! 1024^2 at 1 % 35 -> 28, 41 -> 36; solve time 3-11 % less at 512^2, 9-14 % at 1024^2
+//! (free 1024^2: within the noise). At 256^2 it saved one iteration in 21 and 36 (a
+//! loss), hence the size limit. The gain varies with the surface and load: on the
+//! tests' surface (another realisation, 512^2) at 0.4 % and 8 % contact 27 -> 27 and
+//! 49 -> 44 (free, 0.4 %: 27 -> 25); the contact set then forms within a few
+//! iterations from either start.
 //!
 //! Compact contacts on the non-periodic half-space (module `window`): a cold solve
 //! whose start (the overlap covering `3 p / (E* h')`, or the overlap at the prescribed
@@ -273,6 +275,9 @@ pub struct ContactSolver<K: Compliance> {
     /// Whether cold solves under force control may start from the coarse grid's
     /// solution (module docs; on by default).
     nested: bool,
+    /// Fewest cells per side for a nested start: [`NESTED_MIN`], or
+    /// [`COARSE_NESTED_MIN`] for a coarse grid's solver.
+    nested_min: usize,
 }
 
 /// Sweep chunk, in cells (rounded to whole rows): fixed, so that partial sums (and
@@ -286,6 +291,11 @@ const START_AREA: f64 = 6.0;
 /// Nested start (module docs): grids with at least this many cells per side (and
 /// even sides) start from their 2 x 2 coarsening's solution.
 const NESTED_MIN: usize = 512;
+
+/// A coarse grid's own cold start nests again from this many cells per side: cheap at
+/// that size, and on the 512^2 benchmark surface at 1 % contact the fine iterations
+/// went from 32 to 28 (1024^2 and 20 % contact: the same iterations as with 512).
+const COARSE_NESTED_MIN: usize = 256;
 
 /// Tolerance of the nested start's coarse solve: the fine iteration starts from about
 /// the same residual whether the coarse solve stops at 1e-2, 1e-3 or 1e-10 (the coarse
@@ -343,10 +353,11 @@ fn sum_parts<const N: usize>(parts: &[[f64; N]], max_slot: Option<usize>) -> [f6
     acc
 }
 
-/// First half of a fused application of K or M ([`Fft2::load_rows`](crate::fft::Fft2::load_rows)): `load(item,
-/// values)` produces the input a chunk of [`ROWS_PER_CHUNK`] rows at a time from
-/// the caller's items. Operators without a spectral form collect the input in
-/// `fallback` instead (same chunks, same sums).
+/// First half of a fused application of K or M
+/// ([`Fft2::load_rows`](crate::fft::Fft2::load_rows)): `load(item, values)` produces
+/// the input a chunk of [`ROWS_PER_CHUNK`] rows at a time from the caller's items.
+/// Operators without a spectral form collect the input in `fallback` instead (same
+/// chunks, same sums).
 fn load_fused<K, I, F, const A: usize>(
     op: &mut K,
     which: Operand,
@@ -375,8 +386,9 @@ where
         .collect()
 }
 
-/// Second half of a fused application: the operator applied to the loaded input,
-/// handed to `store(item, values)` a chunk at a time ([`Fft2::finish_rows`](crate::fft::Fft2::finish_rows)).
+/// Second half of a fused application: the operator applied to the loaded input, handed
+/// to `store(item, values)` a chunk at a time
+/// ([`Fft2::finish_rows`](crate::fft::Fft2::finish_rows)).
 fn finish_fused<K, I, F, const B: usize>(
     op: &mut K,
     which: Operand,
@@ -395,10 +407,13 @@ where
 }
 
 /// The second half's first step: the operator applied to the loaded input x (the
-/// transforms' column pass, [`Fft2::convolve_columns`](crate::fft::Fft2::convolve_columns); an operator without a spectral
-/// form applies itself into `fallback`). With `energy` (K only), returns `<x, K x>`
-/// (Parseval, [`Fft2::transform_columns`](crate::fft::Fft2::transform_columns); the fallback sums in a fixed order) for a
-/// caller that needs it before the rows, else 0; the rows follow with [`store_fused`].
+/// transforms' column pass,
+/// [`Fft2::convolve_columns`](crate::fft::Fft2::convolve_columns); an operator without
+/// a spectral form applies itself into `fallback`). With `energy` (K only), returns
+/// `<x, K x>` (Parseval,
+/// [`Fft2::transform_columns`](crate::fft::Fft2::transform_columns); the fallback sums
+/// in a fixed order) for a caller that needs it before the rows, else 0; the rows
+/// follow with [`store_fused`].
 fn apply_fused<K: Compliance>(
     op: &mut K,
     which: Operand,
@@ -549,6 +564,7 @@ impl<K: Compliance> ContactSolver<K> {
             mask,
             coarse: None,
             nested: true,
+            nested_min: NESTED_MIN,
         }
     }
 
@@ -1184,13 +1200,14 @@ impl<K: Compliance> ContactSolver<K> {
     /// [`NESTED_TOLERANCE`] on the grid coarsened 2 x 2 (heights averaged over each
     /// coarse cell's four cells), each coarse cell's pressure given to its four cells.
     /// False, with p untouched, where it does not apply: nesting off, a side below
-    /// [`NESTED_MIN`] or odd, a mask, an operator without a coarse form, or a coarse
-    /// solve that fails (the cold start then runs as without it).
+    /// [`NESTED_MIN`] ([`COARSE_NESTED_MIN`] on a coarse grid) or odd, a mask, an
+    /// operator without a coarse form, or a coarse solve that fails (the cold start
+    /// then runs as without it).
     fn nested_start(&mut self, p: &mut [f64], force: f64, opts: &SolverOptions) -> bool {
         let (nx, ny) = (self.op.nx(), self.op.ny());
         if !self.nested
-            || nx < NESTED_MIN
-            || ny < NESTED_MIN
+            || nx < self.nested_min
+            || ny < self.nested_min
             || self.domain_cells != self.op.cells()
         {
             return false;
@@ -1208,7 +1225,10 @@ impl<K: Compliance> ContactSolver<K> {
                 })
                 .collect();
             match ContactSolver::new(op, &heights, None) {
-                Ok(s) => self.coarse = Some(Box::new(s)),
+                Ok(mut s) => {
+                    s.nested_min = COARSE_NESTED_MIN;
+                    self.coarse = Some(Box::new(s))
+                }
                 Err(_) => return false,
             }
         }
