@@ -118,7 +118,7 @@
 //! Measured on the benchmark surfaces (one thread, AMD EPYC VM; iterations cold ->
 //! nested; the coarse solve costs about a quarter of its iterations in fine ones):
 //! periodic 512^2 at 1 % and 20 % contact 33 -> 28, 47 -> 39; 1024^2 37 -> 32, 67 ->
-//! 54; 2048^2 at 0.1 %, 1 % and 20 % 32 -> 28, 51 -> 40, 92 -> 74; free 512^2 and
+//! 54; 2048^2 at 0.1 %, 1 % and 20 % 32 -> 28, 51 -> 42, 92 -> 74; free 512^2 and
 //! 1024^2 at 1 % 35 -> 28, 41 -> 36; solve time 3-11 % less at 512^2, 9-14 % at 1024^2
 //! (free 1024^2: within the noise). At 256^2 it saved one iteration in 21 and 36 (a
 //! loss), hence the size limit. The gain varies with the surface and load: on the
