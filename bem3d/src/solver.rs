@@ -1032,12 +1032,13 @@ impl<K: Compliance> ContactSolver<K> {
                 beta,
                 approach,
             };
-            let k_op = if single {
+            // A fresh K p in the precision it is carried in; K t in single precision to
+            // the end, where the operator has it (module docs).
+            let kp_op = if single {
                 Operand::ComplianceSingle
             } else {
                 Operand::Compliance
             };
-            // K t in single precision to the end, where the operator has it (module docs).
             let kt_op = Operand::ComplianceSingle;
             let parts = load_fused(
                 &mut self.op,
@@ -1091,7 +1092,7 @@ impl<K: Compliance> ContactSolver<K> {
                 // The update as the input of a fresh K p, in K's precision.
                 let parts = load_fused(
                     &mut self.op,
-                    k_op,
+                    kp_op,
                     &mut self.fallback,
                     (
                         p.par_chunks_mut(fc),
@@ -1101,7 +1102,7 @@ impl<K: Compliance> ContactSolver<K> {
                     ),
                     |(p, t, w, m), values| sweeps::advance(p, t, w, m, values, upd),
                 );
-                self.finish_into_w(k_op);
+                self.finish_into_w(kp_op);
                 refresh_z = true;
                 exact = !single;
                 parts
@@ -1128,12 +1129,12 @@ impl<K: Compliance> ContactSolver<K> {
                     if single {
                         load_fused(
                             &mut self.op,
-                            k_op,
+                            kp_op,
                             &mut self.fallback,
                             p.par_chunks(fc),
                             copy_in,
                         );
-                        self.finish_into_w(k_op);
+                        self.finish_into_w(kp_op);
                     } else {
                         self.op.apply(&p, &mut self.w);
                     }
