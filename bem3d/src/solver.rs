@@ -1213,25 +1213,8 @@ impl<K: Compliance> ContactSolver<K> {
         {
             return false;
         }
-        let cx = nx / 2;
         if self.coarse.is_none() {
-            let Some(op) = self.op.coarse() else {
-                return false;
-            };
-            let z = &self.z;
-            let heights: Vec<f64> = (0..cx * (ny / 2))
-                .map(|k| {
-                    let i = 2 * (k / cx) * nx + 2 * (k % cx);
-                    -0.25 * (z[i] + z[i + 1] + z[i + nx] + z[i + nx + 1])
-                })
-                .collect();
-            match ContactSolver::new(op, &heights, None) {
-                Ok(mut s) => {
-                    s.nested_min = COARSE_NESTED_MIN;
-                    self.coarse = Some(Box::new(s))
-                }
-                Err(_) => return false,
-            }
+            self.coarse = self.coarse_solver().map(Box::new);
         }
         let Some(coarse) = self.coarse.as_deref_mut() else {
             return false;
@@ -1243,10 +1226,29 @@ impl<K: Compliance> ContactSolver<K> {
         let Ok(sol) = coarse.solve_on_pool(Load::Force(force), &loose, None) else {
             return false;
         };
+        let cx = nx / 2;
         for (k, v) in p.iter_mut().enumerate() {
             *v = sol.pressure[(k / nx / 2) * cx + (k % nx) / 2];
         }
         true
+    }
+
+    /// The solver on this grid coarsened 2 x 2 (heights averaged over each coarse
+    /// cell's four cells), nesting again from [`COARSE_NESTED_MIN`]; None if the
+    /// operator has no coarse form.
+    fn coarse_solver(&self) -> Option<ContactSolver<K>> {
+        let op = self.op.coarse()?;
+        let (nx, cx) = (self.op.nx(), op.nx());
+        let z = &self.z;
+        let heights: Vec<f64> = (0..op.cells())
+            .map(|k| {
+                let i = 2 * (k / cx) * nx + 2 * (k % cx);
+                -0.25 * (z[i] + z[i + 1] + z[i + nx] + z[i + nx + 1])
+            })
+            .collect();
+        let mut s = ContactSolver::new(op, &heights, None).ok()?;
+        s.nested_min = COARSE_NESTED_MIN;
+        Some(s)
     }
 
     /// The fraction of the domain the cold start's overlap covers (may be >= 1 or not
