@@ -15,6 +15,10 @@ Set-up (ASPHER builds from source: cmake, a C++ compiler and Eigen):
         [--pressures 0.01 5e-4 5e-5] [--half-spaces periodic free] \
         [--hertz 512 1024] [--hertz-fractions 0.2 0.01]
 
+4096^2 (the issue's largest periodic grid): write the surfaces with `bench bem --max-n
+4096` and pass `--min-n 4096 --max-n 4096 --rounds 1` (ASPHER takes 1.5-8 minutes per
+solve there on a 2-core VM; the whole run about 15 minutes).
+
 Rough rows: the periodic benchmark surfaces at the given mean pressures (0.01, 5e-4 and
 5e-5 E* give about 20 %, 1 % and 0.1 % contact); with `--half-spaces free` the same
 surfaces on the free (non-periodic) half-space (rows "free"; the surface is not
