@@ -8,6 +8,9 @@
 //! inside the column pass, so a convolution streams the grid six times (the input; the
 //! row buffer and the spectrum, each written and read once; the output), without the
 //! separate passes of a forward transform, a product and an inverse transform.
+//! A zero input row is not transformed (its spectrum is read as zeros), and an inverse
+//! pass can leave out rows its caller does not read ([`Fft2::store_some_rows`]): a
+//! solver's inputs and outputs restricted to a small contact set skip most rows.
 //! Plans are created once; rows and column blocks are split over rayon threads. Each
 //! output value is computed by the same sequence of operations whatever the thread
 //! count, so results are bit-identical.
@@ -95,8 +98,12 @@ pub struct Fft2<T: FftFloat = f64> {
     c2r: Arc<dyn ComplexToReal<T>>,
     fwd_y: Arc<dyn Fft<T>>,
     inv_y: Arc<dyn Fft<T>>,
-    /// Row spectra, `ny x nc`.
+    /// Row spectra, `ny x nc`; rows marked in `zero_rows` are not written.
     rows: Vec<Complex<T>>,
+    /// Per row of `rows`: whether the loaded row was zero (its spectrum is `zero_row`).
+    zero_rows: Vec<bool>,
+    /// `nc` zeros: the spectrum of a zero row.
+    zero_row: Vec<Complex<T>>,
     /// The spectrum of a convolution (`nc x ny`), allocated on first use.
     work: Vec<Complex<T>>,
     /// Row width and count held in `rows` by [`Fft2::load_rows`].
@@ -160,6 +167,15 @@ fn transpose<'s, C: Copy + 's>(
     }
 }
 
+/// Whether every value of `row` is zero (either sign; a NaN is not): the bits but the
+/// sign's, or-ed over blocks of eight values (vector code), stopping at a block with
+/// any set.
+fn is_zero(row: &[f64]) -> bool {
+    let bits = |m: u64, v: &f64| m | (v.to_bits() << 1);
+    let (blocks, tail) = row.as_chunks::<8>();
+    blocks.iter().all(|b| b.iter().fold(0, bits) == 0) && tail.iter().fold(0, bits) == 0
+}
+
 /// Target size of a column block in complex values (256 KiB: in a core's L2 cache).
 const COLUMN_BLOCK: usize = 16_384;
 
@@ -177,6 +193,8 @@ impl<T: FftFloat> Fft2<T> {
             fwd_y: cp.plan_fft_forward(ny),
             inv_y: cp.plan_fft_inverse(ny),
             rows: vec![Complex::default(); ny * nc],
+            zero_rows: vec![false; ny],
+            zero_row: vec![Complex::default(); nc],
             work: Vec::new(),
             loaded: None,
             convolved: None,
@@ -236,7 +254,7 @@ impl<T: FftFloat> Fft2<T> {
         );
         let chunk = width * ROW_CHUNK;
         let items = output[..rows.min(ny) * width].par_chunks_mut(chunk);
-        self.row_pass_inverse(spec, width, rows.min(ny), items, copy_out);
+        self.row_pass_inverse(spec, width, rows.min(ny), items, copy_out, None);
     }
 
     /// `output = inverse(symbol * forward(input))` (zero-padded input and cropped
@@ -300,6 +318,7 @@ impl<T: FftFloat> Fft2<T> {
         let r2c = &self.r2c;
         self.rows[..rows * nc]
             .par_chunks_mut(nc * ROW_CHUNK)
+            .zip(self.zero_rows[..rows].par_chunks_mut(ROW_CHUNK))
             .zip(items)
             .map_init(
                 // realfft overwrites its input: padded rows are copied first.
@@ -310,10 +329,17 @@ impl<T: FftFloat> Fft2<T> {
                         vec![T::default(); nx],
                     )
                 },
-                |(scratch, values, row), (out, item)| {
+                |(scratch, values, row), ((out, zero), item)| {
                     let count = out.len() / nc;
                     let sums = load(item, &mut values[..count * width]);
-                    for (b, s) in out.chunks_mut(nc).zip(values.chunks_mut(width)) {
+                    let spectra = out.chunks_mut(nc).zip(zero.iter_mut());
+                    for ((b, zero), s) in spectra.zip(values.chunks_mut(width)) {
+                        // A zero row (e.g. off the contact set) has a zero spectrum: the
+                        // column pass reads `zero_row` instead.
+                        *zero = is_zero(s);
+                        if *zero {
+                            continue;
+                        }
                         let input = if width == nx {
                             T::row(s, row)
                         } else {
@@ -398,12 +424,30 @@ impl<T: FftFloat> Fft2<T> {
         I::Iter: IndexedParallelIterator,
         F: Fn(I::Item, &[f64]) -> [f64; B] + Sync,
     {
+        self.store_some_rows(items, store, None)
+    }
+
+    /// [`Self::store_rows`] computing only the rows `wanted` marks (one flag per row;
+    /// `None`: all): the others are handed to `store` unspecified (zeros or values of
+    /// earlier rows), for a `store` that skips them; a chunk without wanted rows does
+    /// not read the spectrum. The wanted rows are the same bit for bit.
+    pub fn store_some_rows<I, F, const B: usize>(
+        &mut self,
+        items: I,
+        store: F,
+        wanted: Option<&[bool]>,
+    ) -> Vec<[f64; B]>
+    where
+        I: IntoParallelIterator,
+        I::Iter: IndexedParallelIterator,
+        F: Fn(I::Item, &[f64]) -> [f64; B] + Sync,
+    {
         let (width, rows) = self
             .convolved
             .take()
             .expect("store_rows without convolve_columns");
         let work = std::mem::take(&mut self.work);
-        let sums = self.row_pass_inverse(&work, width, rows, items, store);
+        let sums = self.row_pass_inverse(&work, width, rows, items, store, wanted);
         self.work = work;
         sums
     }
@@ -460,6 +504,7 @@ impl<T: FftFloat> Fft2<T> {
         let twice = |c: usize| c > 0 && !(nx % 2 == 0 && c == nc - 1);
         let per = self.columns_per_block();
         let (fwd, inv, src) = (&self.fwd_y, &self.inv_y, &self.rows);
+        let (zero_rows, zero_row) = (&self.zero_rows, &self.zero_row);
         let scratch_len = fwd
             .get_inplace_scratch_len()
             .max(inv.get_inplace_scratch_len());
@@ -473,7 +518,11 @@ impl<T: FftFloat> Fft2<T> {
                     let width = block.len() / ny;
                     // Row r's stretch of this block's columns becomes entry r of each.
                     transpose(block, ny, filled, |r| {
-                        &src[r * nc + c0..r * nc + c0 + width]
+                        if zero_rows[r] {
+                            &zero_row[c0..c0 + width]
+                        } else {
+                            &src[r * nc + c0..r * nc + c0 + width]
+                        }
                     });
                     for col in block.chunks_mut(ny) {
                         col[filled..]
@@ -509,7 +558,8 @@ impl<T: FftFloat> Fft2<T> {
 
     /// Complex-to-real transforms of the first `rows` rows, gathered from `spec` (`nc x
     /// ny`, transformed along columns) a chunk at a time, normalised, cropped to
-    /// `width` columns and handed to `store` with the chunk's item.
+    /// `width` columns and handed to `store` with the chunk's item; rows that `wanted`
+    /// (if given) does not mark are not computed (their values are left as they were).
     fn row_pass_inverse<I, F, const B: usize>(
         &self,
         spec: &[Complex<T>],
@@ -517,6 +567,7 @@ impl<T: FftFloat> Fft2<T> {
         rows: usize,
         items: I,
         store: F,
+        wanted: Option<&[bool]>,
     ) -> Vec<[f64; B]>
     where
         I: IntoParallelIterator,
@@ -544,12 +595,18 @@ impl<T: FftFloat> Fft2<T> {
                 |(scratch, buf, full, values), (b, item)| {
                     let r0 = b * ROW_CHUNK;
                     let count = ROW_CHUNK.min(rows - r0);
+                    let want = |k: usize| wanted.is_none_or(|w| w[r0 + k]);
                     // Column c's stretch of this chunk's rows becomes entry c of each.
-                    transpose(buf, nc, nc, |c| &spec[c * ny + r0..c * ny + r0 + count]);
-                    for (a, o) in buf
+                    if (0..count).any(want) {
+                        transpose(buf, nc, nc, |c| &spec[c * ny + r0..c * ny + r0 + count]);
+                    }
+                    let rows = buf
                         .chunks_mut(nc)
-                        .zip(values[..count * width].chunks_mut(width))
-                    {
+                        .zip(values[..count * width].chunks_mut(width));
+                    for (k, (a, o)) in rows.enumerate() {
+                        if !want(k) {
+                            continue;
+                        }
                         // The DC and Nyquist imaginary parts must vanish for c2r; they do
                         // up to rounding for real data, so clear them.
                         a[0].im = T::default();
@@ -657,6 +714,50 @@ mod tests {
             f.inverse_cropped(&mut spec, &mut expected, w, rows);
             f.convolve(&x, (w, rows), &complex, &mut got);
             assert_eq!(got, expected, "{nx}x{ny} complex");
+        }
+    }
+
+    #[test]
+    fn zero_rows_and_unwanted_rows() {
+        // Zero rows (either sign, a whole chunk of them among them) are not transformed:
+        // the spectrum still matches the naive DFT. Rows left out of the output (a whole
+        // chunk among them) leave the wanted ones the same bit for bit.
+        let (nx, ny) = (24, 40);
+        let zero = |r: usize| matches!(r, 3 | 4 | 5 | 16..=31 | 39);
+        let mut x = ramp(nx * ny);
+        for (r, row) in x.chunks_mut(nx).enumerate() {
+            if zero(r) {
+                row.fill(if r == 5 { -0.0 } else { 0.0 });
+            }
+        }
+        let mut f = Fft2::new(nx, ny);
+        let mut spec = vec![Complex64::default(); f.spectrum_len()];
+        // A transform without zero rows first leaves no zeros behind.
+        f.forward(&ramp(nx * ny), &mut spec);
+        f.forward(&x, &mut spec);
+        for kx in 0..f.nc() {
+            for ky in 0..ny {
+                let d = naive_dft(&x, nx, ny, kx, ky);
+                assert!((spec[kx * ny + ky] - d).norm() < 1e-12, "({kx},{ky})");
+            }
+        }
+        let symbol = steps(f.spectrum_len());
+        let mut all = vec![0.0; nx * ny];
+        f.convolve(&x, (nx, ny), &symbol, &mut all);
+        let wanted: Vec<bool> = (0..ny)
+            .map(|r| r % 3 != 1 && !(14..34).contains(&r))
+            .collect();
+        let chunk = nx * ROW_CHUNK;
+        let mut got = vec![f64::NAN; nx * ny];
+        f.load_rows((nx, ny), x.par_chunks(chunk), copy_in);
+        f.convolve_columns(&symbol);
+        f.store_some_rows(got.par_chunks_mut(chunk), copy_out, Some(&wanted));
+        for r in (0..ny).filter(|&r| wanted[r]) {
+            assert_eq!(
+                got[r * nx..(r + 1) * nx],
+                all[r * nx..(r + 1) * nx],
+                "row {r}"
+            );
         }
     }
 

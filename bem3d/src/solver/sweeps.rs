@@ -151,13 +151,17 @@ pub(super) fn residual(
 
 /// After M: with `y = M q` and q recomputed from `active` and `w`, the sums of y over
 /// the contact set, `<q, y>` and `<q, y_prev>`; y then replaces `y_prev` (rounded to
-/// single precision, as M computes it).
+/// single precision, as M computes it). Only the rows (of `width` cells) that `on`
+/// marks are read, each run of consecutive ones as one stretch: the others hold no
+/// contact cell, so they add nothing, and M was not computed there (their `y_prev`,
+/// zero off the set since the direction pass, stays).
 #[inline(never)]
 pub(super) fn preconditioned(
     active: &[u8],
     w: &[f64],
     y_prev: &mut [f32],
     y: &[f64],
+    (on, width): (&[bool], usize),
     approach: f64,
 ) -> [f64; 3] {
     let cell = |act: u8, w: f64, y_prev: &mut f32, y: f64, s: &mut [f64; 3]| {
@@ -168,19 +172,32 @@ pub(super) fn preconditioned(
         s[2] += q * *y_prev as f64;
         *y_prev = y as f32;
     };
-    let n = active.len();
-    let (ab, at) = active.as_chunks::<LANES>();
-    let (wb, wt) = w[..n].as_chunks::<LANES>();
-    let (pb, pt) = y_prev[..n].as_chunks_mut::<LANES>();
-    let (yb, yt) = y[..n].as_chunks::<LANES>();
     let mut sums = Sums::new();
-    for (((a, w), yp), y) in ab.iter().zip(wb).zip(pb.iter_mut()).zip(yb) {
-        for l in 0..LANES {
-            sums.lane(l, |s| cell(a[l], w[l], &mut yp[l], y[l], s));
+    // Runs of consecutive marked rows, each as one stretch of cells.
+    let mut r0 = 0;
+    while r0 < on.len() {
+        if !on[r0] {
+            r0 += 1;
+            continue;
         }
-    }
-    for (((a, w), yp), y) in at.iter().zip(wt).zip(pt.iter_mut()).zip(yt) {
-        sums.lane(0, |s| cell(*a, *w, yp, *y, s));
+        let r1 = on[r0..]
+            .iter()
+            .position(|o| !o)
+            .map_or(on.len(), |k| r0 + k);
+        let cells = r0 * width..(r1 * width).min(active.len());
+        r0 = r1;
+        let (ab, at) = active[cells.clone()].as_chunks::<LANES>();
+        let (wb, wt) = w[cells.clone()].as_chunks::<LANES>();
+        let (pb, pt) = y_prev[cells.clone()].as_chunks_mut::<LANES>();
+        let (yb, yt) = y[cells].as_chunks::<LANES>();
+        for (((a, w), yp), y) in ab.iter().zip(wb).zip(pb.iter_mut()).zip(yb) {
+            for l in 0..LANES {
+                sums.lane(l, |s| cell(a[l], w[l], &mut yp[l], y[l], s));
+            }
+        }
+        for (((a, w), yp), y) in at.iter().zip(wt).zip(pt.iter_mut()).zip(yt) {
+            sums.lane(0, |s| cell(*a, *w, yp, *y, s));
+        }
     }
     sums.total(None)
 }
@@ -452,6 +469,39 @@ mod tests {
         v.map(f64::to_bits)
     }
 
+    /// The pass after M reads only the marked rows: the others' `y_prev` stays, and the
+    /// sums are those of the marked rows' cells alone, in lane order (rows of a
+    /// multiple of [`LANES`] cells: runs of rows as one stretch).
+    #[test]
+    fn pass_after_m_skips_unmarked_rows() {
+        let (width, on) = (8, [true, false, true, true, false]);
+        let n = width * on.len();
+        let row_on = |i: usize| on[i / width];
+        // The solver's invariant: no contact cell in an unmarked row.
+        let act: Vec<u8> = field(n, 1)
+            .iter()
+            .enumerate()
+            .map(|(i, &v)| (v > 0.0 && row_on(i)) as u8)
+            .collect();
+        let (w0, y, approach) = (field(n, 3), field(n, 5), 0.1);
+        let mut yp: Vec<f32> = field(n, 7).iter().map(|&v| v as f32).collect();
+        let yp0 = yp.clone();
+        let got = preconditioned(&act, &w0, &mut yp, &y, (&on, width), approach);
+        let cells: Vec<[f64; 3]> = (0..n)
+            .filter(|&i| row_on(i))
+            .map(|i| {
+                let a = act[i] as f64;
+                let q = a * (w0[i] - approach);
+                [a * y[i], q * y[i], q * yp0[i] as f64]
+            })
+            .collect();
+        assert_eq!(bits(got), bits(in_lane_order(&cells, None)));
+        for i in 0..n {
+            let want = if row_on(i) { y[i] as f32 } else { yp0[i] };
+            assert_eq!(yp[i].to_bits(), want.to_bits(), "cell {i}");
+        }
+    }
+
     /// Every pass against a plain cell-by-cell form of its formulas, summed in the
     /// documented lane order: outputs and sums bit for bit, on lengths with and without
     /// a partial last block.
@@ -510,7 +560,7 @@ mod tests {
             // After M.
             let mut yp: Vec<f32> = field(n, 7).iter().map(|&v| v as f32).collect();
             let yp0 = yp.clone();
-            let got = preconditioned(&act, &w0, &mut yp, &y, approach);
+            let got = preconditioned(&act, &w0, &mut yp, &y, (&[true], n.max(1)), approach);
             let cells: Vec<[f64; 3]> = (0..n)
                 .map(|i| {
                     let on = act[i] as f64;
