@@ -175,17 +175,13 @@ pub(super) fn preconditioned(
     let mut sums = Sums::new();
     // Runs of consecutive marked rows, each as one stretch of cells.
     let mut r0 = 0;
-    while r0 < on.len() {
-        if !on[r0] {
-            r0 += 1;
+    for run in on.chunk_by(|a, b| a == b) {
+        let rows = r0..r0 + run.len();
+        r0 = rows.end;
+        if !run[0] {
             continue;
         }
-        let r1 = on[r0..]
-            .iter()
-            .position(|o| !o)
-            .map_or(on.len(), |k| r0 + k);
-        let cells = r0 * width..(r1 * width).min(active.len());
-        r0 = r1;
+        let cells = rows.start * width..(rows.end * width).min(active.len());
         let (ab, at) = active[cells.clone()].as_chunks::<LANES>();
         let (wb, wt) = w[cells.clone()].as_chunks::<LANES>();
         let (pb, pt) = y_prev[cells.clone()].as_chunks_mut::<LANES>();
