@@ -62,11 +62,18 @@
 //! surfaces, 60 % of the rows; 89 % at 0.1 %): the inputs of K (t) and M (q) are zero
 //! there, and a zero row is not transformed ([`Fft2::load_rows`](crate::fft::Fft2::load_rows));
 //! M's output is read on the contact set only, so its rows off the set are neither
-//! transformed back nor swept (`rows_on`, marked with M's input). Results are the same
+//! transformed back nor swept (`rows_on`, marked by pass A). Results are the same
 //! bit for bit (checked: the benchmark solves at 0.1-20 % contact, 512^2 and 1024^2,
 //! periodic and free at 1 %, one and two threads). Measured (AMD EPYC VM, one thread,
 //! interleaved, medians of 8-20 solves): 10-15 % less time at 1 % contact (512^2,
-//! 1024^2, periodic and free), within the noise at 20 %.
+//! 1024^2, periodic and free), within the noise at 20 %. The sweeps skip those rows
+//! too: pass A reads p only in the rows pass D flagged as holding pressure (`rows_p`)
+//! and leaves p and w unwritten when no rescale is pending, pass B reads p only in the
+//! contact rows, and the direction pass only writes K's zero input in rows off the set
+//! in this and the last iteration (t and y_prev are zero there, `rows_t`). Again the
+//! same results bit for bit (the same solves, one and two threads); measured (same
+//! VM, one thread, 512^2 at 1 %, 30 solves each under perf): the sweeps' samples 16 %
+//! fewer, the solve's about 8 %.
 //!
 //! The direction is `t = y + beta t` with Polak-Ribiere+'s
 //! `beta = max(0, <q, y - y_prev> / <q_prev, y_prev>)` (Gilbert & Nocedal 1992, SIAM J.
@@ -274,9 +281,17 @@ pub struct ContactSolver<K: Compliance> {
     /// 1 where p > 0 (the contact set), written by pass A: the sweeps that need only
     /// the set read one byte per cell instead of p.
     active: Vec<u8>,
-    /// Per row: whether it holds a cell of the contact set (written with M's input; M's
-    /// output is read on the set only, so the other rows are not computed).
+    /// Per row: whether it holds a cell of the contact set (written by pass A; pass B
+    /// reads p only there, and M's output is read on the set only, so the other rows are
+    /// not computed).
     rows_on: Vec<bool>,
+    /// Per row: whether p may be positive there (written by pass D; all rows wherever p
+    /// is set otherwise): pass A reads p only in these rows.
+    rows_p: Vec<bool>,
+    /// Per row: whether t and y_prev may be non-zero there (the contact rows of the last
+    /// direction pass): the direction pass skips the rows marked neither here nor in
+    /// `rows_on`.
+    rows_t: Vec<bool>,
     /// Per-iteration corrections of the projected step (cell, pressure change).
     loads: Vec<(usize, f64)>,
     /// Input and output of fused applications of an operator without a spectral form.
@@ -574,6 +589,8 @@ impl<K: Compliance> ContactSolver<K> {
             y_prev: vec![0.0; n],
             active: vec![0; n],
             rows_on: vec![false; ny],
+            rows_p: vec![true; ny],
+            rows_t: vec![false; ny],
             loads: Vec::new(),
             fallback: [Vec::new(), Vec::new()],
             mask,
@@ -683,10 +700,11 @@ impl<K: Compliance> ContactSolver<K> {
     }
 
     /// Pass A: brings `w` up to date (`refresh`, then the pending force rescale of p
-    /// and K p), marks the contact set (p > 0) in `active` and sums `w - offset` and
-    /// the cell count over it.
+    /// and K p), marks the contact set (p > 0) in `active` and its rows in `rows_on`, and
+    /// sums `w - offset` and the cell count over it. p is read in the rows `rows_p`
+    /// marks only.
     fn pass_a(&mut self, p: &mut [f64], scale: f64, refresh: Refresh, offset: f64) -> [f64; 2] {
-        let ch = self.chunk();
+        let (nx, ch) = (self.op.nx(), self.chunk());
         let (loads, add_z) = match refresh {
             Refresh::Loads(l) => (l, 0.0),
             Refresh::AddZ => (&[][..], 1.0),
@@ -702,8 +720,12 @@ impl<K: Compliance> ContactSolver<K> {
                 self.z.par_chunks(ch),
                 self.w.par_chunks_mut(ch),
                 self.active.par_chunks_mut(ch),
+                self.rows_p.par_chunks(ch / nx),
+                self.rows_on.par_chunks_mut(ch / nx),
             ),
-            |(p, z, w, act)| sweeps::rescale(p, z, w, act, scale, zf, offset),
+            |(p, z, w, act, with_p, on)| {
+                sweeps::rescale(p, z, w, act, (with_p, on, nx), (scale, zf), offset)
+            },
             None,
         )
     }
@@ -899,6 +921,8 @@ impl<K: Compliance> ContactSolver<K> {
                 *t = 0.0;
                 *y = 0.0;
             });
+        self.rows_t.fill(false);
+        self.rows_p.fill(true);
         // Sum of t over the contact set of the coming iteration (pass D).
         let mut t_on_set = 0.0;
         // K p carried along in single precision while the residual is above
@@ -961,14 +985,9 @@ impl<K: Compliance> ContactSolver<K> {
                     p.par_chunks(fc),
                     self.w.par_chunks(fc),
                     self.mask.par_chunks(fc),
-                    self.rows_on.par_chunks_mut(ROWS_PER_CHUNK),
+                    self.rows_on.par_chunks(ROWS_PER_CHUNK),
                 ),
-                |(p, w, m, on), q| {
-                    for (on, p) in on.iter_mut().zip(p.chunks(nx)) {
-                        *on = p.iter().any(|&v| v > 0.0);
-                    }
-                    sweeps::residual(p, w, m, q, approach)
-                },
+                |(p, w, m, on), q| sweeps::residual(p, w, m, q, (on, nx), approach),
             );
             let [pg, ps, worst, sum_q] = sum_parts(&parts, Some(2));
             residual = (if ps > 0.0 { pg / (ps * h_rms) } else { 0.0 }).max(worst / h_rms);
@@ -1075,9 +1094,14 @@ impl<K: Compliance> ContactSolver<K> {
                     self.w.par_chunks(fc),
                     self.t.par_chunks_mut(fc),
                     self.y_prev.par_chunks_mut(fc),
+                    self.rows_on.par_chunks(ROWS_PER_CHUNK),
+                    self.rows_t.par_chunks(ROWS_PER_CHUNK),
                 ),
-                |(act, w, t, y_prev), out| sweeps::direction(act, w, t, y_prev, out, dir),
+                |(act, w, t, y_prev, on, was), out| {
+                    sweeps::direction(act, w, t, y_prev, out, (on, was, nx), dir)
+                },
             );
+            self.rows_t.copy_from_slice(&self.rows_on);
             let [num] = sum_parts(&parts, None);
             // K t, its rows fused with pass D below: the step length needs <t, K t> over
             // the whole grid first, which K's column pass gives (Parseval). Under force
@@ -1125,8 +1149,11 @@ impl<K: Compliance> ContactSolver<K> {
                         self.t.par_chunks(fc),
                         self.w.par_chunks(fc),
                         self.mask.par_chunks(fc),
+                        self.rows_p.par_chunks_mut(ROWS_PER_CHUNK),
                     ),
-                    |(p, t, w, m), values| sweeps::advance(p, t, w, m, values, upd),
+                    |(p, t, w, m, with_p), values| {
+                        sweeps::advance(p, t, w, m, values, (with_p, nx), upd)
+                    },
                 );
                 self.finish_into_w(kp_op);
                 refresh_z = true;
@@ -1143,8 +1170,11 @@ impl<K: Compliance> ContactSolver<K> {
                         self.r.par_chunks_mut(fc),
                         self.w.par_chunks_mut(fc),
                         self.mask.par_chunks(fc),
+                        self.rows_p.par_chunks_mut(ROWS_PER_CHUNK),
                     ),
-                    |(p, t, r, w, m), kt| sweeps::update(p, t, r, w, m, kt, upd),
+                    |(p, t, r, w, m, with_p), kt| {
+                        sweeps::update(p, t, r, (w, kt), m, (with_p, nx), upd)
+                    },
                     None,
                 );
                 let changed = sum_parts(&parts, None)[1];

@@ -202,6 +202,7 @@ impl<K: Compliance> ContactSolver<K> {
         opts: &SolverOptions,
     ) -> std::result::Result<Solution, (f64, f64)> {
         self.op.apply(p, &mut self.w);
+        self.rows_p.fill(true);
         let [sum_g, nc] = self.pass_a(p, 1.0, Refresh::AddZ, fixed_approach);
         let approach = match target_force {
             Some(_) if nc > 0.0 => fixed_approach + sum_g / nc,

@@ -11,6 +11,8 @@
 //! the development machine: a quarter of an iteration's time, about 1.7x the vector
 //! form's).
 
+use std::ops::Range;
+
 /// Lanes of the sums (four f64: one 256-bit vector).
 const LANES: usize = 4;
 
@@ -47,17 +49,40 @@ impl<const N: usize> Sums<N> {
     }
 }
 
+/// Runs of consecutive rows (of `width` cells, the grid's last one may be short) with
+/// the same `flag(row)`, over `rows` rows and `len` cells: (flag, cells).
+fn row_runs(
+    rows: usize,
+    width: usize,
+    len: usize,
+    flag: impl Fn(usize) -> bool,
+) -> impl Iterator<Item = (bool, Range<usize>)> {
+    let mut r = 0;
+    std::iter::from_fn(move || {
+        if r >= rows {
+            return None;
+        }
+        let (start, f) = (r, flag(r));
+        while r < rows && flag(r) == f {
+            r += 1;
+        }
+        Some((f, (start * width).min(len)..(r * width).min(len)))
+    })
+}
+
 /// Pass A: applies the pending force rescale (`p *= scale`, `w = scale w + zf z`),
-/// marks the contact set (p > 0) in `active`; returns the sum of `w - offset` and the
-/// cell count over the set.
+/// marks the contact set (p > 0) in `active` and its rows in `on`; returns the sum of
+/// `w - offset` and the cell count over the set. p is read only in the rows (of `width`
+/// cells) that `with_p` marks: the others hold no pressure (pass D's flags). With
+/// `scale = 1` and `zf = 0` (no rescale pending) p and w are read, not written.
 #[inline(never)]
 pub(super) fn rescale(
     p: &mut [f64],
     z: &[f64],
     w: &mut [f64],
     active: &mut [u8],
-    scale: f64,
-    zf: f64,
+    (with_p, on, width): (&[bool], &mut [bool], usize),
+    (scale, zf): (f64, f64),
     offset: f64,
 ) -> [f64; 2] {
     let cell = |p: &mut f64, z: f64, w: &mut f64, act: &mut u8, s: &mut [f64; 2]| {
@@ -70,19 +95,58 @@ pub(super) fn rescale(
         s[0] += a * (wi - offset);
         s[1] += a;
     };
+    let kept = |p: f64, w: f64, act: &mut u8, s: &mut [f64; 2]| {
+        *act = (p > 0.0) as u8;
+        let a = if p > 0.0 { 1.0 } else { 0.0 };
+        s[0] += a * (w - offset);
+        s[1] += a;
+    };
+    let unchanged = scale == 1.0 && zf == 0.0;
     let n = p.len();
-    let (pb, pt) = p.as_chunks_mut::<LANES>();
-    let (zb, zt) = z[..n].as_chunks::<LANES>();
-    let (wb, wt) = w[..n].as_chunks_mut::<LANES>();
-    let (ab, at) = active[..n].as_chunks_mut::<LANES>();
     let mut sums = Sums::new();
-    for (((p, z), w), a) in pb.iter_mut().zip(zb).zip(wb.iter_mut()).zip(ab.iter_mut()) {
-        for l in 0..LANES {
-            sums.lane(l, |s| cell(&mut p[l], z[l], &mut w[l], &mut a[l], s));
+    for (any_p, cells) in row_runs(with_p.len(), width, n, |r| with_p[r]) {
+        let (z, w, act) = (
+            &z[cells.clone()],
+            &mut w[cells.clone()],
+            &mut active[cells.clone()],
+        );
+        if !any_p {
+            // No pressure in these rows: w only.
+            if !unchanged {
+                for (w, z) in w.iter_mut().zip(z) {
+                    *w = scale * *w + zf * z;
+                }
+            }
+            act.fill(0);
+            continue;
+        }
+        let p = &mut p[cells];
+        let (pb, pt) = p.as_chunks_mut::<LANES>();
+        let (zb, zt) = z.as_chunks::<LANES>();
+        let (wb, wt) = w.as_chunks_mut::<LANES>();
+        let (ab, at) = act.as_chunks_mut::<LANES>();
+        if unchanged {
+            for ((p, w), a) in pb.iter().zip(wb.iter()).zip(ab.iter_mut()) {
+                for l in 0..LANES {
+                    sums.lane(l, |s| kept(p[l], w[l], &mut a[l], s));
+                }
+            }
+            for ((p, w), a) in pt.iter().zip(wt.iter()).zip(at.iter_mut()) {
+                sums.lane(0, |s| kept(*p, *w, a, s));
+            }
+            continue;
+        }
+        for (((p, z), w), a) in pb.iter_mut().zip(zb).zip(wb.iter_mut()).zip(ab.iter_mut()) {
+            for l in 0..LANES {
+                sums.lane(l, |s| cell(&mut p[l], z[l], &mut w[l], &mut a[l], s));
+            }
+        }
+        for (((p, z), w), a) in pt.iter_mut().zip(zt).zip(wt.iter_mut()).zip(at.iter_mut()) {
+            sums.lane(0, |s| cell(p, *z, w, a, s));
         }
     }
-    for (((p, z), w), a) in pt.iter_mut().zip(zt).zip(wt.iter_mut()).zip(at.iter_mut()) {
-        sums.lane(0, |s| cell(p, *z, w, a, s));
+    for ((on, act), &any_p) in on.iter_mut().zip(active[..n].chunks(width)).zip(with_p) {
+        *on = any_p && act.contains(&1);
     }
     sums.total(None)
 }
@@ -114,13 +178,16 @@ pub(super) fn criterion_terms(p: &[f64], w: &[f64], mask: &[u8], approach: f64) 
 }
 
 /// Pass B: the criterion's terms (as [`criterion_terms`]) and the residual
-/// `q = [p > 0] g`, M's input, with its sum (slot 3).
+/// `q = [p > 0] g`, M's input, with its sum (slot 3). p is read only in the rows (of
+/// `width` cells) that `on` marks (pass A's: the rows of the contact set); the others'
+/// q is 0 and only their gaps count (the largest interpenetration).
 #[inline(never)]
 pub(super) fn residual(
     p: &[f64],
     w: &[f64],
     mask: &[u8],
     q: &mut [f64],
+    (on, width): (&[bool], usize),
     approach: f64,
 ) -> [f64; 4] {
     let cell = |p: f64, w: f64, m: u8, q: &mut f64, s: &mut [f64; 4]| {
@@ -132,19 +199,37 @@ pub(super) fn residual(
         *q = a * gi;
         s[3] += a * gi;
     };
+    let off = |w: f64, m: u8, q: &mut f64, s: &mut [f64; 4]| {
+        let gi = m as f64 * (w - approach);
+        s[2] = max(s[2], -gi);
+        *q = 0.0;
+    };
     let n = p.len();
-    let (pb, pt) = p.as_chunks::<LANES>();
-    let (wb, wt) = w[..n].as_chunks::<LANES>();
-    let (mb, mt) = mask[..n].as_chunks::<LANES>();
-    let (qb, qt) = q[..n].as_chunks_mut::<LANES>();
     let mut sums = Sums::new();
-    for (((p, w), m), q) in pb.iter().zip(wb).zip(mb).zip(qb.iter_mut()) {
-        for l in 0..LANES {
-            sums.lane(l, |s| cell(p[l], w[l], m[l], &mut q[l], s));
+    for (set, cells) in row_runs(on.len(), width, n, |r| on[r]) {
+        let (wb, wt) = w[cells.clone()].as_chunks::<LANES>();
+        let (mb, mt) = mask[cells.clone()].as_chunks::<LANES>();
+        let (qb, qt) = q[cells.clone()].as_chunks_mut::<LANES>();
+        if !set {
+            for ((w, m), q) in wb.iter().zip(mb).zip(qb.iter_mut()) {
+                for l in 0..LANES {
+                    sums.lane(l, |s| off(w[l], m[l], &mut q[l], s));
+                }
+            }
+            for ((w, m), q) in wt.iter().zip(mt).zip(qt.iter_mut()) {
+                sums.lane(0, |s| off(*w, *m, q, s));
+            }
+            continue;
         }
-    }
-    for (((p, w), m), q) in pt.iter().zip(wt).zip(mt).zip(qt.iter_mut()) {
-        sums.lane(0, |s| cell(*p, *w, *m, q, s));
+        let (pb, pt) = p[cells].as_chunks::<LANES>();
+        for (((p, w), m), q) in pb.iter().zip(wb).zip(mb).zip(qb.iter_mut()) {
+            for l in 0..LANES {
+                sums.lane(l, |s| cell(p[l], w[l], m[l], &mut q[l], s));
+            }
+        }
+        for (((p, w), m), q) in pt.iter().zip(wt).zip(mt).zip(qt.iter_mut()) {
+            sums.lane(0, |s| cell(*p, *w, *m, q, s));
+        }
     }
     sums.total(Some(2))
 }
@@ -173,15 +258,10 @@ pub(super) fn preconditioned(
         *y_prev = y as f32;
     };
     let mut sums = Sums::new();
-    // Runs of consecutive marked rows, each as one stretch of cells.
-    let mut r0 = 0;
-    for run in on.chunk_by(|a, b| a == b) {
-        let rows = r0..r0 + run.len();
-        r0 = rows.end;
-        if !run[0] {
+    for (set, cells) in row_runs(on.len(), width, active.len(), |r| on[r]) {
+        if !set {
             continue;
         }
-        let cells = rows.start * width..(rows.end * width).min(active.len());
         let (ab, at) = active[cells.clone()].as_chunks::<LANES>();
         let (wb, wt) = w[cells.clone()].as_chunks::<LANES>();
         let (pb, pt) = y_prev[cells.clone()].as_chunks_mut::<LANES>();
@@ -211,6 +291,8 @@ pub(super) struct Direction {
 /// The direction pass: y projected (`[p > 0] (y - ybar)`, kept in `y_prev`), the new
 /// conjugate direction `t = y + beta [p > 0] (t - tbar)` rounded to single precision,
 /// also written to `out` (K's input); returns `<t, w - approach>` (of the rounded t).
+/// Rows (of `width` cells) that neither `on` (the contact rows) nor `was` (those of the
+/// last direction pass) marks get `out = 0` only: their t and y_prev are already zero.
 #[inline(never)]
 pub(super) fn direction(
     active: &[u8],
@@ -218,6 +300,7 @@ pub(super) fn direction(
     t: &mut [f32],
     y_prev: &mut [f32],
     out: &mut [f64],
+    (on, was, width): (&[bool], &[bool], usize),
     d: Direction,
 ) -> [f64; 1] {
     let cell = |act: u8, w: f64, t: &mut f32, y_prev: &mut f32, out: &mut f64, s: &mut [f64; 1]| {
@@ -231,31 +314,37 @@ pub(super) fn direction(
         s[0] += ti * (w - d.approach);
     };
     let n = active.len();
-    let (ab, at) = active.as_chunks::<LANES>();
-    let (wb, wt) = w[..n].as_chunks::<LANES>();
-    let (tb, tt) = t[..n].as_chunks_mut::<LANES>();
-    let (pb, pt) = y_prev[..n].as_chunks_mut::<LANES>();
-    let (ob, ot) = out[..n].as_chunks_mut::<LANES>();
     let mut sums = Sums::new();
-    let blocks = ab
-        .iter()
-        .zip(wb)
-        .zip(tb.iter_mut())
-        .zip(pb.iter_mut())
-        .zip(ob.iter_mut());
-    for ((((a, w), t), yp), o) in blocks {
-        for l in 0..LANES {
-            sums.lane(l, |s| cell(a[l], w[l], &mut t[l], &mut yp[l], &mut o[l], s));
+    for (live, cells) in row_runs(on.len(), width, n, |r| on[r] || was[r]) {
+        if !live {
+            out[cells].fill(0.0);
+            continue;
         }
-    }
-    let last = at
-        .iter()
-        .zip(wt)
-        .zip(tt.iter_mut())
-        .zip(pt.iter_mut())
-        .zip(ot.iter_mut());
-    for ((((a, w), t), yp), o) in last {
-        sums.lane(0, |s| cell(*a, *w, t, yp, o, s));
+        let (ab, at) = active[cells.clone()].as_chunks::<LANES>();
+        let (wb, wt) = w[cells.clone()].as_chunks::<LANES>();
+        let (tb, tt) = t[cells.clone()].as_chunks_mut::<LANES>();
+        let (pb, pt) = y_prev[cells.clone()].as_chunks_mut::<LANES>();
+        let (ob, ot) = out[cells].as_chunks_mut::<LANES>();
+        let blocks = ab
+            .iter()
+            .zip(wb)
+            .zip(tb.iter_mut())
+            .zip(pb.iter_mut())
+            .zip(ob.iter_mut());
+        for ((((a, w), t), yp), o) in blocks {
+            for l in 0..LANES {
+                sums.lane(l, |s| cell(a[l], w[l], &mut t[l], &mut yp[l], &mut o[l], s));
+            }
+        }
+        let last = at
+            .iter()
+            .zip(wt)
+            .zip(tt.iter_mut())
+            .zip(pt.iter_mut())
+            .zip(ot.iter_mut());
+        for ((((a, w), t), yp), o) in last {
+            sums.lane(0, |s| cell(*a, *w, t, yp, o, s));
+        }
     }
     sums.total(None)
 }
@@ -273,17 +362,17 @@ pub(super) struct Update {
 /// the domain (`mask`) without pressure and with negative gap re-admitted at
 /// `-step g`, `w -= tau K t`; the change against `p - tau t` goes to `r`, written only
 /// in the blocks of [`LANES`] cells that have a change (the caller keeps r zero between
-/// passes, so r holds the changes and zeros).
-/// Returns the total pressure, the number of changed cells and the sum of t over the
-/// new set.
+/// passes, so r holds the changes and zeros). Marks in `with_p` the rows (of `width`
+/// cells) where the new p is positive. Returns the total pressure, the number of changed
+/// cells and the sum of t over the new set.
 #[inline(never)]
 pub(super) fn update(
     p: &mut [f64],
     t: &[f32],
     r: &mut [f64],
-    w: &mut [f64],
+    (w, kt): (&mut [f64], &[f64]),
     mask: &[u8],
-    kt: &[f64],
+    (with_p, width): (&mut [bool], usize),
     u: Update,
 ) -> [f64; 3] {
     let cell = |p: &mut f64, t: f32, w: &mut f64, m: u8, kt: f64, s: &mut [f64; 3]| {
@@ -334,12 +423,14 @@ pub(super) fn update(
             }
         });
     }
+    mark_rows_with_pressure(p, with_p, width);
     sums.total(None)
 }
 
 /// Pass D without K t, for an iteration whose `K p` is recomputed from scratch: the
-/// projected update of [`update`] (the same p and sums, bit for bit), p also written to
-/// `values` (the fresh `K p`'s input); w is read for the gap, neither w nor r written.
+/// projected update of [`update`] (the same p, flags and sums, bit for bit), p also
+/// written to `values` (the fresh `K p`'s input); w is read for the gap, neither w nor
+/// r written.
 #[inline(never)]
 pub(super) fn advance(
     p: &mut [f64],
@@ -347,6 +438,7 @@ pub(super) fn advance(
     w: &[f64],
     mask: &[u8],
     values: &mut [f64],
+    (with_p, width): (&mut [bool], usize),
     u: Update,
 ) -> [f64; 3] {
     let cell = |p: &mut f64, t: f32, w: f64, m: u8, v: &mut f64, s: &mut [f64; 3]| {
@@ -370,7 +462,19 @@ pub(super) fn advance(
     for ((((p, t), w), m), v) in last {
         sums.lane(0, |s| cell(p, *t, *w, *m, v, s));
     }
+    mark_rows_with_pressure(p, with_p, width);
     sums.total(None)
+}
+
+/// Marks the rows (of `width` cells) of `p` that hold a positive value (pass D's
+/// flags for the next pass A; read while p is still in cache).
+fn mark_rows_with_pressure(p: &[f64], with_p: &mut [bool], width: usize) {
+    // Blocks of eight compared at once (vector code), stopping at one with a positive.
+    let positive = |b: &[f64]| b.iter().fold(false, |any, &v| any | (v > 0.0));
+    for (f, row) in with_p.iter_mut().zip(p.chunks(width)) {
+        let (blocks, tail) = row.as_chunks::<8>();
+        *f = blocks.iter().any(|b| positive(b)) || positive(tail);
+    }
 }
 
 /// One cell of pass D: `p` becomes `max(p - tau t, 0)` on the contact set, `-step g` on
@@ -498,6 +602,106 @@ mod tests {
         }
     }
 
+    /// Passes A, B and the direction skip what their row flags rule out: values planted
+    /// in the skipped rows (which the solver keeps at zero) are neither read nor
+    /// written, the sums are those of the other rows in lane order (rows of a multiple
+    /// of [`LANES`] cells), and pass B still counts the skipped rows' gaps.
+    #[test]
+    fn passes_skip_rows_without_contact() {
+        let (width, flags) = (8, [true, false, false, true, false, true]);
+        let n = width * flags.len();
+        let row = |i: usize| i / width;
+        let kept = |i: usize| flags[row(i)];
+        let (approach, scale, zf) = (0.1, 1.3, -0.2);
+        // Positive pressure everywhere but in a third of the cells, also in the rows the
+        // flags rule out (planted: a pass that reads them counts them).
+        let p0: Vec<f64> = field(n, 1).iter().map(|v| v.abs()).collect();
+        let (z, w0, mask) = (field(n, 4), field(n, 3), vec![1u8; n]);
+
+        // Pass A: p read and rescaled in the marked rows only; w everywhere.
+        let (mut p, mut w, mut a, mut on) = (p0.clone(), w0.clone(), vec![9u8; n], [true; 6]);
+        let rows = (&flags[..], &mut on[..], width);
+        let got = rescale(&mut p, &z, &mut w, &mut a, rows, (scale, zf), approach);
+        let mut cells = vec![];
+        for i in 0..n {
+            let wi = scale * w0[i] + zf * z[i];
+            assert_eq!(w[i], wi, "cell {i}");
+            if !kept(i) {
+                assert_eq!((p[i], a[i]), (p0[i], 0), "cell {i}");
+                continue;
+            }
+            let pi = p0[i] * scale;
+            assert_eq!((p[i], a[i]), (pi, (pi > 0.0) as u8), "cell {i}");
+            let set = if pi > 0.0 { 1.0 } else { 0.0 };
+            cells.push([set * (wi - approach), set]);
+        }
+        assert_eq!(bits(got), bits(in_lane_order(&cells, None)));
+        for (r, &f) in flags.iter().enumerate() {
+            assert_eq!(on[r], f && a[r * width..(r + 1) * width].contains(&1));
+        }
+        // Without a pending rescale p and w are left as they are.
+        let (mut p, mut w, mut on) = (p0.clone(), w0.clone(), [true; 6]);
+        let rows = (&flags[..], &mut on[..], width);
+        rescale(&mut p, &z, &mut w, &mut a, rows, (1.0, 0.0), approach);
+        assert_eq!((p, w), (p0.clone(), w0.clone()));
+
+        // Pass B: p read in the marked rows only, q = 0 elsewhere, every gap counted.
+        let mut q = vec![9.0; n];
+        let got = residual(&p0, &w0, &mask, &mut q, (&flags, width), approach);
+        let mut cells = vec![];
+        for i in 0..n {
+            let g = w0[i] - approach;
+            let pi = if kept(i) { p0[i] } else { 0.0 };
+            let set = if pi > 0.0 { 1.0 } else { 0.0 };
+            assert_eq!(q[i], set * g, "cell {i}");
+            if kept(i) {
+                cells.push([pi * g.abs(), pi, -g, set * g]);
+            } else {
+                cells.push([0.0, 0.0, -g, 0.0]);
+            }
+        }
+        assert_eq!(bits(got), bits(in_lane_order(&cells, Some(2))));
+
+        // The direction: rows marked by neither flag get out = 0 and keep t and y_prev.
+        let was = [false, true, false, false, false, false];
+        let act: Vec<u8> = (0..n).map(|i| (kept(i) && p0[i] > 0.0) as u8).collect();
+        let t0: Vec<f32> = field(n, 2).iter().map(|&v| v as f32).collect();
+        let yp0: Vec<f32> = field(n, 7).iter().map(|&v| v as f32).collect();
+        let (mut t, mut yp, mut out) = (t0.clone(), yp0.clone(), vec![9.0; n]);
+        let d = Direction {
+            ybar: 0.05,
+            tbar: -0.03,
+            beta: 0.7,
+            approach,
+        };
+        let got = direction(
+            &act,
+            &w0,
+            &mut t,
+            &mut yp,
+            &mut out,
+            (&flags, &was, width),
+            d,
+        );
+        let mut cells = vec![];
+        for i in 0..n {
+            if !(kept(i) || was[row(i)]) {
+                assert_eq!((t[i], yp[i], out[i]), (t0[i], yp0[i], 0.0), "cell {i}");
+                continue;
+            }
+            let a = act[i] as f64;
+            let yi = a * (yp0[i] as f64 - d.ybar);
+            let ti = (yi + a * d.beta * (t0[i] as f64 - d.tbar)) as f32;
+            assert_eq!(
+                (yp[i], t[i], out[i]),
+                (yi as f32, ti, ti as f64),
+                "cell {i}"
+            );
+            cells.push([ti as f64 * (w0[i] - approach)]);
+        }
+        assert_eq!(bits(got), bits(in_lane_order(&cells, None)));
+    }
+
     /// Every pass against a plain cell-by-cell form of its formulas, summed in the
     /// documented lane order: outputs and sums bit for bit, on lengths with and without
     /// a partial last block.
@@ -519,8 +723,9 @@ mod tests {
             let (approach, scale, zf) = (0.1, 1.3, -0.2);
 
             // Pass A.
-            let (mut p, mut w, mut a) = (p0.clone(), w0.clone(), vec![9u8; n]);
-            let got = rescale(&mut p, &z, &mut w, &mut a, scale, zf, approach);
+            let (mut p, mut w, mut a, mut on) = (p0.clone(), w0.clone(), vec![9u8; n], [false]);
+            let all = (&[true][..], &mut on[..], n.max(1));
+            let got = rescale(&mut p, &z, &mut w, &mut a, all, (scale, zf), approach);
             let mut cells = vec![];
             for i in 0..n {
                 let (pi, wi) = (p0[i] * scale, scale * w0[i] + zf * z[i]);
@@ -533,10 +738,11 @@ mod tests {
                 bits(in_lane_order(&cells, None)),
                 "rescale, n = {n}"
             );
+            assert_eq!(on[0], a.contains(&1), "rescale's row flag, n = {n}");
 
             // Pass B and the criterion.
             let mut q = vec![9.0; n];
-            let got = residual(&p0, &w0, &mask, &mut q, approach);
+            let got = residual(&p0, &w0, &mask, &mut q, (&[true], n.max(1)), approach);
             let crit = criterion_terms(&p0, &w0, &mask, approach);
             let mut cells = vec![];
             for i in 0..n {
@@ -580,7 +786,8 @@ mod tests {
                 approach,
             };
             let (mut t, mut yp, mut out) = (t0.clone(), yp0.clone(), vec![9.0; n]);
-            let got = direction(&act, &w0, &mut t, &mut yp, &mut out, d);
+            let rows = (&[true][..], &[false][..], n.max(1));
+            let got = direction(&act, &w0, &mut t, &mut yp, &mut out, rows, d);
             let mut cells = vec![];
             for i in 0..n {
                 let on = act[i] as f64;
@@ -602,8 +809,9 @@ mod tests {
                 step: 2.0,
             };
             // r starts at zero, as the solver keeps it.
-            let (mut p, mut w, mut r) = (p0.clone(), w0.clone(), vec![0.0; n]);
-            let got = update(&mut p, &t0, &mut r, &mut w, &mask, &kt, u);
+            let (mut p, mut w, mut r, mut with_p) = (p0.clone(), w0.clone(), vec![0.0; n], [false]);
+            let flag = (&mut with_p[..], n.max(1));
+            let got = update(&mut p, &t0, &mut r, (&mut w, &kt), &mask, flag, u);
             let mut cells = vec![];
             for i in 0..n {
                 let g = w0[i] - approach;
@@ -625,10 +833,18 @@ mod tests {
                 bits(in_lane_order(&cells, None)),
                 "update, n = {n}"
             );
+            assert_eq!(
+                with_p[0],
+                p.iter().any(|&v| v > 0.0),
+                "update's flag, n = {n}"
+            );
 
             // Pass D without K t: the same pressures and sums, p also in the output.
-            let (mut q, mut out) = (p0.clone(), vec![9.0; n]);
-            let again = advance(&mut q, &t0, &w0, &mask, &mut out, u);
+            // (The flag starts wrong, but for n = 0: no row.)
+            let (mut q, mut out, mut again_p) = (p0.clone(), vec![9.0; n], [with_p[0] ^ (n > 0)]);
+            let flag = (&mut again_p[..], n.max(1));
+            let again = advance(&mut q, &t0, &w0, &mask, &mut out, flag, u);
+            assert_eq!(again_p, with_p, "advance's flag, n = {n}");
             assert_eq!((&q, &out), (&p, &p), "advance, n = {n}");
             assert_eq!(bits(again), bits(got), "advance, n = {n}");
         }
