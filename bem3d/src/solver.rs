@@ -617,18 +617,11 @@ impl<K: Compliance> ContactSolver<K> {
                 i % nx
             )));
         }
-        let on = |i: usize| self.mask[i] > 0;
-        let hmax = (0..n)
-            .filter(|&i| on(i))
-            .map(|i| heights[i])
-            .fold(f64::NEG_INFINITY, f64::max);
+        let on = || heights.iter().zip(&self.mask).filter(|(_, &m)| m > 0);
+        let hmax = on().map(|(&h, _)| h).fold(f64::NEG_INFINITY, f64::max);
         let nm = self.domain_cells as f64;
-        let mean = (0..n).filter(|&i| on(i)).map(|i| heights[i]).sum::<f64>() / nm;
-        let var = (0..n)
-            .filter(|&i| on(i))
-            .map(|i| (heights[i] - mean).powi(2))
-            .sum::<f64>()
-            / nm;
+        let mean = on().map(|(&h, _)| h).sum::<f64>() / nm;
+        let var = on().map(|(&h, _)| (h - mean).powi(2)).sum::<f64>() / nm;
         // Flat faces (e.g. a flat punch under a mask) have no rms height: the gap is then
         // measured against the grid diagonal.
         self.h_rms = if var > 0.0 {
@@ -638,7 +631,9 @@ impl<K: Compliance> ContactSolver<K> {
         };
         self.z_mean = hmax - mean;
         self.slope_rms = self.rms_slope(heights);
-        self.z = heights.iter().map(|h| hmax - h).collect();
+        for (z, h) in self.z.iter_mut().zip(heights) {
+            *z = hmax - h;
+        }
         self.w.copy_from_slice(&self.z);
         self.coarse = None;
         Ok(())
@@ -654,31 +649,40 @@ impl<K: Compliance> ContactSolver<K> {
     fn rms_slope(&self, h: &[f64]) -> f64 {
         let (nx, ny) = (self.op.nx(), self.op.ny());
         let wrap = self.op.is_periodic();
-        let on = |i: usize| self.mask[i] > 0;
-        let mut mean_square = 0.0;
-        for (along_x, len, step) in [
-            (true, nx, self.op.lx() / nx as f64),
-            (false, ny, self.op.ly() / ny as f64),
-        ] {
-            let (mut sum, mut pairs) = (0.0, 0usize);
-            for j in 0..ny {
-                for i in 0..nx {
-                    let k = if along_x { i } else { j };
-                    if k + 1 == len && !(wrap && len > 1) {
-                        continue;
-                    }
-                    let next = if along_x {
-                        j * nx + (i + 1) % nx
-                    } else {
-                        ((j + 1) % ny) * nx + i
-                    };
-                    let here = j * nx + i;
-                    if on(here) && on(next) {
-                        sum += ((h[next] - h[here]) / step).powi(2);
-                        pairs += 1;
-                    }
-                }
+        let (dx, dy) = (self.op.lx() / nx as f64, self.op.ly() / ny as f64);
+        let mask = &self.mask;
+        // Sum of squared slopes and count over the pairs (a, b) of domain cells.
+        let add = |(sum, pairs): &mut (f64, usize), a: usize, b: usize, step: f64| {
+            if mask[a] > 0 && mask[b] > 0 {
+                *sum += ((h[b] - h[a]) / step).powi(2);
+                *pairs += 1;
             }
+        };
+        // Along x, row by row: each cell and its right neighbour, the last column and
+        // the first where periodic.
+        let mut x = (0.0, 0usize);
+        for row in (0..ny).map(|j| j * nx) {
+            for a in row..row + nx - 1 {
+                add(&mut x, a, a + 1, dx);
+            }
+            if wrap && nx > 1 {
+                add(&mut x, row + nx - 1, row, dx);
+            }
+        }
+        // Along y: each row and the next, the last and the first where periodic.
+        let mut y = (0.0, 0usize);
+        for j in 0..ny {
+            let next = match j + 1 {
+                k if k < ny => k,
+                _ if wrap && ny > 1 => 0,
+                _ => continue,
+            };
+            for i in 0..nx {
+                add(&mut y, j * nx + i, next * nx + i, dy);
+            }
+        }
+        let mut mean_square = 0.0;
+        for (sum, pairs) in [x, y] {
             if pairs > 0 {
                 mean_square += sum / pairs as f64;
             }
@@ -1452,5 +1456,47 @@ impl<K: Compliance> ContactSolver<K> {
             tolerance: opts.tolerance,
             last: Box::new(sol.clone()),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::operator::{NonPeriodicHalfSpace, PeriodicHalfSpace};
+
+    /// The rms slope against closed forms: a periodic sine (every pair, the wrap-around
+    /// one included) and a parabola whose right half the mask leaves out (only pairs of
+    /// domain cells count).
+    #[test]
+    fn rms_slope_matches_closed_forms() {
+        let (nx, ny, l) = (16, 6, 2.0);
+        let dx = l / nx as f64;
+        let sine: Vec<f64> = (0..nx * ny)
+            .map(|k| (2.0 * std::f64::consts::PI * (k % nx) as f64 / nx as f64).sin())
+            .collect();
+        let s = ContactSolver::new(PeriodicHalfSpace::new(nx, ny, l, l, 1.0), &sine, None).unwrap();
+        // (h[i+1] - h[i])^2 = 4 sin^2(pi/nx) cos^2(2 pi (i + 1/2)/nx): mean 2 sin^2(pi/nx).
+        let want = 2f64.sqrt() * (std::f64::consts::PI / nx as f64).sin() / dx;
+        assert!(
+            (s.slope_rms - want).abs() < 1e-12 * want,
+            "{} {want}",
+            s.slope_rms
+        );
+
+        let parabola: Vec<f64> = (0..nx * ny)
+            .map(|k| ((k % nx) as f64 * dx).powi(2))
+            .collect();
+        let mask: Vec<bool> = (0..nx * ny).map(|k| k % nx < nx / 2).collect();
+        let op = NonPeriodicHalfSpace::new(nx, ny, l, l, 1.0);
+        let s = ContactSolver::new(op, &parabola, Some(mask)).unwrap();
+        // Pairs i, i + 1 < nx/2 along x: slope (2 i + 1) dx, mean square
+        // dx^2 (4 m^2 - 1) / 3 over m = nx/2 - 1 pairs; along y the slope is zero.
+        let m = (nx / 2 - 1) as f64;
+        let want = dx * ((4.0 * m * m - 1.0) / 3.0).sqrt();
+        assert!(
+            (s.slope_rms - want).abs() < 1e-12 * want,
+            "{} {want}",
+            s.slope_rms
+        );
     }
 }
