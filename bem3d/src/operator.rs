@@ -84,8 +84,8 @@ impl Stiffness {
         match precision {
             Precision::Single => Self::Single(
                 Fft2::new(nx, ny),
-                symbol.iter().map(|&v| v as f32).collect(),
-                kernel.iter().map(|&v| v as f32).collect(),
+                symbol.par_iter().map(|&v| v as f32).collect(),
+                kernel.par_iter().map(|&v| v as f32).collect(),
             ),
             Precision::Double => Self::Double(Fft2::new(nx, ny), symbol),
         }
@@ -254,7 +254,7 @@ fn stiffness_kernel(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Vec<
 
 /// `f(|k|)` at every bin of a real 2D FFT of a periodic `ny x nx` grid of size
 /// `lx x ly`, in the transposed layout of [`Fft2`] (`(nx/2 + 1) x ny`).
-fn spectral(nx: usize, ny: usize, lx: f64, ly: f64, f: impl Fn(f64) -> f64) -> Vec<f64> {
+fn spectral(nx: usize, ny: usize, lx: f64, ly: f64, f: impl Fn(f64) -> f64 + Sync) -> Vec<f64> {
     spectral_grid(nx, ny, lx, ly, |kx, ky| f((kx * kx + ky * ky).sqrt()))
 }
 
@@ -265,17 +265,18 @@ pub fn spectral_grid(
     ny: usize,
     lx: f64,
     ly: f64,
-    f: impl Fn(f64, f64) -> f64,
+    f: impl Fn(f64, f64) -> f64 + Sync,
 ) -> Vec<f64> {
     let nc = nx / 2 + 1;
     let mut s = vec![0.0; nc * ny];
-    for c in 0..nc {
-        for r in 0..ny {
-            let kx = 2.0 * PI * c as f64 / lx;
+    // Column by column in parallel (each value on its own: the same for any threads).
+    s.par_chunks_mut(ny).enumerate().for_each(|(c, col)| {
+        let kx = 2.0 * PI * c as f64 / lx;
+        for (r, v) in col.iter_mut().enumerate() {
             let ky = 2.0 * PI * signed(r, ny) / ly;
-            s[c * ny + r] = f(kx, ky);
+            *v = f(kx, ky);
         }
-    }
+    });
     s
 }
 
@@ -312,7 +313,7 @@ impl PeriodicHalfSpace {
         lx: f64,
         ly: f64,
         e_scale: f64,
-        c: impl Fn(f64, f64) -> f64,
+        c: impl Fn(f64, f64) -> f64 + Sync,
     ) -> Self {
         let kernel = spectral_grid(nx, ny, lx, ly, |kx, ky| {
             if kx == 0.0 && ky == 0.0 {
@@ -347,7 +348,7 @@ impl PeriodicHalfSpace {
         stiffness: Vec<f64>,
     ) -> Self {
         let mut fft = Fft2::new(nx, ny);
-        let mut spec: Vec<Complex64> = kernel.iter().map(|&k| Complex64::new(k, 0.0)).collect();
+        let mut spec: Vec<Complex64> = kernel.par_iter().map(|&k| Complex64::new(k, 0.0)).collect();
         let mut green = vec![0.0; nx * ny];
         fft.inverse(&mut spec, &mut green);
         let stiffness = Stiffness::new(nx, ny, stiffness, &kernel, Precision::default());
@@ -616,7 +617,7 @@ impl NonPeriodicHalfSpace {
         let mut spec = vec![Complex64::default(); fft.spectrum_len()];
         fft.forward(&k_real, &mut spec);
         // The kernel is even in x and y, so its spectrum is real.
-        let kernel = spec.iter().map(|c| c.re).collect();
+        let kernel = spec.par_iter().map(|c| c.re).collect();
         Self {
             hs,
             fft,

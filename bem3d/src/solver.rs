@@ -557,16 +557,18 @@ impl<K: Compliance> ContactSolver<K> {
                 op.e_star()
             )));
         }
-        let mask = mask.unwrap_or_else(|| vec![true; n]);
-        if mask.len() != n || !mask.iter().any(|&m| m) {
-            return Err(BemError::InvalidInput(
-                "mask must match the grid and contain a cell".into(),
-            ));
-        }
+        let mask: Vec<u8> = match mask {
+            None => vec![1; n],
+            Some(m) if m.len() == n && m.iter().any(|&m| m) => m.iter().map(|&m| m as u8).collect(),
+            Some(_) => {
+                return Err(BemError::InvalidInput(
+                    "mask must match the grid and contain a cell".into(),
+                ))
+            }
+        };
         // Stiffness of the longest wavelength, E* / sqrt(lx ly) (up to pi): the scale of
         // a re-admitted cell's pressure per unit overlap.
         let overlap_stiffness = op.e_star() / (op.lx() * op.ly()).sqrt();
-        let mask = mask.iter().map(|&m| m as u8).collect();
         let mut solver = Self::with_buffers(op, mask, overlap_stiffness);
         solver.set_heights(heights)?;
         Ok(solver)
@@ -631,10 +633,14 @@ impl<K: Compliance> ContactSolver<K> {
         };
         self.z_mean = hmax - mean;
         self.slope_rms = self.rms_slope(heights);
-        for (z, h) in self.z.iter_mut().zip(heights) {
-            *z = hmax - h;
-        }
-        self.w.copy_from_slice(&self.z);
+        self.z
+            .par_iter_mut()
+            .zip(self.w.par_iter_mut())
+            .zip(heights)
+            .for_each(|((z, w), h)| {
+                *z = hmax - h;
+                *w = *z;
+            });
         self.coarse = None;
         Ok(())
     }
@@ -862,11 +868,11 @@ impl<K: Compliance> ContactSolver<K> {
         }
         let mut p = vec![0.0; n];
         match (warm, load) {
-            (Some(w), _) => {
-                for i in 0..n {
-                    p[i] = self.mask[i] as f64 * w.pressure[i].max(0.0);
-                }
-            }
+            (Some(w), _) => p
+                .par_iter_mut()
+                .zip(&self.mask)
+                .zip(&w.pressure)
+                .for_each(|((p, &m), w)| *p = m as f64 * w.max(0.0)),
             (None, Load::Approach(d)) => self.overlap_start(&mut p, d),
             (None, _) => {
                 let force = target_force.unwrap_or(0.0);
@@ -875,19 +881,18 @@ impl<K: Compliance> ContactSolver<K> {
                 }
             }
         }
-        let m = |i: usize| self.mask[i] as f64;
         if let Some(w) = target_force {
             if w == 0.0 {
                 return Ok(self.finish_unloaded(0.0));
             }
             if p.iter().all(|&v| v == 0.0) {
                 // A warm start with no pressure on this domain: start from uniform.
-                for i in 0..n {
-                    p[i] = m(i);
-                }
+                p.par_iter_mut()
+                    .zip(&self.mask)
+                    .for_each(|(v, &m)| *v = m as f64);
             }
             let s: f64 = p.iter().sum::<f64>() * area;
-            p.iter_mut().for_each(|v| *v *= w / s);
+            p.par_iter_mut().for_each(|v| *v *= w / s);
         } else if let Load::Approach(d) = load {
             if d == 0.0 || p.iter().all(|&v| v == 0.0) {
                 // No overlap anywhere: the first contact is at d = 0.
@@ -1247,12 +1252,13 @@ impl<K: Compliance> ContactSolver<K> {
                 .collect();
             let k = ((fraction * nm as f64).ceil() as usize).clamp(1, nm - 1);
             let d = *zs.select_nth_unstable_by(k, f64::total_cmp).1;
-            for (i, v) in p.iter_mut().enumerate() {
-                *v = self.mask[i] as f64 * (d - self.z[i]).max(0.0);
-            }
+            p.par_iter_mut()
+                .zip(&self.mask)
+                .zip(&self.z)
+                .for_each(|((v, &m), z)| *v = m as f64 * (d - z).max(0.0));
         }
         if p.iter().all(|&v| v == 0.0) {
-            p.iter_mut()
+            p.par_iter_mut()
                 .zip(&self.mask)
                 .for_each(|(v, &m)| *v = m as f64);
         }
@@ -1287,10 +1293,18 @@ impl<K: Compliance> ContactSolver<K> {
         let Ok(sol) = coarse.solve_on_pool(Load::Force(force), &loose, None) else {
             return false;
         };
+        // Each coarse cell's value on its 2 x 2 cells (both sides are even), row pairs
+        // in parallel.
         let cx = nx / 2;
-        for (k, v) in p.iter_mut().enumerate() {
-            *v = sol.pressure[(k / nx / 2) * cx + (k % nx) / 2];
-        }
+        p.par_chunks_mut(2 * nx)
+            .zip(sol.pressure.par_chunks(cx))
+            .for_each(|(rows, coarse)| {
+                for row in rows.chunks_mut(nx) {
+                    for (pair, &v) in row.chunks_exact_mut(2).zip(coarse) {
+                        pair.fill(v);
+                    }
+                }
+            });
         true
     }
 
@@ -1302,6 +1316,7 @@ impl<K: Compliance> ContactSolver<K> {
         let (nx, cx) = (self.op.nx(), op.nx());
         let z = &self.z;
         let heights: Vec<f64> = (0..op.cells())
+            .into_par_iter()
             .map(|k| {
                 let i = 2 * (k / cx) * nx + 2 * (k % cx);
                 -0.25 * (z[i] + z[i + 1] + z[i + nx] + z[i + nx + 1])
@@ -1323,9 +1338,10 @@ impl<K: Compliance> ContactSolver<K> {
     /// longest wavelength.
     fn overlap_start(&self, p: &mut [f64], d: f64) {
         let scale = self.op.e_star() / (self.op.lx() * self.op.ly()).sqrt();
-        for (i, v) in p.iter_mut().enumerate() {
-            *v = self.mask[i] as f64 * (d - self.z[i]).max(0.0) * scale;
-        }
+        p.par_iter_mut()
+            .zip(&self.mask)
+            .zip(&self.z)
+            .for_each(|((v, &m), z)| *v = m as f64 * (d - z).max(0.0) * scale);
     }
 
     /// The solution without contact: w = z (no pressure), approach `d`.
@@ -1341,7 +1357,7 @@ impl<K: Compliance> ContactSolver<K> {
         let d = if approach.is_finite() { approach } else { 0.0 };
         let gap: Vec<f64> = self
             .w
-            .iter()
+            .par_iter()
             .zip(&self.mask)
             .map(|(w, &m)| if m > 0 { (w - d).max(0.0) } else { 0.0 })
             .collect();

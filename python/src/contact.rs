@@ -283,7 +283,12 @@ impl Contact {
             &format!("a {ny} x {nx} contact"),
         )
         .map_err(|e| crate::errors::compare_err(py, e))?;
-        let h: Vec<f64> = view.iter().copied().collect();
+        // One copy (a memcpy for a C-ordered array): the solver keeps no reference to
+        // numpy's memory while the GIL is released.
+        let h: Vec<f64> = match view.as_slice() {
+            Some(s) => s.to_vec(),
+            None => view.iter().copied().collect(),
+        };
         let mask = match mask {
             None => None,
             Some(m) => {
