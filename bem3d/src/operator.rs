@@ -291,15 +291,18 @@ fn signed(r: usize, n: usize) -> f64 {
 
 impl PeriodicHalfSpace {
     pub fn new(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Self {
-        let kernel = spectral(nx, ny, lx, ly, |k| {
-            if k > 0.0 {
-                2.0 / (e_star * k)
-            } else {
-                0.0
-            }
-        });
-        let stiffness = stiffness_kernel(nx, ny, lx, ly, e_star);
-        Self::from_kernels(nx, ny, lx, ly, e_star, kernel, stiffness)
+        // On the pool, as a solve (its parallel loops start in place).
+        crate::pool::on_pool(|| {
+            let kernel = spectral(nx, ny, lx, ly, |k| {
+                if k > 0.0 {
+                    2.0 / (e_star * k)
+                } else {
+                    0.0
+                }
+            });
+            let stiffness = stiffness_kernel(nx, ny, lx, ly, e_star);
+            Self::from_kernels(nx, ny, lx, ly, e_star, kernel, stiffness)
+        })
     }
 
     /// A periodic half-space with any real spectral compliance `c(kx, ky) > 0` for
@@ -557,40 +560,43 @@ pub struct NonPeriodicHalfSpace {
 
 impl NonPeriodicHalfSpace {
     pub fn new(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Self {
-        let (hx, hy) = (lx / nx as f64, ly / ny as f64);
-        // Love's coefficient is even in x and y: one quadrant of offsets (0..nx, 0..ny),
-        // rows in parallel; on a square grid of square cells it is also symmetric in
-        // (i, j) (exactly: see love_coefficient), so the upper triangle is mirrored.
-        let square = nx == ny && hx == hy;
-        let mut quadrant = vec![0.0; nx * ny];
-        quadrant
-            .par_chunks_mut(nx)
-            .enumerate()
-            .for_each(|(j, row)| {
-                let upto = if square { j + 1 } else { nx };
-                for (i, v) in row[..upto].iter_mut().enumerate() {
-                    *v = love_coefficient(i as f64 * hx, j as f64 * hy, 0.5 * hx, 0.5 * hy)
-                        / (PI * e_star);
-                }
-            });
-        if square {
-            for j in 0..ny {
-                for i in j + 1..nx {
-                    quadrant[j * nx + i] = quadrant[i * nx + j];
+        // On the pool, as a solve (its parallel loops start in place).
+        crate::pool::on_pool(|| {
+            let (hx, hy) = (lx / nx as f64, ly / ny as f64);
+            // Love's coefficient is even in x and y: one quadrant of offsets (0..nx, 0..ny),
+            // rows in parallel; on a square grid of square cells it is also symmetric in
+            // (i, j) (exactly: see love_coefficient), so the upper triangle is mirrored.
+            let square = nx == ny && hx == hy;
+            let mut quadrant = vec![0.0; nx * ny];
+            quadrant
+                .par_chunks_mut(nx)
+                .enumerate()
+                .for_each(|(j, row)| {
+                    let upto = if square { j + 1 } else { nx };
+                    for (i, v) in row[..upto].iter_mut().enumerate() {
+                        *v = love_coefficient(i as f64 * hx, j as f64 * hy, 0.5 * hx, 0.5 * hy)
+                            / (PI * e_star);
+                    }
+                });
+            if square {
+                for j in 0..ny {
+                    for i in j + 1..nx {
+                        quadrant[j * nx + i] = quadrant[i * nx + j];
+                    }
                 }
             }
-        }
-        Self::from_quadrant(
-            HalfSpace {
-                nx,
-                ny,
-                lx,
-                ly,
-                e_star,
-            },
-            &quadrant,
-            Precision::default(),
-        )
+            Self::from_quadrant(
+                HalfSpace {
+                    nx,
+                    ny,
+                    lx,
+                    ly,
+                    e_star,
+                },
+                &quadrant,
+                Precision::default(),
+            )
+        })
     }
 
     /// The operator from its coefficients at offsets (0..nx, 0..ny) (row-major, row

@@ -1,4 +1,5 @@
-//! Solves run on a thread of rayon's pool, the pool's other threads standing by.
+//! Solves run on a thread of rayon's pool, the pool's other threads standing by (so do
+//! the constructors of the operators and the solver, whose loops are as short).
 //!
 //! An iteration of the solvers is a dozen short parallel loops (sweeps, FFT row and
 //! column passes). Started from a thread outside the pool, each loop is injected into

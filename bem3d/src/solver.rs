@@ -550,6 +550,11 @@ enum Refresh<'a> {
 impl<K: Compliance> ContactSolver<K> {
     /// `heights` (`ny x nx`, peaks up, finite); `mask`: cells that may touch (None: all).
     pub fn new(op: K, heights: &[f64], mask: Option<Vec<bool>>) -> Result<Self> {
+        // On the pool, as a solve (its parallel loops start in place).
+        crate::pool::on_pool(|| Self::new_on_pool(op, heights, mask))
+    }
+
+    fn new_on_pool(op: K, heights: &[f64], mask: Option<Vec<bool>>) -> Result<Self> {
         let n = op.cells();
         if !(op.e_star().is_finite() && op.e_star() > 0.0) {
             return Err(BemError::InvalidInput(format!(
