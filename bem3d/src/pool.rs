@@ -14,11 +14,18 @@
 //! loop's work alone. Measured (perf, AMD EPYC 2-core VM, periodic 512^2 at 1 % contact,
 //! two threads): 19 % of the samples in the kernel's scheduler (wake-ups and sleeps).
 //! So a solve started from outside the pool keeps the other threads busy-waiting for
-//! its loops' work ([`rayon::yield_now`]) until it returns: same machine, same solves
-//! (median of 10 in one process, three alternated runs), 512^2 at 1 % 0.154-0.188 s ->
-//! 0.102-0.111 s, at 20 % 0.250 -> 0.183 s, 1024^2 at 1 % 0.68-0.84 -> 0.54-0.68 s.
-//! The waiting threads give their core back to the system between polls
-//! ([`std::thread::yield_now`]), so an oversubscribed machine still runs the solve.
+//! its loops' work ([`rayon::yield_now`]) until it returns. Measured on the same VM, two
+//! threads, alternated runs: in a spell of slow wake-ups (medians of 10 solves in one
+//! process) 512^2 at 1 % 0.154-0.188 s -> 0.102-0.111 s, at 20 % 0.250 -> 0.183 s,
+//! 1024^2 at 1 % 0.68-0.84 -> 0.54-0.68 s; in a spell of fast ones (8 % of the samples
+//! in the kernel) no difference; cold solves from Python (`Contact(...).solve(...)` in 9
+//! fresh processes each) 1.13-1.26x faster at 512^2-1024^2, 1 % and 20 %, periodic and
+//! free. One thread: unchanged (no stand-bys). The waiting threads give their core back
+//! to the system every few polls ([`std::thread::yield_now`]), and no more threads stand
+//! by than the machine has cores besides the solving one (a pool larger than the machine
+//! keeps its other threads asleep; 8 threads on the 2-core VM, 512^2 at 1 %: once 0.092 s
+//! with the previous code against 0.120 s with every thread standing by, once 0.089
+//! against 0.081 s, and 0.075 s with the limit).
 //!
 //! Results are bit-identical either way (every reduction has a fixed order whatever the
 //! thread).
@@ -30,8 +37,8 @@
 //! one per task of a parallel loop) run in place without stand-bys, as before.
 
 use std::cell::Cell;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Mutex, OnceLock};
 
 thread_local! {
     /// Whether this thread is running a solve (on any level of its stack).
@@ -65,6 +72,16 @@ impl Drop for Finished<'_> {
 /// Polls of an idle stand-by between two yields of its core to the system.
 const POLLS_PER_YIELD: u32 = 64;
 
+/// The machine's cores besides the solving thread's: the most threads that stand by.
+fn stand_by_limit() -> usize {
+    static LIMIT: OnceLock<usize> = OnceLock::new();
+    *LIMIT.get_or_init(|| {
+        std::thread::available_parallelism()
+            .map_or(1, |n| n.get())
+            .saturating_sub(1)
+    })
+}
+
 /// Runs `f` on a thread of the current rayon pool (in place when already on one); from
 /// outside the pool, with the pool's other threads standing by (module docs).
 pub(crate) fn on_pool<R: Send>(f: impl FnOnce() -> R + Send) -> R {
@@ -78,7 +95,9 @@ pub(crate) fn on_pool<R: Send>(f: impl FnOnce() -> R + Send) -> R {
     let task = Mutex::new(Some(f));
     let result = Mutex::new(None);
     let finished = AtomicBool::new(false);
-    // Every pool thread runs this once: the first to arrive runs f, the others stand by.
+    let standing = AtomicUsize::new(0);
+    // Every pool thread runs this once: the first to arrive runs f, the others stand by
+    // (up to the limit).
     rayon::broadcast(|_| {
         let claimed = task.lock().unwrap_or_else(|e| e.into_inner()).take();
         match claimed {
@@ -88,7 +107,10 @@ pub(crate) fn on_pool<R: Send>(f: impl FnOnce() -> R + Send) -> R {
                 let r = f();
                 *result.lock().unwrap_or_else(|e| e.into_inner()) = Some(r);
             }
-            None => stand_by(&finished),
+            None if standing.fetch_add(1, Ordering::Relaxed) < stand_by_limit() => {
+                stand_by(&finished)
+            }
+            None => {}
         }
     });
     let r = result.into_inner().unwrap_or_else(|e| e.into_inner());
