@@ -892,9 +892,7 @@ impl<K: Compliance> ContactSolver<K> {
             }
             if p.iter().all(|&v| v == 0.0) {
                 // A warm start with no pressure on this domain: start from uniform.
-                p.par_iter_mut()
-                    .zip(&self.mask)
-                    .for_each(|(v, &m)| *v = m as f64);
+                self.uniform_start(&mut p);
             }
             let s: f64 = p.iter().sum::<f64>() * area;
             p.par_iter_mut().for_each(|v| *v *= w / s);
@@ -1263,10 +1261,15 @@ impl<K: Compliance> ContactSolver<K> {
                 .for_each(|((v, &m), z)| *v = m as f64 * (d - z).max(0.0));
         }
         if p.iter().all(|&v| v == 0.0) {
-            p.par_iter_mut()
-                .zip(&self.mask)
-                .for_each(|(v, &m)| *v = m as f64);
+            self.uniform_start(p);
         }
+    }
+
+    /// Uniform pressure (one per domain cell; the load's rescale follows).
+    fn uniform_start(&self, p: &mut [f64]) {
+        p.par_iter_mut()
+            .zip(&self.mask)
+            .for_each(|(v, &m)| *v = m as f64);
     }
 
     /// Nested start under force control (module docs): the load solved to
