@@ -28,7 +28,7 @@ use std::ops::MulAssign;
 use std::sync::Arc;
 
 /// The precision a transform computes in (f64 or f32); rows arrive and leave as f64.
-pub trait FftFloat: FftNum + Default + NumAssign {
+pub trait FftFloat: FftNum + Default + NumAssign + bytemuck::Zeroable {
     fn of_f64(x: f64) -> Self;
     fn to_f64(self) -> f64;
     /// `src` as a row of this type: `src` itself for f64, converted into `buf` else.
@@ -176,6 +176,12 @@ fn is_zero(row: &[f64]) -> bool {
     blocks.iter().all(|b| b.iter().fold(0, bits) == 0) && tail.iter().fold(0, bits) == 0
 }
 
+/// `n` zero values, allocated zeroed (calloc: fresh pages are mapped on first touch,
+/// so rows a solve never loads cost no memory).
+fn zeroed<T: FftFloat>(n: usize) -> Vec<Complex<T>> {
+    bytemuck::zeroed_vec(n)
+}
+
 /// `sum |v|^2 weigh(k)` over a column `col` and its symbol values (at least as many),
 /// in four lanes (value i to lane i % 4, the last `len % 4` to lane 0, the lanes added
 /// as `(l0 + l1) + (l2 + l3)`): independent sums the processor overlaps, in a fixed
@@ -216,7 +222,7 @@ impl<T: FftFloat> Fft2<T> {
             c2r: rp.plan_fft_inverse(nx),
             fwd_y: cp.plan_fft_forward(ny),
             inv_y: cp.plan_fft_inverse(ny),
-            rows: vec![Complex::default(); ny * nc],
+            rows: zeroed(ny * nc),
             zero_rows: vec![false; ny],
             zero_row: vec![Complex::default(); nc],
             work: Vec::new(),
@@ -491,14 +497,61 @@ impl<T: FftFloat> Fft2<T> {
             self.spectrum_len(),
             "symbol length against the spectrum's (nx/2 + 1) * ny"
         );
-        let mut work = std::mem::take(&mut self.work);
-        work.resize(self.spectrum_len(), Complex::default());
+        let mut work = self.take_work();
         let energy = self.column_pass(&mut work, rows, Some(symbol), weigh, back);
         self.work = work;
         if back {
             self.convolved = Some((width, rows));
         }
         energy
+    }
+
+    /// The work buffer (the spectrum of a convolution), allocated zeroed on first use.
+    fn take_work(&mut self) -> Vec<Complex<T>> {
+        let work = std::mem::take(&mut self.work);
+        if work.len() == self.spectrum_len() {
+            work
+        } else {
+            zeroed(self.spectrum_len())
+        }
+    }
+
+    /// The spectrum (`nc x ny`, as [`Self::forward`] gives it) of the grid whose row
+    /// `j` is `fill(j, row)` (all `nx` values), computed in the transform's work buffer
+    /// and returned from there (valid until the next convolution): an operator's
+    /// symbol without a grid-sized input array and a spectrum of its own. The same
+    /// values as [`Self::forward`] of that grid, bit for bit.
+    pub fn spectrum_of(&mut self, fill: impl Fn(usize, &mut [f64]) + Sync) -> &[Complex<T>] {
+        let (nx, ny) = (self.nx, self.ny);
+        let chunks = (0..ny.div_ceil(ROW_CHUNK)).into_par_iter();
+        self.load_rows((nx, ny), chunks, |b, values| {
+            for (k, row) in values.chunks_mut(nx).enumerate() {
+                fill(b * ROW_CHUNK + k, row);
+            }
+            []
+        });
+        let (_, rows) = self.loaded.take().expect("rows just loaded");
+        let mut work = self.take_work();
+        self.column_pass::<T, fn(T) -> f64>(&mut work, rows, None, None, false);
+        self.work = work;
+        &self.work
+    }
+
+    /// [`Self::inverse`] of the real spectrum `symbol` (`nc x ny` values, zero
+    /// imaginary parts) into `output`, in the transform's work buffer: a kernel's
+    /// real-space table without a spectrum of its own.
+    pub fn inverse_of_real(&mut self, symbol: &[f64], output: &mut [f64]) {
+        assert_eq!(
+            symbol.len(),
+            self.spectrum_len(),
+            "one value per spectrum bin"
+        );
+        let mut work = self.take_work();
+        work.par_iter_mut()
+            .zip(symbol.par_iter())
+            .for_each(|(w, &s)| *w = Complex::new(T::of_f64(s), T::default()));
+        self.inverse(&mut work, output);
+        self.work = work;
     }
 
     /// Columns per block of the column pass: about [`COLUMN_BLOCK`] values.
@@ -780,6 +833,31 @@ mod tests {
                 all[r * nx..(r + 1) * nx],
                 "row {r}"
             );
+        }
+    }
+
+    #[test]
+    fn spectra_in_the_work_buffer_match_the_plain_transforms() {
+        // spectrum_of (rows written by a closure) against forward of the same grid, and
+        // inverse_of_real against inverse of the symbol as complex values: bit for bit;
+        // a convolution after each still matches a fresh transform's.
+        for &(nx, ny) in &[(8usize, 6usize), (7, 5), (40, 36)] {
+            let x = ramp(nx * ny);
+            let mut f = Fft2::<f64>::new(nx, ny);
+            let mut want = vec![Complex64::default(); f.spectrum_len()];
+            f.forward(&x, &mut want);
+            let got = f.spectrum_of(|j, row| row.copy_from_slice(&x[j * nx..(j + 1) * nx]));
+            assert_eq!(got, &want[..], "{nx}x{ny}");
+            let symbol = steps(f.spectrum_len());
+            let mut spec: Vec<Complex64> = symbol.iter().map(|&s| Complex64::new(s, 0.0)).collect();
+            let (mut a, mut b) = (vec![0.0; nx * ny], vec![0.0; nx * ny]);
+            f.inverse(&mut spec, &mut a);
+            f.inverse_of_real(&symbol, &mut b);
+            assert_eq!(a, b, "{nx}x{ny}");
+            let mut fresh = Fft2::<f64>::new(nx, ny);
+            fresh.convolve(&x, (nx, ny), &symbol, &mut a);
+            f.convolve(&x, (nx, ny), &symbol, &mut b);
+            assert_eq!(a, b, "{nx}x{ny} convolution");
         }
     }
 

@@ -7,7 +7,6 @@
 
 use crate::fft::Fft2;
 use rayon::prelude::*;
-use rustfft::num_complex::Complex64;
 use std::f64::consts::PI;
 
 /// Grid and modulus shared by every operator.
@@ -351,9 +350,8 @@ impl PeriodicHalfSpace {
         stiffness: Vec<f64>,
     ) -> Self {
         let mut fft = Fft2::new(nx, ny);
-        let mut spec: Vec<Complex64> = kernel.par_iter().map(|&k| Complex64::new(k, 0.0)).collect();
         let mut green = vec![0.0; nx * ny];
-        fft.inverse(&mut spec, &mut green);
+        fft.inverse_of_real(&kernel, &mut green);
         let stiffness = Stiffness::new(nx, ny, stiffness, &kernel, Precision::default());
         Self {
             hs: HalfSpace {
@@ -433,44 +431,41 @@ impl Compliance for PeriodicHalfSpace {
 /// rounding.
 const POINT_LOAD_LIMIT: usize = 48;
 
-/// A real-space influence table on a `py x px` torus: the response at cell (j, i) to a
-/// unit load at (jc, ic) is `values[((j - jc) mod py) * px + (i - ic) mod px]`. Periodic
-/// operators use the grid itself; non-periodic ones the zero-padded `2ny x 2nx` grid.
-struct Circulant {
-    px: usize,
-    py: usize,
-    values: Vec<f64>,
-}
+/// A real-space influence table: the response at cell `(i, j)` of a grid of row length
+/// `nx` to a unit load at cell `(ic, jc)`, by value or by row. The direct sums
+/// ([`Compliance::restricted`], [`Compliance::displacements_at`],
+/// [`Compliance::add_point_loads`]) read it.
+trait Table: Sync {
+    /// The response at `(i, j)` to a load at `(ic, jc)`.
+    fn value(&self, cell: (usize, usize), load: (usize, usize)) -> f64;
 
-impl Circulant {
+    /// The responses along row `j` to a load at `(ic, jc)`: the columns `..ic` and
+    /// `ic..nx`, in order.
+    fn row(&self, nx: usize, j: usize, load: (usize, usize)) -> (&[f64], &[f64]);
+
     /// The table between the listed cells of a grid of row length `nx`: a dense
     /// row-major matrix (see [`Compliance::restricted`]).
     fn restricted(&self, nx: usize, cells: &[usize]) -> Vec<f64> {
-        let (px, py, n) = (self.px, self.py, cells.len());
+        let n = cells.len();
         let mut m = vec![0.0; n * n];
         let at: Vec<(usize, usize)> = cells.iter().map(|&c| (c % nx, c / nx)).collect();
-        m.par_chunks_mut(n.max(1))
-            .zip(&at)
-            .for_each(|(row, &(ia, ja))| {
-                for (v, &(ib, jb)) in row.iter_mut().zip(&at) {
-                    *v = self.values[wrap(ja, jb, py) * px + wrap(ia, ib, px)];
-                }
-            });
+        m.par_chunks_mut(n.max(1)).zip(&at).for_each(|(row, &a)| {
+            for (v, &b) in row.iter_mut().zip(&at) {
+                *v = self.value(a, b);
+            }
+        });
         m
     }
 
     /// The sums over `loads` at the cells `at` only (see
     /// [`Compliance::displacements_at`]), on a grid of row length `nx`.
     fn displacements_at(&self, nx: usize, at: &[usize], loads: &[(usize, f64)]) -> Vec<f64> {
-        let (px, py) = (self.px, self.py);
-        let src: Vec<(usize, usize, f64)> =
-            loads.iter().map(|&(c, v)| (c % nx, c / nx, v)).collect();
+        let src: Vec<((usize, usize), f64)> =
+            loads.iter().map(|&(c, v)| ((c % nx, c / nx), v)).collect();
         at.par_iter()
             .map(|&c| {
-                let (i, j) = (c % nx, c / nx);
-                src.iter()
-                    .map(|&(il, jl, v)| self.values[wrap(j, jl, py) * px + wrap(i, il, px)] * v)
-                    .sum()
+                let cell = (c % nx, c / nx);
+                src.iter().map(|&(l, v)| self.value(cell, l) * v).sum()
             })
             .collect()
     }
@@ -478,24 +473,88 @@ impl Circulant {
     /// `u += sum over loads` on a grid of row length `nx` (`u.len() / nx` rows). Each
     /// value sums the loads in list order, so the result does not depend on threads.
     fn add_point_loads(&self, nx: usize, loads: &[(usize, f64)], u: &mut [f64]) {
-        let (px, py) = (self.px, self.py);
         u.par_chunks_mut(nx * 8).enumerate().for_each(|(b, block)| {
             for (jj, row) in block.chunks_mut(nx).enumerate() {
                 let j = 8 * b + jj;
                 for &(c, v) in loads {
-                    let (ic, jc) = (c % nx, c / nx);
-                    let gr = (j + py - jc) % py;
-                    let grow = &self.values[gr * px..(gr + 1) * px];
-                    // Columns i >= ic see offsets 0.., columns i < ic wrap around.
-                    for (a, g) in row[ic..].iter_mut().zip(&grow[..nx - ic]) {
+                    let ic = c % nx;
+                    let (before, after) = self.row(nx, j, (ic, c / nx));
+                    for (a, g) in row[ic..].iter_mut().zip(after) {
                         *a += v * g;
                     }
-                    for (a, g) in row[..ic].iter_mut().zip(&grow[px - ic..]) {
+                    for (a, g) in row[..ic].iter_mut().zip(before) {
                         *a += v * g;
                     }
                 }
             }
         });
+    }
+}
+
+/// A periodic operator's table on its `py x px` torus: the response at (i, j) to a
+/// unit load at (ic, jc) is `values[((j - jc) mod py) * px + (i - ic) mod px]`.
+struct Circulant {
+    px: usize,
+    py: usize,
+    values: Vec<f64>,
+}
+
+impl Table for Circulant {
+    fn value(&self, (i, j): (usize, usize), (ic, jc): (usize, usize)) -> f64 {
+        self.values[wrap(j, jc, self.py) * self.px + wrap(i, ic, self.px)]
+    }
+    fn row(&self, nx: usize, j: usize, (ic, jc): (usize, usize)) -> (&[f64], &[f64]) {
+        let (px, py) = (self.px, self.py);
+        let gr = (j + py - jc) % py;
+        let grow = &self.values[gr * px..(gr + 1) * px];
+        // Columns i >= ic see offsets 0.., columns i < ic wrap around.
+        (&grow[px - ic..], &grow[..nx - ic])
+    }
+}
+
+/// A non-periodic operator's table: the response depends on the offsets' magnitudes
+/// only (Love's coefficients are even in x and y), so row `|j - jc|` holds the
+/// offsets `-(nx - 1)..=nx - 1`: the response at (i, j) to a unit load at (ic, jc) is
+/// `values[|j - jc| * (2 nx - 1) + nx - 1 + i - ic]`. Half the values of the padded
+/// `2ny x 2nx` grid's circulant, and each row's responses one contiguous stretch.
+struct Mirrored {
+    nx: usize,
+    values: Vec<f64>,
+}
+
+impl Mirrored {
+    /// The table of the coefficients `quadrant(dx, dy)` at offsets `0..nx` x `0..ny`,
+    /// rows in parallel.
+    fn new(nx: usize, ny: usize, quadrant: impl Fn(usize, usize) -> f64 + Sync) -> Self {
+        let len = 2 * nx - 1;
+        let mut values = vec![0.0; len * ny];
+        values
+            .par_chunks_mut(len)
+            .enumerate()
+            .for_each(|(dy, row)| {
+                for dx in 0..nx {
+                    let v = quadrant(dx, dy);
+                    row[nx - 1 + dx] = v;
+                    row[nx - 1 - dx] = v;
+                }
+            });
+        Self { nx, values }
+    }
+
+    /// The offsets `-(nx - 1)..=nx - 1` of row offset `dy`.
+    fn offsets(&self, dy: usize) -> &[f64] {
+        let len = 2 * self.nx - 1;
+        &self.values[dy * len..(dy + 1) * len]
+    }
+}
+
+impl Table for Mirrored {
+    fn value(&self, (i, j): (usize, usize), (ic, jc): (usize, usize)) -> f64 {
+        self.offsets(j.abs_diff(jc))[self.nx - 1 + i - ic]
+    }
+    fn row(&self, nx: usize, j: usize, (ic, jc): (usize, usize)) -> (&[f64], &[f64]) {
+        let r = &self.offsets(j.abs_diff(jc))[nx - 1 - ic..2 * nx - 1 - ic];
+        r.split_at(ic)
     }
 }
 
@@ -547,8 +606,8 @@ pub struct NonPeriodicHalfSpace {
     hs: HalfSpace,
     fft: Fft2,
     kernel: Vec<f64>,
-    /// Love's coefficients on the padded grid, for direct sums.
-    table: Circulant,
+    /// Love's coefficients, for direct sums.
+    table: Mirrored,
     /// Preconditioner: the periodic stiffness on the unpadded grid, with its own
     /// transform.
     stiffness: Stiffness,
@@ -578,61 +637,49 @@ impl NonPeriodicHalfSpace {
                             / (PI * e_star);
                     }
                 });
-            if square {
-                for j in 0..ny {
-                    for i in j + 1..nx {
-                        quadrant[j * nx + i] = quadrant[i * nx + j];
-                    }
-                }
-            }
-            Self::from_quadrant(
-                HalfSpace {
-                    nx,
-                    ny,
-                    lx,
-                    ly,
-                    e_star,
-                },
-                &quadrant,
-                Precision::default(),
-            )
+            let hs = HalfSpace {
+                nx,
+                ny,
+                lx,
+                ly,
+                e_star,
+            };
+            let table = if square {
+                Mirrored::new(nx, ny, |i, j| quadrant[i.max(j) * nx + i.min(j)])
+            } else {
+                Mirrored::new(nx, ny, |i, j| quadrant[j * nx + i])
+            };
+            Self::from_table(hs, table, Precision::default())
         })
     }
 
-    /// The operator from its coefficients at offsets (0..nx, 0..ny) (row-major, row
-    /// length nx), mirrored into the wrap-around layout of the padded grid (offsets nx
-    /// and ny, never reached, stay zero).
-    fn from_quadrant(hs: HalfSpace, quadrant: &[f64], precision: Precision) -> Self {
+    /// The operator of its table: K's symbol is the spectrum of the table's
+    /// coefficients in the wrap-around layout of the padded grid (offsets nx and ny,
+    /// never reached, zero), each padded row written from the table as the transform
+    /// reads it.
+    fn from_table(hs: HalfSpace, table: Mirrored, precision: Precision) -> Self {
         let (nx, ny) = (hs.nx, hs.ny);
         let (px, py) = (2 * nx, 2 * ny);
         let mut fft = Fft2::new(px, py);
-        let mut k_real = vec![0.0; px * py];
-        k_real.par_chunks_mut(px).enumerate().for_each(|(j, row)| {
-            let oy = match j {
+        let spec = fft.spectrum_of(|j, row| {
+            let dy = match j {
                 j if j < ny => j,
                 j if j > ny => py - j,
-                _ => return,
+                _ => return row.fill(0.0),
             };
-            let src = &quadrant[oy * nx..(oy + 1) * nx];
-            // Offsets 0..nx, then (nx: zero) nx-1 down to 1.
-            row[..nx].copy_from_slice(src);
-            for (v, s) in row[nx + 1..].iter_mut().zip(src[1..].iter().rev()) {
-                *v = *s;
-            }
+            // Offsets 0..nx, then (nx: zero) -(nx - 1) up to -1.
+            let offsets = table.offsets(dy);
+            row[..nx].copy_from_slice(&offsets[nx - 1..]);
+            row[nx] = 0.0;
+            row[nx + 1..].copy_from_slice(&offsets[..nx - 1]);
         });
-        let mut spec = vec![Complex64::default(); fft.spectrum_len()];
-        fft.forward(&k_real, &mut spec);
         // The kernel is even in x and y, so its spectrum is real.
         let kernel = spec.par_iter().map(|c| c.re).collect();
         Self {
             hs,
             fft,
             kernel,
-            table: Circulant {
-                px,
-                py,
-                values: k_real,
-            },
+            table,
             // K lives on the padded grid: M's transform does not serve it.
             stiffness: Stiffness::new(
                 nx,
@@ -687,10 +734,6 @@ impl Compliance for NonPeriodicHalfSpace {
         if wx == 0 || wy == 0 || wx > hs.nx || wy > hs.ny {
             return None;
         }
-        let px = self.table.px;
-        let quadrant: Vec<f64> = (0..wy)
-            .flat_map(|j| self.table.values[j * px..j * px + wx].iter().copied())
-            .collect();
         let (hx, hy) = (hs.lx / hs.nx as f64, hs.ly / hs.ny as f64);
         let window = HalfSpace {
             nx: wx,
@@ -699,10 +742,9 @@ impl Compliance for NonPeriodicHalfSpace {
             ly: wy as f64 * hy,
             e_star: hs.e_star,
         };
+        let table = Mirrored::new(wx, wy, |i, j| self.table.offsets(j)[hs.nx - 1 + i]);
         let precision = self.stiffness.precision();
-        Some(NonPeriodicHalfSpace::from_quadrant(
-            window, &quadrant, precision,
-        ))
+        Some(NonPeriodicHalfSpace::from_table(window, table, precision))
     }
     fn point_load_limit(&self) -> usize {
         // A direct sum runs over the n cells, the transforms over the 4n padded ones
@@ -919,9 +961,12 @@ mod tests {
         for &(nx, ny) in &[(8usize, 8usize), (7, 5), (12, 9)] {
             let n = nx * ny;
             let loads = vec![(0, 1.5), (n - 1, -0.7), (nx - 1, 2.0), (n / 2 + 1, 0.3)];
+            let ly = 0.8 * ny as f64 / nx as f64;
             let ops: Vec<Box<dyn Compliance>> = vec![
                 Box::new(PeriodicHalfSpace::new(nx, ny, 1.0, 0.8, 2.0)),
                 Box::new(NonPeriodicHalfSpace::new(nx, ny, 1.0, 0.8, 2.0)),
+                // Square cells (square grids: the table built from a triangle).
+                Box::new(NonPeriodicHalfSpace::new(nx, ny, 0.8, ly, 2.0)),
                 Box::new(DenseCompliance::love(nx, ny, 1.0, 0.8, 2.0)),
             ];
             for mut op in ops {
@@ -960,6 +1005,45 @@ mod tests {
         assert!(NonPeriodicHalfSpace::new(4, 4, 1.0, 1.0, 1.0)
             .displacements_at(&at, &loads)
             .is_some());
+    }
+
+    #[test]
+    fn a_window_is_the_half_space_of_its_cells() {
+        // The window's operator (coefficients copied from the grid's table) against an
+        // operator built for the window's cells: the same convolution and direct sums
+        // to rounding (a wrong offset in the copy shows at 1e-2), on square and
+        // rectangular cells, square and oblong windows.
+        for &(nx, ny, lx, ly, wx, wy) in &[
+            (12usize, 12usize, 1.0, 1.0, 5usize, 7usize),
+            (12, 9, 1.0, 0.8, 9, 4),
+            (8, 8, 1.0, 1.0, 8, 8),
+        ] {
+            let grid = NonPeriodicHalfSpace::new(nx, ny, lx, ly, 2.0);
+            let (hx, hy) = (lx / nx as f64, ly / ny as f64);
+            let mut win = grid.window(wx, wy).expect("a window inside the grid");
+            let mut fresh = NonPeriodicHalfSpace::new(wx, wy, wx as f64 * hx, wy as f64 * hy, 2.0);
+            let n = wx * wy;
+            let p: Vec<f64> = (0..n).map(|k| ((k * 7919) % 97) as f64 / 97.0).collect();
+            let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
+            win.apply(&p, &mut a);
+            fresh.apply(&p, &mut b);
+            let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for (x, y) in a.iter().zip(&b) {
+                assert!((x - y).abs() <= 1e-12 * scale, "{wx}x{wy}: {x} vs {y}");
+            }
+            let loads = [(0, 1.0), (n - 1, 0.5), (wx + 1, -0.25)];
+            let at: Vec<usize> = (0..n).collect();
+            let (u, v) = (
+                win.displacements_at(&at, &loads).unwrap(),
+                fresh.displacements_at(&at, &loads).unwrap(),
+            );
+            for (x, y) in u.iter().zip(&v) {
+                assert!((x - y).abs() <= 1e-12 * scale, "{wx}x{wy} sums: {x} vs {y}");
+            }
+        }
+        assert!(NonPeriodicHalfSpace::new(4, 4, 1.0, 1.0, 1.0)
+            .window(5, 1)
+            .is_none());
     }
 
     #[test]
