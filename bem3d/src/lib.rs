@@ -10,6 +10,7 @@
 
 pub mod error;
 pub mod fft;
+mod love;
 pub mod mask;
 pub mod operator;
 mod pool;
