@@ -25,6 +25,7 @@
 use super::restricted::{round_options, LOOSE};
 use super::{ContactSolver, Solution, SolverOptions};
 use crate::operator::{Compliance, NonPeriodicHalfSpace};
+use rayon::prelude::*;
 
 /// The start's overlap covers this many times `p / (E* h')` of the domain under force
 /// control (half the full solve's [`super::START_AREA`]). Measured on a sphere (R = 1
@@ -107,7 +108,7 @@ impl<K: Compliance> ContactSolver<K> {
             None => self.overlap_start(&mut p, fixed_approach),
         }
         // Bounding box of the cells to hold, inclusive: (x_lo, x_hi, y_lo, y_hi).
-        let mut bounds = bounding_box(nx, (0..n).filter(|&i| p[i] > 0.0))?;
+        let mut bounds = bounding_box_where(nx, n, |i| p[i] > 0.0)?;
         if let Some(f) = target_force {
             let s: f64 = p.iter().sum::<f64>() * self.op.cell_area();
             p.iter_mut().for_each(|v| *v *= f / s);
@@ -137,11 +138,7 @@ impl<K: Compliance> ContactSolver<K> {
                 .iterate(start, target_force, fixed_approach, &inner_opts, false)
                 .ok()?;
             iterations += sol.iterations;
-            p.iter_mut().for_each(|v| *v = 0.0);
-            for (r, row) in sol.pressure.chunks(wx).enumerate() {
-                let at = (y0 + r) * nx + x0;
-                p[at..at + wx].copy_from_slice(row);
-            }
+            scatter(&mut p, nx, win, &sol.pressure);
             // The interpenetrating cells outside the window, and the criterion: by direct
             // sums where they pay (gaps_outside), else on the whole grid.
             let (grow, residual) = match self.gaps_outside(&p, win, sol.approach) {
@@ -167,10 +164,10 @@ impl<K: Compliance> ContactSolver<K> {
                         Err(found) => found,
                     };
                     let (w, mask) = (&self.w, &self.mask);
-                    let outside = (0..n).filter(|&i| {
-                        !win.holds(i % nx, i / nx) && mask[i] > 0 && w[i] - approach < 0.0
+                    let outside = bounding_box_where(nx, n, |i| {
+                        mask[i] > 0 && w[i] - approach < 0.0 && !win.holds(i % nx, i / nx)
                     });
-                    (bounding_box(nx, outside), residual)
+                    (outside, residual)
                 }
             };
             // Interpenetrating cells outside the window join it.
@@ -185,7 +182,7 @@ impl<K: Compliance> ContactSolver<K> {
             tight |= residual <= LOOSE;
             // The next window holds those cells and the pressure carried so far (which
             // may lie in this window's margin).
-            let held = bounding_box(nx, (0..n).filter(|&i| p[i] > 0.0)).unwrap_or(grow);
+            let held = bounding_box_where(nx, n, |i| p[i] > 0.0).unwrap_or(grow);
             bounds = (
                 bounds.0.min(grow.0).min(held.0),
                 bounds.1.max(grow.1).max(held.1),
@@ -204,12 +201,25 @@ impl<K: Compliance> ContactSolver<K> {
     /// operator has no real-space table.
     fn gaps_outside(&self, p: &[f64], win: Window, approach: f64) -> Option<Vec<(usize, f64)>> {
         let nx = self.op.nx();
-        let at: Vec<usize> = (0..p.len())
-            .filter(|&i| self.mask[i] > 0 && self.z[i] < approach && !win.holds(i % nx, i / nx))
+        let (mask, z) = (&self.mask, &self.z);
+        // Rows in parallel, cells in index order.
+        let at: Vec<usize> = (0..p.len() / nx)
+            .into_par_iter()
+            .flat_map_iter(|y| {
+                let below = move |&x: &usize| {
+                    let i = y * nx + x;
+                    mask[i] > 0 && z[i] < approach && !win.holds(x, y)
+                };
+                (0..nx).filter(below).map(move |x| y * nx + x)
+            })
             .collect();
-        let loads: Vec<(usize, f64)> = (0..p.len())
-            .filter(|&i| p[i] > 0.0)
-            .map(|i| (i, p[i]))
+        let loads: Vec<(usize, f64)> = p
+            .par_chunks(nx)
+            .enumerate()
+            .flat_map_iter(|(y, row)| {
+                let on = row.iter().enumerate().filter(|(_, &v)| v > 0.0);
+                on.map(move |(x, &v)| (y * nx + x, v))
+            })
             .collect();
         if at.len().saturating_mul(loads.len()) > p.len() {
             return None;
@@ -247,6 +257,35 @@ fn gather<T: Copy>(grid: &[T], nx: usize, win: Window) -> Vec<T> {
                 .copied()
         })
         .collect()
+}
+
+/// `p` zero but in the window, which holds `values` (row-major, the window's width).
+fn scatter(p: &mut [f64], nx: usize, win: Window, values: &[f64]) {
+    p.par_chunks_mut(nx).enumerate().for_each(|(y, row)| {
+        row.fill(0.0);
+        if (win.y0..win.y0 + win.wy).contains(&y) {
+            let r = y - win.y0;
+            row[win.x0..win.x0 + win.wx].copy_from_slice(&values[r * win.wx..(r + 1) * win.wx]);
+        }
+    });
+}
+
+/// [`bounding_box`] of the cells `i < n` of a grid of row length `nx` for which
+/// `on(i)`, rows in parallel.
+fn bounding_box_where(
+    nx: usize,
+    n: usize,
+    on: impl Fn(usize) -> bool + Sync,
+) -> Option<(usize, usize, usize, usize)> {
+    (0..n / nx)
+        .into_par_iter()
+        .filter_map(|y| {
+            let row = y * nx..(y + 1) * nx;
+            let first = row.clone().find(|&i| on(i))?;
+            let last = row.rev().find(|&i| on(i))?;
+            Some((first - y * nx, last - y * nx, y, y))
+        })
+        .reduce_with(|a, b| (a.0.min(b.0), a.1.max(b.1), a.2.min(b.2), a.3.max(b.3)))
 }
 
 /// Inclusive bounding box `(x_lo, x_hi, y_lo, y_hi)` of cells of a grid of row length
