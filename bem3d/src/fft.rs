@@ -516,23 +516,37 @@ impl<T: FftFloat> Fft2<T> {
         }
     }
 
-    /// The spectrum (`nc x ny`, as [`Self::forward`] gives it) of the grid whose row
-    /// `j` is `fill(j, row)` (all `nx` values), computed in the transform's work buffer
-    /// and returned from there (valid until the next convolution): an operator's
-    /// symbol without a grid-sized input array and a spectrum of its own. The same
-    /// values as [`Self::forward`] of that grid, bit for bit.
-    pub fn spectrum_of(&mut self, fill: impl Fn(usize, &mut [f64]) + Sync) -> &[Complex<T>] {
-        let (nx, ny) = (self.nx, self.ny);
-        let chunks = (0..ny.div_ceil(ROW_CHUNK)).into_par_iter();
-        self.load_rows((nx, ny), chunks, |b, values| {
+    /// The spectrum (`nc x ny`, as [`Self::forward`] gives it) of a grid even in y
+    /// (row `j` equal to row `ny - j`) whose row `j <= ny / 2` is `fill(j, row)` (all
+    /// `nx` values), computed in the transform's work buffer and returned from there
+    /// (valid until the next convolution): an operator's symbol without a grid-sized
+    /// input array and a spectrum of its own. Only rows `0..=ny/2` are filled and
+    /// transformed, the others take their mirror's spectrum. The same values as
+    /// [`Self::forward`] of that grid, bit for bit.
+    pub fn spectrum_of_even(&mut self, fill: impl Fn(usize, &mut [f64]) + Sync) -> &[Complex<T>] {
+        let (nx, ny, nc) = (self.nx, self.ny, self.nc);
+        let half = ny / 2 + 1;
+        let chunks = (0..half.div_ceil(ROW_CHUNK)).into_par_iter();
+        self.load_rows((nx, half), chunks, |b, values| {
             for (k, row) in values.chunks_mut(nx).enumerate() {
                 fill(b * ROW_CHUNK + k, row);
             }
             []
         });
-        let (_, rows) = self.loaded.take().expect("rows just loaded");
+        self.loaded = None;
+        let (low, high) = self.rows.split_at_mut(half * nc);
+        let (low_zero, high_zero) = self.zero_rows.split_at_mut(half);
+        high[..(ny - half) * nc]
+            .par_chunks_mut(nc)
+            .zip(&mut high_zero[..ny - half])
+            .enumerate()
+            .for_each(|(r, (row, zero))| {
+                let mirror = ny - (half + r);
+                row.copy_from_slice(&low[mirror * nc..(mirror + 1) * nc]);
+                *zero = low_zero[mirror];
+            });
         let mut work = self.take_work();
-        self.column_pass::<T, fn(T) -> f64>(&mut work, rows, None, None, false);
+        self.column_pass::<T, fn(T) -> f64>(&mut work, ny, None, None, false);
         self.work = work;
         &self.work
     }
@@ -838,16 +852,35 @@ mod tests {
 
     #[test]
     fn spectra_in_the_work_buffer_match_the_plain_transforms() {
-        // spectrum_of (rows written by a closure) against forward of the same grid, and
-        // inverse_of_real against inverse of the symbol as complex values: bit for bit;
-        // a convolution after each still matches a fresh transform's.
-        for &(nx, ny) in &[(8usize, 6usize), (7, 5), (40, 36)] {
+        // spectrum_of_even (rows written by a closure, half of them) against forward of
+        // the same grid (even in y; with zero rows), and inverse_of_real against
+        // inverse of the symbol as complex values: bit for bit; a convolution after
+        // each still matches a fresh transform's. Even and odd row counts.
+        for &(nx, ny) in &[(8usize, 6usize), (7, 5), (40, 36), (6, 9)] {
             let x = ramp(nx * ny);
             let mut f = Fft2::<f64>::new(nx, ny);
             let mut want = vec![Complex64::default(); f.spectrum_len()];
-            f.forward(&x, &mut want);
-            let got = f.spectrum_of(|j, row| row.copy_from_slice(&x[j * nx..(j + 1) * nx]));
+            // A grid even in y: row j equal to row ny - j.
+            let even: Vec<f64> = (0..nx * ny)
+                .map(|k| x[(k % nx) + ((ny - k / nx) % ny).min(k / nx) * nx])
+                .collect();
+            f.forward(&even, &mut want);
+            let got = f.spectrum_of_even(|j, row| row.copy_from_slice(&even[j * nx..(j + 1) * nx]));
             assert_eq!(got, &want[..], "{nx}x{ny}");
+            // A zero row among them keeps its flag (the mirror of row 1 is row ny - 1).
+            let holed: Vec<f64> = (0..nx * ny)
+                .map(|k| {
+                    if k / nx == 1 || k / nx == ny - 1 {
+                        0.0
+                    } else {
+                        even[k]
+                    }
+                })
+                .collect();
+            f.forward(&holed, &mut want);
+            let got =
+                f.spectrum_of_even(|j, row| row.copy_from_slice(&holed[j * nx..(j + 1) * nx]));
+            assert_eq!(got, &want[..], "{nx}x{ny} with zero rows");
             let symbol = steps(f.spectrum_len());
             let mut spec: Vec<Complex64> = symbol.iter().map(|&s| Complex64::new(s, 0.0)).collect();
             let (mut a, mut b) = (vec![0.0; nx * ny], vec![0.0; nx * ny]);

@@ -630,17 +630,14 @@ impl NonPeriodicHalfSpace {
     /// The operator of its table: K's symbol is the spectrum of the table's
     /// coefficients in the wrap-around layout of the padded grid (offsets nx and ny,
     /// never reached, zero), each padded row written from the table as the transform
-    /// reads it.
+    /// reads it (rows 0..=ny: the grid is even in y, rows ny + 1.. mirror them).
     fn from_table(hs: HalfSpace, table: Mirrored, precision: Precision) -> Self {
         let (nx, ny) = (hs.nx, hs.ny);
-        let (px, py) = (2 * nx, 2 * ny);
-        let mut fft = Fft2::new(px, py);
-        let spec = fft.spectrum_of(|j, row| {
-            let dy = match j {
-                j if j < ny => j,
-                j if j > ny => py - j,
-                _ => return row.fill(0.0),
-            };
+        let mut fft = Fft2::new(2 * nx, 2 * ny);
+        let spec = fft.spectrum_of_even(|dy, row| {
+            if dy == ny {
+                return row.fill(0.0);
+            }
             // Offsets 0..nx, then (nx: zero) -(nx - 1) up to -1.
             let offsets = table.offsets(dy);
             row[..nx].copy_from_slice(&offsets[nx - 1..]);
