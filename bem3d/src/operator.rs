@@ -896,14 +896,16 @@ impl Compliance for DenseCompliance {
 mod tests {
     use super::*;
 
-    fn check(fft: &mut dyn Compliance, dense: &mut DenseCompliance) {
+    /// `fft` and `reference` applied to the same pressures agree within 1e-12 of the
+    /// largest displacement.
+    fn check(fft: &mut dyn Compliance, reference: &mut dyn Compliance) {
         let n = fft.cells();
         let p: Vec<f64> = (0..n)
             .map(|k| ((k * 2654435761) % 1000) as f64 / 1000.0)
             .collect();
         let (mut u1, mut u2) = (vec![0.0; n], vec![0.0; n]);
         fft.apply(&p, &mut u1);
-        dense.apply(&p, &mut u2);
+        reference.apply(&p, &mut u2);
         let scale = u2.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for (a, b) in u1.iter().zip(&u2) {
             assert!((a - b).abs() <= 1e-12 * scale, "{a} vs {b}");
@@ -993,21 +995,15 @@ mod tests {
             let (hx, hy) = (lx / nx as f64, ly / ny as f64);
             let mut win = grid.window(wx, wy).expect("a window inside the grid");
             let mut fresh = NonPeriodicHalfSpace::new(wx, wy, wx as f64 * hx, wy as f64 * hy, 2.0);
+            check(&mut win, &mut fresh);
             let n = wx * wy;
-            let p: Vec<f64> = (0..n).map(|k| ((k * 7919) % 97) as f64 / 97.0).collect();
-            let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
-            win.apply(&p, &mut a);
-            fresh.apply(&p, &mut b);
-            let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            for (x, y) in a.iter().zip(&b) {
-                assert!((x - y).abs() <= 1e-12 * scale, "{wx}x{wy}: {x} vs {y}");
-            }
             let loads = [(0, 1.0), (n - 1, 0.5), (wx + 1, -0.25)];
             let at: Vec<usize> = (0..n).collect();
             let (u, v) = (
                 win.displacements_at(&at, &loads).unwrap(),
                 fresh.displacements_at(&at, &loads).unwrap(),
             );
+            let scale = v.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             for (x, y) in u.iter().zip(&v) {
                 assert!((x - y).abs() <= 1e-12 * scale, "{wx}x{wy} sums: {x} vs {y}");
             }
