@@ -48,8 +48,9 @@ close() {
   python3 -c '
 import csv, sys
 rtol = float(sys.argv[3])
-a = list(csv.reader(open(sys.argv[1])))
-b = list(csv.reader(open(sys.argv[2])))
+# The header comments (lines starting with #) are not table rows.
+rows = lambda f: list(csv.reader(l for l in open(f) if not l.startswith("#")))
+a, b = rows(sys.argv[1]), rows(sys.argv[2])
 if len(a) != len(b) or a[0] != b[0]:
     print("shape/header differ"); sys.exit(1)
 stat = ("iteration", "seconds", "time", "_s ", "(s)")
