@@ -176,6 +176,25 @@ pub trait Compliance: Send {
         self.apply(&q, &mut ku);
         u.iter_mut().zip(&ku).for_each(|(a, b)| *a += b);
     }
+    /// `u = K p` with K's products in single precision where the operator has such a
+    /// form without transforms (a dense matrix's copy); the default applies K. The
+    /// solver's fused applications of [`Operand::ComplianceSingle`] on an operator
+    /// without a spectral form call it.
+    fn apply_single(&mut self, p: &[f64], u: &mut [f64]) {
+        self.apply(p, u)
+    }
+    /// Whether [`Operand::ComplianceSingle`] rounds K to single precision (the
+    /// single-precision transforms, or [`Self::apply_single`] of a dense copy): the
+    /// solver then recomputes `K p` in double precision at set residuals.
+    fn rounds_single(&mut self) -> bool {
+        matches!(
+            self.spectral(Operand::ComplianceSingle),
+            Some(Spectral {
+                transform: Transform::Single(..),
+                ..
+            })
+        )
+    }
     /// Most loads for which [`Self::add_point_loads`] costs less than [`Self::apply`]
     /// (0: never).
     fn point_load_limit(&self) -> usize {
@@ -184,9 +203,10 @@ pub trait Compliance: Send {
     /// K between the listed cells only, as a dense row-major `n x n` matrix (entry
     /// `(a, b)`: the displacement at `cells[a]` under unit pressure on `cells[b]`), for
     /// solves restricted to a small contact set; None if the operator has no real-space
-    /// table.
-    fn restricted(&self, cells: &[usize]) -> Option<Vec<f64>> {
-        let _ = cells;
+    /// table. `buffer` is storage to reuse (e.g. the last such matrix, whose pages are
+    /// then not mapped afresh; its contents do not matter, may be empty).
+    fn restricted(&self, cells: &[usize], buffer: Vec<f64>) -> Option<Vec<f64>> {
+        let _ = (cells, buffer);
         None
     }
     /// K of the cell pressures `loads` (cell, pressure) at the listed cells only, by
@@ -402,8 +422,8 @@ impl Compliance for PeriodicHalfSpace {
     fn add_point_loads(&mut self, loads: &[(usize, f64)], u: &mut [f64]) {
         self.table.add_point_loads(self.hs.nx, loads, u);
     }
-    fn restricted(&self, cells: &[usize]) -> Option<Vec<f64>> {
-        Some(self.table.restricted(self.hs.nx, cells))
+    fn restricted(&self, cells: &[usize], buffer: Vec<f64>) -> Option<Vec<f64>> {
+        Some(self.table.restricted(self.hs.nx, cells, buffer))
     }
     fn displacements_at(&self, at: &[usize], loads: &[(usize, f64)]) -> Option<Vec<f64>> {
         Some(self.table.displacements_at(self.hs.nx, at, loads))
@@ -446,10 +466,16 @@ trait Table: Sync {
     fn row(&self, nx: usize, j: usize, load: (usize, usize)) -> (&[f64], &[f64]);
 
     /// The table between the listed cells of a grid of row length `nx`: a dense
-    /// row-major matrix (see [`Compliance::restricted`]).
-    fn restricted(&self, nx: usize, cells: &[usize]) -> Vec<f64> {
+    /// row-major matrix (see [`Compliance::restricted`]), in `m`'s storage. Every entry
+    /// is written by the rows' fill (in parallel, so a fresh matrix's pages are mapped
+    /// by both threads); resizing a reused buffer writes only what it grows by.
+    fn restricted(&self, nx: usize, cells: &[usize], mut m: Vec<f64>) -> Vec<f64> {
         let n = cells.len();
-        let mut m = vec![0.0; n * n];
+        if m.is_empty() {
+            m = vec![0.0; n * n];
+        } else {
+            m.resize(n * n, 0.0);
+        }
         let at: Vec<(usize, usize)> = cells.iter().map(|&c| (c % nx, c / nx)).collect();
         m.par_chunks_mut(n.max(1)).zip(&at).for_each(|(row, &a)| {
             for (v, &b) in row.iter_mut().zip(&at) {
@@ -693,8 +719,8 @@ impl Compliance for NonPeriodicHalfSpace {
     fn add_point_loads(&mut self, loads: &[(usize, f64)], u: &mut [f64]) {
         self.table.add_point_loads(self.hs.nx, loads, u);
     }
-    fn restricted(&self, cells: &[usize]) -> Option<Vec<f64>> {
-        Some(self.table.restricted(self.hs.nx, cells))
+    fn restricted(&self, cells: &[usize], buffer: Vec<f64>) -> Option<Vec<f64>> {
+        Some(self.table.restricted(self.hs.nx, cells, buffer))
     }
     fn displacements_at(&self, at: &[usize], loads: &[(usize, f64)]) -> Option<Vec<f64>> {
         Some(self.table.displacements_at(self.hs.nx, at, loads))
@@ -752,37 +778,77 @@ impl Compliance for NonPeriodicHalfSpace {
     }
 }
 
-/// A dense influence matrix (row-major n x n), for tests and tiny grids.
+/// Fewest cells for which [`DenseCompliance::from_matrix`] makes the single-precision
+/// copy: a smaller matrix (below 8 MiB) stays in cache, where halving its bytes saves
+/// less than the copy and the double-precision refreshes cost (measured, see
+/// `solver::restricted`).
+const SINGLE_COPY_MIN: usize = 1024;
+
+/// A dense influence matrix (row-major n x n), for tests and tiny grids, and K between
+/// the cells of a restricted solve (with a single-precision copy, see
+/// [`DenseCompliance::from_matrix`]).
 pub struct DenseCompliance {
     hs: HalfSpace,
     periodic: bool,
     pub matrix: Vec<f64>,
+    /// The matrix rounded to single precision ([`Compliance::apply_single`]), or empty.
+    single: Vec<f32>,
 }
 
-/// `sum a_i b_i` over eight independent partial sums (vectorised; a fixed order).
-fn dot(a: &[f64], b: &[f64]) -> f64 {
+/// `sum a_i b_i`, products and sums in double precision (`a` in single or double),
+/// over eight independent partial sums (vectorised; a fixed order).
+fn dot<T: Copy + Into<f64>>(a: &[T], b: &[f64]) -> f64 {
     let mut acc = [0.0; 8];
     let (ca, cb) = (a.chunks_exact(8), b.chunks_exact(8));
     let tail: f64 = ca
         .remainder()
         .iter()
         .zip(cb.remainder())
-        .map(|(x, y)| x * y)
+        .map(|(&x, y)| x.into() * y)
         .sum();
     for (x, y) in ca.zip(cb) {
         for k in 0..8 {
-            acc[k] += x[k] * y[k];
+            acc[k] += x[k].into() * y[k];
         }
     }
     acc.iter().sum::<f64>() + tail
 }
 
+/// `u = matrix p` (row-major, rows in parallel).
+fn dense_product<T: Copy + Into<f64> + Sync>(matrix: &[T], p: &[f64], u: &mut [f64]) {
+    let n = p.len();
+    u.par_iter_mut()
+        .zip(matrix.par_chunks(n.max(1)))
+        .for_each(|(ua, row)| *ua = dot(row, p));
+}
+
 impl DenseCompliance {
     /// `n` cells of size `hx x hy` in one row with the given row-major `n x n` matrix
     /// (e.g. [`Compliance::restricted`] of a larger operator; crate-internal: the size
-    /// is asserted, not a user input).
-    pub(crate) fn from_matrix(n: usize, hx: f64, hy: f64, e_star: f64, matrix: Vec<f64>) -> Self {
+    /// is asserted, not a user input), and its copy in single precision, written into
+    /// `single`'s storage (reused, e.g. the last such copy; contents do not matter):
+    /// the solver's K t then reads half the bytes
+    /// ([`Compliance::apply_single`]; `K p` stays in double precision).
+    pub(crate) fn from_matrix(
+        n: usize,
+        (hx, hy): (f64, f64),
+        e_star: f64,
+        matrix: Vec<f64>,
+        mut single: Vec<f32>,
+    ) -> Self {
         assert_eq!(matrix.len(), n * n, "matrix must be n x n");
+        if n < SINGLE_COPY_MIN {
+            single = Vec::new();
+        } else if single.is_empty() {
+            // As the matrix's fill: a fresh copy's pages mapped by both threads.
+            single = vec![0.0; n * n];
+        } else {
+            single.resize(n * n, 0.0);
+        }
+        single
+            .par_chunks_mut(n.max(1))
+            .zip(matrix.par_chunks(n.max(1)))
+            .for_each(|(s, m)| s.iter_mut().zip(m).for_each(|(s, &m)| *s = m as f32));
         Self {
             hs: HalfSpace {
                 nx: n,
@@ -793,6 +859,7 @@ impl DenseCompliance {
             },
             periodic: false,
             matrix,
+            single,
         }
     }
 
@@ -819,6 +886,7 @@ impl DenseCompliance {
             },
             periodic: false,
             matrix,
+            single: Vec::new(),
         }
     }
 
@@ -862,7 +930,13 @@ impl DenseCompliance {
             },
             periodic: true,
             matrix,
+            single: Vec::new(),
         }
+    }
+
+    /// The matrix and its single-precision copy, as storage for the next one.
+    pub(crate) fn into_storage(self) -> (Vec<f64>, Vec<f32>) {
+        (self.matrix, self.single)
     }
 }
 
@@ -874,18 +948,33 @@ impl Compliance for DenseCompliance {
         self.periodic
     }
     fn apply(&mut self, p: &[f64], u: &mut [f64]) {
-        let n = p.len();
-        u.par_iter_mut()
-            .zip(self.matrix.par_chunks(n.max(1)))
-            .for_each(|(ua, row)| *ua = dot(row, p));
+        dense_product(&self.matrix, p, u);
     }
+    fn apply_single(&mut self, p: &[f64], u: &mut [f64]) {
+        if self.single.is_empty() {
+            dense_product(&self.matrix, p, u);
+        } else {
+            dense_product(&self.single, p, u);
+        }
+    }
+    fn rounds_single(&mut self) -> bool {
+        !self.single.is_empty()
+    }
+    /// Row by row in parallel (each row's entries read in the loads' order, one row at
+    /// a time in cache), each value summing the loads in list order as a column-wise
+    /// sweep would: the same sums bit for bit, for any thread count. Column by column
+    /// (one cache line per row and load) the changes of a restricted solve's first
+    /// iterations (a few hundred loads on a few thousand cells) cost five times an
+    /// application of the matrix.
     fn add_point_loads(&mut self, loads: &[(usize, f64)], u: &mut [f64]) {
         let n = u.len();
-        for &(c, v) in loads {
-            for (a, ua) in u.iter_mut().enumerate() {
-                *ua += self.matrix[a * n + c] * v;
-            }
-        }
+        u.par_iter_mut()
+            .zip(self.matrix.par_chunks(n.max(1)))
+            .for_each(|(ua, row)| {
+                for &(c, v) in loads {
+                    *ua += row[c] * v;
+                }
+            });
     }
     fn point_load_limit(&self) -> usize {
         self.cells()
@@ -978,6 +1067,78 @@ mod tests {
         assert!(NonPeriodicHalfSpace::new(4, 4, 1.0, 1.0, 1.0)
             .displacements_at(&at, &loads)
             .is_some());
+    }
+
+    #[test]
+    fn restricted_matrices_and_their_single_copies() {
+        // K between listed cells, built in a reused buffer (larger, smaller, empty): the
+        // same matrix bit for bit as in fresh storage, entry (a, b) K's response at
+        // cells[a] to a load at cells[b].
+        let mut op = PeriodicHalfSpace::new(48, 32, 1.0, 0.8, 2.0);
+        let n = op.cells();
+        let sets: [Vec<usize>; 3] = [
+            (0..n).filter(|k| k % 4 != 0).collect(),
+            (3..n).step_by(2).collect(),
+            vec![7, 100, 191],
+        ];
+        let fresh: Vec<Vec<f64>> = sets
+            .iter()
+            .map(|c| op.restricted(c, Vec::new()).unwrap())
+            .collect();
+        let mut buffer = Vec::new();
+        for (cells, want) in sets.iter().zip(&fresh) {
+            buffer = op.restricted(cells, buffer).unwrap();
+            assert_eq!(&buffer, want);
+        }
+        let cells = &sets[0];
+        let m = cells.len();
+        let mut unit = vec![0.0; n];
+        unit[cells[4]] = 1.0;
+        let mut u = vec![0.0; n];
+        op.apply(&unit, &mut u);
+        for (a, &c) in cells.iter().enumerate() {
+            let v = fresh[0][a * m + 4];
+            assert!((v - u[c]).abs() <= 1e-12 * u[cells[4]], "{v} vs {}", u[c]);
+        }
+        // The copy in single precision (1152 cells; storage reused from a larger
+        // matrix): K t within 1e-7 of the double-precision product, and exactly the
+        // product of the rounded entries (sums in double precision); K p and point
+        // loads untouched. None below SINGLE_COPY_MIN cells (767 here) and for tests'
+        // matrices.
+        let hs = (1.0 / 48.0, 0.8 / 32.0);
+        let mut dense =
+            DenseCompliance::from_matrix(m, hs, 2.0, fresh[0].clone(), vec![1.0; 2 * m * m]);
+        assert!(m >= SINGLE_COPY_MIN && dense.rounds_single());
+        let small = sets[1].len();
+        assert!(small < SINGLE_COPY_MIN);
+        let mut below = DenseCompliance::from_matrix(small, hs, 2.0, fresh[1].clone(), Vec::new());
+        assert!(!below.rounds_single());
+        assert!(!DenseCompliance::love(3, 3, 1.0, 1.0, 1.0).rounds_single());
+        let p: Vec<f64> = (0..m).map(|k| ((k * 37) % 11) as f64 - 4.0).collect();
+        let (mut double, mut single) = (vec![0.0; m], vec![0.0; m]);
+        dense.apply(&p, &mut double);
+        dense.apply_single(&p, &mut single);
+        let scale = double.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+        let rounded: Vec<f64> = fresh[0].iter().map(|&v| v as f32 as f64).collect();
+        for a in 0..m {
+            let want: f64 = (0..m).map(|b| rounded[a * m + b] * p[b]).sum();
+            assert!((single[a] - want).abs() <= 1e-13 * scale);
+            assert!((single[a] - double[a]).abs() <= 1e-7 * scale);
+            let exact: f64 = (0..m).map(|b| fresh[0][a * m + b] * p[b]).sum();
+            assert!((double[a] - exact).abs() <= 1e-13 * scale);
+        }
+        assert!(single != double, "the copy is rounded");
+        // Point loads: the column-wise sums in list order, bit for bit.
+        let loads = [(3usize, 0.5), (0, -1.25), (m - 1, 2.0), (3, 0.75)];
+        let mut want: Vec<f64> = (0..m).map(|k| k as f64 * 0.01).collect();
+        let mut got = want.clone();
+        for &(c, v) in &loads {
+            for (a, w) in want.iter_mut().enumerate() {
+                *w += fresh[0][a * m + c] * v;
+            }
+        }
+        dense.add_point_loads(&loads, &mut got);
+        assert_eq!(got, want);
     }
 
     #[test]

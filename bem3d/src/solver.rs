@@ -179,7 +179,7 @@
 
 use crate::error::{BemError, Result};
 use crate::fft::{copy_in, copy_out, ROWS_PER_CHUNK};
-use crate::operator::{Compliance, Operand, Spectral, Transform};
+use crate::operator::{Compliance, Operand, Transform};
 use rayon::prelude::*;
 
 mod restricted;
@@ -466,9 +466,13 @@ fn apply_fused<K: Compliance>(
     let n = op.cells();
     let [input, output] = fallback;
     match which {
-        Operand::Compliance | Operand::ComplianceSingle => {
+        Operand::Compliance => {
             output.resize(n, 0.0);
             op.apply(input, output);
+        }
+        Operand::ComplianceSingle => {
+            output.resize(n, 0.0);
+            op.apply_single(input, output);
         }
         Operand::Preconditioner => {
             op.precondition(input);
@@ -938,14 +942,9 @@ impl<K: Compliance> ContactSolver<K> {
         // Sum of t over the contact set of the coming iteration (pass D).
         let mut t_on_set = 0.0;
         // K p carried along in single precision while the residual is above
-        // SINGLE_UNTIL, where the operator has single-precision transforms.
-        let mut single = matches!(
-            self.op.spectral(Operand::ComplianceSingle),
-            Some(Spectral {
-                transform: Transform::Single(..),
-                ..
-            })
-        );
+        // SINGLE_UNTIL, where the operator rounds K so (its transforms; a dense
+        // matrix's copy, whose K t alone is rounded, K p fresh in double precision).
+        let mut single = self.op.rounds_single();
         let mut residual;
         // Residual below which K p is recomputed in double precision once more (-inf:
         // no more).

@@ -210,8 +210,8 @@ impl<K: Compliance> Compliance for Unrestricted<K> {
     fn point_load_limit(&self) -> usize {
         self.op.point_load_limit()
     }
-    fn restricted(&self, cells: &[usize]) -> Option<Vec<f64>> {
-        self.op.restricted(cells).filter(|_| self.table)
+    fn restricted(&self, cells: &[usize], buffer: Vec<f64>) -> Option<Vec<f64>> {
+        self.op.restricted(cells, buffer).filter(|_| self.table)
     }
     fn precondition(&mut self, g: &mut [f64]) {
         self.op.precondition(g)
