@@ -28,10 +28,11 @@
 //! Measured on the 1024^2 benchmark surface at 0.1 % contact (AMD EPYC VM, cold
 //! processes, interleaved, medians of 14-20): 1.16x on two threads and 1.07x on one
 //! with the storage and the point loads, 1.29x and 1.15x with the copy too; the same
-//! 66 iterations, pressures within 6e-13 of the peak (256^2 and 512^2 with the copy
-//! forced: 1.3e-11 and 1.6e-11, the same iterations, but 5-10 % slower: their matrices
-//! stay in cache, hence the limit). Below the limit the solutions are the same bit for
-//! bit (512^2: 1.02x on two threads, 1.04x on one).
+//! 66 iterations, pressures within 6e-13 of the peak. With the copy forced on smaller
+//! sets (256^2 and 512^2 at 0.1 %): the same iterations, pressures within 1.3e-11 and
+//! 1.6e-11 of the peak, but 512^2 5-10 % slower (its matrix stays in cache), hence the
+//! limit. Below the limit the solutions are the same bit for bit (512^2: 1.02x on two
+//! threads, 1.04x on one, with the point loads and the storage).
 
 use super::{reduce, ContactSolver, Refresh, Solution, SolverOptions};
 use crate::operator::{Compliance, DenseCompliance};
