@@ -102,14 +102,15 @@ impl<K: Compliance> ContactSolver<K> {
             Some(f) => self.cold_start(&mut p, f, START_AREA),
             None => self.overlap_start(&mut p, fixed_approach),
         }
-        let mut cells: Vec<usize> = (0..n).filter(|&i| p[i] > 0.0).collect();
+        // In parallel, in cell order (as the window path's scans).
+        let mut cells: Vec<usize> = (0..n).into_par_iter().filter(|&i| p[i] > 0.0).collect();
         if cells.is_empty() || cells.len() > limit || self.op.restricted(&[], Vec::new()).is_none()
         {
             return None;
         }
         if let Some(f) = target_force {
             let s: f64 = p.iter().sum::<f64>() * self.op.cell_area();
-            p.iter_mut().for_each(|v| *v *= f / s);
+            p.par_iter_mut().for_each(|v| *v *= f / s);
         }
         let (hx, hy) = (
             self.op.lx() / self.op.nx() as f64,
@@ -149,7 +150,7 @@ impl<K: Compliance> ContactSolver<K> {
                 Err(_) => return None,
             };
             iterations += sol.iterations;
-            p.iter_mut().for_each(|v| *v = 0.0);
+            p.par_iter_mut().for_each(|v| *v = 0.0);
             cells
                 .iter()
                 .zip(&sol.pressure)

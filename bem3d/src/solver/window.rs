@@ -111,7 +111,7 @@ impl<K: Compliance> ContactSolver<K> {
         let mut bounds = bounding_box_where(nx, n, |i| p[i] > 0.0)?;
         if let Some(f) = target_force {
             let s: f64 = p.iter().sum::<f64>() * self.op.cell_area();
-            p.iter_mut().for_each(|v| *v *= f / s);
+            p.par_iter_mut().for_each(|v| *v *= f / s);
         }
         let mut iterations = 0;
         // At a prescribed approach the contact lies inside the start's overlap (K has a
