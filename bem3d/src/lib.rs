@@ -18,6 +18,7 @@ mod pool;
 pub use error::{BemError, Result};
 pub mod sliding;
 pub mod solver;
+pub mod stencil;
 pub use operator::{
     Compliance, DenseCompliance, NonPeriodicHalfSpace, Operand, PeriodicHalfSpace, Precision,
     Spectral, Transform,

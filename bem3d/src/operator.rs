@@ -8,8 +8,10 @@
 use crate::fft::Fft2;
 pub use crate::love::love_coefficient;
 use crate::love::FarField;
+use crate::stencil::Stencil;
 use rayon::prelude::*;
 use std::f64::consts::PI;
+use std::sync::OnceLock;
 
 /// Grid and modulus shared by every operator.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -245,6 +247,12 @@ pub trait Compliance: Send {
         let _ = which;
         None
     }
+    /// M's convolution kernel near its centre ([`Stencil`]: the same M as
+    /// [`Self::precondition`], truncated), for small contact sets; None if M is no
+    /// convolution on this grid (the default) or the grid is smaller than the stencil.
+    fn local_stiffness(&mut self) -> Option<&Stencil> {
+        None
+    }
     fn cell_area(&self) -> f64 {
         self.lx() * self.ly() / self.cells() as f64
     }
@@ -258,6 +266,8 @@ pub struct PeriodicHalfSpace {
     kernel: Vec<f64>,
     /// Its inverse, the preconditioner (see [`stiffness_kernel`]).
     stiffness: Stiffness,
+    /// M's kernel near its centre, made on first use.
+    local: OnceLock<Option<Stencil>>,
     /// The same operator in real space: `u = table (*) p`, circular.
     table: Circulant,
 }
@@ -357,7 +367,11 @@ impl PeriodicHalfSpace {
                 }
             })
             .collect();
-        Self::from_kernels(nx, ny, lx, ly, e_scale, kernel, stiffness)
+        let mut op = Self::from_kernels(nx, ny, lx, ly, e_scale, kernel, stiffness);
+        // Its M need not be a stiffness like |k| (anisotropic, of any sign pattern in
+        // real space): no truncated stencil, M by transforms only.
+        op.local = OnceLock::from(None);
+        op
     }
 
     /// The operator of a compliance spectrum and its preconditioner (stiffness)
@@ -386,6 +400,7 @@ impl PeriodicHalfSpace {
             fft,
             kernel,
             stiffness,
+            local: OnceLock::new(),
             table: Circulant {
                 px: nx,
                 py: ny,
@@ -400,6 +415,7 @@ impl PeriodicHalfSpace {
     pub fn with_preconditioner(mut self, precision: Precision) -> Self {
         let (nx, ny) = (self.hs.nx, self.hs.ny);
         self.stiffness = Stiffness::new(nx, ny, self.stiffness.symbol(), &self.kernel, precision);
+        self.local = OnceLock::new();
         self
     }
 }
@@ -436,6 +452,13 @@ impl Compliance for PeriodicHalfSpace {
     fn precondition(&mut self, g: &mut [f64]) {
         let dims = (self.hs.nx, self.hs.ny);
         self.stiffness.apply(g, dims);
+    }
+    fn local_stiffness(&mut self) -> Option<&Stencil> {
+        let (nx, ny) = (self.hs.nx, self.hs.ny);
+        let stiffness = &self.stiffness;
+        self.local
+            .get_or_init(|| Stencil::of_symbol(&stiffness.symbol(), nx, ny))
+            .as_ref()
     }
     fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
         let dims = (self.hs.nx, self.hs.ny);
@@ -608,6 +631,8 @@ pub struct NonPeriodicHalfSpace {
     /// Preconditioner: the periodic stiffness on the unpadded grid, with its own
     /// transform.
     stiffness: Stiffness,
+    /// M's kernel near its centre, made on first use.
+    local: OnceLock<Option<Stencil>>,
     /// K's padded transform and symbol in single precision
     /// ([`Operand::ComplianceSingle`]), made on first use when the preconditioner is
     /// single precision.
@@ -685,6 +710,7 @@ impl NonPeriodicHalfSpace {
                 &[],
                 precision,
             ),
+            local: OnceLock::new(),
             single: None,
         }
     }
@@ -693,6 +719,7 @@ impl NonPeriodicHalfSpace {
     pub fn with_preconditioner(mut self, precision: Precision) -> Self {
         let (nx, ny) = (self.hs.nx, self.hs.ny);
         self.stiffness = Stiffness::new(nx, ny, self.stiffness.symbol(), &[], precision);
+        self.local = OnceLock::new();
         self.single = None;
         self
     }
@@ -754,6 +781,13 @@ impl Compliance for NonPeriodicHalfSpace {
     fn precondition(&mut self, g: &mut [f64]) {
         let dims = (self.hs.nx, self.hs.ny);
         self.stiffness.apply(g, dims);
+    }
+    fn local_stiffness(&mut self) -> Option<&Stencil> {
+        let (nx, ny) = (self.hs.nx, self.hs.ny);
+        let stiffness = &self.stiffness;
+        self.local
+            .get_or_init(|| Stencil::of_symbol(&stiffness.symbol(), nx, ny))
+            .as_ref()
     }
     fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
         let dims = (self.hs.nx, self.hs.ny);
