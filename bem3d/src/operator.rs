@@ -109,6 +109,18 @@ impl Stiffness {
         }
     }
 
+    /// M's stencil on the grid `dims`, made into `local` on first use
+    /// ([`Compliance::local_stiffness`]).
+    fn stencil<'a>(
+        &self,
+        local: &'a OnceLock<Option<Stencil>>,
+        (nx, ny): (usize, usize),
+    ) -> Option<&'a Stencil> {
+        local
+            .get_or_init(|| Stencil::of_symbol(&self.symbol(), nx, ny))
+            .as_ref()
+    }
+
     /// `g <- M g` on rows of `dims`.
     fn apply(&mut self, g: &mut [f64], dims: (usize, usize)) {
         match self {
@@ -454,11 +466,8 @@ impl Compliance for PeriodicHalfSpace {
         self.stiffness.apply(g, dims);
     }
     fn local_stiffness(&mut self) -> Option<&Stencil> {
-        let (nx, ny) = (self.hs.nx, self.hs.ny);
-        let stiffness = &self.stiffness;
-        self.local
-            .get_or_init(|| Stencil::of_symbol(&stiffness.symbol(), nx, ny))
-            .as_ref()
+        self.stiffness
+            .stencil(&self.local, (self.hs.nx, self.hs.ny))
     }
     fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
         let dims = (self.hs.nx, self.hs.ny);
@@ -783,11 +792,8 @@ impl Compliance for NonPeriodicHalfSpace {
         self.stiffness.apply(g, dims);
     }
     fn local_stiffness(&mut self) -> Option<&Stencil> {
-        let (nx, ny) = (self.hs.nx, self.hs.ny);
-        let stiffness = &self.stiffness;
-        self.local
-            .get_or_init(|| Stencil::of_symbol(&stiffness.symbol(), nx, ny))
-            .as_ref()
+        self.stiffness
+            .stencil(&self.local, (self.hs.nx, self.hs.ny))
     }
     fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
         let dims = (self.hs.nx, self.hs.ny);

@@ -1045,7 +1045,7 @@ impl<K: Compliance> ContactSolver<K> {
                 // goes to a scratch buffer.
                 chunks
                     .into_par_iter()
-                    .map(|item| with_scratch(fc, |q| residual_of(item, q)))
+                    .map(|item| with_scratch(item.0.len(), |q| residual_of(item, q)))
                     .collect()
             } else {
                 load_fused(
@@ -1109,8 +1109,14 @@ impl<K: Compliance> ContactSolver<K> {
             let sums_of = |(act, w, y_prev, on), y: &[f64]| {
                 sweeps::preconditioned(act, w, y_prev, y, (on, nx), approach)
             };
-            let parts: Vec<[f64; 3]> = match self.op.local_stiffness() {
-                Some(stencil) if local => {
+            // (The stencil is made only once a set is small.)
+            let stencil = if local {
+                self.op.local_stiffness()
+            } else {
+                None
+            };
+            let parts: Vec<[f64; 3]> = match stencil {
+                Some(stencil) => {
                     // y = M q on the contact cells of each chunk's rows (in a scratch
                     // buffer), then its sums.
                     let grid = (&self.active[..], &self.w[..], approach);
