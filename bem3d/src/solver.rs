@@ -182,7 +182,7 @@
 //! 1024^2 32 -> 33, 1.06x and 1.14x; free 512^2 27 -> 29, 1.04x on two threads; free
 //! 1024^2 34 -> 37, 1.02x (K there is the padded transform, M's share of an iteration
 //! smaller). At 2.3 % contact (512^2) the transforms are used; at 4 % the stencil took
-//! 3-7 more iterations.
+//! 1-6 more iterations.
 //!
 //! Warm starts: a previous [`Solution`] is used as the initial iterate only where it
 //! pays, i.e. for small load steps: force ratios in [0.9, 1.05] and approach ratios in

@@ -10,11 +10,13 @@
 //! symbol at k = 0) too large by minus the tail's sum (the tail is negative); half of
 //! the tail's sum goes back to the centre value ([`TAIL_SHARE`]).
 //!
-//! Measured on the benchmark surfaces (periodic and free 512^2 and 1024^2, 1 % contact,
-//! nested start): iterations of the full M -> this stencil with radius 1, 2, 4, 8: 28 ->
-//! 35, 35, 33, 30 without the tail's share; with half of it, radii 3, 4 and 6: 29, 28,
-//! 29 (512^2), 32 -> 34, 34, 33 (1024^2); with all of it, radius 4: 31. At 4 % contact
-//! 3-7 more iterations than with the transforms.
+//! Measured on the periodic benchmark surface at 512^2 and 1 % contact (nested start;
+//! fine iterations, a prototype that took the kernel from M's single-precision
+//! transform of a unit load): 28 with the transforms; radius 1, 2, 4, 8 without the
+//! tail's share 35, 35, 33, 30; radius 3, 4, 6 with half of it 29, 28, 29 (at 1024^2:
+//! 32 -> 34, 34, 33); radius 4 with all of it 31. This code (radius 4, half): 28 at
+//! 512^2, 33 at 1024^2, 29 and 37 on the free half-space against 27 and 34. At 4 %
+//! contact 1-6 more iterations than with the transforms (the solver's limit is 2 %).
 
 use rayon::prelude::*;
 use std::f64::consts::PI;
