@@ -46,8 +46,8 @@ impl Stencil {
     /// store them) within [`RADIUS`] cells, the centre given [`TAIL_SHARE`] of the
     /// tail's sum. None if a side is shorter than the stencil's (it would wrap onto
     /// itself), if the symbol is not even in ky (as a function of |k| is; the kernel is
-    /// then even in x and y, and cosine sums give it), or if the stencil is not
-    /// diagonally dominant (a stiffness' kernel is: negative around its centre).
+    /// then even in x and y, and cosine sums give it), or if the stencil's circulant is
+    /// not positive definite on the grid (its symbol at some wavenumber not positive).
     pub fn of_symbol(symbol: &[f64], nx: usize, ny: usize) -> Option<Self> {
         let nc = nx / 2 + 1;
         assert_eq!(symbol.len(), nc * ny, "one value per spectrum bin");
