@@ -154,8 +154,9 @@ impl Stencil {
     /// covers (whole rows of `nx` cells), 0 at the others of the rows `on` marks (`on`
     /// indexed from `first_row`); the rows `on` leaves out are not written. `active`
     /// and `w` are the whole grid, read around each cell with wrap-around. Each value
-    /// sums its products in a fixed order (rows, then cells), so results do not depend
-    /// on how the caller splits the rows.
+    /// sums its products in a fixed order (for each column offset the rows' products,
+    /// then the columns' sums), so results do not depend on how the caller splits the
+    /// rows.
     pub fn apply_rows(
         &self,
         (active, w, shift): (&[u8], &[f64], f64),
@@ -177,29 +178,47 @@ impl Stencil {
                 (&active[cells.clone()], &w[cells])
             });
             let own = &active[iy * nx..(iy + 1) * nx];
-            for (ix, (out, &a)) in row.iter_mut().zip(own).enumerate() {
-                if a == 0 {
-                    *out = 0.0;
-                    continue;
+            // Zero first, then the active cells, found 8 cells (one u64) at a time: most
+            // blocks hold none on a small contact set.
+            row.fill(0.0);
+            let blocks = own.chunks_exact(8);
+            let tail = 8 * (nx / 8)..nx;
+            for (b, block) in blocks.enumerate() {
+                let mut bytes = u64::from_le_bytes(block.try_into().expect("8 cells"));
+                while bytes != 0 {
+                    let j = bytes.trailing_zeros() as usize / 8;
+                    bytes &= !(0xff << (8 * j));
+                    row[8 * b + j] = self.sum_at(8 * b + j, &rows, shift);
                 }
-                let mut v = 0.0;
-                let interior = ix >= RADIUS && ix + RADIUS < nx;
-                for (weights, (act, w)) in self.values.chunks_exact(SIDE).zip(&rows) {
-                    if interior {
-                        let near = ix - RADIUS..=ix + RADIUS;
-                        for ((c, &a), w) in weights.iter().zip(&act[near.clone()]).zip(&w[near]) {
-                            v += c * (a as f64 * (w - shift));
-                        }
-                    } else {
-                        for (s, c) in weights.iter().enumerate() {
-                            let jx = (ix as i64 + s as i64 - r).rem_euclid(nx as i64) as usize;
-                            v += c * (act[jx] as f64 * (w[jx] - shift));
-                        }
-                    }
-                }
-                *out = v;
+            }
+            for ix in tail.filter(|&ix| own[ix] != 0) {
+                row[ix] = self.sum_at(ix, &rows, shift);
             }
         }
+    }
+
+    /// The stencil's sum at column `ix` over `rows` (the grid's rows around the cell,
+    /// wrapped around): one partial sum per column offset, over the rows (independent
+    /// chains the compiler keeps in vector registers), then summed in column order.
+    fn sum_at(&self, ix: usize, rows: &[(&[u8], &[f64]); SIDE], shift: f64) -> f64 {
+        let nx = self.nx;
+        let mut sums = [0.0; SIDE];
+        let interior = ix >= RADIUS && ix + RADIUS < nx;
+        for (weights, (act, w)) in self.values.chunks_exact(SIDE).zip(rows) {
+            if interior {
+                let near = ix - RADIUS..=ix + RADIUS;
+                let cells = act[near.clone()].iter().zip(&w[near]);
+                for ((sum, c), (&a, w)) in sums.iter_mut().zip(weights).zip(cells) {
+                    *sum += c * (a as f64 * (w - shift));
+                }
+            } else {
+                for (s, (sum, c)) in sums.iter_mut().zip(weights).enumerate() {
+                    let jx = (ix + nx + s - RADIUS) % nx;
+                    *sum += c * (act[jx] as f64 * (w[jx] - shift));
+                }
+            }
+        }
+        sums.iter().sum()
     }
 }
 
