@@ -16,6 +16,8 @@ use std::time::Instant;
 
 const REPS: usize = 20;
 const CHUNK: usize = 1 << 14;
+/// Largest array asked for [MiB] (three are allocated at once).
+const MAX_MIB: usize = 4096;
 
 /// Best times [s] of the triad and the update over `REPS` repetitions.
 fn best_times(a: &mut [f64], b: &[f64], c: &[f64]) -> [f64; 2] {
@@ -71,6 +73,10 @@ fn main() {
         }
     };
     let (mib, rounds) = (arg(1, 64), arg(2, 4));
+    if mib > MAX_MIB {
+        eprintln!("error: {mib} MiB per array: at most {MAX_MIB} (three arrays are allocated)");
+        std::process::exit(2)
+    }
     let n = mib * (1 << 20) / 8;
     let cores = std::thread::available_parallelism().map_or(1, |t| t.get());
     // At least two threads (on one core the second only takes turns with the first).
