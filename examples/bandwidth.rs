@@ -47,18 +47,6 @@ fn best_times(a: &mut [f64], b: &[f64], c: &[f64]) -> [f64; 2] {
     best
 }
 
-fn cpu_model() -> String {
-    std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("model name"))
-                .and_then(|l| l.split(':').nth(1))
-                .map(|m| m.trim().to_string())
-        })
-        .unwrap_or_else(|| "unknown CPU".into())
-}
-
 fn main() {
     let arg = |i: usize, default: usize| -> usize {
         match std::env::args().nth(i) {
@@ -81,7 +69,10 @@ fn main() {
     let cores = std::thread::available_parallelism().map_or(1, |t| t.get());
     // At least two threads (on one core the second only takes turns with the first).
     let threads = cores.max(2);
-    println!("{} ({cores} cores); three arrays of {mib} MiB", cpu_model());
+    println!(
+        "{} ({cores} cores); three arrays of {mib} MiB",
+        compare::bench::cpu_model()
+    );
     // Bytes each pass moves: three arrays (two read, one written).
     let bytes = 3.0 * (n * 8) as f64;
     let mut best = [[f64::INFINITY; 2]; 2];
