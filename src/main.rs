@@ -87,13 +87,14 @@ enum Command {
         /// What to benchmark.
         #[arg(value_enum, default_value = "mrd")]
         target: BenchTarget,
-        /// Largest log10 of the number of springs (mrd).
-        #[arg(long, default_value_t = 6)]
+        /// Largest log10 of the number of springs (mrd, rough, sliding): 3..=8.
+        #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u32).range(3..=8))]
         max_exp: u32,
-        /// Largest grid side (bem): periodic 128.. up to this; the periodic surfaces at
-        /// 0.1 % contact ("sparse") and Hertz 128.. up to min(this, 1024).
-        #[arg(long, default_value_t = 1024)]
-        max_n: usize,
+        /// Largest grid side (bem, sliding3d: 128..=16384): periodic 128.. up to this; the
+        /// periodic surfaces at 0.1 % contact ("sparse") and Hertz 128.. up to
+        /// min(this, 1024).
+        #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u64).range(128..=16384))]
+        max_n: u64,
         /// Also write the periodic surfaces and our pressures as .npy here (bem), for
         /// bench/tamaas_compare.py.
         #[arg(long)]
@@ -182,6 +183,15 @@ impl From<std::io::Error> for Failure {
 /// Standard output, with write errors returned instead of panicking.
 struct Out(std::io::StdoutLock<'static>);
 
+/// A line on standard error; a failed write (a closed or full stderr) is ignored: the
+/// exit code still tells.
+macro_rules! note {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+
 macro_rules! say {
     ($out:expr, $($arg:tt)*) => { writeln!($out.0, $($arg)*)? };
 }
@@ -233,7 +243,7 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
             }
             let (report, files) = compare::run_to_folder(&scene, &dir, &control)?;
             for w in report.warnings() {
-                eprintln!("warning: {w}");
+                note!("warning: {w}");
             }
             for (k, v) in report.results() {
                 if !v.is_object() {
@@ -291,18 +301,17 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
             out: folder,
         } => {
             match target {
-                BenchTarget::Mrd => compare::bench::run_mrd(&mut out.0, max_exp.clamp(3, 8))?,
-                BenchTarget::Rough => compare::bench::run_rough(
-                    &mut out.0,
-                    if max_exp == 6 { 7 } else { max_exp.clamp(3, 8) },
-                )?,
+                BenchTarget::Mrd => compare::bench::run_mrd(&mut out.0, max_exp)?,
+                BenchTarget::Rough => {
+                    compare::bench::run_rough(&mut out.0, if max_exp == 6 { 7 } else { max_exp })?
+                }
                 BenchTarget::Sliding => compare::bench::run_sliding(&mut out.0, max_exp)?,
                 BenchTarget::Sliding3d => {
-                    let n = if max_n == 1024 { 512 } else { max_n };
+                    let n = if max_n == 1024 { 512 } else { max_n as usize };
                     compare::bench::run_sliding_3d(&mut out.0, n)?
                 }
                 BenchTarget::Bem => {
-                    compare::bench::run_bem(&mut out.0, max_n, write_surfaces.as_deref())?
+                    compare::bench::run_bem(&mut out.0, max_n as usize, write_surfaces.as_deref())?
                 }
                 BenchTarget::Report => {
                     let folder = folder.unwrap_or_else(|| {
@@ -317,7 +326,7 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
                         compare::bench::report::Options { quick },
                         &command.join(" "),
                         &folder,
-                        &mut |what| eprintln!("bench report: {what} ..."),
+                        &mut |what| note!("bench report: {what} ..."),
                     )?;
                     say!(out, "wrote {} files into {}", files.len(), folder.display());
                 }
@@ -342,7 +351,7 @@ fn incomplete(report: &compare::report::Report) -> Result<(), Failure> {
         return Ok(());
     }
     for f in &failures {
-        eprintln!("warning: {f}");
+        note!("warning: {f}");
     }
     Err(Failure::Error(
         format!(
@@ -361,7 +370,7 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(Failure::Error(e, code)) => {
             // One readable line.
-            eprintln!("error: {}", e.replace('\n', " "));
+            note!("error: {}", e.replace('\n', " "));
             ExitCode::from(code)
         }
     }

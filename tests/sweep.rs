@@ -143,10 +143,17 @@ fn killed_run_resumes_to_identical_csvs() {
         .map(|d| std::fs::read_dir(d.unwrap().path()).unwrap().count())
         .sum();
     assert!(done >= 3, "checkpoints kept: {done}");
-    ok(&mrdw(
+    let resumed = mrdw(
         &["run", s, "--out", part.to_str().unwrap(), "--threads", "1"],
         &[],
-    ));
+    );
+    ok(&resumed);
+    // The resumed run says what it took from the checkpoints.
+    let said = String::from_utf8_lossy(&resumed.stderr);
+    assert!(
+        said.contains(&format!("resuming: {done} of ")) && said.contains("taken from checkpoints"),
+        "{said}"
+    );
     assert_eq!(csvs(&full), csvs(&part));
 }
 
@@ -215,7 +222,7 @@ fn sweep_input_errors() {
         (SMALL.replace("grid = 32", "grid = 8"), "grid 8"),
         (
             SMALL.replace("realisations_3d = 3", "realisations_3d = 1"),
-            "at least 2 realisations",
+            "realisations_3d = 1 must lie in 2..=100000",
         ),
         (
             SMALL.replace("seed = 5", "seed = 5\ncolour = 1"),

@@ -22,6 +22,15 @@ pub enum BemError {
         tolerance: f64,
         last: Box<crate::solver::Solution>,
     },
+    /// The caller set the solve's [`crate::solver::Interrupt`].
+    #[error("{what} interrupted after {iterations} iterations")]
+    Interrupted {
+        what: &'static str,
+        iterations: usize,
+    },
+    /// A grid needs more memory than this process may use.
+    #[error(transparent)]
+    Memory(#[from] sysmem::MemoryError),
     /// An iteration could not continue: a non-finite or vanishing step. It carries the
     /// residual reached before the breakdown.
     #[error("{what} broke down after {iterations} iterations ({reason}); residual reached {residual:.3e}")]

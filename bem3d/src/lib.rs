@@ -24,4 +24,4 @@ pub use operator::{
     Spectral, Transform,
 };
 pub use sliding::{SlidingContact, SlidingSolution};
-pub use solver::{ContactSolver, Load, Solution, SolverOptions};
+pub use solver::{ContactSolver, Interrupt, Load, Solution, SolverOptions, MAX_TOLERANCE};

@@ -292,6 +292,7 @@ impl SlidingContact {
             let inner_opts = SolverOptions {
                 tolerance: (0.1 * last_residual).clamp(inner_floor, 1e-2f64.max(inner_floor)),
                 max_iterations: opts.max_iterations,
+                ..opts.clone()
             };
             let sol =
                 match self

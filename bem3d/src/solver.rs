@@ -212,18 +212,75 @@ pub enum Load {
     Approach(f64),
 }
 
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct SolverOptions {
+    /// Convergence criterion (module docs), in (0, [`MAX_TOLERANCE`]].
     pub tolerance: f64,
     pub max_iterations: usize,
+    /// Polled once per iteration: when it is set the solve stops with
+    /// [`BemError::Interrupted`] (a caller's Ctrl-C).
+    pub interrupt: Option<Interrupt>,
 }
+
+/// Largest load a solve accepts, as a mean pressure over E* or an approach over the map's
+/// size.
+pub const MAX_LOAD: f64 = 1e10;
+
+/// Largest tolerance a solve accepts: beyond it the criterion no longer bounds the
+/// answer's error usefully (at 1 the pressures of a rough contact are off by 10 % or
+/// more).
+pub const MAX_TOLERANCE: f64 = 1e-2;
 
 impl Default for SolverOptions {
     fn default() -> Self {
+        Self::new(1e-10, 10_000)
+    }
+}
+
+impl SolverOptions {
+    /// The options of a solve to `tolerance` in at most `max_iterations` iterations.
+    pub fn new(tolerance: f64, max_iterations: usize) -> Self {
         Self {
-            tolerance: 1e-10,
-            max_iterations: 10_000,
+            tolerance,
+            max_iterations,
+            interrupt: None,
         }
+    }
+
+    /// Refuses a tolerance outside (0, [`MAX_TOLERANCE`]] or no iterations; the one
+    /// check of the command line and the Python package.
+    pub fn validate(&self) -> Result<()> {
+        if !(self.tolerance > 0.0 && self.tolerance <= MAX_TOLERANCE) {
+            return Err(BemError::InvalidInput(format!(
+                "tolerance = {:e} must lie in (0, {MAX_TOLERANCE:e}]",
+                self.tolerance
+            )));
+        }
+        if self.max_iterations == 0 {
+            return Err(BemError::InvalidInput("max_iterations must be >= 1".into()));
+        }
+        Ok(())
+    }
+
+    /// Whether the caller asked the solve to stop.
+    fn interrupted(&self) -> bool {
+        self.interrupt.as_ref().is_some_and(Interrupt::is_set)
+    }
+}
+
+/// A flag a caller sets (from another thread) to stop solves that poll it.
+#[derive(Debug, Clone, Default)]
+pub struct Interrupt(std::sync::Arc<std::sync::atomic::AtomicBool>);
+
+impl Interrupt {
+    pub fn set(&self) {
+        self.0.store(true, std::sync::atomic::Ordering::Relaxed);
+    }
+    pub fn clear(&self) {
+        self.0.store(false, std::sync::atomic::Ordering::Relaxed);
+    }
+    pub fn is_set(&self) -> bool {
+        self.0.load(std::sync::atomic::Ordering::Relaxed)
     }
 }
 
@@ -599,12 +656,7 @@ impl<K: Compliance> ContactSolver<K> {
 
     fn new_on_pool(op: K, heights: &[f64], mask: Option<Vec<bool>>) -> Result<Self> {
         let n = op.cells();
-        if !(op.e_star().is_finite() && op.e_star() > 0.0) {
-            return Err(BemError::InvalidInput(format!(
-                "E* = {} must be > 0",
-                op.e_star()
-            )));
-        }
+        op.half_space().validate()?;
         let mask: Vec<u8> = match mask {
             None => vec![1; n],
             Some(m) if m.len() == n && m.iter().any(|&m| m) => m.iter().map(|&m| m as u8).collect(),
@@ -661,9 +713,15 @@ impl<K: Compliance> ContactSolver<K> {
                 self.op.ny(),
             )));
         }
-        if let Some(i) = heights.iter().position(|h| !h.is_finite()) {
+        let limit = crate::operator::SCALE_RANGE.1;
+        if let Some(i) = heights.iter().position(|h| !(..=limit).contains(&h.abs())) {
+            let what = if heights[i].is_finite() {
+                format!("height {:e} beyond |h| <= {limit:e}", heights[i])
+            } else {
+                "non-finite height".to_string()
+            };
             return Err(BemError::InvalidInput(format!(
-                "non-finite height at row {}, column {}",
+                "{what} at row {}, column {}",
                 i / nx,
                 i % nx
             )));
@@ -877,12 +935,25 @@ impl<K: Compliance> ContactSolver<K> {
             Load::Force(f) | Load::MeanPressure(f) => bad(f, "load")?,
             Load::Approach(d) => bad(d, "approach")?,
         }
-        if opts.max_iterations == 0 || !(opts.tolerance > 0.0 && opts.tolerance.is_finite()) {
-            return Err(BemError::InvalidInput(format!(
-                "tolerance = {} must be > 0 and max_iterations = {} >= 1",
-                opts.tolerance, opts.max_iterations
-            )));
+        // Linear elasticity and double precision both end long before a mean pressure
+        // of MAX_LOAD E* or an approach of MAX_LOAD times the map's size.
+        let (e, size) = (self.op.e_star(), self.op.lx().max(self.op.ly()));
+        match (load, target_force) {
+            (_, Some(f)) if !(..=MAX_LOAD * e).contains(&(f / (self.op.lx() * self.op.ly()))) => {
+                return Err(BemError::InvalidInput(format!(
+                    "load: a force of {f:e} is a mean pressure of {:e}, more than {MAX_LOAD:e} E* = {:e}",
+                    f / (self.op.lx() * self.op.ly()),
+                    MAX_LOAD * e
+                )))
+            }
+            (Load::Approach(d), _) if d > MAX_LOAD * size => {
+                return Err(BemError::InvalidInput(format!(
+                    "approach = {d:e} is more than {MAX_LOAD:e} times the map's size {size:e}"
+                )))
+            }
+            _ => {}
         }
+        opts.validate()?;
         if let Load::Approach(d) = load {
             if self.op.is_periodic() && nm == n && d >= self.z_mean {
                 return Err(BemError::Infeasible(format!(
@@ -1095,6 +1166,12 @@ impl<K: Compliance> ContactSolver<K> {
             }
             if it == opts.max_iterations {
                 break;
+            }
+            if opts.interrupted() {
+                return Err(BemError::Interrupted {
+                    what: "contact solve",
+                    iterations: it,
+                });
             }
             it += 1;
             // Preconditioned residual y = M q, with the sums of the projected
@@ -1423,6 +1500,7 @@ impl<K: Compliance> ContactSolver<K> {
         let loose = SolverOptions {
             tolerance: NESTED_TOLERANCE.max(opts.tolerance),
             max_iterations: opts.max_iterations.min(NESTED_MAX_ITERATIONS),
+            ..opts.clone()
         };
         let Ok(sol) = coarse.solve_on_pool(Load::Force(force), &loose, None) else {
             return false;
@@ -1573,6 +1651,12 @@ impl<K: Compliance> ContactSolver<K> {
             if it == opts.max_iterations {
                 break;
             }
+            if opts.interrupted() {
+                return Err(BemError::Interrupted {
+                    what: WHAT,
+                    iterations: it,
+                });
+            }
             self.op.apply(&dir, &mut q);
             q.iter_mut().zip(&c).for_each(|(v, m)| *v *= m);
             let curvature = dot(&dir, &q);
@@ -1717,6 +1801,7 @@ mod tests {
                 let opts = SolverOptions {
                     tolerance: 1e-12,
                     max_iterations: 5_000,
+                    ..Default::default()
                 };
                 s.solve(Load::MeanPressure(6e-3), &opts, None).unwrap()
             })

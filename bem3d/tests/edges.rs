@@ -7,10 +7,7 @@ mod common;
 use common::{rel, self_affine, sphere};
 
 fn opts(tolerance: f64, max_iterations: usize) -> SolverOptions {
-    SolverOptions {
-        tolerance,
-        max_iterations,
-    }
+    SolverOptions::new(tolerance, max_iterations)
 }
 
 /// Beyond complete contact of a periodic rough surface (0.3 and 3 E*, where it starts

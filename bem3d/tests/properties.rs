@@ -15,6 +15,7 @@ fn solve<K: Compliance>(op: K, h: &[f64], pm: f64) -> Solution {
         &SolverOptions {
             tolerance: 1e-12,
             max_iterations: 5000,
+            ..Default::default()
         },
         None,
     )

@@ -29,10 +29,7 @@ fn wave(nx: usize, ny: usize, l: f64, h0: f64, m: f64) -> Vec<f64> {
 }
 
 fn opts(tol: f64) -> SolverOptions {
-    SolverOptions {
-        tolerance: tol,
-        max_iterations: 500,
-    }
+    SolverOptions::new(tol, 500)
 }
 
 #[test]
@@ -357,6 +354,7 @@ fn bad_input_and_non_convergence_are_typed() {
         &SolverOptions {
             tolerance: 1e-14,
             max_iterations: 2,
+            ..Default::default()
         },
         None,
     ) {

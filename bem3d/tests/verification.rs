@@ -28,6 +28,7 @@ fn hertz_errors(n: usize) -> HertzErrors {
             &SolverOptions {
                 tolerance: 1e-10,
                 max_iterations: 5000,
+                ..Default::default()
             },
             None,
         )
@@ -216,6 +217,7 @@ fn fft_solver_matches_dense_active_set_solve() {
         let opts = SolverOptions {
             tolerance: 1e-14,
             max_iterations: 20_000,
+            ..Default::default()
         };
         let (sol, dense) = if periodic {
             let mut s =
@@ -263,6 +265,7 @@ fn invariances() {
     let opts = SolverOptions {
         tolerance: 1e-12,
         max_iterations: 10_000,
+        ..Default::default()
     };
     let load = Load::MeanPressure(0.02);
     let mut base =
@@ -312,6 +315,7 @@ fn tangent_stiffness_matches_central_difference() {
     let opts = SolverOptions {
         tolerance: 1e-13,
         max_iterations: 20_000,
+        ..Default::default()
     };
     let sol = s.solve(Load::Force(0.05), &opts, None).unwrap();
     let kt = s
@@ -320,6 +324,7 @@ fn tangent_stiffness_matches_central_difference() {
             &SolverOptions {
                 tolerance: 1e-12,
                 max_iterations: 10_000,
+                ..Default::default()
             },
         )
         .unwrap();
@@ -349,6 +354,7 @@ fn displacement_and_force_control_agree_and_warm_start_helps() {
     let opts = SolverOptions {
         tolerance: 1e-12,
         max_iterations: 10_000,
+        ..Default::default()
     };
     let a = s.solve(Load::Force(0.01), &opts, None).unwrap();
     let b = s.solve(Load::Approach(a.approach), &opts, None).unwrap();
@@ -374,6 +380,7 @@ fn errors_are_typed() {
         &SolverOptions {
             tolerance: 1e-14,
             max_iterations: 2,
+            ..Default::default()
         },
         None,
     ) {
@@ -510,6 +517,7 @@ fn preconditioned_incremental_solver_matches_plain_polonsky_keer() {
     let opts = SolverOptions {
         tolerance: 1e-12,
         max_iterations: 20_000,
+        ..Default::default()
     };
     // `gain`: the fewest times fewer iterations the preconditioner must take.
     let check = |a: &Solution, (pb, db, ib): (Vec<f64>, f64, usize), gain: f64, what: &str| {
@@ -600,6 +608,7 @@ fn restricted_solve_matches_the_full_grid_solve() {
     let o = SolverOptions {
         tolerance: 1e-12,
         max_iterations: 10_000,
+        ..Default::default()
     };
     let rough_h = common::self_affine(n, 0.8, 5);
     let ball = sphere(n, 1.0, 1.0);
@@ -730,6 +739,7 @@ fn windowed_solve_matches_the_full_grid_solve() {
     let o = SolverOptions {
         tolerance: 1e-12,
         max_iterations: 10_000,
+        ..Default::default()
     };
     let free = || NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
     let check = matches_full_grid;
@@ -818,6 +828,7 @@ fn single_precision_preconditioner_reaches_the_same_solution() {
     let o = SolverOptions {
         tolerance: 1e-12,
         max_iterations: 10_000,
+        ..Default::default()
     };
     let rough_h = common::self_affine(n, 0.8, 5);
     let ball = sphere(n, 1.0, 1.0);
@@ -908,6 +919,7 @@ fn nested_start_reaches_the_cold_starts_solution_in_fewer_iterations() {
     let o = SolverOptions {
         tolerance: 1e-12,
         max_iterations: 10_000,
+        ..Default::default()
     };
     fn solve<K: Compliance>(
         op: K,

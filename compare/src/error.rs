@@ -39,6 +39,9 @@ pub enum CompareError {
     /// Another process holds the lock on this report or work folder.
     #[error("{0}")]
     Busy(String),
+    /// A size the scene chose needs more memory than this process may use.
+    #[error(transparent)]
+    Memory(#[from] sysmem::MemoryError),
     /// A bug: an invariant of the program does not hold.
     #[error("internal error: {0}")]
     Internal(String),

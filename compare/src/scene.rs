@@ -152,13 +152,17 @@ impl Scene {
     /// scene (see [`crate::scenes`]).
     pub fn open(name: &str) -> Result<Self> {
         let path = Path::new(name);
-        if path.exists() {
+        // A folder is never a scene: a report folder named like the scene it holds
+        // (`mrdw run hertz --out hertz`) must not hide the embedded scene.
+        if path.exists() && !path.is_dir() {
             return Self::load(path);
         }
         if let Some(text) = crate::scenes::get(name) {
             return Self::parse(text, &format!("<embedded:{name}>"), None);
         }
-        let hint = if name.ends_with(".toml") {
+        let hint = if path.is_dir() {
+            "a folder, not a scene file, and not an embedded scene (see `mrdw scenes`)"
+        } else if name.ends_with(".toml") {
             "no such file"
         } else {
             "neither a file nor an embedded scene (see `mrdw scenes`)"

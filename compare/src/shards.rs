@@ -6,7 +6,7 @@
 
 use crate::error::{io_err, CompareError, Result};
 use crate::outputs::{Checkpointed, RunControl};
-use crate::report::write::{Destination, MARKER};
+use crate::report::write::{marker_text, Destination, MARKER, SHARD_ENTRIES};
 use crate::report::Report;
 use crate::run::{provenance, remove_checkpoints, run_in, tool_version};
 use crate::scene::Scene;
@@ -46,7 +46,7 @@ pub fn run_shard(scene: &Scene, out: &Path, control: &RunControl) -> Result<()> 
     let dest = Destination::claim(out)?;
     let dir = dest.dir();
     std::fs::create_dir_all(dir).map_err(io_err(format!("creating {}", dir.display())))?;
-    std::fs::write(dir.join(MARKER), "a shard folder written by mrdw\n")
+    std::fs::write(dir.join(MARKER), marker_text(&SHARD_ENTRIES))
         .map_err(io_err(format!("writing {MARKER}")))?;
     std::fs::write(dir.join("scene.toml"), &scene.source).map_err(io_err("writing scene.toml"))?;
     let m = Manifest {

@@ -7,7 +7,7 @@ use thiserror::Error;
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum MrdError {
     /// A parameter is outside its physical domain (negative modulus, n <= 0, ...).
-    #[error("invalid {name} = {value}: {reason}")]
+    #[error("invalid {name} = {}: {reason}", number(*value))]
     InvalidParameter {
         name: &'static str,
         value: f64,
@@ -43,6 +43,9 @@ pub enum MrdError {
     /// A load that the contact cannot carry (e.g. a tensile force below pull-off).
     #[error("impossible load: {0}")]
     ImpossibleLoad(String),
+    /// A size the caller chose needs more memory than this process may use.
+    #[error(transparent)]
+    Memory(#[from] sysmem::MemoryError),
     /// An iterative procedure stopped before reaching its tolerance.
     #[error("{what} did not converge after {iterations} iterations (residual {residual:.3e})")]
     NoConvergence {
@@ -53,6 +56,15 @@ pub enum MrdError {
 }
 
 pub type Result<T> = std::result::Result<T, MrdError>;
+
+/// A number as a reader wants it: plain where that is short, scientific otherwise.
+fn number(v: f64) -> String {
+    if v == 0.0 || (1e-4..1e6).contains(&v.abs()) || !v.is_finite() {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
 
 fn unreachable_message(depth: f64, limit: f64) -> String {
     if limit.is_finite() {
@@ -66,28 +78,53 @@ fn unreachable_message(depth: f64, limit: f64) -> String {
     }
 }
 
-/// Checks `value` is finite and strictly positive.
+/// Magnitudes a physical parameter may take: any unit system fits, and the products
+/// the methods form (forces of order E* d a, energies, spectra of order h^2 L^2) stay
+/// finite and normal in double precision.
+pub const MAGNITUDE_RANGE: (f64, f64) = (1e-100, 1e100);
+
+/// The index of the first height that is not finite or exceeds [`MAGNITUDE_RANGE`]
+/// in magnitude, with the words for a message ("non-finite height" or "height 1e300").
+pub fn bad_height(heights: &[f64]) -> Option<(usize, String)> {
+    let hi = MAGNITUDE_RANGE.1;
+    heights
+        .iter()
+        .position(|h| !(..=hi).contains(&h.abs()))
+        .map(|i| {
+            let h = heights[i];
+            let what = if h.is_finite() {
+                format!("height {h:e} beyond |h| <= {hi:e}")
+            } else {
+                "non-finite height".to_string()
+            };
+            (i, what)
+        })
+}
+
+/// Checks `value` is positive and within [`MAGNITUDE_RANGE`].
 pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64> {
-    if value.is_finite() && value > 0.0 {
+    let (lo, hi) = MAGNITUDE_RANGE;
+    if (lo..=hi).contains(&value) {
         Ok(value)
     } else {
         Err(MrdError::InvalidParameter {
             name,
             value,
-            reason: "must be finite and > 0",
+            reason: "must be > 0, within 1e-100..1e100",
         })
     }
 }
 
-/// Checks `value` is finite and non-negative.
+/// Checks `value` is zero or positive within [`MAGNITUDE_RANGE`].
 pub(crate) fn non_negative(name: &'static str, value: f64) -> Result<f64> {
-    if value.is_finite() && value >= 0.0 {
+    let (lo, hi) = MAGNITUDE_RANGE;
+    if value == 0.0 || (lo..=hi).contains(&value) {
         Ok(value)
     } else {
         Err(MrdError::InvalidParameter {
             name,
             value,
-            reason: "must be finite and >= 0",
+            reason: "must be 0 or > 0 within 1e-100..1e100",
         })
     }
 }

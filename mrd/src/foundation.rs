@@ -73,10 +73,8 @@ impl Foundation {
                 "foundation needs at least one spring".into(),
             ));
         }
-        if let Some(i) = gaps.iter().position(|g| !g.is_finite()) {
-            return Err(MrdError::InvalidData(format!(
-                "non-finite height at index {i}"
-            )));
+        if let Some((i, what)) = crate::error::bad_height(gaps) {
+            return Err(MrdError::InvalidData(format!("{what} at index {i}")));
         }
         let mut sorted = gaps.to_vec();
         sorted.sort_unstable_by(f64::total_cmp);

@@ -55,6 +55,7 @@ impl AxisymmetricContact {
     }
 
     fn check_radius(&self, a: f64) -> Result<()> {
+        crate::error::non_negative("contact radius", a)?;
         if a > self.limit() * (1.0 + 1e-12) {
             return Err(MrdError::OutOfRange {
                 needed: a,

@@ -166,6 +166,8 @@ pub fn dissipation_semi_analytic(
     amp: f64,
 ) -> Result<f64> {
     positive("amplitude", amp)?;
+    positive("g_star", g_star)?;
+    positive("friction coefficient", mu)?;
     let contact = crate::normal::AxisymmetricContact::new(profile.clone(), e_star)?;
     let a = contact.state_at_depth(d)?.radius;
     let beta = e_star / g_star;

@@ -52,9 +52,9 @@ impl RoughLine {
                 "a rough line needs at least 2 points".into(),
             ));
         }
-        if let Some(i) = heights.iter().position(|h| !h.is_finite()) {
+        if let Some((i, what)) = crate::error::bad_height(heights) {
             return Err(MrdError::InvalidData(format!(
-                "rough line: non-finite height at index {i}"
+                "rough line: {what} at index {i}"
             )));
         }
         let dx = length / n as f64;

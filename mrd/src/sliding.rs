@@ -61,9 +61,9 @@ impl Line {
     pub fn new(heights: &[f64], length: f64) -> Result<Self> {
         positive("length", length)?;
         let n = heights.len();
-        if n < 4 || heights.iter().any(|h| !h.is_finite()) {
+        if n < 4 || crate::error::bad_height(heights).is_some() {
             return Err(MrdError::InvalidData(
-                "a sliding line needs >= 4 finite heights".into(),
+                "a sliding line needs >= 4 finite heights, |h| <= 1e100".into(),
             ));
         }
         let zmax = heights.iter().fold(f64::NEG_INFINITY, |m, &v| m.max(v));

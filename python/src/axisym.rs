@@ -2,7 +2,7 @@
 //! normal contact (Eqs. 20, 24-25), Abel pressure (Eq. 26), adhesion (Eqs. 33-37),
 //! Cattaneo-Mindlin (Eqs. 41-51) and frictional damping (Section 7).
 
-use crate::errors::{mrd_err, value_error};
+use crate::errors::{finite, finite_dict, mrd_err, value_error};
 use mrd::adhesion::{AdhesiveContact, Control};
 use mrd::normal::{AxisymmetricContact, ContactState};
 use mrd::profile::{Profile as P, Shape, TabulatedProfile};
@@ -36,7 +36,7 @@ fn map<'py>(
     let a = x.as_array();
     let mut out = a.to_owned();
     for v in out.iter_mut() {
-        *v = f(*v).map_err(|e| mrd_err(py, e))?;
+        *v = finite("value", f(*v).map_err(|e| mrd_err(py, e))?)?;
     }
     Ok(PyArrayDyn::from_owned_array(py, out))
 }
@@ -192,12 +192,15 @@ fn contact(py: Python<'_>, profile: &Profile, e_star: f64) -> PyResult<Axisymmet
 }
 
 fn state_dict<'py>(py: Python<'py>, s: &ContactState) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("depth", s.depth)?;
-    d.set_item("radius", s.radius)?;
-    d.set_item("force", s.force)?;
-    d.set_item("stiffness", s.stiffness)?;
-    Ok(d)
+    finite_dict(
+        py,
+        &[
+            ("depth", s.depth),
+            ("radius", s.radius),
+            ("force", s.force),
+            ("stiffness", s.stiffness),
+        ],
+    )
 }
 
 fn one_of(names: [&str; 3], values: [Option<f64>; 3]) -> PyResult<(usize, f64)> {
@@ -281,17 +284,12 @@ pub fn adhesion<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let a =
         AdhesiveContact::new(contact(py, profile, e_star)?, gamma).map_err(|e| mrd_err(py, e))?;
-    let d = PyDict::new(py);
-    d.set_item("radius", radius)?;
-    d.set_item(
-        "depth",
-        a.depth_at_radius(radius).map_err(|e| mrd_err(py, e))?,
-    )?;
-    d.set_item(
-        "force",
-        a.force_at_radius(radius).map_err(|e| mrd_err(py, e))?,
-    )?;
-    Ok(d)
+    let depth = a.depth_at_radius(radius).map_err(|e| mrd_err(py, e))?;
+    let force = a.force_at_radius(radius).map_err(|e| mrd_err(py, e))?;
+    finite_dict(
+        py,
+        &[("radius", radius), ("depth", depth), ("force", force)],
+    )
 }
 
 /// pull_off(profile, e_star, gamma, *, control="force", max_radius=None) -> dict
@@ -334,11 +332,10 @@ pub fn pull_off<'py>(
     let a =
         AdhesiveContact::new(contact(py, profile, e_star)?, gamma).map_err(|e| mrd_err(py, e))?;
     let p = a.pull_off(a_max, control).map_err(|e| mrd_err(py, e))?;
-    let d = PyDict::new(py);
-    d.set_item("radius", p.radius)?;
-    d.set_item("depth", p.depth)?;
-    d.set_item("force", p.force)?;
-    Ok(d)
+    finite_dict(
+        py,
+        &[("radius", p.radius), ("depth", p.depth), ("force", p.force)],
+    )
 }
 
 /// cattaneo_mindlin(profile, e_star, g_star, mu, normal_force, tangential_force) -> dict
@@ -360,13 +357,16 @@ pub fn cattaneo_mindlin<'py>(
     let t = TangentialContact::new(contact(py, profile, e_star)?, g_star, mu, normal_force)
         .map_err(|e| mrd_err(py, e))?;
     let s = t.at_force(tangential_force).map_err(|e| mrd_err(py, e))?;
-    let d = PyDict::new(py);
-    d.set_item("force", s.force)?;
-    d.set_item("stick_radius", s.stick_radius)?;
-    d.set_item("displacement", s.displacement)?;
-    d.set_item("contact_radius", t.normal.radius)?;
-    d.set_item("max_displacement", t.max_displacement())?;
-    Ok(d)
+    finite_dict(
+        py,
+        &[
+            ("force", s.force),
+            ("stick_radius", s.stick_radius),
+            ("displacement", s.displacement),
+            ("contact_radius", t.normal.radius),
+            ("max_displacement", t.max_displacement()),
+        ],
+    )
 }
 
 /// damping(profile, e_star, g_star, mu, depth, amplitude) -> float
@@ -385,7 +385,7 @@ pub fn damping(
     depth: f64,
     amplitude: f64,
 ) -> PyResult<f64> {
-    mrd::oscillation::dissipation_semi_analytic(
+    let w = mrd::oscillation::dissipation_semi_analytic(
         &profile.inner,
         e_star,
         g_star,
@@ -393,5 +393,6 @@ pub fn damping(
         depth,
         amplitude,
     )
-    .map_err(|e| mrd_err(py, e))
+    .map_err(|e| mrd_err(py, e))?;
+    finite("dissipated energy", w)
 }

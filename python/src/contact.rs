@@ -2,7 +2,8 @@
 
 use crate::errors::{bem_err, value_error};
 use bem3d::{
-    ContactSolver, Load, NonPeriodicHalfSpace, PeriodicHalfSpace, Solution, SolverOptions,
+    ContactSolver, Interrupt, Load, NonPeriodicHalfSpace, PeriodicHalfSpace, Solution,
+    SolverOptions,
 };
 use numpy::ndarray::Array2;
 use numpy::{AllowTypeChange, PyArray2, PyArrayLike1, PyArrayLike2};
@@ -173,6 +174,8 @@ pub struct Contact {
     size: (f64, f64),
     e_star: f64,
     periodic: bool,
+    /// Set on Ctrl-C during a solve ([`interruptible`]).
+    interrupt: Interrupt,
 }
 
 struct Request {
@@ -199,19 +202,57 @@ fn request(
             ))
         }
     };
-    if !(tolerance.is_finite() && tolerance > 0.0) {
-        return Err(value_error(format!("tolerance = {tolerance} must be > 0")));
-    }
-    if max_iterations == 0 {
-        return Err(value_error("max_iterations must be at least 1"));
-    }
+    // The command line's check (bem3d::SolverOptions::validate).
+    let opts = SolverOptions::new(tolerance, max_iterations);
+    opts.validate().map_err(|e| value_error(e.to_string()))?;
     Ok(Request {
         load,
-        opts: SolverOptions {
-            tolerance,
-            max_iterations,
-        },
+        opts,
         stiffness,
+    })
+}
+
+/// Runs `work` on a thread of its own while this thread, holding the GIL only briefly,
+/// polls Python's signal handlers every 50 ms: on Ctrl-C (or any handler that raises)
+/// it sets `interrupt`, which the solver polls once per iteration, waits for the solve
+/// to stop and raises the handler's exception (KeyboardInterrupt).
+pub fn interruptible<T: Send>(
+    py: Python<'_>,
+    interrupt: &Interrupt,
+    work: impl FnOnce() -> T + Send,
+) -> PyResult<T> {
+    use std::sync::mpsc::{channel, RecvTimeoutError};
+    interrupt.clear();
+    let (tx, rx) = channel();
+    std::thread::scope(|scope| {
+        scope.spawn(move || {
+            let _ = tx.send(work());
+        });
+        let mut raised: Option<PyErr> = None;
+        let mut rx = rx;
+        loop {
+            let (back, got) = py.detach(move || {
+                let got = rx.recv_timeout(std::time::Duration::from_millis(50));
+                (rx, got)
+            });
+            rx = back;
+            match got {
+                Ok(value) => return raised.map_or(Ok(value), Err),
+                Err(RecvTimeoutError::Timeout) => {
+                    if raised.is_none() {
+                        if let Err(e) = py.check_signals() {
+                            interrupt.set();
+                            raised = Some(e);
+                        }
+                    }
+                }
+                Err(RecvTimeoutError::Disconnected) => {
+                    return Err(pyo3::exceptions::PyRuntimeError::new_err(
+                        "internal error: the solve ended without a result",
+                    ))
+                }
+            }
+        }
     })
 }
 
@@ -224,15 +265,19 @@ impl Contact {
         warm: Option<&Solution>,
     ) -> PyResult<ContactResult> {
         let solver = &mut self.solver;
-        let out = py.detach(|| -> bem3d::Result<(Solution, Option<f64>)> {
-            let sol = solver.solve(req.load, &req.opts, warm)?;
+        let opts = SolverOptions {
+            interrupt: Some(self.interrupt.clone()),
+            ..req.opts.clone()
+        };
+        let out = interruptible(py, &self.interrupt, || {
+            let sol = solver.solve(req.load, &opts, warm)?;
             let k = if req.stiffness {
-                Some(solver.stiffness(&sol, &req.opts)?)
+                Some(solver.stiffness(&sol, &opts)?)
             } else {
                 None
             };
-            Ok((sol, k))
-        });
+            Ok::<_, bem3d::BemError>((sol, k))
+        })?;
         let (sol, k) = out.map_err(|e| bem_err(py, e, self.shape, self.size.0 * self.size.1))?;
         Ok(ContactResult::new(
             sol,
@@ -263,26 +308,16 @@ impl Contact {
             )));
         }
         let (lx, ly) = size;
-        for (name, v) in [("size[0] (lx)", lx), ("size[1] (ly)", ly)] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(value_error(format!("{name} = {v} must be finite and > 0")));
-            }
+        // The command line's checks: grid, size and modulus ranges, memory.
+        bem3d::operator::HalfSpace {
+            nx,
+            ny,
+            lx,
+            ly,
+            e_star,
         }
-        if !(e_star.is_finite() && e_star > 0.0) {
-            return Err(value_error(format!(
-                "e_star = {e_star} must be finite and > 0"
-            )));
-        }
-        let per_cell = if periodic {
-            compare::outputs::BYTES_PER_CELL_PERIODIC
-        } else {
-            compare::outputs::BYTES_PER_CELL_NON_PERIODIC
-        };
-        compare::outputs::check_memory(
-            (nx * ny) as f64 * per_cell,
-            &format!("a {ny} x {nx} contact"),
-        )
-        .map_err(|e| crate::errors::compare_err(py, e))?;
+        .check(periodic)
+        .map_err(|e| bem_err(py, e, (ny, nx), lx * ly))?;
         // One copy (a memcpy for a C-ordered array): the solver keeps no reference to
         // numpy's memory while the GIL is released.
         let h: Vec<f64> = match view.as_slice() {
@@ -305,13 +340,13 @@ impl Contact {
         let built = py.detach(|| -> bem3d::Result<Solver> {
             Ok(if periodic {
                 Solver::Periodic(ContactSolver::new(
-                    PeriodicHalfSpace::new(nx, ny, lx, ly, e_star),
+                    PeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?,
                     &h,
                     mask,
                 )?)
             } else {
                 Solver::NonPeriodic(ContactSolver::new(
-                    NonPeriodicHalfSpace::new(nx, ny, lx, ly, e_star),
+                    NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?,
                     &h,
                     mask,
                 )?)
@@ -324,6 +359,7 @@ impl Contact {
             size,
             e_star,
             periodic,
+            interrupt: Interrupt::default(),
         })
     }
 

@@ -4,7 +4,9 @@
 //! iterate.
 
 use pyo3::create_exception;
-use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
+use pyo3::exceptions::{
+    PyKeyboardInterrupt, PyMemoryError, PyOSError, PyRuntimeError, PyValueError,
+};
 use pyo3::prelude::*;
 
 create_exception!(
@@ -35,8 +37,38 @@ pub fn convergence(
     err
 }
 
+/// A dictionary of named results, or a ValueError when one is not finite: extreme
+/// inputs whose results overflow (or cancel to NaN in) double precision.
+pub fn finite_dict<'py>(
+    py: Python<'py>,
+    items: &[(&str, f64)],
+) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
+    let d = pyo3::types::PyDict::new(py);
+    for &(k, v) in items {
+        finite(k, v)?;
+        d.set_item(k, v)?;
+    }
+    Ok(d)
+}
+
+/// `v`, or a ValueError naming `what` when it is not finite.
+pub fn finite(what: &str, v: f64) -> PyResult<f64> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(value_error(format!(
+            "the result {what} = {v} is not representable in double precision for these inputs: rescale the units (lengths, moduli) or check the parameters"
+        )))
+    }
+}
+
 pub fn value_error(message: impl Into<String>) -> PyErr {
     PyValueError::new_err(message.into())
+}
+
+/// A size that does not fit this process's memory: `MemoryError` naming the size.
+pub fn memory_error(e: sysmem::MemoryError) -> PyErr {
+    PyMemoryError::new_err(e.to_string())
 }
 
 /// Errors of the 1D method.
@@ -47,6 +79,7 @@ pub fn mrd_err(py: Python<'_>, e: mrd::MrdError) -> PyErr {
             iterations,
             residual,
         } => convergence(py, e.to_string(), what, iterations, residual, None),
+        mrd::MrdError::Memory(m) => memory_error(m),
         other => value_error(other.to_string()),
     }
 }
@@ -74,6 +107,8 @@ pub fn bem_err(py: Python<'_>, e: bem3d::BemError, shape: (usize, usize), area: 
             residual,
             ..
         } => convergence(py, message, what, iterations, residual, None),
+        bem3d::BemError::Memory(m) => memory_error(m),
+        bem3d::BemError::Interrupted { .. } => PyKeyboardInterrupt::new_err(message),
     }
 }
 
@@ -83,6 +118,14 @@ pub fn compare_err(py: Python<'_>, e: compare::CompareError) -> PyErr {
     let message = e.to_string();
     match e {
         C::Scene(_) => value_error(message),
+        C::Mrd {
+            source: mrd::MrdError::Memory(_),
+            ..
+        }
+        | C::Bem {
+            source: bem3d::BemError::Memory(_),
+            ..
+        } => PyMemoryError::new_err(message),
         C::Mrd { source, .. } => match source {
             mrd::MrdError::NoConvergence {
                 what,

@@ -169,10 +169,24 @@ pub fn line<'py>(
 }
 
 fn check_length(name: &str, v: f64) -> PyResult<()> {
-    if v.is_finite() && v > 0.0 {
+    let (lo, hi) = mrd::error::MAGNITUDE_RANGE;
+    if (lo..=hi).contains(&v) {
         Ok(())
     } else {
-        Err(value_error(format!("{name} = {v} must be finite and > 0")))
+        Err(value_error(format!(
+            "{name} = {v:e} must lie in [{lo:e}, {hi:e}]"
+        )))
+    }
+}
+
+/// Refuses results that overflow double precision (extreme heights and sizes together).
+fn representable(values: impl IntoIterator<Item = f64>) -> PyResult<()> {
+    if values.into_iter().all(f64::is_finite) {
+        Ok(())
+    } else {
+        Err(value_error(
+            "the result overflows double precision for these heights and sizes: rescale the units",
+        ))
     }
 }
 
@@ -187,8 +201,8 @@ fn finite_heights(h: &[f64]) -> PyResult<()> {
     if h.len() < 4 {
         return Err(value_error("need at least 4 heights"));
     }
-    match h.iter().position(|v| !v.is_finite()) {
-        Some(i) => Err(value_error(format!("non-finite height at index {i}"))),
+    match mrd::error::bad_height(h) {
+        Some((i, what)) => Err(value_error(format!("{what} at index {i}"))),
         None => Ok(()),
     }
 }
@@ -214,17 +228,25 @@ pub fn psd<'py>(
         1 => {
             let l: f64 = size.extract()?;
             check_length("size", l)?;
-            Ok(pairs(py, line_psd(&data, l)))
+            let v = line_psd(&data, l);
+            representable(v.iter().flat_map(|&(q, c)| [q, c]))?;
+            Ok(pairs(py, v))
         }
         2 => {
             let (lx, ly): (f64, f64) = size.extract()?;
             check_length("lx", lx)?;
             check_length("ly", ly)?;
-            if bins == 0 {
-                return Err(value_error("bins must be at least 1"));
-            }
             let (ny, nx) = (a.shape()[0], a.shape()[1]);
-            Ok(pairs(py, surface_psd(&data, nx, ny, lx, ly, bins)))
+            // More bins than modes leaves bins empty.
+            if !(1..=nx * ny).contains(&bins) {
+                return Err(value_error(format!(
+                    "bins = {bins} must lie in 1..={} (the map's cells)",
+                    nx * ny
+                )));
+            }
+            let v = surface_psd(&data, nx, ny, lx, ly, bins);
+            representable(v.iter().flat_map(|&(q, c)| [q, c]))?;
+            Ok(pairs(py, v))
         }
         d => Err(value_error(format!(
             "h must be 1D or 2D, got {d} dimensions"
@@ -264,6 +286,7 @@ pub fn moments<'py>(
             )))
         }
     };
+    representable([m.rms_height, m.rms_slope, m.rms_curvature])?;
     let d = PyDict::new(py);
     d.set_item("rms_height", m.rms_height)?;
     d.set_item("rms_slope", m.rms_slope)?;
@@ -287,13 +310,17 @@ pub fn read_topography<'py>(
 }
 
 fn state_dict<'py>(py: Python<'py>, s: &RoughState) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("depth", s.depth)?;
-    d.set_item("force", s.force)?;
+    let d = crate::errors::finite_dict(
+        py,
+        &[
+            ("depth", s.depth),
+            ("force", s.force),
+            ("contact_length", s.contact_length),
+            ("stiffness", s.stiffness),
+            ("contact_slope", s.contact_slope),
+        ],
+    )?;
     d.set_item("contacts", s.contacts)?;
-    d.set_item("contact_length", s.contact_length)?;
-    d.set_item("stiffness", s.stiffness)?;
-    d.set_item("contact_slope", s.contact_slope)?;
     Ok(d)
 }
 

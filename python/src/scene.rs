@@ -23,8 +23,10 @@ pub fn scenes() -> Vec<(String, String)> {
 /// computes it, and returns {"name", "plan": {output: [stages]}, "tables": {table:
 /// {column header (with unit): ndarray}}, "results": {label.key: value}, "warnings",
 /// "failures"}. Figures are not drawn; no files are written. The GIL is released while
-/// it runs. Raises ValueError for a bad scene (the CLI's message), ConvergenceError when
-/// a solve stops short.
+/// it runs. Raises ValueError for a bad scene (the CLI's message), MemoryError for sizes
+/// that do not fit, and ConvergenceError when requested results are missing (a solve
+/// stopped short, a fit without resolved points: where the CLI exits with code 4); the
+/// exception's `last` holds the dictionary above and `failures` the list.
 #[pyfunction]
 pub fn run_scene<'py>(py: Python<'py>, scene: &str) -> PyResult<Bound<'py, PyDict>> {
     let s = Scene::open(scene).map_err(|e| compare_err(py, e))?;
@@ -54,6 +56,22 @@ pub fn run_scene<'py>(py: Python<'py>, scene: &str) -> PyResult<Bound<'py, PyDic
     let results = py.import("json")?.call_method1("loads", (json,))?;
     out.set_item("results", results)?;
     out.set_item("warnings", report.warnings())?;
-    out.set_item("failures", report.failures())?;
+    let failures = report.failures();
+    out.set_item("failures", &failures)?;
+    if let Some(first) = failures.first() {
+        let err = crate::errors::convergence(
+            py,
+            format!(
+                "{} requested results are missing (first: {first}); the partial results are in .last",
+                failures.len()
+            ),
+            "scene",
+            0,
+            f64::NAN,
+            Some(out.into_any().unbind()),
+        );
+        let _ = err.value(py).setattr("failures", failures);
+        return Err(err);
+    }
     Ok(out)
 }

@@ -64,6 +64,7 @@ pub(super) fn round_options(opts: &SolverOptions, tight: bool, spent: usize) -> 
             opts.tolerance.max(LOOSE)
         },
         max_iterations: opts.max_iterations.saturating_sub(spent).max(1),
+        ..opts.clone()
     }
 }
 

@@ -153,22 +153,38 @@ pub fn run_bem_case(
     kind: &str,
     n: usize,
     write_dir: Option<&std::path::Path>,
-) -> std::io::Result<()> {
+) -> Result<(), String> {
     use bem3d::*;
     let opts = SolverOptions {
         tolerance: 1e-10,
         max_iterations: 50_000,
+        ..Default::default()
     };
     let tight = SolverOptions {
         tolerance: 1e-12,
         max_iterations: 100_000,
+        ..Default::default()
     };
     if !matches!(kind, "periodic" | "sparse" | "hertz") {
-        return Err(std::io::Error::new(
-            std::io::ErrorKind::InvalidInput,
-            format!("unknown benchmark case {kind:?}: periodic, sparse or hertz"),
+        return Err(format!(
+            "unknown benchmark case {kind:?}: periodic, sparse or hertz"
         ));
     }
+    if !(16..=16384).contains(&n) {
+        return Err(format!("grid side n = {n} must lie in 16..=16384"));
+    }
+    // The operator and solver here, and the reference solve's copy.
+    bem3d::operator::HalfSpace {
+        nx: n,
+        ny: n,
+        lx: 1.0,
+        ly: 1.0,
+        e_star: 1.0,
+    }
+    .check(kind != "hertz")
+    .map_err(|e| e.to_string())?;
+    let failed = |e: bem3d::BemError| e.to_string();
+    let stdout = |e: std::io::Error| format!("writing to standard output: {e}");
     // The periodic surface at 20 % contact, or at 0.1 % ("sparse": a restricted solve).
     let periodic = kind != "hertz";
     let mean_pressure = if kind == "sparse" { 5e-5 } else { 0.01 };
@@ -187,16 +203,16 @@ pub fn run_bem_case(
     let (t, sol, err) = if periodic {
         let h = reference_surface(n);
         let t0 = Instant::now();
-        let mut s =
-            ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None).unwrap();
+        let mut s = ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None)
+            .map_err(failed)?;
         let sol = s
             .solve(Load::MeanPressure(mean_pressure), &opts, None)
-            .unwrap();
+            .map_err(failed)?;
         let t = t0.elapsed().as_secs_f64();
         let mem = peak_memory_mib().unwrap_or(0.0);
         let refsol = s
             .solve(Load::MeanPressure(mean_pressure), &tight, None)
-            .unwrap();
+            .map_err(failed)?;
         let num: f64 = sol
             .pressure
             .iter()
@@ -205,23 +221,26 @@ pub fn run_bem_case(
             .sum();
         let den: f64 = refsol.pressure.iter().map(|b| b * b).sum();
         if let (Some(dir), "periodic") = (write_dir, kind) {
-            let _ = std::fs::create_dir_all(dir);
+            let written = |e: mrd::MrdError| format!("--write-surfaces: {e}");
+            std::fs::create_dir_all(dir)
+                .map_err(|e| format!("--write-surfaces {}: {e}", dir.display()))?;
             let hm = mrd::topography::HeightMap {
                 rows: n,
                 cols: n,
                 data: h.clone(),
             };
-            hm.write_npy(&dir.join(format!("surface_{n}.npy"))).unwrap();
+            hm.write_npy(&dir.join(format!("surface_{n}.npy")))
+                .map_err(written)?;
             let pm = mrd::topography::HeightMap {
                 rows: n,
                 cols: n,
                 data: sol.pressure.clone(),
             };
             pm.write_npy(&dir.join(format!("mrdw_pressure_{n}.npy")))
-                .unwrap();
+                .map_err(written)?;
         }
         writeln!(w, "RESULT kind={kind} n={n} time={t:e} iterations={} pair={pair:e} k={k_time:e} m={m_time:e} mem={:.1} base_mem={base_mem:.1} err_pressure_l2={:e} err_approach={:e} area={:e} restricted={}",
-            sol.iterations, mem, (num / den).sqrt(), ((sol.approach - refsol.approach) / refsol.approach).abs(), sol.contact_area, sol.restricted as u8)?;
+            sol.iterations, mem, (num / den).sqrt(), ((sol.approach - refsol.approach) / refsol.approach).abs(), sol.contact_area, sol.restricted as u8).map_err(stdout)?;
         return Ok(());
     } else {
         let (a, r) = (0.25, 1.0);
@@ -237,9 +256,9 @@ pub fn run_bem_case(
             .collect();
         let f = 4.0 * a * a * a / (3.0 * r);
         let t0 = Instant::now();
-        let mut s =
-            ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &hgt, None).unwrap();
-        let sol = s.solve(Load::Force(f), &opts, None).unwrap();
+        let mut s = ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &hgt, None)
+            .map_err(failed)?;
+        let sol = s.solve(Load::Force(f), &opts, None).map_err(failed)?;
         let t = t0.elapsed().as_secs_f64();
         let pmax = sol.pressure.iter().fold(0.0f64, |m, &v| m.max(v));
         let err = (
@@ -249,7 +268,7 @@ pub fn run_bem_case(
         (t, sol, err)
     };
     writeln!(w, "RESULT kind=hertz n={n} time={t:e} iterations={} pair={pair:e} k={k_time:e} m={m_time:e} mem={:.1} base_mem={base_mem:.1} err_peak={:e} err_approach={:e} restricted={}",
-        sol.iterations, peak_memory_mib().unwrap_or(0.0), err.0, err.1, sol.restricted as u8)?;
+        sol.iterations, peak_memory_mib().unwrap_or(0.0), err.0, err.1, sol.restricted as u8).map_err(stdout)?;
     Ok(())
 }
 
@@ -267,7 +286,7 @@ pub fn run_bem(
     for kind in ["periodic", "sparse", "hertz"] {
         let mut n = 128;
         while n <= max_n && (kind == "periodic" || n <= 1024) {
-            eprintln!("running {kind} {n}^2 ...");
+            let _ = writeln!(std::io::stderr(), "running {kind} {n}^2 ...");
             let mut cmd = std::process::Command::new(&exe);
             cmd.args(["bench-case", kind, &n.to_string()]);
             if let (Some(d), "periodic") = (write_surfaces, kind) {
@@ -275,10 +294,14 @@ pub fn run_bem(
             }
             let out = cmd.output().map_err(|e| e.to_string())?;
             if !out.status.success() {
-                return Err(format!(
-                    "benchmark case {kind} {n} failed: {}",
-                    String::from_utf8_lossy(&out.stderr)
-                ));
+                // The child's own one-line error, without its progress lines.
+                let stderr = String::from_utf8_lossy(&out.stderr);
+                let reason = stderr
+                    .lines()
+                    .rev()
+                    .find(|l| l.starts_with("error: "))
+                    .map_or(stderr.trim(), |l| l.trim_start_matches("error: "));
+                return Err(format!("benchmark case {kind} {n} failed: {reason}"));
             }
             lines.extend(
                 String::from_utf8_lossy(&out.stdout)
@@ -631,6 +654,7 @@ pub fn run_sliding_3d(w: &mut dyn Write, max_n: usize) -> std::io::Result<()> {
     let opts = SolverOptions {
         tolerance: 1e-6,
         max_iterations: 2000,
+        ..Default::default()
     };
     writeln!(
         w,

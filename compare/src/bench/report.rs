@@ -236,6 +236,7 @@ fn solve_3d(n: usize, h: impl Fn(f64, f64) -> f64, mask_radius: Option<f64>, f: 
     let opts = SolverOptions {
         tolerance: 1e-10,
         max_iterations: 20_000,
+        ..Default::default()
     };
     let mut s = ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, E), &heights, mask)
         .expect("valid benchmark problem");
@@ -470,6 +471,7 @@ pub fn scaling(o: Options) -> Vec<Scaling> {
             let opts = SolverOptions {
                 tolerance: 1e-10,
                 max_iterations: 20_000,
+                ..Default::default()
             };
             let (t, _) = timed(b, || {
                 ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, E), &h, None)

@@ -146,7 +146,7 @@ impl Output for Adhesion {
         ));
         out.tables.push(t);
         if let Some(n) = self.springs {
-            let l = self.half_length.unwrap_or(1.5 * a_max);
+            let l = super::row_half_length(self.half_length, a_max, 1.5)?;
             let cyc = out
                 .stage(Stage::AdhesionDiscrete, || {
                     simulate_cycle(&ad, n, l, self.depth_max, control)

@@ -78,10 +78,7 @@ impl BemContact {
     }
 
     fn options(&self) -> SolverOptions {
-        SolverOptions {
-            tolerance: self.tolerance,
-            max_iterations: self.max_iterations,
-        }
+        SolverOptions::new(self.tolerance, self.max_iterations)
     }
 
     /// Solves every load in turn on operator `op`.
@@ -146,12 +143,8 @@ impl BemContact {
 
 impl Output for BemContact {
     fn validate(&self, ctx: &Context) -> Result<()> {
-        if !self.size.iter().all(|v| positive(*v)) {
-            return bad(format!(
-                "size = [{}, {}] must be > 0",
-                self.size[0], self.size[1]
-            ));
-        }
+        bem3d::operator::check_scales(self.size[0], self.size[1], ctx.material.e_star)
+            .map_err(|e| crate::error::CompareError::Scene(format!("size: {e}")))?;
         if self.mean_pressures.is_empty() == self.approaches.is_empty() {
             return bad("give exactly one of mean_pressures and approaches (a non-empty list)");
         }
@@ -166,15 +159,9 @@ impl Output for BemContact {
         if self.punch_radius.is_some_and(|r| !positive(r)) {
             return bad("punch_radius must be > 0");
         }
-        if !(self.tolerance > 0.0 && self.tolerance < 1e-2) {
-            return bad(format!(
-                "tolerance = {:e} must lie in (0, 1e-2)",
-                self.tolerance
-            ));
-        }
-        if self.max_iterations == 0 {
-            return bad("max_iterations must be >= 1");
-        }
+        self.options()
+            .validate()
+            .map_err(|e| crate::error::CompareError::Scene(e.to_string()))?;
         let path = ctx.resolve(&self.heights);
         if !path.is_file() {
             return bad(format!("heights: no such file {}", path.display()));
@@ -194,26 +181,14 @@ impl Output for BemContact {
         let path = env.ctx.resolve(&self.heights);
         let map = HeightMap::read(&path).ctx("heights")?;
         let (nx, ny) = (map.cols, map.rows);
-        if nx < 4 || ny < 4 {
-            return bad(format!(
-                "height map {ny} x {nx} is too small (need >= 4 x 4)"
-            ));
-        }
-        let per_cell = if self.periodic {
-            super::BYTES_PER_CELL_PERIODIC
-        } else {
-            super::BYTES_PER_CELL_NON_PERIODIC
-        };
-        super::check_memory(
-            (nx * ny) as f64 * per_cell,
-            &format!("a {ny} x {nx} height map"),
-        )?;
         let (lx, ly) = (self.size[0], self.size[1]);
         let e = env.ctx.material.e_star;
         let steps = if self.periodic {
-            self.solve_all(PeriodicHalfSpace::new(nx, ny, lx, ly, e), &map, out)?
+            let op = PeriodicHalfSpace::try_new(nx, ny, lx, ly, e).ctx("heights")?;
+            self.solve_all(op, &map, out)?
         } else {
-            self.solve_all(NonPeriodicHalfSpace::new(nx, ny, lx, ly, e), &map, out)?
+            let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e).ctx("heights")?;
+            self.solve_all(op, &map, out)?
         };
         let u = &env.ctx.units;
         let mut cols = vec![

@@ -168,6 +168,7 @@ impl ContactArea {
         let opts = SolverOptions {
             tolerance: self.tolerance,
             max_iterations: 20 * g + 2000,
+            ..Default::default()
         };
         let (mut points, mut failed) = (Vec::new(), 0);
         let mut warm: Option<bem3d::Solution> = None;
@@ -234,12 +235,19 @@ impl Output for ContactArea {
         if !(self.upper_cutoff_ratio > 0.0 && self.upper_cutoff_ratio <= 1.0) {
             return bad("upper_cutoff_ratio must lie in (0, 1]");
         }
-        if self.realisations_3d < 2 || self.realisations_1d < 2 {
-            return bad("realisations_3d and realisations_1d must be >= 2 (for intervals)");
-        }
-        if self.loads < 4 || self.points_1d_factor < 2 {
-            return bad("need loads >= 4 and points_1d_factor >= 2");
-        }
+        // At least 2 realisations, for intervals.
+        super::count_in(
+            "realisations_3d",
+            self.realisations_3d,
+            2..=super::MAX_REALISATIONS,
+        )?;
+        super::count_in(
+            "realisations_1d",
+            self.realisations_1d,
+            2..=super::MAX_REALISATIONS,
+        )?;
+        super::count_in("loads", self.loads as u64, 4..=super::MAX_LOADS)?;
+        super::count_in("points_1d_factor", self.points_1d_factor as u64, 2..=64)?;
         if !(self.tolerance > 0.0 && self.tolerance < 1e-2) {
             return bad("tolerance must lie in (0, 1e-2)");
         }

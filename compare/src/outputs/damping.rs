@@ -85,7 +85,7 @@ impl Output for Damping {
             .ctx("normal contact")?;
         let beta = e / g;
         let ac0 = mu * beta * depth;
-        let l = self.half_length.unwrap_or(1.05 * s.radius);
+        let l = super::row_half_length(self.half_length, s.radius, 1.05)?;
         // Log-spaced amplitudes over two decades below the maximum.
         let amps: Vec<f64> = (0..points)
             .map(|k| {

@@ -64,17 +64,62 @@ impl Material {
         }
     }
 
-    /// Checks the constants; the Prony series of G(t).
+    /// Checks the constants; the Prony series of G(t). Beyond the signs, the ranges
+    /// where the sliding solves hold: at least one relaxation term (a purely elastic
+    /// body has mu = 0 at every velocity), a glassy-to-relaxed ratio of at most
+    /// [`MAX_MODULUS_RATIO`] (the steady-state iterations slow down with it: rubbers
+    /// have 1e2-1e4), relaxation times within [`MAX_TIME_DECADES`] decades, moduli
+    /// within 1e-100..1e100.
     pub(super) fn validate(&self) -> Result<Prony> {
         // The term count first: the discretisation allocates `terms` nodes.
-        if let Material::Eq84 { terms, .. } = self {
+        if let Material::Eq84 {
+            terms,
+            s,
+            tau1,
+            tau2,
+            ..
+        } = self
+        {
             if !(4..=64).contains(terms) {
                 return bad(format!("material.terms = {terms} must lie in 4..=64"));
+            }
+            if !(-10.0..=10.0).contains(s) {
+                return bad(format!("material.s = {s:e} must lie in [-10, 10]"));
+            }
+            if tau1.is_finite() && tau2.is_finite() && *tau1 > 0.0 && tau2 / tau1 > 1e20 {
+                return bad(format!(
+                    "material: tau2 / tau1 = {:e} exceeds 1e{MAX_TIME_DECADES}",
+                    tau2 / tau1
+                ));
+            }
+        }
+        if let Material::Prony { terms, .. } = self {
+            if terms.is_empty() {
+                return bad("material.terms is empty: a purely elastic material has mu = 0 at every velocity; give at least one [G_k, tau_k]");
             }
         }
         let shear = self.shear().ctx("material")?;
         if shear.relaxed <= 0.0 {
             return bad("the material needs a relaxed modulus (g0 or g_inf > 0): under a constant normal force it would creep without end");
+        }
+        let glassy = shear.glassy();
+        if !(1e-100..=1e100).contains(&shear.relaxed) || !(..=1e100).contains(&glassy) {
+            return bad(format!(
+                "material: relaxed modulus {:e} and glassy modulus {glassy:e} must lie in [1e-100, 1e100]",
+                shear.relaxed
+            ));
+        }
+        if glassy / shear.relaxed > MAX_MODULUS_RATIO {
+            return bad(format!(
+                "material: glassy / relaxed modulus G(0)/G(inf) = {:e} exceeds {MAX_MODULUS_RATIO:e} (rubbers: 1e2-1e4; the sliding solves slow down with this contrast)",
+                glassy / shear.relaxed
+            ));
+        }
+        let (tmin, tmax) = time_range(&shear);
+        if tmax / tmin > 10f64.powi(MAX_TIME_DECADES) {
+            return bad(format!(
+                "material: relaxation times from {tmin:e} to {tmax:e} span more than {MAX_TIME_DECADES} decades"
+            ));
         }
         Ok(shear)
     }
@@ -92,11 +137,53 @@ impl Material {
 
 /// Ensemble mean per velocity over the surfaces `idx` of `mu[velocity][surface]`;
 /// non-finite entries (runs that failed) are left out, NaN where none is left.
-/// The sliding velocities: `count` values log-spaced on [min, max], validated.
-pub(super) fn velocities(min: f64, max: f64, count: usize) -> Result<Vec<f64>> {
+/// Largest glassy-to-relaxed modulus ratio G(0) / G(inf) the sliding outputs accept.
+pub(super) const MAX_MODULUS_RATIO: f64 = 1e8;
+/// Most decades the relaxation times may span.
+const MAX_TIME_DECADES: i32 = 20;
+/// Frequencies omega tau beyond which a material is elastic to one part in this: below
+/// 1 / this at every term it is relaxed, above this glassy (mu vanishes).
+const ELASTIC_BEYOND: f64 = 1e6;
+
+/// Shortest and longest relaxation time of a Prony series (with at least one term).
+fn time_range(shear: &Prony) -> (f64, f64) {
+    shear
+        .terms
+        .iter()
+        .fold((f64::INFINITY, 0.0), |(lo, hi), &(_, tau)| {
+            (lo.min(tau), hi.max(tau))
+        })
+}
+
+/// The sliding velocities: `count` values log-spaced on [min, max], validated; the
+/// frequencies q v of the surface's wavenumbers `q_range` must reach the material's
+/// relaxation times (else mu vanishes to rounding at every velocity out of range).
+pub(super) fn velocities(
+    min: f64,
+    max: f64,
+    count: usize,
+    shear: &Prony,
+    q_range: (f64, f64),
+) -> Result<Vec<f64>> {
     let ok = super::positive(min) && super::positive(max) && max >= min;
     if !ok || !(1..=200).contains(&count) {
         return bad("need 0 < velocity_min <= velocity_max and velocities in 1..=200");
+    }
+    let (tmin, tmax) = time_range(shear);
+    let (qmin, qmax) = q_range;
+    if min * qmax * tmax < 1.0 / ELASTIC_BEYOND {
+        return bad(format!(
+            "velocity_min = {min:e}: q v tau <= {:e} for every wavenumber and relaxation time, so the material is relaxed (elastic) and mu vanishes; velocity_min must be >= {:e}",
+            min * qmax * tmax,
+            1.0 / (ELASTIC_BEYOND * qmax * tmax)
+        ));
+    }
+    if max * qmin * tmin > ELASTIC_BEYOND {
+        return bad(format!(
+            "velocity_max = {max:e}: q v tau >= {:e} for every wavenumber and relaxation time, so the material is glassy (elastic) and mu vanishes; velocity_max must be <= {:e}",
+            max * qmin * tmin,
+            ELASTIC_BEYOND / (qmin * tmin)
+        ));
     }
     Ok(mrd::friction::log_space(min, max, count))
 }

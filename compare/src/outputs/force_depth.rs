@@ -2,7 +2,7 @@
 //! 24, 25), semi-analytic; optionally on N discrete springs; the closed form where the
 //! profile has one; the electrical conductance for a resistivity sum.
 
-use super::{axisym, bad, check_points, check_springs, default_points, positive, rel, Env, Output};
+use super::{axisym, bad, check_points, check_springs, default_points, rel, Env, Output};
 use crate::context::{Context, Drive};
 use crate::error::{Context as _, Result};
 use crate::plan::Stage;
@@ -30,8 +30,9 @@ impl Output for ForceDepth {
     fn validate(&self, ctx: &Context) -> Result<()> {
         ctx.profile()?;
         check_points(self.points)?;
-        if !positive(self.max) {
-            return bad("max must be > 0");
+        let (lo, hi) = mrd::error::MAGNITUDE_RANGE;
+        if !(lo..=hi).contains(&self.max) {
+            return bad(format!("max = {:e} must lie in [{lo:e}, {hi:e}]", self.max));
         }
         if let Some(n) = self.springs {
             check_springs(n, 1.0)?;
@@ -73,12 +74,11 @@ impl Output for ForceDepth {
         let discrete = match self.springs {
             Some(n) => Some(out.stage(Stage::NormalDiscrete, || -> Result<_> {
                 let a_top = states.last().map_or(1.0, |s| s.radius);
-                let l = self.half_length.unwrap_or(1.5 * a_top);
-                if profile.rim().is_none() && !(positive(l) && positive(2.0 * l / n as f64)) {
-                    return bad(format!(
-                        "springs: the line's half_length (default 1.5 x the contact radius at `max`, {a_top:e}) is {l:e}; give half_length > 0 or a larger max"
-                    ));
-                }
+                // A rim holds the row at the rim radius (the half-length is not used).
+                let l = match profile.rim() {
+                    Some(_) => self.half_length.unwrap_or(1.5 * a_top),
+                    None => super::row_half_length(self.half_length, a_top, 1.5)?,
+                };
                 let d = DiscreteAxisymmetric::new(profile, e, n, l).ctx("discrete springs")?;
                 let has_rim = profile.rim().is_some();
                 let st = states

@@ -189,6 +189,41 @@ pub(crate) fn positive(x: f64) -> bool {
     x.is_finite() && x > 0.0
 }
 
+/// A count key (`realisations`, `loads`, `f_points`, ...) within `range`: the bounds keep
+/// a run's size (tasks, table rows) within what a machine can hold and finish.
+pub(crate) fn count_in(key: &str, value: u64, range: std::ops::RangeInclusive<u64>) -> Result<()> {
+    if range.contains(&value) {
+        Ok(())
+    } else {
+        bad(format!(
+            "{key} = {value} must lie in {}..={}",
+            range.start(),
+            range.end()
+        ))
+    }
+}
+
+/// Most realisations any output computes (tasks are listed before they run).
+pub(crate) const MAX_REALISATIONS: u64 = 100_000;
+/// Most load points of a force-controlled curve.
+pub(crate) const MAX_LOADS: u64 = 10_000;
+
+/// The half-length of a spring row: `given` if it covers the largest contact radius
+/// `a_max` the output reaches (springs beyond the row cannot touch), else an error
+/// naming both; without it `default_factor x a_max`.
+pub(crate) fn row_half_length(given: Option<f64>, a_max: f64, default_factor: f64) -> Result<f64> {
+    match given {
+        None if positive(default_factor * a_max) => Ok(default_factor * a_max),
+        None => bad(format!(
+            "springs: the largest contact radius is {a_max:e}, so the default half_length ({default_factor} x it) is unusable; give half_length > 0 or a larger max"
+        )),
+        Some(l) if positive(l) && l > a_max => Ok(l),
+        Some(l) => bad(format!(
+            "half_length = {l:e} does not cover the largest contact radius this output reaches, {a_max:e}: give half_length > {a_max:e}, or leave it out ({default_factor} x that radius)"
+        )),
+    }
+}
+
 /// `points` of an axisymmetric output.
 pub(crate) fn check_points(points: usize) -> Result<()> {
     if !(2..=100_000).contains(&points) {
@@ -198,31 +233,15 @@ pub(crate) fn check_points(points: usize) -> Result<()> {
 }
 
 /// Estimated bytes per spring of the 1D solvers (gaps, sorted gaps, prefix sums and
-/// temporaries), per grid cell of the periodic and non-periodic 3D solvers (measured
-/// peaks: 394 MiB at 2048^2 periodic, 236 MiB at 1024^2 non-periodic), per rough-line
-/// point.
+/// temporaries); per grid cell of the 3D solvers: [`bem3d::operator::BYTES_PER_CELL_PERIODIC`]
+/// and [`bem3d::operator::BYTES_PER_CELL_NON_PERIODIC`].
 pub(crate) const BYTES_PER_SPRING: f64 = 64.0;
-pub const BYTES_PER_CELL_PERIODIC: f64 = 128.0;
-pub const BYTES_PER_CELL_NON_PERIODIC: f64 = 256.0;
+pub(crate) use bem3d::operator::{BYTES_PER_CELL_NON_PERIODIC, BYTES_PER_CELL_PERIODIC};
 
-/// Refuses work whose memory estimate exceeds 80 % of what the machine has available
-/// (MemAvailable in /proc/meminfo; no check where that cannot be read).
+/// Refuses work whose memory estimate exceeds what this process may allocate
+/// ([`sysmem::check_estimate`]: free memory, rlimits, cgroup).
 pub fn check_memory(bytes: f64, what: &str) -> Result<()> {
-    let available = std::fs::read_to_string("/proc/meminfo").ok().and_then(|m| {
-        m.lines()
-            .find(|l| l.starts_with("MemAvailable:"))
-            .and_then(|l| l.split_whitespace().nth(1))
-            .and_then(|kb| kb.parse::<f64>().ok())
-            .map(|kb| kb * 1024.0)
-    });
-    match available {
-        Some(a) if bytes > 0.8 * a => bad(format!(
-            "{what} needs about {:.1} GB of memory; this machine has {:.1} GB available",
-            bytes / 1e9,
-            a / 1e9
-        )),
-        _ => Ok(()),
-    }
+    sysmem::check_estimate(bytes, what).map_err(CompareError::from)
 }
 
 /// A spring count: at least 2, and within memory (`copies` rows at once).

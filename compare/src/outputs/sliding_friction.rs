@@ -75,6 +75,18 @@ impl LineSpec {
         }
     }
 
+    /// The lowest and highest wavenumber q of the spectrum on a line of length `l`.
+    pub(super) fn q_range(&self, l: f64) -> (f64, f64) {
+        let q = |waves: f64| TAU * waves / l;
+        match *self {
+            LineSpec::Band { waves, band } => (q(waves / band), q(waves * band)),
+            LineSpec::SelfAffine {
+                waves, min_waves, ..
+            } => (q(min_waves), q(waves)),
+            LineSpec::Sinusoid { waves } => (q(waves as f64), q(waves as f64)),
+        }
+    }
+
     /// The highest wave number (waves over L) of the spectrum.
     pub(super) fn max_waves(&self) -> f64 {
         match *self {
@@ -150,6 +162,11 @@ pub struct SlidingFriction {
     pub(super) tolerance: f64,
     #[serde(default = "max_passes")]
     pub(super) max_passes: usize,
+    /// A velocity is resolved where the two routes to mu (the friction force and the
+    /// dissipated energy per unit distance) agree within this, relatively, on every
+    /// line; Eq. (82) is fitted over the resolved velocities only.
+    #[serde(default = "error_limit")]
+    pub(super) error_limit: f64,
 }
 
 fn one() -> usize {
@@ -163,6 +180,9 @@ fn tolerance() -> f64 {
 }
 fn max_passes() -> usize {
     400
+}
+fn error_limit() -> f64 {
+    0.1
 }
 
 /// Runs of one velocity, over the lines.
@@ -250,12 +270,21 @@ impl Output for SlidingFriction {
         if !positive(self.reduced_force) {
             return bad("reduced_force must be > 0");
         }
-        elastomer::velocities(self.velocity_min, self.velocity_max, self.velocities)?;
+        elastomer::velocities(
+            self.velocity_min,
+            self.velocity_max,
+            self.velocities,
+            &shear,
+            self.line.q_range(self.length),
+        )?;
         if !(2..=10_000).contains(&self.realisations) {
             return bad("realisations must lie in 2..=10000 (for intervals)");
         }
         if !(self.tolerance > 0.0 && self.tolerance < 0.1) || self.max_passes < 2 {
             return bad("tolerance must lie in (0, 0.1) and max_passes be >= 2");
+        }
+        if !(self.error_limit > 0.0 && self.error_limit <= 1.0) {
+            return bad("error_limit must lie in (0, 1]");
         }
         Ok(())
     }
@@ -309,6 +338,29 @@ impl SlidingFriction {
     }
 }
 
+/// Largest |mu - mu_energy| / |mu| over the runs of one velocity: how far the friction
+/// force and the dissipated energy per unit distance, equal in the continuum, differ
+/// on these springs (NaN counts as unresolved).
+pub(super) fn routes_rel_diff(runs: &[SlidingResult]) -> f64 {
+    runs.iter()
+        .map(|x| ((x.mu - x.mu_energy) / x.mu).abs())
+        .fold(0.0, |a: f64, d| {
+            if d.is_nan() || a.is_nan() {
+                f64::NAN
+            } else {
+                a.max(d)
+            }
+        })
+}
+
+/// The resolution judgement of [`SlidingFriction::judge_and_fit`].
+struct Judged {
+    routes: Vec<f64>,
+    resolved: Vec<bool>,
+    n_resolved: usize,
+    fits: Option<(elastomer::XiFit, elastomer::ShiftFit)>,
+}
+
 impl SlidingFriction {
     fn report(
         &self,
@@ -323,17 +375,13 @@ impl SlidingFriction {
         let grad_z = lines.iter().map(|l| l.rms_slope).sum::<f64>() / lines.len() as f64;
         let vs: Vec<f64> = per_v.iter().map(|p| p.velocity).collect();
         let r = self.material.eq82_over_xi(k, grad_z, &vs)?;
-        let mu: Vec<Vec<f64>> = per_v
-            .iter()
-            .map(|p| p.runs.iter().map(|x| x.mu).collect())
-            .collect();
-        let elastomer::XiFit {
-            xi,
-            lo: xi_lo,
-            hi: xi_hi,
-            misfit,
-        } = elastomer::fit_xi(&mu, &r, self.seed);
-        let shift = elastomer::fit_shift(&mu, &self.material, k, grad_z, &vs, self.seed)?;
+        let Judged {
+            routes,
+            resolved,
+            n_resolved,
+            fits,
+        } = self.judge_and_fit(out, per_v, &r, k, grad_z)?;
+        let xi = fits.as_ref().map_or(f64::NAN, |f| f.0.xi);
         let mut t = Table::new(
             "sliding_friction",
             &[
@@ -347,11 +395,14 @@ impl SlidingFriction {
                 "eq82_fitted [1]".into(),
                 "passes_max [count]".into(),
                 "converged [0/1]".into(),
+                "routes_rel_diff_max [1]".into(),
+                "resolved [0/1]".into(),
             ],
         );
+        t.missing_ok = true;
         t.notes.push(format!(
-            "Section 10.1: {} lines of {} springs (line points x{}), stride {}, L = {}, h = {}, k = rms slope / rms height = {k:e}, grad z = {grad_z:e}; reduced force F/(4 G_inf h L) = {}; material {:?}; steady state: mu and mean approach change < {:e} between passes; mu from sum f dz/dx, mu_energy from the dissipated energy per unit distance; eq82_over_xi = grad z G''(kv)/|G(kv)|, xi fitted over all velocities",
-            lines.len(), self.springs, self.refine, self.stride, self.length, self.rms_height, self.reduced_force, self.material, self.tolerance
+            "Section 10.1: {} lines of {} springs (line points x{}), stride {}, L = {}, h = {}, k = rms slope / rms height = {k:e}, grad z = {grad_z:e}; reduced force F/(4 G_inf h L) = {}; material {:?}; steady state: mu and mean approach change < {:e} between passes; mu from sum f dz/dx, mu_energy from the dissipated energy per unit distance; eq82_over_xi = grad z G''(kv)/|G(kv)|; routes_rel_diff_max = max over lines of |mu - mu_energy| / |mu|; resolved = 1 where it is <= error_limit = {}; xi fitted over the resolved velocities (eq82_fitted empty where not fitted)",
+            lines.len(), self.springs, self.refine, self.stride, self.length, self.rms_height, self.reduced_force, self.material, self.tolerance, self.error_limit
         ));
         let mut runs_t = Table::new(
             "sliding_friction_runs",
@@ -389,6 +440,8 @@ impl SlidingFriction {
                 xi * r[i],
                 passes as f64,
                 conv as u8 as f64,
+                routes[i],
+                resolved[i] as u8 as f64,
             ]);
             for (line, x) in p.runs.iter().enumerate() {
                 runs_t.push(vec![
@@ -415,15 +468,18 @@ impl SlidingFriction {
             (0, f64::NEG_INFINITY),
             |m, (i, v)| if v > m.1 { (i, v) } else { m },
         );
-        out.scalar("xi", xi);
-        out.scalar("xi_lo95", xi_lo);
-        out.scalar("xi_hi95", xi_hi);
-        out.scalar("eq82_misfit", misfit);
-        out.scalar("eq82_shift_c", shift.c);
-        out.scalar("eq82_shift_c_lo95", shift.c_lo);
-        out.scalar("eq82_shift_c_hi95", shift.c_hi);
-        out.scalar("eq82_shift_xi", shift.xi);
-        out.scalar("eq82_shift_misfit", shift.misfit);
+        if let Some((f, shift)) = &fits {
+            out.scalar("xi", f.xi);
+            out.scalar("xi_lo95", f.lo);
+            out.scalar("xi_hi95", f.hi);
+            out.scalar("eq82_misfit", f.misfit);
+            out.scalar("eq82_shift_c", shift.c);
+            out.scalar("eq82_shift_c_lo95", shift.c_lo);
+            out.scalar("eq82_shift_c_hi95", shift.c_hi);
+            out.scalar("eq82_shift_xi", shift.xi);
+            out.scalar("eq82_shift_misfit", shift.misfit);
+        }
+        out.scalar("resolved_velocities", n_resolved as f64);
         out.scalar("wave_vector", k);
         out.scalar("grad_z", grad_z);
         out.scalar("mu_peak", peak);
@@ -438,14 +494,80 @@ impl SlidingFriction {
             .zip(&fine_v)
             .map(|(e, &v)| (v, xi * e))
             .collect();
-        let label = format!(
-            "Eq. (82), k = {k:.3} 1/{}, grad z = {grad_z:.3}, xi = {xi:.3} [{xi_lo:.3}, {xi_hi:.3}]",
-            u.length
-        );
+        let label = match &fits {
+            Some((f, _)) => format!(
+                "Eq. (82), k = {k:.3} 1/{}, grad z = {grad_z:.3}, xi = {:.3} [{:.3}, {:.3}] (fitted over {n_resolved} resolved velocities)",
+                u.length, f.xi, f.lo, f.hi
+            ),
+            None => "Eq. (82): not fitted (fewer than 2 resolved velocities)".to_string(),
+        };
+        let fine = if fits.is_some() { fine } else { Vec::new() };
         out.figures.push(self.figure(&t, fine, label, u));
         out.tables.push(t);
         out.tables.push(runs_t);
         Ok(())
+    }
+
+    /// Which velocities are resolved (the two routes to mu agree within `error_limit`
+    /// on every line; warned otherwise), and the fits of Eq. (82) over them (None,
+    /// recorded as a failure, with fewer than two).
+    fn judge_and_fit(
+        &self,
+        out: &mut Section,
+        per_v: &[AtVelocity],
+        r: &[f64],
+        k: f64,
+        grad_z: f64,
+    ) -> Result<Judged> {
+        let vs: Vec<f64> = per_v.iter().map(|p| p.velocity).collect();
+        let routes: Vec<f64> = per_v.iter().map(|p| routes_rel_diff(&p.runs)).collect();
+        let resolved: Vec<bool> = routes.iter().map(|&d| d <= self.error_limit).collect();
+        // Unresolved velocities are left out of the fits.
+        let mu: Vec<Vec<f64>> = per_v
+            .iter()
+            .zip(&resolved)
+            .map(|(p, &ok)| {
+                p.runs
+                    .iter()
+                    .map(|x| if ok { x.mu } else { f64::NAN })
+                    .collect()
+            })
+            .collect();
+        let n_resolved = resolved.iter().filter(|&&ok| ok).count();
+        let unresolved: Vec<String> = vs
+            .iter()
+            .zip(&routes)
+            .filter(|(_, &d)| !(..=self.error_limit).contains(&d))
+            .map(|(v, d)| format!("{v:.3e} ({:.0} %)", 100.0 * d))
+            .collect();
+        if !unresolved.is_empty() {
+            out.warn(format!(
+                "sliding_friction: {} of {} velocities unresolved (the two routes to mu differ by more than error_limit = {} on some line: {}); left out of the fit of Eq. (82); refine the springs (springs per shortest wave: {:.1})",
+                unresolved.len(),
+                vs.len(),
+                self.error_limit,
+                unresolved.join(", "),
+                self.springs as f64 / self.line.max_waves()
+            ));
+        }
+        let fits = if n_resolved >= 2 {
+            let xi = elastomer::fit_xi(&mu, r, self.seed);
+            let shift = elastomer::fit_shift(&mu, &self.material, k, grad_z, &vs, self.seed)?;
+            Some((xi, shift))
+        } else {
+            out.failures.push(format!(
+                "only {n_resolved} of {} velocities resolved (error_limit {}): Eq. (82) not fitted, xi missing; refine the springs",
+                vs.len(),
+                self.error_limit
+            ));
+            None
+        };
+        Ok(Judged {
+            routes,
+            resolved,
+            n_resolved,
+            fits,
+        })
     }
 
     fn figure(

@@ -214,6 +214,7 @@ impl SlidingFriction3d {
         let opts = SolverOptions {
             tolerance: self.tolerance,
             max_iterations: self.max_iterations,
+            ..Default::default()
         };
         let modulus = |w: f64| self.contact_modulus(w);
         let l = self.length;
@@ -311,6 +312,7 @@ impl SlidingFriction3d {
             seed: self.seed,
             tolerance: m.tolerance,
             max_passes: m.max_passes,
+            error_limit: self.error_limit,
         }
     }
 }
@@ -347,7 +349,7 @@ impl Bar {
 
 impl Output for SlidingFriction3d {
     fn validate(&self, ctx: &Context) -> Result<()> {
-        self.material.validate()?;
+        let shear = self.material.validate()?;
         self.surface.validate("surface")?;
         if matches!(self.surface, LineSpec::Sinusoid { .. }) {
             return bad("surface: sinusoid is not available in 3D; use band or self_affine");
@@ -371,7 +373,13 @@ impl Output for SlidingFriction3d {
                 * rayon::current_num_threads() as f64,
             &format!("grid = {}", self.grid),
         )?;
-        elastomer::velocities(self.velocity_min, self.velocity_max, self.velocities)?;
+        elastomer::velocities(
+            self.velocity_min,
+            self.velocity_max,
+            self.velocities,
+            &shear,
+            self.surface.q_range(self.length),
+        )?;
         if !(2..=1000).contains(&self.realisations) {
             return bad("realisations must lie in 2..=1000 (for intervals)");
         }
@@ -487,10 +495,14 @@ fn record_fits(out: &mut Section, side: &str, xi: &elastomer::XiFit, s: &elastom
 }
 
 /// Largest mean and its velocity.
-fn peak(vs: &[f64], mean: &[f64]) -> (f64, f64) {
+/// The velocity and value of the largest finite mean mu; None where no mean exists.
+fn peak(vs: &[f64], mean: &[f64]) -> Option<(f64, f64)> {
     vs.iter().zip(mean).filter(|(_, m)| m.is_finite()).fold(
-        (f64::NAN, f64::NEG_INFINITY),
-        |b, (&v, &m)| if m > b.1 { (v, m) } else { b },
+        None,
+        |b: Option<(f64, f64)>, (&v, &m)| match b {
+            Some((_, bm)) if bm >= m => b,
+            _ => Some((v, m)),
+        },
     )
 }
 
@@ -589,8 +601,8 @@ impl SlidingFriction3d {
             .map(|(v, _)| *v)
             .collect();
         if resolved.len() < 2 {
-            out.warn(format!(
-                "{} of {} velocities resolved (error_limit {}): Eq. (82) not fitted; refine the grid",
+            out.failures.push(format!(
+                "only {} of {} velocities resolved (error_limit {}): Eq. (82) not fitted, xi missing; refine the grid",
                 resolved.len(), vs.len(), self.error_limit
             ));
         }
@@ -617,9 +629,11 @@ impl SlidingFriction3d {
             }
         }
         let t = self.table(env, s, &vs, &acc, fit3.as_ref(), m.as_ref(), fit_m.as_ref());
-        let (v3, p3) = peak(&vs, &t.column("mu_3d_mean"));
-        out.scalar("mu_peak_3d", p3);
-        out.scalar("velocity_at_peak_3d", v3);
+        let peak3 = peak(&vs, &t.column("mu_3d_mean"));
+        if let Some((v3, p3)) = peak3 {
+            out.scalar("mu_peak_3d", p3);
+            out.scalar("velocity_at_peak_3d", v3);
+        }
         out.scalar("wave_vector", s.k);
         out.scalar("grad_z", s.grad_z);
         out.scalar("mean_pressure", s.pressure);
@@ -628,10 +642,14 @@ impl SlidingFriction3d {
             out.scalar("velocity_resolved_max", *v);
         }
         if m.is_some() {
-            let (vm, pm) = peak(&vs, &t.column("mu_mrd_mean"));
-            out.scalar("mu_peak_mrd", pm);
-            out.scalar("velocity_at_peak_mrd", vm);
-            out.scalar("peak_ratio_mrd_over_3d", pm / p3);
+            let peak_m = peak(&vs, &t.column("mu_mrd_mean"));
+            if let Some((vm, pm)) = peak_m {
+                out.scalar("mu_peak_mrd", pm);
+                out.scalar("velocity_at_peak_mrd", vm);
+            }
+            if let (Some((_, pm)), Some((_, p3))) = (peak_m, peak3) {
+                out.scalar("peak_ratio_mrd_over_3d", pm / p3);
+            }
         }
         let fig = self.friction_figure(
             env,
@@ -924,5 +942,23 @@ impl SlidingFriction3d {
             );
         }
         fig.log_log()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::peak;
+
+    #[test]
+    fn a_peak_needs_a_finite_mean() {
+        // Without any 3D mean there is no peak (and no ratio of peaks, where the old
+        // fold gave -inf and a ratio of -0.0).
+        assert_eq!(peak(&[1.0, 2.0], &[f64::NAN, f64::NAN]), None);
+        assert_eq!(peak(&[], &[]), None);
+        // The first of equal maxima, NaN skipped.
+        assert_eq!(
+            peak(&[1.0, 2.0, 3.0, 4.0], &[0.1, f64::NAN, 0.3, 0.3]),
+            Some((3.0, 0.3))
+        );
     }
 }

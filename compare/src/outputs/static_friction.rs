@@ -44,9 +44,8 @@ pub(crate) fn check_line(hurst: f64, points: usize, length: f64, realisations: u
     if !positive(length) {
         return bad("length must be > 0");
     }
-    if realisations == 0 || realisations > 1_000_000 {
-        return bad("realisations must lie in 1..=1e6");
-    }
+    // At least 2, for intervals.
+    super::count_in("realisations", realisations, 2..=1_000_000)?;
     // One line per worker thread at a time.
     check_memory(
         points as f64 * BYTES_PER_SPRING * rayon::current_num_threads() as f64,
@@ -70,10 +69,14 @@ impl Output for StaticFriction {
         if !(positive(self.force_min)
             && positive(self.force_max)
             && self.force_max > self.force_min)
-            || self.force_points < 3
         {
-            return bad("need 0 < force_min < force_max and force_points >= 3");
+            return bad("need 0 < force_min < force_max");
         }
+        super::count_in(
+            "force_points",
+            self.force_points as u64,
+            3..=super::MAX_LOADS,
+        )?;
         Ok(())
     }
 

@@ -90,7 +90,7 @@ impl Output for Viscoelastic {
             })
             .ctx("elastic contact at depth_max")?
             .radius;
-        let l = self.half_length.unwrap_or(1.2 * a_max);
+        let l = super::row_half_length(self.half_length, a_max, 1.2)?;
         let f = out
             .stage(Stage::Viscoelastic, || {
                 simulate(profile, &g, &depth, &times, self.springs, l)

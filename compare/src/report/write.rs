@@ -2,10 +2,14 @@
 //! it and swapped into place, so that a failed or interrupted run never leaves a partial
 //! report and never deletes a user's files.
 //!
-//! Rules (issue "Nothing lost, nothing hidden"):
+//! Rules:
 //! - a destination may be replaced only if it does not exist, is an empty folder, or is
-//!   a folder `mrdw` wrote (it holds the marker file [`MARKER`], or a `summary.json` of
-//!   an earlier version); anything else is refused with one line;
+//!   a folder `mrdw` wrote holding nothing but what it wrote: the marker file
+//!   [`MARKER`] lists the entries (the manifest; reports of earlier versions: the
+//!   `files` of their `summary.json`), and a file a user added inside is never deleted:
+//!   the run is refused with one line naming it;
+//! - `--out` may be a symbolic link to a folder: the folder it points to is the
+//!   destination (the link keeps pointing to the new report);
 //! - the claim takes an advisory lock (`.<name>.mrdw-lock` beside the folder) for the
 //!   whole run, so two runs into one folder (or one sweep work folder) cannot race: the
 //!   second is told plainly that another run holds it. The lock file is removed when
@@ -46,7 +50,7 @@ impl Destination {
     /// Claims `dir` for a run of `mrdw` (see the module rules).
     pub fn claim(dir: &Path) -> Result<Self> {
         let abs = std::path::absolute(dir).map_err(io_err(format!("--out {}", dir.display())))?;
-        let abs = normalise(&abs);
+        let abs = resolve_link(&normalise(&abs), dir)?;
         let (parent, name) = match (abs.parent(), abs.file_name().and_then(|n| n.to_str())) {
             (Some(p), Some(n)) => (p.to_path_buf(), n.to_string()),
             _ => {
@@ -125,7 +129,7 @@ impl Destination {
         std::fs::create_dir(&tmp).map_err(io_err(format!("creating {}", tmp.display())))?;
         let files = fill(&tmp)
             .and_then(|files| {
-                std::fs::write(tmp.join(MARKER), "written by mrdw; safe to replace\n")
+                std::fs::write(tmp.join(MARKER), marker_text(&files))
                     .map_err(io_err(format!("writing {MARKER}")))?;
                 self.swap_in(&tmp)?;
                 Ok(files)
@@ -206,6 +210,26 @@ fn same_file(path: &Path, _: &File) -> bool {
     path.exists()
 }
 
+/// The folder a symbolic link `abs` points to (links to links followed); `abs` itself
+/// when it is not a link. A link to anything but a folder is refused.
+fn resolve_link(abs: &Path, given: &Path) -> Result<PathBuf> {
+    match std::fs::symlink_metadata(abs) {
+        Ok(m) if m.file_type().is_symlink() => match std::fs::canonicalize(abs) {
+            Ok(target) if target.is_dir() => Ok(target),
+            Ok(target) => Err(CompareError::Scene(format!(
+                "--out {}: a link to {}, which is not a folder; give a folder path",
+                given.display(),
+                target.display()
+            ))),
+            Err(_) => Err(CompareError::Scene(format!(
+                "--out {}: a link to a path that does not exist; create the folder it names or give another --out",
+                given.display()
+            ))),
+        },
+        _ => Ok(abs.to_path_buf()),
+    }
+}
+
 /// `a/./b/../c` -> `a/c` without touching the file system (symlinks are kept as given).
 fn normalise(p: &Path) -> PathBuf {
     let mut out = PathBuf::new();
@@ -234,33 +258,99 @@ fn check_replaceable(abs: &Path, given: &Path) -> Result<()> {
             given.display()
         )));
     }
-    if written_by_mrdw(abs) {
-        return Ok(());
-    }
-    let empty = std::fs::read_dir(abs)
+    let entries: Vec<String> = std::fs::read_dir(abs)
         .map_err(io_err(format!("reading {}", given.display())))?
-        .next()
-        .is_none();
-    if empty {
+        .map(|e| e.map(|e| e.file_name().to_string_lossy().into_owned()))
+        .collect::<std::io::Result<_>>()
+        .map_err(io_err(format!("reading {}", given.display())))?;
+    if entries.is_empty() {
         return Ok(());
     }
+    let Some(written) = manifest(abs) else {
+        return Err(CompareError::Scene(format!(
+            "--out {}: the folder exists and holds files mrdw did not write; give a new or empty \
+             folder (a report folder of mrdw is replaced as a whole)",
+            given.display()
+        )));
+    };
+    let mut foreign: Vec<&String> = entries
+        .iter()
+        .filter(|e| e.as_str() != MARKER && !written.contains(e))
+        .collect();
+    if foreign.is_empty() {
+        return Ok(());
+    }
+    foreign.sort();
+    let shown: Vec<&str> = foreign.iter().take(5).map(|s| s.as_str()).collect();
     Err(CompareError::Scene(format!(
-        "--out {}: the folder exists and holds files mrdw did not write; give a new or empty \
-         folder (a report folder of mrdw is replaced as a whole)",
-        given.display()
+        "--out {}: this report folder of mrdw also holds files mrdw did not write ({}{}); \
+         the report replaces the folder as a whole, so move them out or give another --out",
+        given.display(),
+        shown.join(", "),
+        if foreign.len() > 5 {
+            format!(" and {} more", foreign.len() - 5)
+        } else {
+            String::new()
+        }
     )))
 }
 
-fn written_by_mrdw(dir: &Path) -> bool {
-    if dir.join(MARKER).is_file() {
-        return true;
+/// The entries mrdw wrote into `dir`, if mrdw wrote it: the manifest in [`MARKER`];
+/// for reports of earlier versions, the `files` of `summary.json` (whose `tool` is mrdw)
+/// or a shard folder's fixed entries.
+fn manifest(dir: &Path) -> Option<Vec<String>> {
+    let summary_files = || -> Option<Vec<String>> {
+        let t = std::fs::read_to_string(dir.join("summary.json")).ok()?;
+        let v: serde_json::Value = serde_json::from_str(&t).ok()?;
+        if !v["tool"].as_str()?.starts_with("mrdw ") {
+            return None;
+        }
+        let mut files: Vec<String> = v["files"]
+            .as_array()?
+            .iter()
+            .filter_map(|f| f.as_str().map(String::from))
+            .collect();
+        files.push("summary.json".into());
+        Some(files)
+    };
+    match std::fs::read_to_string(dir.join(MARKER)) {
+        Ok(text) if text.starts_with(MANIFEST_HEADER) => Some(
+            text.lines()
+                .skip(1)
+                .filter(|l| !l.is_empty())
+                .map(String::from)
+                .collect(),
+        ),
+        Ok(_) => {
+            summary_files().or_else(|| Some(SHARD_ENTRIES.iter().map(|s| s.to_string()).collect()))
+        }
+        Err(_) => summary_files(),
     }
-    // Reports of earlier versions: a summary.json whose tool is mrdw.
-    std::fs::read_to_string(dir.join("summary.json"))
-        .ok()
-        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-        .and_then(|v| v["tool"].as_str().map(|s| s.starts_with("mrdw ")))
-        .unwrap_or(false)
+}
+
+/// The first line of [`MARKER`]; the entries mrdw wrote follow, one per line.
+const MANIFEST_HEADER: &str =
+    "written by mrdw: it replaces this folder as a whole while it holds only these entries:";
+
+/// What a shard folder holds besides [`MARKER`].
+pub(crate) const SHARD_ENTRIES: [&str; 3] = ["scene.toml", "shard.json", "work"];
+
+/// The text of [`MARKER`] for a folder of `entries` (names, or paths whose first
+/// component is the entry).
+pub(crate) fn marker_text<S: AsRef<str>>(entries: &[S]) -> String {
+    let mut top: Vec<&str> = entries
+        .iter()
+        .map(|e| e.as_ref().split('/').next().unwrap_or(""))
+        .filter(|e| !e.is_empty())
+        .collect();
+    top.sort_unstable();
+    top.dedup();
+    let mut text = format!("{MANIFEST_HEADER}\n");
+    for e in top {
+        text.push_str(e);
+        text.push('\n');
+    }
+    text
 }
 
 /// Writes the report's files into `dir`; returns their names.

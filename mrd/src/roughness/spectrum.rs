@@ -305,6 +305,12 @@ impl TabulatedSpectrum {
         (self.c2d[k - 1].ln() + t * (self.c2d[k] / self.c2d[k - 1]).ln()).exp()
     }
 
+    /// Number of tabulated bins and the ratio of the highest to the lowest bin's q: how
+    /// much of a spectrum a fit of its exponent sees.
+    pub fn extent(&self) -> (usize, f64) {
+        (self.q.len(), self.q[self.q.len() - 1] / self.q[0])
+    }
+
     /// Hurst exponent from a least-squares fit C2D ~ q^(-2H-2) over the table.
     pub fn fitted_hurst(&self) -> f64 {
         let x: Vec<f64> = self.q.iter().map(|q| q.ln()).collect();

@@ -106,12 +106,26 @@ pub fn surface_from(
     check_size(ny)?;
     crate::error::positive("lx", lx)?;
     crate::error::positive("ly", ly)?;
+    if !(lx * ly).is_normal() {
+        return Err(MrdError::InvalidParameter {
+            name: "lx x ly",
+            value: lx * ly,
+            reason: "the area must be a finite, normal number (sizes within about 1e-150..1e150)",
+        });
+    }
     let nc = nx / 2 + 1;
+    // The half spectrum and the surface are alive together.
+    let what = format!("a {ny} x {nx} surface");
+    let half = sysmem::bytes(&[nc, ny], 16, &what)?;
+    sysmem::check(
+        half.saturating_add(sysmem::bytes(&[nx, ny], 8, &what)?),
+        &what,
+    )?;
     let mut rng = realisation_rng(seed, realisation);
     let norm = 2.0 * PI / (lx * ly).sqrt();
     // Half spectrum S[i][j] (column i = kx >= 0, row j = ky signed), column-major for the
     // y transforms.
-    let mut s = vec![Complex64::default(); nc * ny];
+    let mut s = sysmem::try_vec(nc * ny, Complex64::default(), &what)?;
     let signed = |j: usize| {
         if j <= ny / 2 {
             j as f64
@@ -149,7 +163,7 @@ pub fn surface_from(
     let mut rp = RealFftPlanner::<f64>::new();
     let c2r = rp.plan_fft_inverse(nx);
     let mut row = vec![Complex64::default(); nc];
-    let mut out = vec![0.0; nx * ny];
+    let mut out = sysmem::try_vec(nx * ny, 0.0, &what)?;
     for j in 0..ny {
         for i in 0..nc {
             row[i] = s[i * ny + j];
@@ -177,8 +191,10 @@ pub fn line_from(
     check_size(n)?;
     crate::error::positive("length", l)?;
     let nc = n / 2 + 1;
+    let what = format!("a line of {n} points");
+    sysmem::check(sysmem::bytes(&[n], 24, &what)?, &what)?;
     let mut rng = realisation_rng(seed, realisation);
-    let mut s = vec![Complex64::default(); nc];
+    let mut s = sysmem::try_vec(nc, Complex64::default(), &what)?;
     for (k, sk) in s.iter_mut().enumerate().skip(1) {
         if n.is_multiple_of(2) && k == n / 2 {
             break;
@@ -188,7 +204,7 @@ pub fn line_from(
     }
     let mut rp = RealFftPlanner::<f64>::new();
     let c2r = rp.plan_fft_inverse(n);
-    let mut out = vec![0.0; n];
+    let mut out = sysmem::try_vec(n, 0.0, &what)?;
     c2r.process(&mut s, &mut out)
         .map_err(|e| MrdError::InvalidData(format!("inverse FFT: {e}")))?;
     Ok(out)

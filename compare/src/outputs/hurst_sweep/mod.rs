@@ -127,12 +127,19 @@ impl Output for HurstSweep {
         if !(self.upper_cutoff_ratio > 0.0 && self.upper_cutoff_ratio <= 1.0) {
             return bad("upper_cutoff_ratio must lie in (0, 1]".into());
         }
-        if self.realisations_3d < 2 || self.realisations_1d < 2 {
-            return bad("need at least 2 realisations in 3D and in 1D (for intervals)".into());
-        }
-        if self.loads < 6 || self.points_1d_factor < 2 {
-            return bad("need loads >= 6 and points_1d_factor >= 2".into());
-        }
+        // At least 2 realisations, for intervals.
+        super::count_in(
+            "realisations_3d",
+            self.realisations_3d,
+            2..=super::MAX_REALISATIONS,
+        )?;
+        super::count_in(
+            "realisations_1d",
+            self.realisations_1d,
+            2..=super::MAX_REALISATIONS,
+        )?;
+        super::count_in("loads", self.loads as u64, 6..=super::MAX_LOADS)?;
+        super::count_in("points_1d_factor", self.points_1d_factor as u64, 2..=64)?;
         if !(self.tolerance > 0.0 && self.tolerance < 1e-2) {
             return bad("tolerance must lie in (0, 1e-2)".into());
         }

@@ -126,10 +126,11 @@ fn run_bem(spec: &HurstSweep, h: usize, g: usize, r: u64) -> Result<BemCurve> {
     let opts = SolverOptions {
         tolerance: spec.tolerance,
         max_iterations: 20 * g + 2000,
+        ..Default::default()
     };
     let stiffness_opts = SolverOptions {
         tolerance: 1e-9,
-        ..opts
+        ..opts.clone()
     };
     let mut out = BemCurve {
         rms_height: solver.h_rms(),
@@ -228,13 +229,25 @@ fn write_atomic(path: &Path, text: &str) -> Result<()> {
 /// Computes the missing tasks of `spec` (of this shard) into `work`.
 pub fn compute(spec: &HurstSweep, work: &Path, control: &RunControl) -> Result<()> {
     std::fs::create_dir_all(work).map_err(io_err(format!("creating {}", work.display())))?;
-    let todo: Vec<Task> = all(spec)
+    let mine: Vec<Task> = all(spec)
         .into_iter()
         .enumerate()
         .filter(|(i, _)| control.shard.is_none_or(|(k, n)| i % n == k))
         .map(|(_, t)| t)
+        .collect();
+    let total = mine.len();
+    let todo: Vec<Task> = mine
+        .into_iter()
         .filter(|t| !work.join(t.file_name()).exists())
         .collect();
+    if control.progress && todo.len() < total {
+        let _ = std::io::Write::write_fmt(&mut std::io::stderr(), format_args!(
+            "hurst sweep: resuming: {} of {total} tasks taken from checkpoints in {}, {} to compute\n",
+            total - todo.len(),
+            work.display(),
+            todo.len()
+        ));
+    }
     let bar = (control.progress && !todo.is_empty()).then(|| {
         let b = indicatif::ProgressBar::new(todo.len() as u64);
         b.set_style(

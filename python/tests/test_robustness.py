@@ -1,0 +1,143 @@
+"""The interpreter never dies and nothing is silently wrong: sizes that do not fit raise
+MemoryError (also under a process memory limit), Ctrl-C stops a 3D solve, the CLI's checks
+apply from Python, and a scene with missing results raises ConvergenceError."""
+
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import numpy as np
+import pytest
+
+import mrdw
+from conftest import run_cli
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda: mrdw.surface((100000, 100000), (1.0, 1.0), 0.8, 4.0, 4.0, 32.0),
+        lambda: mrdw.surface((2**33, 2**33), (1.0, 1.0), 0.8, 4.0, 4.0, 32.0),
+        lambda: mrdw.line(10**12, 1.0, 0.8, 4.0, 4.0, 32.0),
+    ],
+)
+def test_sizes_that_do_not_fit_raise_memory_error(call):
+    with pytest.raises(MemoryError, match="needs about|overflows"):
+        call()
+
+
+def run_python(code, limit_bytes=None, timeout=120):
+    """Runs `code` in a fresh interpreter (under an address-space limit if given)."""
+
+    def limit():
+        import resource
+
+        resource.setrlimit(resource.RLIMIT_AS, (limit_bytes, limit_bytes))
+
+    return subprocess.run(
+        [sys.executable, "-c", textwrap.dedent(code)],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        preexec_fn=limit if limit_bytes else None,
+    )
+
+
+def test_a_process_memory_limit_gives_memory_error_not_an_abort():
+    # 2048^2 needs about 0.5 GB for the solver: under a 700 MB address-space limit
+    # (the interpreter and numpy take about 300 MB of it) it does not fit.
+    out = run_python(
+        """
+        import numpy as np, mrdw
+        h = np.zeros((2048, 2048))
+        try:
+            mrdw.Contact(h)
+        except MemoryError as e:
+            print("MemoryError:", e)
+        """,
+        limit_bytes=700 * 2**20,
+    )
+    assert out.returncode == 0, out.stderr
+    assert "MemoryError:" in out.stdout and "address-space limit" in out.stdout, out.stdout
+
+
+def test_ctrl_c_stops_a_3d_solve():
+    # A solve that cannot converge (a tolerance below rounding) and would run its
+    # million iterations for minutes: SIGINT ends it within a second.
+    proc = subprocess.Popen(
+        [
+            sys.executable,
+            "-c",
+            textwrap.dedent(
+                """
+                import sys, numpy as np, mrdw
+                h = mrdw.surface((128, 128), (1.0, 1.0), 0.8, 8.0, 8.0, 200.0, rms_slope=0.1, seed=1)
+                c = mrdw.Contact(h)
+                print("solving", flush=True)
+                try:
+                    c.solve(mean_pressure=0.01, tolerance=1e-300, max_iterations=10**7)
+                except KeyboardInterrupt:
+                    print("interrupted", flush=True)
+                    sys.exit(7)
+                """
+            ),
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    assert proc.stdout.readline().strip() == "solving"
+    time.sleep(1.0)
+    assert proc.poll() is None, "the solve ended before the interrupt: the test proves nothing"
+    t0 = time.monotonic()
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=30)
+    assert time.monotonic() - t0 < 2.0
+    assert proc.returncode == 7, err
+    assert "interrupted" in out
+
+
+def test_the_command_lines_checks_apply_from_python(mrdw_bin, tmp_path):
+    h = np.cos(np.arange(256.0)).reshape(16, 16) * 1e-2
+    c = mrdw.Contact(h)
+    for tol in (1.0, 1e300):
+        with pytest.raises(ValueError, match=r"tolerance = .* must lie in \(0, 1e-2\]"):
+            c.solve(mean_pressure=0.01, tolerance=tol)
+    with pytest.raises(ValueError, match=r"size\[0\] \(lx, the map's size in x\) = 1e300 must lie in"):
+        mrdw.Contact(h, size=(1e300, 1e300))
+    # The CLI refuses the same with the same words.
+    np.save(tmp_path / "h.npy", h)
+    for key, message in [
+        ("tolerance = 1.0", "tolerance = 1e0 must lie in (0, 1e-2]"),
+        ("size = [1e300, 1e300]", "size[0] (lx, the map's size in x) = 1e300 must lie in"),
+    ]:
+        scene = tmp_path / "b.toml"
+        body = 'name = "b"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = "bem_contact"\nheights = "h.npy"\nmean_pressures = [0.01]\n'
+        if not key.startswith("size"):
+            body += "size = [1.0, 1.0]\n"
+        scene.write_text(body + key + "\n")
+        out = run_cli(mrdw_bin, "run", str(scene), "--out", str(tmp_path / "o"))
+        assert out.returncode == 2 and message in out.stderr, out.stderr
+
+
+def test_a_scene_with_missing_results_raises(tmp_path):
+    # fig7-ci with 2.3 springs per shortest wave: no velocity is resolved, xi is missing.
+    scene = tmp_path / "f.toml"
+    base = case_text("fig7-ci")
+    scene.write_text(
+        base.replace("waves = 4.0, band", "waves = 80.0, band").replace(
+            "springs = 1024", "springs = 256"
+        )
+    )
+    with pytest.raises(mrdw.ConvergenceError, match="requested results are missing") as e:
+        mrdw.run_scene(str(scene))
+    assert e.value.failures and "not fitted" in e.value.failures[0]
+    assert "sliding_friction" in e.value.last["tables"]
+
+
+def case_text(name):
+    from conftest import ROOT
+
+    return (ROOT / "cases" / f"{name}.toml").read_text()

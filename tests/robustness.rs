@@ -1,0 +1,403 @@
+//! Bad and extreme input on the command line: sizes and counts that do not fit refuse
+//! with one line (never an abort or a panic), process memory limits are honoured,
+//! extreme physical parameters are named, unresolved results are flagged and fail the
+//! run, report folders keep what a user added, and the benchmark commands refuse what
+//! they cannot do.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn mrdw_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_mrdw"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .expect("mrdw runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Exit code 2 with one `error:` line containing `needle`; no panic, no abort.
+fn refused(o: &Output, needle: &str) {
+    let e = stderr(o);
+    assert_eq!(o.status.code(), Some(2), "{needle}: {e}");
+    assert!(!e.contains("panicked"), "{e}");
+    let last = e.trim_end().lines().last().unwrap_or("");
+    assert!(
+        last.starts_with("error: ") && last.contains(needle),
+        "`{needle}` not in: {e}"
+    );
+}
+
+fn summary(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+}
+
+/// Every integer key of every embedded scene, set to 10^15 (counts, sizes, points):
+/// refused with one line naming the key or the memory it needs, exit code 2.
+#[test]
+fn absurd_counts_in_any_scene_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let list = mrdw_in(tmp.path(), &["scenes"]);
+    let names: Vec<String> = String::from_utf8_lossy(&list.stdout)
+        .lines()
+        .filter(|l| !l.starts_with(' ') && !l.is_empty())
+        .filter_map(|l| l.split_whitespace().next().map(String::from))
+        .collect();
+    assert!(names.len() > 20, "{names:?}");
+    let mut cases = 0;
+    for name in &names {
+        let text =
+            String::from_utf8_lossy(&mrdw_in(tmp.path(), &["show", name]).stdout).into_owned();
+        let lines: Vec<&str> = text.lines().collect();
+        for (i, line) in lines.iter().enumerate() {
+            let Some((key, value)) = line.split_once('=') else {
+                continue;
+            };
+            let (key, value) = (key.trim(), value.split('#').next().unwrap().trim());
+            if key == "seed" || key.contains(' ') || value.parse::<u64>().is_err() {
+                continue;
+            }
+            let mut edited: Vec<String> = lines.iter().map(|s| s.to_string()).collect();
+            edited[i] = format!("{key} = 1000000000000000");
+            let scene = tmp.path().join("s.toml");
+            std::fs::write(&scene, edited.join("\n")).unwrap();
+            let o = mrdw_in(tmp.path(), &["run", "s.toml", "--out", "o"]);
+            let e = stderr(&o);
+            assert_eq!(o.status.code(), Some(2), "{name}.{key}: {e}");
+            assert!(!e.contains("panicked"), "{name}.{key}: {e}");
+            assert_eq!(e.trim_end().lines().count(), 1, "{name}.{key}: {e}");
+            cases += 1;
+        }
+    }
+    assert!(cases >= 50, "only {cases} integer keys found");
+}
+
+/// A 64 x 64 periodic map: a bem_contact scene beside it.
+fn bem_scene(dir: &Path, n: usize, extra: &str) {
+    let h: Vec<f64> = (0..n * n)
+        .map(|k| ((k % n) as f64 * 0.4).sin() * ((k / n) as f64 * 0.3).cos() * 0.01)
+        .collect();
+    mrd::topography::HeightMap {
+        rows: n,
+        cols: n,
+        data: h,
+    }
+    .write_npy(&dir.join("h.npy"))
+    .unwrap();
+    std::fs::write(
+        dir.join("b.toml"),
+        format!("name = \"b\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"bem_contact\"\nheights = \"h.npy\"\nsize = [1.0, 1.0]\nmean_pressures = [0.01]\n{extra}"),
+    )
+    .unwrap();
+}
+
+/// Under an address-space limit (`ulimit -v`) a map that does not fit is refused with
+/// the limit named, before anything is allocated; the same map runs without it.
+#[test]
+fn the_process_address_space_limit_is_honoured() {
+    let tmp = tempfile::tempdir().unwrap();
+    bem_scene(tmp.path(), 2048, "");
+    let exe = env!("CARGO_BIN_EXE_mrdw");
+    let o = Command::new("bash")
+        .current_dir(tmp.path())
+        .args([
+            "-c",
+            &format!("ulimit -v 600000 && exec {exe} run b.toml --out r --threads 1"),
+        ])
+        .output()
+        .unwrap();
+    refused(&o, "address-space limit");
+    assert!(!tmp.path().join("r").exists());
+}
+
+#[test]
+fn solver_options_and_sizes_share_the_python_checks() {
+    let tmp = tempfile::tempdir().unwrap();
+    bem_scene(tmp.path(), 16, "tolerance = 1.0\n");
+    refused(
+        &mrdw_in(tmp.path(), &["run", "b.toml", "--out", "r"]),
+        "tolerance = 1e0 must lie in (0, 1e-2]",
+    );
+    bem_scene(tmp.path(), 16, "");
+    let text = std::fs::read_to_string(tmp.path().join("b.toml"))
+        .unwrap()
+        .replace("size = [1.0, 1.0]", "size = [1e300, 1e300]");
+    std::fs::write(tmp.path().join("b.toml"), text).unwrap();
+    refused(
+        &mrdw_in(tmp.path(), &["run", "b.toml", "--out", "r"]),
+        "size[0] (lx, the map's size in x) = 1e300 must lie in [1e-100, 1e100]",
+    );
+}
+
+/// fig7-ci with a line of `waves` waves on 256 springs.
+fn coarse_fig7(dir: &Path, waves: f64) -> Output {
+    let text = String::from_utf8_lossy(&mrdw_in(dir, &["show", "fig7-ci"]).stdout)
+        .replace("waves = 4.0, band", &format!("waves = {waves:.1}, band"))
+        .replace("springs = 1024", "springs = 256");
+    std::fs::write(dir.join("f.toml"), text).unwrap();
+    mrdw_in(dir, &["run", "f.toml", "--out", "r"])
+}
+
+/// Too few springs per wave: the two routes to mu disagree; those velocities are
+/// flagged, warned about and left out of the fit, and with fewer than two resolved
+/// velocities xi is missing and the run fails (exit code 4).
+#[test]
+fn unresolved_mrd_sliding_is_flagged_and_fails_without_a_fit() {
+    let tmp = tempfile::tempdir().unwrap();
+    let o = coarse_fig7(tmp.path(), 80.0);
+    assert_eq!(o.status.code(), Some(4), "{}", stderr(&o));
+    let s = summary(&tmp.path().join("r"));
+    assert!(s["results"].get("sliding_friction.xi").is_none(), "{s}");
+    assert!(s["failures"][0].as_str().unwrap().contains("not fitted"));
+    assert!(s["warnings"][0].as_str().unwrap().contains("unresolved"));
+    // Some resolved: the fit uses them only, the table says which.
+    let o = coarse_fig7(tmp.path(), 20.0);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(tmp.path().join("r/sliding_friction.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).collect();
+    assert!(rows[0].ends_with("routes_rel_diff_max [1],resolved [0/1]"));
+    let flags: Vec<&str> = rows[1..]
+        .iter()
+        .map(|r| r.rsplit(',').next().unwrap())
+        .collect();
+    assert!(flags.contains(&"0") && flags.contains(&"1"), "{flags:?}");
+    let s = summary(&tmp.path().join("r"));
+    let resolved = s["results"]["sliding_friction.resolved_velocities"]
+        .as_f64()
+        .unwrap();
+    assert_eq!(
+        resolved as usize,
+        flags.iter().filter(|f| **f == "1").count()
+    );
+    assert!(
+        stderr(&o).contains("velocities unresolved"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// Moduli, times, exponents and velocities outside the range where the physics and the
+/// arithmetic hold name the key.
+#[test]
+fn extreme_viscoelastic_parameters_name_the_key() {
+    let tmp = tempfile::tempdir().unwrap();
+    let base =
+        String::from_utf8_lossy(&mrdw_in(tmp.path(), &["show", "fig7-ci"]).stdout).into_owned();
+    let eq84 = "material = { kind = \"eq84\", g0 = 1.0, g1 = 1000.0, tau1 = 1e-2, tau2 = 1e2, s = 2.0, terms = 16 }";
+    assert!(base.contains(eq84));
+    let prony = |g: &str| format!("material = {{ kind = \"prony\", {g} }}");
+    for (from, to, needle) in [
+        (
+            "velocity_min = 3.5e-6",
+            "velocity_min = 1e-300".to_string(),
+            "velocity_min = 1e-300",
+        ),
+        (
+            "velocity_max = 35.0",
+            "velocity_max = 1e300".to_string(),
+            "velocity_max = 1e300",
+        ),
+        ("s = 2.0", "s = 1e300".to_string(), "material.s = 1e300"),
+        ("tau1 = 1e-2", "tau1 = 1e-300".to_string(), "tau2 / tau1"),
+        (
+            "g1 = 1000.0",
+            "g1 = 1e300".to_string(),
+            "invalid g1 = 1e300",
+        ),
+        ("g1 = 1000.0", "g1 = 1e90".to_string(), "G(0)/G(inf) = 9.9"),
+        (eq84, prony("g_inf = 1.0, terms = []"), "purely elastic"),
+        (
+            eq84,
+            prony("g_inf = 1.0, terms = [[1e300, 1.0]]"),
+            "invalid prony modulus = 1e300",
+        ),
+        (
+            eq84,
+            prony("g_inf = 1.0, terms = [[1e9, 1.0]]"),
+            "G(0)/G(inf)",
+        ),
+        (
+            eq84,
+            prony("g_inf = 1e-300, terms = [[1e-300, 1.0]]"),
+            "relaxed modulus",
+        ),
+        (
+            eq84,
+            prony("g_inf = 1e-90, terms = [[1.0, 1.0]]"),
+            "G(0)/G(inf)",
+        ),
+    ] {
+        std::fs::write(tmp.path().join("v.toml"), base.replace(from, &to)).unwrap();
+        refused(
+            &mrdw_in(tmp.path(), &["run", "v.toml", "--out", "r"]),
+            needle,
+        );
+    }
+}
+
+#[test]
+fn one_realisation_is_refused_for_want_of_an_interval() {
+    let tmp = tempfile::tempdir().unwrap();
+    let text = String::from_utf8_lossy(&mrdw_in(tmp.path(), &["show", "rough-stiffness"]).stdout)
+        .replace("realisations = 64", "realisations = 1");
+    std::fs::write(tmp.path().join("r.toml"), text).unwrap();
+    refused(
+        &mrdw_in(tmp.path(), &["run", "r.toml", "--out", "o"]),
+        "realisations = 1 must lie in 2..=1000000",
+    );
+}
+
+/// A 4 x 4 measured map has a PSD of two bins: no fitted Hurst exponent, a warning.
+#[test]
+fn a_tiny_measured_map_reports_no_hurst_exponent() {
+    let tmp = tempfile::tempdir().unwrap();
+    let h: Vec<f64> = (0..16).map(|k| ((k * 7 % 5) as f64 - 2.0) * 1e-3).collect();
+    mrd::topography::HeightMap {
+        rows: 4,
+        cols: 4,
+        data: h,
+    }
+    .write_npy(&tmp.path().join("m.npy"))
+    .unwrap();
+    let text = String::from_utf8_lossy(&mrdw_in(tmp.path(), &["show", "rough-stiffness"]).stdout)
+        .into_owned();
+    let text = format!("{text}measured = {{ heights = \"m.npy\", size = [1.0, 1.0] }}\n");
+    std::fs::write(tmp.path().join("r.toml"), text).unwrap();
+    let o = mrdw_in(tmp.path(), &["run", "r.toml", "--out", "o"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = summary(&tmp.path().join("o"));
+    assert!(
+        s["results"]
+            .get("rough_stiffness.measured_fitted_hurst")
+            .is_none(),
+        "{s}"
+    );
+    assert!(stderr(&o).contains("not reported"), "{}", stderr(&o));
+}
+
+/// A file a user added inside a report folder, or beside the files of an earlier
+/// version's report (known by its summary.json), is never deleted.
+#[test]
+fn a_users_file_inside_a_report_folder_is_kept() {
+    let tmp = tempfile::tempdir().unwrap();
+    assert!(mrdw_in(tmp.path(), &["run", "hertz", "--out", "r"])
+        .status
+        .success());
+    let manifest = std::fs::read_to_string(tmp.path().join("r/.mrdw")).unwrap();
+    assert!(manifest.lines().any(|l| l == "summary.json"), "{manifest}");
+    std::fs::write(tmp.path().join("r/notes.txt"), "mine").unwrap();
+    refused(
+        &mrdw_in(tmp.path(), &["run", "hertz", "--out", "r"]),
+        "holds files mrdw did not write (notes.txt)",
+    );
+    assert_eq!(
+        std::fs::read_to_string(tmp.path().join("r/notes.txt")).unwrap(),
+        "mine"
+    );
+    // An earlier version's report: no manifest, its summary.json lists its files.
+    std::fs::remove_file(tmp.path().join("r/.mrdw")).unwrap();
+    refused(
+        &mrdw_in(tmp.path(), &["run", "hertz", "--out", "r"]),
+        "notes.txt",
+    );
+    std::fs::remove_file(tmp.path().join("r/notes.txt")).unwrap();
+    assert!(mrdw_in(tmp.path(), &["run", "hertz", "--out", "r"])
+        .status
+        .success());
+    // A folder holding only a summary.json that names mrdw is not a report to replace
+    // when anything else is there.
+    let fake = tmp.path().join("fake");
+    std::fs::create_dir(&fake).unwrap();
+    std::fs::write(
+        fake.join("summary.json"),
+        "{\"tool\": \"mrdw 0.1.0\", \"files\": []}",
+    )
+    .unwrap();
+    std::fs::write(fake.join("data.csv"), "1,2\n").unwrap();
+    refused(
+        &mrdw_in(tmp.path(), &["run", "hertz", "--out", "fake"]),
+        "data.csv",
+    );
+    assert!(fake.join("data.csv").exists());
+}
+
+#[test]
+fn a_link_to_a_folder_is_followed() {
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::create_dir(tmp.path().join("real")).unwrap();
+    std::os::unix::fs::symlink("real", tmp.path().join("link")).unwrap();
+    for _ in 0..2 {
+        let o = mrdw_in(tmp.path(), &["run", "hertz", "--out", "link"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    assert!(tmp.path().join("real/summary.json").exists());
+    assert!(std::fs::symlink_metadata(tmp.path().join("link"))
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    std::os::unix::fs::symlink("nowhere", tmp.path().join("dangling")).unwrap();
+    refused(
+        &mrdw_in(tmp.path(), &["run", "hertz", "--out", "dangling"]),
+        "a link to a path that does not exist",
+    );
+}
+
+#[test]
+fn benchmark_commands_refuse_what_they_cannot_do() {
+    let tmp = tempfile::tempdir().unwrap();
+    let o = mrdw_in(tmp.path(), &["bench", "sliding", "--max-exp", "9"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o)
+        .starts_with("error: invalid value '9' for '--max-exp <MAX_EXP>': 9 is not in 3..=8"));
+    refused(
+        &mrdw_in(tmp.path(), &["bench-case", "periodic", "0"]),
+        "grid side n = 0 must lie in 16..=16384",
+    );
+    let o = mrdw_in(
+        tmp.path(),
+        &[
+            "bench",
+            "bem",
+            "--max-n",
+            "128",
+            "--write-surfaces",
+            "/proc/none",
+        ],
+    );
+    refused(&o, "--write-surfaces /proc/none");
+    // Any error with a full standard error: still exit code 2.
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_mrdw"))
+        .args(["run", "no-such-scene"])
+        .stderr(full)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+}
+
+#[test]
+fn half_lengths_and_scene_names_get_true_messages() {
+    let tmp = tempfile::tempdir().unwrap();
+    let text = String::from_utf8_lossy(&mrdw_in(tmp.path(), &["show", "hertz"]).stdout)
+        .replace("springs = 4000", "springs = 4000\nhalf_length = 1e-9");
+    std::fs::write(tmp.path().join("h.toml"), text).unwrap();
+    refused(
+        &mrdw_in(tmp.path(), &["run", "h.toml", "--out", "o"]),
+        "half_length = 1e-9 does not cover the largest contact radius",
+    );
+    // A folder named like an embedded scene (say, its report) does not hide the scene.
+    std::fs::create_dir(tmp.path().join("hertz")).unwrap();
+    let o = mrdw_in(tmp.path(), &["run", "hertz", "--out", "o2"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    std::fs::create_dir(tmp.path().join("mine")).unwrap();
+    refused(
+        &mrdw_in(tmp.path(), &["run", "mine"]),
+        "a folder, not a scene file",
+    );
+}
