@@ -1,0 +1,207 @@
+//! Nested random-phase surfaces and lines: each Fourier mode's phase is a hash of (seed,
+//! realisation, wave vector), not a draw from a sequential stream, so one realisation is
+//! one continuous surface whatever the grid it is sampled on and whatever band it is
+//! cut to. The surface of bandwidth B (modes with |k| <= B, wavenumbers in units of
+//! 2 pi / L) contains exactly the modes of every narrower band; sampled on n x n cells
+//! (n > 2 B) it is the same function at any n. Studies of bandwidth and resolution
+//! then compare paired surfaces, and their differences carry no sampling noise of the
+//! shared modes.
+//!
+//! Amplitudes as Eq. (71) (|H(q)| = 2 pi / L sqrt(C2D(q)), deterministic) and Eq. (72)
+//! (sqrt(2 pi C1D(q) / L)); the mean mode is empty.
+
+use super::synthesis::Grid;
+use crate::error::{MrdError, Result};
+use realfft::RealFftPlanner;
+use rustfft::num_complex::Complex64;
+use rustfft::FftPlanner;
+use std::f64::consts::{PI, TAU};
+
+/// SplitMix64's finaliser.
+fn mix(mut z: u64) -> u64 {
+    z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// The phase in [0, 2 pi) of mode (i, j) of `realisation`.
+fn phase(seed: u64, realisation: u64, i: i64, j: i64) -> f64 {
+    let h = mix(mix(mix(seed ^ 0x6E65_7374_6564) ^ realisation) ^ i as u64) ^ (j as u64);
+    let h = mix(h);
+    TAU * (h >> 11) as f64 / (1u64 << 53) as f64
+}
+
+fn check(n: usize, band: usize) -> Result<()> {
+    if band < 1 || n <= 2 * band {
+        return Err(MrdError::InvalidParameter {
+            name: "grid points",
+            value: n as f64,
+            reason: "must exceed twice the bandwidth (the band's modes below Nyquist)",
+        });
+    }
+    Ok(())
+}
+
+/// Realisation `realisation` of the isotropic spectrum `c2d` on the square `grid`
+/// (nx = ny = n, side L = lx = ly), cut to the wave vectors |k| <= `band` (in units of
+/// 2 pi / L, k != 0).
+pub fn surface(
+    c2d: &dyn Fn(f64) -> f64,
+    band: usize,
+    grid: &Grid,
+    seed: u64,
+    realisation: u64,
+) -> Result<Vec<f64>> {
+    let Grid { nx, ny, lx, ly } = *grid;
+    if nx != ny || lx != ly {
+        return Err(MrdError::InvalidData(format!(
+            "nested surfaces are square: got {ny} x {nx} over {lx} x {ly}"
+        )));
+    }
+    let (n, l) = (nx, lx);
+    check(n, band)?;
+    crate::error::positive("L", l)?;
+    let what = format!("a {n} x {n} surface");
+    sysmem::check(sysmem::bytes(&[n, n], 24, &what)?, &what)?;
+    let nc = n / 2 + 1;
+    let b = band as i64;
+    let norm = TAU / l;
+    // Half spectrum, column-major (column i = kx >= 0, rows ky signed).
+    let mut s = sysmem::try_vec(nc * n, Complex64::default(), &what)?;
+    for i in 0..=b {
+        for j in -b..=b {
+            let k2 = i * i + j * j;
+            if k2 == 0 || k2 > b * b || (i == 0 && j < 0) {
+                continue;
+            }
+            let q = TAU / l * (k2 as f64).sqrt();
+            let h = Complex64::from_polar(norm * c2d(q).sqrt(), phase(seed, realisation, i, j));
+            let row = j.rem_euclid(n as i64) as usize;
+            s[i as usize * n + row] = h;
+            if i == 0 {
+                s[(n - row) % n] = h.conj();
+            }
+        }
+    }
+    let mut planner = FftPlanner::<f64>::new();
+    planner
+        .plan_fft_inverse(n)
+        .process(&mut s[..(b as usize + 1) * n]);
+    let c2r = RealFftPlanner::<f64>::new().plan_fft_inverse(n);
+    let mut row = vec![Complex64::default(); nc];
+    let mut out = sysmem::try_vec(n * n, 0.0, &what)?;
+    for j in 0..n {
+        for i in 0..nc {
+            row[i] = s[i * n + j];
+        }
+        row[0].im = 0.0;
+        if n.is_multiple_of(2) {
+            row[nc - 1].im = 0.0;
+        }
+        c2r.process(&mut row, &mut out[j * n..(j + 1) * n])
+            .map_err(|e| MrdError::InvalidData(format!("inverse FFT: {e}")))?;
+    }
+    Ok(out)
+}
+
+/// Realisation `realisation` of the 1D spectrum `c1d` on `n` points over length `l`,
+/// cut to the wavenumbers k <= `band` (units of 2 pi / L, k >= 1).
+pub fn line(
+    c1d: &dyn Fn(f64) -> f64,
+    band: usize,
+    n: usize,
+    l: f64,
+    seed: u64,
+    realisation: u64,
+) -> Result<Vec<f64>> {
+    check(n, band)?;
+    crate::error::positive("L", l)?;
+    let what = format!("a line of {n} points");
+    sysmem::check(sysmem::bytes(&[n], 24, &what)?, &what)?;
+    let mut s = sysmem::try_vec(n / 2 + 1, Complex64::default(), &what)?;
+    for (k, sk) in s.iter_mut().enumerate().take(band + 1).skip(1) {
+        let q = TAU * k as f64 / l;
+        let b = (2.0 * PI * c1d(q) / l).sqrt(); // Eq. (72)
+        *sk = Complex64::from_polar(b, phase(seed ^ 0x4C49_4E45, realisation, k as i64, 0));
+    }
+    let mut out = sysmem::try_vec(n, 0.0, &what)?;
+    RealFftPlanner::<f64>::new()
+        .plan_fft_inverse(n)
+        .process(&mut s, &mut out)
+        .map_err(|e| MrdError::InvalidData(format!("inverse FFT: {e}")))?;
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::roughness::stats::{line_moments, surface_moments};
+
+    fn at(h: &[f64], n: usize, x: f64, y: f64) -> f64 {
+        h[(y * n as f64).round() as usize * n + (x * n as f64).round() as usize]
+    }
+
+    #[test]
+    fn one_realisation_is_one_surface_on_every_grid() {
+        // Band 6 on 16^2 and on 64^2: equal at the shared points to rounding.
+        let c = |q: f64| q.powf(-3.0);
+        let g = |n| Grid::square(n, 1.0);
+        let coarse = surface(&c, 6, &g(16), 9, 4).unwrap();
+        let fine = surface(&c, 6, &g(64), 9, 4).unwrap();
+        let rms = surface_moments(&coarse, 16, 16, 1.0, 1.0).rms_height;
+        for j in 0..16 {
+            for i in 0..16 {
+                let (x, y) = (i as f64 / 16.0, j as f64 / 16.0);
+                assert!((at(&coarse, 16, x, y) - at(&fine, 64, x, y)).abs() < 1e-12 * rms);
+            }
+        }
+    }
+
+    #[test]
+    fn a_wider_band_adds_modes_and_keeps_the_narrower_ones() {
+        // h(band 12) - h(band 6) holds only modes 6 < |k| <= 12: its power is the
+        // spectrum's over that annulus, and the variances add (orthogonal modes).
+        let c = |q: f64| q.powf(-3.0);
+        let g = Grid::square(32, 1.0);
+        let narrow = surface(&c, 6, &g, 1, 0).unwrap();
+        let wide = surface(&c, 12, &g, 1, 0).unwrap();
+        let diff: Vec<f64> = wide.iter().zip(&narrow).map(|(a, b)| a - b).collect();
+        let m = |h: &[f64]| surface_moments(h, 32, 32, 1.0, 1.0).rms_height.powi(2);
+        let (vn, vw, vd) = (m(&narrow), m(&wide), m(&diff));
+        assert!((vw - vn - vd).abs() < 1e-12 * vw, "{vw} {vn} {vd}");
+        // Exact variance: sum over the annulus of |H|^2 = (2 pi / L)^2 C2D(q).
+        let mut want = 0.0;
+        for i in -12i64..=12 {
+            for j in -12i64..=12 {
+                let k2 = (i * i + j * j) as f64;
+                if k2 > 36.0 && k2 <= 144.0 {
+                    want += TAU * TAU * c(TAU * k2.sqrt());
+                }
+            }
+        }
+        assert!((vd / want - 1.0).abs() < 1e-12, "{vd} {want}");
+        // Realisations and seeds differ.
+        assert_ne!(surface(&c, 6, &g, 1, 1).unwrap(), narrow);
+        assert_ne!(surface(&c, 6, &g, 2, 0).unwrap(), narrow);
+    }
+
+    #[test]
+    fn lines_nest_and_carry_the_spectrums_variance() {
+        let c = |q: f64| q.powf(-2.0);
+        let (a, b) = (
+            line(&c, 8, 64, 2.0, 5, 3).unwrap(),
+            line(&c, 8, 256, 2.0, 5, 3).unwrap(),
+        );
+        for k in 0..64 {
+            assert!((a[k] - b[4 * k]).abs() < 1e-12);
+        }
+        // Variance sum_k |H_k|^2 (two-sided: each k and -k).
+        let want: f64 = (1..=8)
+            .map(|k| 2.0 * TAU * c(TAU * k as f64 / 2.0) / 2.0)
+            .sum();
+        let got = line_moments(&b, 2.0).rms_height.powi(2);
+        assert!((got / want - 1.0).abs() < 1e-12, "{got} {want}");
+        assert!(line(&c, 8, 16, 1.0, 0, 0).is_err());
+    }
+}
