@@ -63,6 +63,15 @@ enum Command {
         /// `mrdw merge`; no report is written.
         #[arg(long, value_parser = parse_shard)]
         shard: Option<(usize, usize)>,
+        /// Checkpoint folder of resumable outputs (sweeps, studies): read, written and
+        /// kept, e.g. checkpoints committed as data (default: <out>.work, removed after
+        /// the report is written).
+        #[arg(long)]
+        work: Option<PathBuf>,
+        /// Compute nothing: report what the checkpoints hold (a lambda_study reports its
+        /// cases with data; other outputs compute as usual).
+        #[arg(long)]
+        report_only: bool,
     },
     /// Combine shard folders of one scene into the report a single run would write.
     Merge {
@@ -225,6 +234,8 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
             out: dir,
             threads,
             shard,
+            work,
+            report_only,
         } => {
             set_threads(threads)?;
             let scene = load(scene.as_deref())?;
@@ -233,6 +244,7 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
                 shard,
                 stop_after: stop_after(),
                 progress: true,
+                report_only,
             };
             say!(out, "scene `{}`: plan", scene.name);
             write!(out.0, "{}", compare::run::plan(&scene))?;
@@ -241,7 +253,7 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
                 say!(out, "shard {k}/{n} computed into {}", dir.display());
                 return Ok(());
             }
-            let (report, files) = compare::run_to_folder(&scene, &dir, &control)?;
+            let (report, files) = compare::run_to_folder(&scene, &dir, work.as_deref(), &control)?;
             for w in report.warnings() {
                 note!("warning: {w}");
             }

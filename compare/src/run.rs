@@ -80,16 +80,23 @@ pub fn provenance(scene: &Scene) -> Provenance {
 
 /// Runs `scene` and writes its report folder `out` (see [`Destination`] for what may be
 /// replaced); returns the report and the files written.
+/// `work`: a checkpoint folder of the caller's (e.g. checkpoints committed as data),
+/// read and written and kept; without it they live beside the report (`<out>.work`) and
+/// are removed once the report is written.
 pub fn run_to_folder(
     scene: &Scene,
     out: &Path,
+    work: Option<&Path>,
     control: &RunControl,
 ) -> Result<(Report, Vec<PathBuf>)> {
     let t0 = Instant::now();
     let dest = Destination::claim(out)?;
-    let report = run_in(scene, &dest.work_root(), control)?;
+    let work_root = work.map_or_else(|| dest.work_root(), Path::to_path_buf);
+    let report = run_in(scene, &work_root, control)?;
     let files = dest.write_report(&report, &provenance(scene), t0.elapsed().as_secs_f64())?;
-    remove_checkpoints(scene, &dest.work_root());
+    if work.is_none() {
+        remove_checkpoints(scene, &work_root);
+    }
     Ok((report, files))
 }
 

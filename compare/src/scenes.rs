@@ -20,6 +20,14 @@ pub const EMBEDDED: &[(&str, &str)] = &[
     ("ejike", include_str!("../../cases/ejike.toml")),
     ("fig6-ci", include_str!("../../cases/fig6-ci.toml")),
     ("fig6-full", include_str!("../../cases/fig6-full.toml")),
+    (
+        "fig6-converged",
+        include_str!("../../cases/fig6-converged.toml"),
+    ),
+    (
+        "fig6-converged-ci",
+        include_str!("../../cases/fig6-converged-ci.toml"),
+    ),
     ("fig7", include_str!("../../cases/fig7.toml")),
     ("fig7-ci", include_str!("../../cases/fig7-ci.toml")),
     ("fig7-3d", include_str!("../../cases/fig7-3d.toml")),

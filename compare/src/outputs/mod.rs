@@ -25,6 +25,7 @@ mod damping;
 mod elastomer;
 mod force_depth;
 pub mod hurst_sweep;
+pub mod lambda_study;
 mod pressure;
 mod profile_1d;
 pub mod rough_stiffness;
@@ -74,6 +75,8 @@ pub struct RunControl {
     pub stop_after: Option<usize>,
     /// Show progress bars on long work.
     pub progress: bool,
+    /// Compute nothing: outputs that can report what their checkpoints hold do so.
+    pub report_only: bool,
 }
 
 /// What a running output may use.
@@ -172,6 +175,10 @@ pub const KINDS: &[Kind] = &[
     Kind::of::<hurst_sweep::HurstSweep>(
         "hurst_sweep",
         "the Hurst sweep, 3D against MRD: alpha(H), zeta(H), lambda(H) (Fig. 6)",
+    ),
+    Kind::of::<lambda_study::LambdaStudy>(
+        "lambda_study",
+        "lambda(H) and alpha(H) converged in bandwidth, resolution and realisations (calibration of Eq. 76)",
     ),
 ];
 

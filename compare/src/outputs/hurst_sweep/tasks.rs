@@ -108,6 +108,21 @@ fn run_bem(spec: &HurstSweep, h: usize, g: usize, r: u64) -> Result<BemCurve> {
         Amplitudes::Deterministic,
     )
     .ctx("3D surface")?;
+    let mut out = punch_curve(&heights, g, spec.loads, spec.tolerance)?;
+    out.seconds = t0.elapsed().as_secs_f64();
+    Ok(out)
+}
+
+/// The rough punch of the sweeps: the disc inscribed in the `g x g` map `heights` (side
+/// L = 1, E* = 1) pressed on the free half-space at `loads` approaches, log-spaced from
+/// 1e-3 of the full-contact approach to full contact, warm-started; F and the tangent
+/// stiffness k = dF/dd (contact set fixed) at each. `seconds` is left 0 for the caller.
+pub(crate) fn punch_curve(
+    heights: &[f64],
+    g: usize,
+    loads: usize,
+    tolerance: f64,
+) -> Result<BemCurve> {
     let mask = bem3d::mask::disc(g, g, 1.0, 1.0, 0.5);
     let (top, bottom) = heights
         .iter()
@@ -119,12 +134,12 @@ fn run_bem(spec: &HurstSweep, h: usize, g: usize, r: u64) -> Result<BemCurve> {
     let full = top - bottom;
     let mut solver = ContactSolver::new(
         NonPeriodicHalfSpace::new(g, g, 1.0, 1.0, 1.0),
-        &heights,
+        heights,
         Some(mask),
     )
     .ctx("3D solver set-up")?;
     let opts = SolverOptions {
-        tolerance: spec.tolerance,
+        tolerance,
         max_iterations: 20 * g + 2000,
         ..Default::default()
     };
@@ -143,8 +158,8 @@ fn run_bem(spec: &HurstSweep, h: usize, g: usize, r: u64) -> Result<BemCurve> {
         seconds: 0.0,
     };
     let mut warm: Option<bem3d::Solution> = None;
-    for k in 0..spec.loads {
-        let d = full * 10f64.powf(-3.0 * (1.0 - k as f64 / (spec.loads - 1) as f64));
+    for k in 0..loads {
+        let d = full * 10f64.powf(-3.0 * (1.0 - k as f64 / (loads - 1) as f64));
         let (sol, converged) = match solver.solve(Load::Approach(d), &opts, warm.as_ref()) {
             Ok(s) => (s, true),
             Err(BemError::NoConvergence { last, .. }) => {
@@ -177,7 +192,6 @@ fn run_bem(spec: &HurstSweep, h: usize, g: usize, r: u64) -> Result<BemCurve> {
             warm = Some(sol);
         }
     }
-    out.seconds = t0.elapsed().as_secs_f64();
     Ok(out)
 }
 
@@ -214,7 +228,7 @@ fn run_mrd(spec: &HurstSweep, h: usize) -> Result<MrdEnsemble> {
     })
 }
 
-fn write_atomic(path: &Path, text: &str) -> Result<()> {
+pub(crate) fn write_atomic(path: &Path, text: &str) -> Result<()> {
     let dir = path.parent().expect("checkpoints live in a folder");
     let mut tmp = tempfile::NamedTempFile::new_in(dir)
         .map_err(io_err(format!("temporary file in {}", dir.display())))?;

@@ -1,0 +1,310 @@
+//! `lambda_study`: lambda(H) of Eq. (76) and alpha(H) of Eq. (77) converged in every
+//! numerical parameter: the Hurst sweep's rough punch (see `hurst_sweep`) at a ladder of
+//! bandwidths L / lambda_min, with a resolution check (cells per shortest wavelength), a
+//! solver-tolerance check and realisations added until lambda's bootstrap interval meets
+//! a target.
+//!
+//! Set-up, with E* = 1 and punch diameter L = 1: a self-affine spectrum C2D ~ q^(-2H-2)
+//! from q0 = 2 pi / L (no roll-off) up to the bandwidth B (wave vectors |k| <= B in units
+//! of 2 pi / L, so L / lambda_min = B), synthesised on a square of `cells x B` cells a
+//! side. Surfaces are nested (`mrd::roughness::nested`): realisation r is one surface
+//! whatever B and the grid, its modes shared by every band that holds them, so
+//! differences between bandwidths, resolutions and tolerances are paired and carry no
+//! sampling noise of the shared modes. MRD lines (C1D = pi q C2D, Eq. 73) are nested
+//! the same way, on `points_1d_per_cell x cells x B` points.
+//!
+//! lambda: under Eq. (77) lambda only rescales the 1D heights (h1 = sqrt(lambda/pi) h3),
+//! so the MRD law with lambda is K1(f sqrt(pi/lambda)), K1 the lambda = pi curve; lambda
+//! minimises the log-space misfit to the 3D ensemble mean over every f where the 3D mean
+//! lies in the window k/(E* L) in [window[0], window[1]] (the whole common range, not one
+//! point). The residual misfit max and rms |Delta ln k| over that range is what MRD with
+//! the calibrated lambda gets wrong. Intervals: 95 % bootstrap over realisations (200
+//! resamples; paired comparisons resample the realisations the two cases share).
+//!
+//! Realisations: every case computes `realisations.min`; a case of the main ladder at or
+//! below `calibrate_at` adds batches of `realisations.batch` (up to `realisations.max`)
+//! while its lambda interval is wider than the target of its H (`target`: pairs
+//! [H_max, relative half-width]). Decisions use complete batches only, so results do
+//! not depend on the order of work, threads or interruptions.
+//!
+//! Files: [`tasks`] (cases, the adaptive plan, the checkpointed work), [`analysis`]
+//! (curves, fits, lambda, pairs), [`report`] (tables and figures).
+
+pub mod analysis;
+mod report;
+pub mod tasks;
+
+use super::{bad, count_in, Checkpointed, Env, Output, RunControl};
+use crate::context::Context;
+use crate::error::Result;
+use crate::plan::Stage;
+use crate::report::Section;
+use serde::Deserialize;
+use std::path::Path;
+
+/// Parameters of a study (an `[[outputs]]` entry of kind `lambda_study`).
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct LambdaStudy {
+    /// Hurst exponents, each in [-1, 3].
+    pub hurst: Vec<f64>,
+    /// The main ladder of bandwidths L / lambda_min.
+    pub bandwidths: Vec<usize>,
+    /// Cells per shortest wavelength on the main ladder.
+    #[serde(default = "eight")]
+    pub cells: usize,
+    /// The bandwidth whose lambda is shipped (one of `bandwidths`).
+    pub calibrate_at: usize,
+    /// Further bandwidths for some H (paired with the main ladder).
+    #[serde(default)]
+    pub extra: Vec<Extra>,
+    /// Other cells per shortest wavelength at one bandwidth, for every H.
+    pub resolution: Option<Resolution>,
+    /// A second solver tolerance at `calibrate_at` for one H.
+    pub tolerance_check: Option<ToleranceCheck>,
+    pub realisations: Realisations,
+    /// [H_max, relative half-width] pairs, H_max ascending: the target of lambda's 95 %
+    /// interval for H <= H_max.
+    #[serde(default = "targets")]
+    pub target: Vec<[f64; 2]>,
+    /// MRD lines per H and bandwidth.
+    pub realisations_1d: u64,
+    /// Surfaces per case grid (no solve) for the expectations of the control variates.
+    #[serde(default = "two_thousand")]
+    pub control_realisations: u64,
+    /// The calibration and fit range in k/(E* L).
+    #[serde(default = "window")]
+    pub window: [f64; 2],
+    /// Approaches per 3D realisation.
+    #[serde(default = "twenty")]
+    pub loads: usize,
+    /// 3D solver tolerance (bem3d::solver).
+    #[serde(default = "tolerance")]
+    pub tolerance: f64,
+    /// MRD points per 3D cell across.
+    #[serde(default = "sixteen")]
+    pub points_1d_per_cell: usize,
+    #[serde(default)]
+    pub seed: u64,
+}
+
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Extra {
+    pub bandwidth: usize,
+    pub hurst: Vec<f64>,
+}
+
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Resolution {
+    pub bandwidth: usize,
+    pub cells: Vec<usize>,
+}
+
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ToleranceCheck {
+    pub hurst: f64,
+    pub tolerance: f64,
+}
+
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Realisations {
+    pub min: u64,
+    pub max: u64,
+    pub batch: u64,
+}
+
+fn eight() -> usize {
+    8
+}
+fn two_thousand() -> u64 {
+    2000
+}
+fn sixteen() -> usize {
+    16
+}
+fn twenty() -> usize {
+    20
+}
+fn tolerance() -> f64 {
+    1e-8
+}
+fn window() -> [f64; 2] {
+    [0.02, 0.5]
+}
+fn targets() -> Vec<[f64; 2]> {
+    vec![[1.5, 0.10], [3.0, 0.20]]
+}
+
+impl LambdaStudy {
+    /// The target relative half-width of lambda's interval at `hurst`.
+    pub fn target_at(&self, hurst: f64) -> f64 {
+        self.target
+            .iter()
+            .find(|t| hurst <= t[0])
+            .map_or(f64::INFINITY, |t| t[1])
+    }
+
+    /// Reduced forces f = F/(E* h L) of the common grid of every curve.
+    pub fn f_grid(&self) -> Vec<f64> {
+        mrd::friction::log_space(1e-7, 1e2, 91)
+    }
+
+    fn check_band(&self, b: usize, cells: usize) -> Result<()> {
+        if !(8..=1024).contains(&b) {
+            return bad(format!("bandwidth {b} must lie in 8..=1024"));
+        }
+        if !(3..=32).contains(&cells) {
+            return bad(format!("cells = {cells} must lie in 3..=32"));
+        }
+        let g = b * cells;
+        if g > 8192 {
+            return bad(format!(
+                "bandwidth {b} at {cells} cells per wavelength needs a {g}^2 grid: at most 8192"
+            ));
+        }
+        // One 3D task per worker thread at a time.
+        super::check_memory(
+            (g * g) as f64
+                * super::BYTES_PER_CELL_NON_PERIODIC
+                * rayon::current_num_threads() as f64,
+            &format!("bandwidth {b} at {cells} cells ({g}^2)"),
+        )
+    }
+}
+
+impl Output for LambdaStudy {
+    fn validate(&self, _: &Context) -> Result<()> {
+        if self.hurst.is_empty() {
+            return bad("hurst list is empty");
+        }
+        let in_range = |h: &f64| (-1.0..=3.0).contains(h);
+        if let Some(h) = self
+            .hurst
+            .iter()
+            .chain(self.extra.iter().flat_map(|e| &e.hurst))
+            .find(|h| !in_range(h))
+        {
+            return bad(format!("hurst = {h} must lie in [-1, 3]"));
+        }
+        if !self.bandwidths.contains(&self.calibrate_at) {
+            return bad(format!(
+                "calibrate_at = {} must be one of bandwidths {:?}",
+                self.calibrate_at, self.bandwidths
+            ));
+        }
+        for &b in &self.bandwidths {
+            self.check_band(b, self.cells)?;
+        }
+        for e in &self.extra {
+            self.check_band(e.bandwidth, self.cells)?;
+        }
+        if let Some(r) = &self.resolution {
+            for &c in &r.cells {
+                self.check_band(r.bandwidth, c)?;
+            }
+        }
+        if let Some(t) = &self.tolerance_check {
+            if !in_range(&t.hurst) || !self.hurst.contains(&t.hurst) {
+                return bad("tolerance_check.hurst must be one of hurst");
+            }
+            bem3d::SolverOptions::new(t.tolerance, 1)
+                .validate()
+                .map_err(|e| crate::error::CompareError::Scene(format!("tolerance_check: {e}")))?;
+        }
+        bem3d::SolverOptions::new(self.tolerance, 1)
+            .validate()
+            .map_err(|e| crate::error::CompareError::Scene(e.to_string()))?;
+        let r = self.realisations;
+        count_in("realisations.min", r.min, 2..=super::MAX_REALISATIONS)?;
+        count_in("realisations.max", r.max, r.min..=super::MAX_REALISATIONS)?;
+        count_in("realisations.batch", r.batch, 1..=r.max)?;
+        count_in(
+            "realisations_1d",
+            self.realisations_1d,
+            2..=super::MAX_REALISATIONS,
+        )?;
+        count_in(
+            "control_realisations",
+            self.control_realisations,
+            2..=super::MAX_REALISATIONS,
+        )?;
+        count_in("loads", self.loads as u64, 6..=super::MAX_LOADS)?;
+        count_in("points_1d_per_cell", self.points_1d_per_cell as u64, 2..=64)?;
+        let [lo, hi] = self.window;
+        if !(lo > 0.0 && lo < hi && hi <= 1.0) {
+            return bad("window must satisfy 0 < window[0] < window[1] <= 1 (k/(E* L))");
+        }
+        let ok = self.target.windows(2).all(|w| w[0][0] < w[1][0])
+            && self.target.iter().all(|t| t[1] > 0.0 && t[1] < 1.0);
+        if !ok {
+            return bad(
+                "target: [H_max, relative half-width] pairs, H_max ascending, widths in (0, 1)",
+            );
+        }
+        Ok(())
+    }
+
+    fn stages(&self, _: &Context) -> Vec<Stage> {
+        vec![
+            Stage::RoughSynthesis,
+            Stage::Bem3d,
+            Stage::Bem3dStiffness,
+            Stage::RoughContact,
+            Stage::SweepFit,
+        ]
+    }
+
+    fn seed(&self) -> Option<u64> {
+        Some(self.seed)
+    }
+
+    fn checkpointed(&self) -> Option<&dyn Checkpointed> {
+        Some(self)
+    }
+
+    fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
+        let work = env.work_root.join(self.key());
+        out.stages_together(
+            &[
+                Stage::RoughSynthesis,
+                Stage::Bem3d,
+                Stage::Bem3dStiffness,
+                Stage::RoughContact,
+            ],
+            || self.compute(&work, env.control),
+        )?;
+        let results = out.stage(Stage::SweepFit, || analysis::analyse(self, &work))?;
+        report::report(self, &results, out);
+        Ok(())
+    }
+}
+
+impl Checkpointed for LambdaStudy {
+    /// The parameters every task's result depends on besides its own name (H, B, cells,
+    /// tolerance, realisation): seed, loads, the 1D ensemble. Lists of H, bandwidths and
+    /// the realisation plan may change and keep the checkpoints.
+    fn key(&self) -> String {
+        let text = format!(
+            "lambda_study nested-v1 seed={} loads={} realisations_1d={} points_1d_per_cell={} cells={}",
+            self.seed, self.loads, self.realisations_1d, self.points_1d_per_cell, self.cells
+        );
+        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+        for b in text.bytes() {
+            h ^= b as u64;
+            h = h.wrapping_mul(0x0100_0000_01b3);
+        }
+        format!("{h:016x}")
+    }
+
+    fn task_files(&self) -> Vec<String> {
+        Vec::new()
+    }
+
+    fn compute(&self, dir: &Path, control: &RunControl) -> Result<()> {
+        tasks::compute(self, dir, control)
+    }
+}

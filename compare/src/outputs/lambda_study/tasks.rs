@@ -1,0 +1,508 @@
+//! The study's cases and checkpointed work: one task per 3D realisation of a case
+//! (H, bandwidth, cells, tolerance) and one per (H, bandwidth) for the whole MRD
+//! ensemble; the plan of the tasks still needed, realisations added batch by batch
+//! while a case misses its target.
+
+use super::LambdaStudy;
+use crate::error::{io_err, CompareError, Context as _, Result};
+use crate::outputs::hurst_sweep::tasks::{punch_curve, write_atomic, BemCurve, MrdEnsemble};
+use crate::outputs::RunControl;
+use mrd::rough_contact::RoughLine;
+use mrd::roughness::nested;
+use mrd::roughness::synthesis::Grid;
+use mrd::roughness::SelfAffine;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::f64::consts::{PI, TAU};
+use std::path::Path;
+use std::time::Instant;
+
+/// What a case is for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Role {
+    /// The main ladder at or below `calibrate_at`: realisations added to the target.
+    Ladder,
+    /// A bandwidth above `calibrate_at` (main ladder or extra): `min` realisations,
+    /// paired with `calibrate_at`.
+    Above,
+    /// Other cells per wavelength at the resolution check's bandwidth.
+    Resolution,
+    /// The second tolerance.
+    Tolerance,
+}
+
+/// One set of paired 3D realisations.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Case {
+    pub hurst: f64,
+    pub band: usize,
+    pub cells: usize,
+    pub tolerance: f64,
+    pub role: Role,
+}
+
+impl Case {
+    pub fn grid(&self) -> usize {
+        self.band * self.cells
+    }
+
+    fn file(&self, r: u64) -> String {
+        format!(
+            "bem_H{}_B{}_c{}_t{:e}_r{r}.json",
+            self.hurst, self.band, self.cells, self.tolerance
+        )
+    }
+}
+
+/// The MRD ensemble of one H and bandwidth.
+pub fn mrd_file(hurst: f64, band: usize) -> String {
+    format!("mrd_H{hurst}_B{band}.json")
+}
+
+/// Every case of the study, main ladder first (in the order of `hurst` and
+/// `bandwidths`), then extras, resolution and tolerance checks; no case twice.
+pub fn cases(s: &LambdaStudy) -> Vec<Case> {
+    let mut v: Vec<Case> = Vec::new();
+    let mut push = |c: Case| {
+        let same = |o: &Case| {
+            o.hurst == c.hurst
+                && o.band == c.band
+                && o.cells == c.cells
+                && o.tolerance == c.tolerance
+        };
+        if !v.iter().any(same) {
+            v.push(c);
+        }
+    };
+    let main = |hurst: f64, band: usize| Case {
+        hurst,
+        band,
+        cells: s.cells,
+        tolerance: s.tolerance,
+        role: if band <= s.calibrate_at {
+            Role::Ladder
+        } else {
+            Role::Above
+        },
+    };
+    for &h in &s.hurst {
+        for &b in &s.bandwidths {
+            push(main(h, b));
+        }
+    }
+    for e in &s.extra {
+        for &h in &e.hurst {
+            push(main(h, e.bandwidth));
+        }
+    }
+    if let Some(r) = &s.resolution {
+        for &h in &s.hurst {
+            // The reference at the main cells (also on the ladder if it lists this band).
+            push(main(h, r.bandwidth));
+            for &c in &r.cells {
+                push(Case {
+                    cells: c,
+                    role: Role::Resolution,
+                    ..main(h, r.bandwidth)
+                });
+            }
+        }
+    }
+    if let Some(t) = &s.tolerance_check {
+        push(Case {
+            tolerance: t.tolerance,
+            role: Role::Tolerance,
+            ..main(t.hurst, s.calibrate_at)
+        });
+    }
+    v
+}
+
+/// The control ensemble of a case's grid: face statistics of many surfaces (no solve),
+/// whose means are the expectations the control variates need.
+pub fn control_file(case: &Case, m: u64) -> String {
+    format!(
+        "ctl_H{}_B{}_c{}_m{m}.json",
+        case.hurst, case.band, case.cells
+    )
+}
+
+/// Realisations of control ensembles start here (apart from the solved ones).
+const CONTROL_OFFSET: u64 = 1 << 40;
+
+/// A case's control ensemble, as [`CONTROL_BATCHES`] batch means of its faces' summit
+/// and Winkler curve (a bootstrap over batch means gives the expectations' sampling
+/// error; the faces themselves are not kept).
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct ControlEnsemble {
+    pub faces: u64,
+    pub batches: Vec<FaceMean>,
+    pub seconds: f64,
+}
+
+/// Mean summit and Winkler curve of a batch of faces (None where a face lacks it).
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct FaceMean {
+    pub summit: f64,
+    pub winkler: Vec<Option<f64>>,
+}
+
+/// Batches of a control ensemble.
+pub const CONTROL_BATCHES: u64 = 20;
+
+/// One unit of checkpointed work.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Task {
+    Bem { case: Case, r: u64 },
+    Mrd { hurst: f64, band: usize },
+    Control { case: Case, m: u64 },
+}
+
+impl Task {
+    pub fn file_name(&self) -> String {
+        match self {
+            Task::Bem { case, r } => case.file(*r),
+            Task::Mrd { hurst, band } => mrd_file(*hurst, *band),
+            Task::Control { case, m } => control_file(case, *m),
+        }
+    }
+
+    /// Which round a task belongs to: MRD ensembles first, then the cases the shipped
+    /// table and the checks need (adaptive) with their control ensembles, then
+    /// bandwidths above `calibrate_at`.
+    fn priority(&self) -> u8 {
+        match self {
+            Task::Mrd { .. } => 0,
+            Task::Bem { case, .. } | Task::Control { case, .. } if case.role == Role::Above => 2,
+            Task::Bem { .. } | Task::Control { .. } => 1,
+        }
+    }
+
+    /// Relative cost, for ordering a round: cells of the 3D grid.
+    fn cost(&self) -> usize {
+        match self {
+            Task::Bem { case, .. } | Task::Control { case, .. } => case.grid() * case.grid(),
+            Task::Mrd { .. } => 0,
+        }
+    }
+}
+
+/// Realisations 0..n of `case` all present in `work`: the largest such n.
+pub fn done(work: &Path, case: &Case) -> u64 {
+    (0..)
+        .take_while(|&r| work.join(case.file(r)).exists())
+        .count() as u64
+}
+
+/// How many realisations `case` needs given `n` done (complete batches decide).
+fn needed(s: &LambdaStudy, work: &Path, case: &Case, n: u64) -> Result<u64> {
+    let r = s.realisations;
+    if case.role != Role::Ladder || n < r.min {
+        return Ok(r.min);
+    }
+    if n >= r.max {
+        return Ok(r.max);
+    }
+    if !n.is_multiple_of(r.batch) {
+        return Ok(n.div_ceil(r.batch) * r.batch);
+    }
+    if !work.join(mrd_file(case.hurst, case.band)).exists() {
+        return Ok(n);
+    }
+    let e = super::analysis::case_lambda(s, work, case, n)?;
+    let target = s.target_at(case.hurst);
+    let met =
+        e.value.is_finite() && e.lo >= (1.0 - target) * e.value && e.hi <= (1.0 + target) * e.value;
+    Ok(if met { n } else { (n + r.batch).min(r.max) })
+}
+
+/// The tasks still to compute: MRD ensembles first, then 3D realisations, cheapest
+/// grids first (an interrupted round leaves every case with data).
+pub fn plan(s: &LambdaStudy, work: &Path) -> Result<Vec<Task>> {
+    let cs = cases(s);
+    let mut todo: Vec<Task> = Vec::new();
+    let mut bands: Vec<(f64, usize)> = Vec::new();
+    for c in &cs {
+        if !bands.contains(&(c.hurst, c.band)) {
+            bands.push((c.hurst, c.band));
+        }
+    }
+    for &(hurst, band) in &bands {
+        if !work.join(mrd_file(hurst, band)).exists() {
+            todo.push(Task::Mrd { hurst, band });
+        }
+    }
+    let mut grids: Vec<(f64, usize, usize)> = Vec::new();
+    for c in &cs {
+        if !grids.contains(&(c.hurst, c.band, c.cells)) {
+            grids.push((c.hurst, c.band, c.cells));
+            let t = Task::Control {
+                case: *c,
+                m: s.control_realisations,
+            };
+            if !work.join(t.file_name()).exists() {
+                todo.push(t);
+            }
+        }
+    }
+    for case in &cs {
+        let n = done(work, case);
+        let want = needed(s, work, case, n)?;
+        todo.extend(
+            (n..want)
+                .map(|r| Task::Bem { case: *case, r })
+                .filter(|t| !work.join(t.file_name()).exists()),
+        );
+    }
+    todo.sort_by_key(|t| {
+        (
+            t.cost(),
+            match t {
+                Task::Bem { r, .. } => *r,
+                Task::Mrd { .. } | Task::Control { .. } => 0,
+            },
+        )
+    });
+    Ok(todo)
+}
+
+fn spectrum(hurst: f64, band: usize) -> mrd::Result<SelfAffine> {
+    // The band's edges are cut by the nested synthesis (|k| in 1..=B): the spectrum
+    // reaches a little beyond them so that no mode sits on its boundary.
+    let q0 = TAU * (1.0 - 1e-9);
+    SelfAffine::new(hurst, q0, q0, TAU * (band as f64 + 0.5))
+}
+
+/// One 3D realisation: the punch's curve, and cheap statistics of the same punch face
+/// that may serve as control variates of its k(f).
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct StudyCurve {
+    pub bem: BemCurve,
+    pub face: FaceStats,
+}
+
+/// Statistics of a punch face (the disc's heights), computed in milliseconds.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct FaceStats {
+    /// k/(E* L) of a Winkler foundation (independent springs E* per unit area under
+    /// each cell) on the face, at each f of the study's grid (None beyond its range).
+    pub winkler: Vec<Option<f64>>,
+    /// Skewness and kurtosis of the face's heights; (max - mean) / rms height.
+    pub skewness: f64,
+    pub kurtosis: f64,
+    pub summit: f64,
+}
+
+/// Realisation `r` of `case`'s surface on its grid.
+fn heights(case: &Case, seed: u64, r: u64) -> Result<Vec<f64>> {
+    let sa = spectrum(case.hurst, case.band).ctx("study spectrum")?;
+    nested::surface(
+        &|q| sa.c2d(q),
+        case.band,
+        &Grid::square(case.grid(), 1.0),
+        seed,
+        r,
+    )
+    .ctx("3D surface")
+}
+
+/// [`FaceStats`] of the disc inscribed in the `g x g` map `h` (side 1).
+pub fn face_stats(h: &[f64], g: usize, fs: &[f64]) -> Result<FaceStats> {
+    let mask = bem3d::mask::disc(g, g, 1.0, 1.0, 0.5);
+    let face: Vec<f64> = h
+        .iter()
+        .zip(&mask)
+        .filter(|(_, &m)| m)
+        .map(|(&v, _)| v)
+        .collect();
+    let n = face.len() as f64;
+    let mean = face.iter().sum::<f64>() / n;
+    let m = |p: i32| face.iter().map(|v| (v - mean).powi(p)).sum::<f64>() / n;
+    let rms = m(2).sqrt();
+    // Springs of stiffness E* x cell area: a line of the face's cells with dx = cell area.
+    let cell = 1.0 / (g * g) as f64;
+    let springs = RoughLine::new(&face, n * cell, 1.0).ctx("Winkler face")?;
+    let full = springs
+        .at_depth(springs.full_contact_depth())
+        .ctx("Winkler face")?
+        .force;
+    let winkler = fs
+        .iter()
+        .map(|&f| {
+            let force = f * rms;
+            if force >= full {
+                return Ok(None);
+            }
+            Ok(Some(springs.at_force(force).ctx("Winkler face")?.stiffness))
+        })
+        .collect::<Result<_>>()?;
+    Ok(FaceStats {
+        winkler,
+        skewness: m(3) / rms.powi(3),
+        kurtosis: m(4) / rms.powi(4),
+        summit: (face.iter().copied().fold(f64::NEG_INFINITY, f64::max) - mean) / rms,
+    })
+}
+
+fn run_bem(s: &LambdaStudy, case: &Case, r: u64) -> Result<StudyCurve> {
+    let t0 = Instant::now();
+    let g = case.grid();
+    let h = heights(case, s.seed, r)?;
+    let face = face_stats(&h, g, &s.f_grid())?;
+    let mut bem = punch_curve(&h, g, s.loads, case.tolerance)?;
+    bem.seconds = t0.elapsed().as_secs_f64();
+    Ok(StudyCurve { bem, face })
+}
+
+fn run_control(s: &LambdaStudy, case: &Case, m: u64) -> Result<ControlEnsemble> {
+    let t0 = Instant::now();
+    let fs = s.f_grid();
+    let faces: Vec<FaceStats> = (0..m)
+        .into_par_iter()
+        .map(|i| {
+            face_stats(
+                &heights(case, s.seed, CONTROL_OFFSET + i)?,
+                case.grid(),
+                &fs,
+            )
+        })
+        .collect::<Result<_>>()?;
+    let per = (m / CONTROL_BATCHES).max(1) as usize;
+    let batches = faces
+        .chunks(per)
+        .map(|b| {
+            let n = b.len() as f64;
+            FaceMean {
+                summit: b.iter().map(|f| f.summit).sum::<f64>() / n,
+                winkler: (0..fs.len())
+                    .map(|j| {
+                        b.iter()
+                            .map(|f| f.winkler[j])
+                            .sum::<Option<f64>>()
+                            .map(|v| v / n)
+                    })
+                    .collect(),
+            }
+        })
+        .collect();
+    Ok(ControlEnsemble {
+        faces: m,
+        batches,
+        seconds: t0.elapsed().as_secs_f64(),
+    })
+}
+
+fn run_mrd(s: &LambdaStudy, hurst: f64, band: usize) -> Result<MrdEnsemble> {
+    let t0 = Instant::now();
+    let n1 = s.points_1d_per_cell * s.cells * band;
+    let line = spectrum(hurst, band).ctx("study spectrum")?.to_line(PI);
+    let fs = s.f_grid();
+    let stiffness: Vec<Vec<f64>> = (0..s.realisations_1d)
+        .into_par_iter()
+        .map(|r| -> Result<Vec<f64>> {
+            let z = nested::line(&|q| line.c1d(q), band, n1, 1.0, s.seed, r).ctx("1D line")?;
+            let rl = RoughLine::new(&z, 1.0, 1.0).ctx("1D line")?;
+            let full_force = rl.at_depth(rl.full_contact_depth()).ctx("1D")?.force;
+            fs.iter()
+                .map(|&f| {
+                    let force = f * rl.rms_height;
+                    if full_force <= force {
+                        return Ok(1.0); // complete contact: k = E* L
+                    }
+                    Ok(rl.at_force(force).ctx("1D")?.stiffness)
+                })
+                .collect()
+        })
+        .collect::<Result<_>>()?;
+    Ok(MrdEnsemble {
+        stiffness,
+        seconds: t0.elapsed().as_secs_f64(),
+        points: n1,
+    })
+}
+
+/// Computes rounds of the plan until nothing is needed (or the control stops it): each
+/// round the tasks of the plan's first priority (see [`Task::priority`]), cheapest
+/// grids first.
+pub fn compute(s: &LambdaStudy, work: &Path, control: &RunControl) -> Result<()> {
+    std::fs::create_dir_all(work).map_err(io_err(format!("creating {}", work.display())))?;
+    let done_before = std::fs::read_dir(work).map_or(0, |d| d.count());
+    if control.progress && done_before > 0 {
+        let _ = std::io::Write::write_fmt(
+            &mut std::io::stderr(),
+            format_args!(
+                "lambda study: resuming from {done_before} checkpoints in {}\n",
+                work.display()
+            ),
+        );
+    }
+    let mut computed = 0;
+    loop {
+        let all = plan(s, work)?;
+        let first = all.iter().map(Task::priority).min();
+        let todo: Vec<Task> = all
+            .into_iter()
+            .filter(|t| Some(t.priority()) == first)
+            .enumerate()
+            .filter(|(i, _)| control.shard.is_none_or(|(k, n)| i % n == k))
+            .map(|(_, t)| t)
+            .collect();
+        if todo.is_empty() || control.report_only {
+            return Ok(());
+        }
+        let bar = control.progress.then(|| {
+            let b = indicatif::ProgressBar::new(todo.len() as u64);
+            b.set_style(
+                indicatif::ProgressStyle::with_template(
+                    "{msg} [{bar:30}] {pos}/{len} tasks of this round, {elapsed} elapsed, ETA {eta}",
+                )
+                .expect("valid template")
+                .progress_chars("=> "),
+            );
+            b.set_message("lambda study");
+            b
+        });
+        let count = std::sync::atomic::AtomicUsize::new(computed);
+        let result = todo
+            .par_iter()
+            .with_max_len(1)
+            .try_for_each(|t| -> Result<()> {
+                let text = match t {
+                    Task::Bem { case, r } => serde_json::to_string(&run_bem(s, case, *r)?),
+                    Task::Mrd { hurst, band } => serde_json::to_string(&run_mrd(s, *hurst, *band)?),
+                    Task::Control { case, m } => serde_json::to_string(&run_control(s, case, *m)?),
+                }
+                .map_err(|e| CompareError::Internal(e.to_string()))?;
+                write_atomic(&work.join(t.file_name()), &text)?;
+                if let Some(b) = &bar {
+                    b.inc(1);
+                }
+                let n = count.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
+                match control.stop_after {
+                    Some(stop) if n >= stop => Err(CompareError::Stopped { tasks: n }),
+                    _ => Ok(()),
+                }
+            });
+        if let Some(b) = bar {
+            b.finish_and_clear();
+        }
+        result?;
+        computed = count.into_inner();
+        // A shard computes one round: later rounds depend on every shard's results.
+        if control.shard.is_some() {
+            return Ok(());
+        }
+    }
+}
+
+/// Reads one checkpoint, if present.
+pub fn load<T: for<'de> Deserialize<'de>>(work: &Path, file: &str) -> Result<Option<T>> {
+    let p = work.join(file);
+    match std::fs::read_to_string(&p) {
+        Ok(text) => serde_json::from_str(&text)
+            .map(Some)
+            .map_err(|e| CompareError::Internal(format!("{}: {e}", p.display()))),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
+        Err(e) => Err(io_err(format!("reading {}", p.display()))(e)),
+    }
+}

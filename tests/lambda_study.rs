@@ -1,0 +1,174 @@
+//! The lambda study's machinery at CI scale (fig6-converged-ci): adaptive realisations
+//! up to the cap when the target is out of reach, paired checks of bandwidth,
+//! resolution and tolerance, the same bytes whatever the threads or an interruption,
+//! a report from committed checkpoints without computing, and the shipped table loads
+//! as lambda. The physics is checked at publication scale (fig6-converged).
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn mrdw(args: &[&str], env: &[(&str, &str)]) -> Output {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_mrdw"));
+    c.args(args);
+    for (k, v) in env {
+        c.env(k, v);
+    }
+    c.output().expect("mrdw runs")
+}
+
+fn ok(o: &Output) {
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// Asserts two report folders hold the same CSVs, naming the first that differs.
+fn same_csvs(a: &Path, b: &Path) {
+    let (x, y) = (csvs(a), csvs(b));
+    assert_eq!(
+        x.iter().map(|c| &c.0).collect::<Vec<_>>(),
+        y.iter().map(|c| &c.0).collect::<Vec<_>>()
+    );
+    for (c, d) in x.iter().zip(&y) {
+        assert!(
+            c.1 == d.1,
+            "{} differs between {} and {}",
+            c.0,
+            a.display(),
+            b.display()
+        );
+    }
+}
+
+fn csvs(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut v: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "csv"))
+        .map(|p| {
+            (
+                p.file_name().unwrap().to_string_lossy().into_owned(),
+                std::fs::read(&p).unwrap(),
+            )
+        })
+        .collect();
+    v.sort();
+    v
+}
+
+/// Rows of a report CSV (comments and header skipped), split at commas.
+fn rows(path: &Path) -> Vec<Vec<f64>> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+        .map(|l| {
+            l.split(',')
+                .map(|v| v.parse().unwrap_or(f64::NAN))
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn the_study_machinery_runs_pairs_and_reproduces() {
+    let tmp = tempfile::tempdir().unwrap();
+    let p = |n: &str| tmp.path().join(n);
+    let s = |n: &str| p(n).to_str().unwrap().to_string();
+    ok(&mrdw(&["run", "fig6-converged-ci", "--out", &s("a")], &[]));
+    // Cases: (H, bandwidth, cells, tolerance, role, realisations, lambda, lo, hi, ...).
+    let cases = rows(&p("a/lambda_study_cases.csv"));
+    assert_eq!(cases.len(), 8, "{cases:?}");
+    for c in &cases {
+        let (role, n) = (c[4], c[5]);
+        // The target (+/- 2 %) is out of reach: the ladder goes to the cap, 12; the
+        // checks keep the minimum, 4.
+        assert_eq!(n, if role == 0.0 { 12.0 } else { 4.0 }, "{c:?}");
+        assert!(
+            c[6] > 0.0 && c[7] <= c[6] && c[6] <= c[8],
+            "lambda in its interval: {c:?}"
+        );
+    }
+    // Pairs: two ladder bandwidths, the extra one, two resolutions, the tolerance.
+    let pairs = rows(&p("a/lambda_study_pairs.csv"));
+    assert_eq!(pairs.len(), 6, "{pairs:?}");
+    let tol = pairs.iter().find(|r| r[3] == 1e-10).unwrap();
+    assert!(
+        (tol[8] - 1.0).abs() < 1e-4,
+        "the tolerance moves lambda: {tol:?}"
+    );
+    // The same bytes on one thread, and after an interruption and a resume.
+    ok(&mrdw(
+        &[
+            "run",
+            "fig6-converged-ci",
+            "--out",
+            &s("b"),
+            "--threads",
+            "1",
+        ],
+        &[],
+    ));
+    same_csvs(&p("a"), &p("b"));
+    let o = mrdw(
+        &[
+            "run",
+            "fig6-converged-ci",
+            "--out",
+            &s("c"),
+            "--work",
+            &s("w"),
+        ],
+        &[("MRDW_STOP_AFTER_TASKS", "7")],
+    );
+    assert_eq!(o.status.code(), Some(3));
+    ok(&mrdw(
+        &[
+            "run",
+            "fig6-converged-ci",
+            "--out",
+            &s("c"),
+            "--work",
+            &s("w"),
+        ],
+        &[],
+    ));
+    same_csvs(&p("a"), &p("c"));
+    // A report from the kept checkpoints, computing nothing, is the same report; with
+    // checkpoints missing it reports what is there.
+    ok(&mrdw(
+        &[
+            "run",
+            "fig6-converged-ci",
+            "--out",
+            &s("d"),
+            "--work",
+            &s("w"),
+            "--report-only",
+        ],
+        &[],
+    ));
+    same_csvs(&p("a"), &p("d"));
+    ok(&mrdw(
+        &[
+            "run",
+            "fig6-converged-ci",
+            "--out",
+            &s("e"),
+            "--work",
+            &s("empty"),
+            "--report-only",
+        ],
+        &[],
+    ));
+    assert!(rows(&p("e/lambda_study_cases.csv")).is_empty());
+    // The shipped table loads as a lambda for rough lines.
+    let table = p("a/lambda_study_lambda_calibrated.csv");
+    let text = std::fs::read_to_string(&table).unwrap();
+    assert!(text.contains("hurst,lambda,lambda_lo95,lambda_hi95,misfit_max,misfit_rms,bandwidth,realisations_3d,cells_per_min_wavelength"));
+    std::fs::write(
+        p("r.toml"),
+        format!("name = \"r\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"rough_stiffness\"\nhurst = 0.5\npoints = 4096\nlength = 1.0\nlambda = \"{}\"\nrealisations = 4\nf_min = 1e-5\nf_max = 1.0\n", table.display()),
+    )
+    .unwrap();
+    ok(&mrdw(&["run", &s("r.toml"), "--out", &s("r")], &[]));
+}
