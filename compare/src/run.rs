@@ -15,10 +15,7 @@ use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// Tool name and version written into every output.
-pub fn tool_version() -> String {
-    format!("mrdw {}", env!("CARGO_PKG_VERSION"))
-}
+pub use crate::report::tool_version;
 
 /// The stages every output of `scene` will run.
 pub fn plan(scene: &Scene) -> Plan {

@@ -16,6 +16,11 @@ use crate::plan::{Plan, Stage};
 use serde_json::{Map, Value};
 use std::time::Instant;
 
+/// Tool name and version written into every output.
+pub fn tool_version() -> String {
+    format!("mrdw {}", env!("CARGO_PKG_VERSION"))
+}
+
 /// Provenance written at the top of every CSV and into summary.json.
 #[derive(Debug, Clone)]
 pub struct Provenance {

@@ -226,7 +226,7 @@ fn curves_table(r: &Results, label: &str) -> Table {
 fn calibrated_csv(s: &LambdaStudy, r: &Results) -> String {
     let mut text = format!(
         "# {} -- lambda(H) of Eq. (76), C1D = lambda q C2D, calibrated by lambda_study on 3D circular rough punches:\n# bandwidth L/lambda_min = {}, {} cells per shortest wavelength, solver tolerance {:e}, seed {}, {} MRD lines per H,\n# fit range k/(E* L) in [{}, {}] (the whole common range of the curves); 95 % bootstrap intervals over 3D realisations;\n# misfit_max, misfit_rms: |ln k3D - ln kMRD| after calibration over that range.\n",
-        crate::run::tool_version(), s.calibrate_at, s.cells, s.tolerance, s.seed, s.realisations_1d, s.window[0], s.window[1]
+        crate::report::tool_version(), s.calibrate_at, s.cells, s.tolerance, s.seed, s.realisations_1d, s.window[0], s.window[1]
     );
     text.push_str("hurst,lambda,lambda_lo95,lambda_hi95,misfit_max,misfit_rms,bandwidth,realisations_3d,cells_per_min_wavelength\n");
     for h in &s.hurst {
