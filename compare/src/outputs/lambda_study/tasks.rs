@@ -463,9 +463,10 @@ pub fn compute(s: &LambdaStudy, work: &Path, control: &RunControl) -> Result<()>
             b
         });
         let count = std::sync::atomic::AtomicUsize::new(computed);
+        // Handed out in the plan's order (cheapest first), one task per idle thread.
         let result = todo
-            .par_iter()
-            .with_max_len(1)
+            .iter()
+            .par_bridge()
             .try_for_each(|t| -> Result<()> {
                 let text = match t {
                     Task::Bem { case, r } => serde_json::to_string(&run_bem(s, case, *r)?),
