@@ -101,6 +101,18 @@
 //! interpenetration, both relative to the rms height (the grid diagonal for a flat face).
 //! The force (or approach) constraint is enforced exactly at every iteration.
 //!
+//! What a converged solve guarantees: the solve also requires its certificate
+//! [`Solution::certificate`] `c = sum_i p_i (g_i - g_low) / (sum_i p_i h_rms) <= tol`,
+//! with `g_low = min(0, min_i g_i)` over the domain (it is at most twice the criterion,
+//! so this rarely costs an iteration). Under force control `c F h_rms` bounds the
+//! Frank-Wolfe (duality) gap of the energy `E(p) = p.K p / 2 - p.(h + const)` over the
+//! pressures `p >= 0` carrying the force `F`: `E(p) - E(p*) <= c F h_rms`, and since E is
+//! quadratic, the pressure error in the norm of K, the elastic energy of the difference,
+//! `(p - p*).K(p - p*) <= 2 c F h_rms <= 2 tol F h_rms` (sums times the cell area:
+//! `F = A sum_i p_i`). Because the criterion looks at the gap of every domain cell, with
+//! or without pressure, an iterate with interpenetration beyond `tol h_rms` never
+//! passes, whatever the start (a warm start far from the answer included).
+//!
 //! Complete contact (every domain cell in contact) is a legitimate state. Under force
 //! control it is reached in one iteration. A periodic surface without a mask cannot be
 //! pressed beyond its complete-contact approach `d_c = max(h) - mean(h)` (the periodic
@@ -304,6 +316,9 @@ pub struct Solution {
     pub iterations: usize,
     /// Criterion value reached (see module docs).
     pub residual: f64,
+    /// Bound of the duality gap relative to force x rms height (module docs, "What a
+    /// converged solve guarantees"): at most the tolerance when the solve converged.
+    pub certificate: f64,
     /// Cells that may touch (the mask's cells, or the whole grid).
     pub domain_cells: usize,
     /// Whether the previous solution given as a warm start was used (see module docs).
@@ -1152,17 +1167,21 @@ impl<K: Compliance> ContactSolver<K> {
                 continue;
             }
             if residual <= opts.tolerance {
-                if exact {
+                if !exact {
+                    // Confirm on a fresh K p (the direction is kept).
+                    self.op.apply(&p, &mut self.w);
+                    refresh_z = true;
+                    exact = true;
+                    continue;
+                }
+                // Converged when the duality gap is within the tolerance too (module
+                // docs); it is at most twice the criterion, so this rarely iterates on.
+                if self.certificate(&p, approach) <= opts.tolerance {
                     self.loads = loads;
                     let mut sol = self.finish(p, approach, it, residual);
                     sol.warm_started = warm_started;
                     return Ok(sol);
                 }
-                // Confirm on a fresh K p (the direction is kept).
-                self.op.apply(&p, &mut self.w);
-                refresh_z = true;
-                exact = true;
-                continue;
             }
             if it == opts.max_iterations {
                 break;
@@ -1563,6 +1582,30 @@ impl<K: Compliance> ContactSolver<K> {
         self.finish(vec![0.0; n], d, 0, 0.0)
     }
 
+    /// The duality (Frank-Wolfe) gap of `p` over the pressures carrying its force,
+    /// relative to that force times the rms height: `sum_i p_i (g_i - g_low) / (sum_i
+    /// p_i h_rms)` over the domain, `g = w - approach` (`w = K p + z` up to date),
+    /// `g_low = min(0, min_j g_j)` (an upper bound of the gap with `min_j g_j`); 0
+    /// without pressure. It bounds the energy error of p, hence its error in the norm of
+    /// K (module docs).
+    fn certificate(&self, p: &[f64], approach: f64) -> f64 {
+        let ch = self.chunk();
+        let [pg, ps, low] = reduce(
+            (
+                p.par_chunks(ch),
+                self.w.par_chunks(ch),
+                self.mask.par_chunks(ch),
+            ),
+            |(p, w, m)| sweeps::certificate_terms(p, w, m, approach),
+            Some(2),
+        );
+        if ps > 0.0 {
+            (pg / ps + low.max(0.0)) / self.h_rms
+        } else {
+            0.0
+        }
+    }
+
     /// Collects the solution from p and w = K p + z.
     fn finish(&mut self, p: Vec<f64>, approach: f64, iterations: usize, residual: f64) -> Solution {
         let area = self.op.cell_area();
@@ -1574,7 +1617,9 @@ impl<K: Compliance> ContactSolver<K> {
             .map(|(w, &m)| if m > 0 { (w - d).max(0.0) } else { 0.0 })
             .collect();
         let contact_cells = p.iter().filter(|&&v| v > 0.0).count();
+        let certificate = self.certificate(&p, d);
         Solution {
+            certificate,
             force: p.iter().sum::<f64>() * area,
             contact_cells,
             contact_area: contact_cells as f64 * area,
@@ -1697,6 +1742,27 @@ impl<K: Compliance> ContactSolver<K> {
 mod tests {
     use super::*;
     use crate::operator::{NonPeriodicHalfSpace, PeriodicHalfSpace};
+
+    /// An iterate the criterion alone accepts and the certificate refuses: every
+    /// pressure cell open by `tol h_rms` (complementarity at the tolerance) and a cell
+    /// without pressure interpenetrating by `tol h_rms` (interpenetration at the
+    /// tolerance): criterion tol, duality gap 2 tol.
+    #[test]
+    fn the_certificate_refuses_what_the_criterion_alone_accepts() {
+        let tol = 1e-6;
+        let p = [1.0, 2.0, 0.0, 0.0];
+        let w = [tol, tol, -tol, 1.0];
+        let mask = [1u8; 4];
+        let [pg, ps, worst] = sweeps::criterion_terms(&p, &w, &mask, 0.0);
+        let criterion = (pg / ps).max(worst);
+        let [pg, ps, low] = sweeps::certificate_terms(&p, &w, &mask, 0.0);
+        let certificate = pg / ps + low.max(0.0);
+        assert!(criterion <= tol * (1.0 + 1e-12), "criterion {criterion:e}");
+        assert!(
+            (certificate - 2.0 * tol).abs() < 1e-18,
+            "certificate {certificate:e}"
+        );
+    }
 
     /// The cold start's order statistic against a sort of the domain's heights, every
     /// rank: many ties (heights on 7 levels), both signs of zero, a constant map, a

@@ -120,6 +120,14 @@ impl ContactResult {
     fn residual(&self) -> f64 {
         self.sol.residual
     }
+    /// Bound of the energy's duality gap relative to force x rms height: at most the
+    /// tolerance when the solve converged, and then the pressure error in the norm of K
+    /// satisfies (p - p*).K(p - p*) <= 2 x certificate x force x h_rms (see
+    /// `bem3d/src/solver.rs`, "What a converged solve guarantees").
+    #[getter]
+    fn certificate(&self) -> f64 {
+        self.sol.certificate
+    }
     /// Tangent normal stiffness dF/dd with the contact set fixed [stress x length], if
     /// requested (`stiffness=True`); +inf at complete contact of a periodic map.
     #[getter]
@@ -146,13 +154,14 @@ impl ContactResult {
     }
     fn __repr__(&self) -> String {
         format!(
-            "ContactResult(force={:.6e}, approach={:.6e}, contact_fraction={:.4e}, mean_gap={:.6e}, iterations={}, residual={:.2e})",
+            "ContactResult(force={:.6e}, approach={:.6e}, contact_fraction={:.4e}, mean_gap={:.6e}, iterations={}, residual={:.2e}, certificate={:.2e})",
             self.sol.force,
             self.sol.approach,
             self.contact_fraction(),
             self.sol.mean_gap,
             self.sol.iterations,
-            self.sol.residual
+            self.sol.residual,
+            self.sol.certificate
         )
     }
 }

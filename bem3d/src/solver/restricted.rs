@@ -238,7 +238,7 @@ impl<K: Compliance> ContactSolver<K> {
             _ => fixed_approach,
         };
         let residual = self.criterion(p, approach);
-        if residual > opts.tolerance {
+        if residual > opts.tolerance || self.certificate(p, approach) > opts.tolerance {
             return Err((approach, residual));
         }
         let mut sol = self.finish(std::mem::take(p), approach, iterations, residual);

@@ -177,6 +177,21 @@ pub(super) fn criterion_terms(p: &[f64], w: &[f64], mask: &[u8], approach: f64) 
     sums.total(Some(2))
 }
 
+/// The duality gap's terms over the domain cells of a chunk: `sum p g`, `sum p`, and
+/// the largest `-g` (slot 2, so that `min g = -slot 2`), with `g = w - approach`.
+pub(super) fn certificate_terms(p: &[f64], w: &[f64], mask: &[u8], approach: f64) -> [f64; 3] {
+    let mut s = [0.0, 0.0, f64::NEG_INFINITY];
+    for ((&p, &w), &m) in p.iter().zip(w).zip(mask) {
+        if m > 0 {
+            let g = w - approach;
+            s[0] += p * g;
+            s[1] += p;
+            s[2] = s[2].max(-g);
+        }
+    }
+    s
+}
+
 /// Pass B: the criterion's terms (as [`criterion_terms`]) and the residual
 /// `q = [p > 0] g`, M's input, with its sum (slot 3). p is read only in the rows (of
 /// `width` cells) that `on` marks (pass A's: the rows of the contact set); the others'

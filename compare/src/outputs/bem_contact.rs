@@ -204,13 +204,14 @@ impl Output for BemContact {
         cols.extend([
             "iterations [count]".into(),
             "residual [1]".into(),
+            "certificate [1]".into(),
             "converged [0/1]".into(),
         ]);
         let mut t = Table::new("bem_contact", &cols);
         t.missing_ok = true;
         t.infinite_ok = true;
         t.notes.push(format!(
-            "{} {ny} x {nx} map from {} over {lx} x {ly}; E* = {e}; tolerance {:e} (criterion: bem3d::solver docs){}; converged = 0: the last iterate at max_iterations; iterations of restricted solves count iterations on a window around a compact contact (non-periodic) or applications of a dense K between a small candidate set (few contact cells; bem3d::solver docs)",
+            "{} {ny} x {nx} map from {} over {lx} x {ly}; E* = {e}; tolerance {:e} (criterion: bem3d::solver docs){}; certificate: bound of the energy's duality gap over F h_rms, at most the tolerance when converged (then the pressure error in the norm of K, (p - p*).K(p - p*), is at most 2 x tolerance x F x h_rms; bem3d::solver docs); converged = 0: the last iterate at max_iterations; iterations of restricted solves count iterations on a window around a compact contact (non-periodic) or applications of a dense K between a small candidate set (few contact cells; bem3d::solver docs)",
             if self.periodic { "periodic" } else { "non-periodic" },
             path.display(),
             self.tolerance,
@@ -230,6 +231,7 @@ impl Output for BemContact {
             row.extend([
                 sol.iterations as f64,
                 sol.residual,
+                sol.certificate,
                 s.converged as u8 as f64,
             ]);
             t.push(row);

@@ -54,6 +54,10 @@ class ContactResult:
     def residual(self) -> float:
         """Convergence criterion reached."""
     @property
+    def certificate(self) -> float:
+        """Bound of the energy's duality gap over force x rms height: at most the
+        tolerance when converged; then (p - p*).K(p - p*) <= 2 certificate F h_rms."""
+    @property
     def stiffness(self) -> Optional[float]:
         """Tangent stiffness dF/dd [stress x length] if requested (+inf at complete
         contact of a periodic map)."""

@@ -464,26 +464,23 @@ pub fn compute(s: &LambdaStudy, work: &Path, control: &RunControl) -> Result<()>
         });
         let count = std::sync::atomic::AtomicUsize::new(computed);
         // Handed out in the plan's order (cheapest first), one task per idle thread.
-        let result = todo
-            .iter()
-            .par_bridge()
-            .try_for_each(|t| -> Result<()> {
-                let text = match t {
-                    Task::Bem { case, r } => serde_json::to_string(&run_bem(s, case, *r)?),
-                    Task::Mrd { hurst, band } => serde_json::to_string(&run_mrd(s, *hurst, *band)?),
-                    Task::Control { case, m } => serde_json::to_string(&run_control(s, case, *m)?),
-                }
-                .map_err(|e| CompareError::Internal(e.to_string()))?;
-                write_atomic(&work.join(t.file_name()), &text)?;
-                if let Some(b) = &bar {
-                    b.inc(1);
-                }
-                let n = count.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
-                match control.stop_after {
-                    Some(stop) if n >= stop => Err(CompareError::Stopped { tasks: n }),
-                    _ => Ok(()),
-                }
-            });
+        let result = todo.iter().par_bridge().try_for_each(|t| -> Result<()> {
+            let text = match t {
+                Task::Bem { case, r } => serde_json::to_string(&run_bem(s, case, *r)?),
+                Task::Mrd { hurst, band } => serde_json::to_string(&run_mrd(s, *hurst, *band)?),
+                Task::Control { case, m } => serde_json::to_string(&run_control(s, case, *m)?),
+            }
+            .map_err(|e| CompareError::Internal(e.to_string()))?;
+            write_atomic(&work.join(t.file_name()), &text)?;
+            if let Some(b) = &bar {
+                b.inc(1);
+            }
+            let n = count.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
+            match control.stop_after {
+                Some(stop) if n >= stop => Err(CompareError::Stopped { tasks: n }),
+                _ => Ok(()),
+            }
+        });
         if let Some(b) = bar {
             b.finish_and_clear();
         }
