@@ -215,3 +215,14 @@ def test_low_contact_runs_restricted_and_says_so():
     assert low.restricted and 0 < low.contact_cells < 3 * 64
     assert low.residual <= 1e-10
     assert not c.solve(mean_pressure=0.05).restricted
+
+
+def test_certificate_is_reported_and_within_the_tolerance():
+    # The certificate's value and bound are tested in Rust (bem3d/tests/certificate.rs);
+    # here: it reaches Python, within the tolerance, and larger at a looser tolerance.
+    h = rough(64)
+    tight = mrdw.Contact(h).solve(mean_pressure=0.05, tolerance=1e-10)
+    loose = mrdw.Contact(h).solve(mean_pressure=0.05, tolerance=1e-4)
+    assert 0 < tight.certificate <= 1e-10
+    assert tight.certificate < loose.certificate <= 1e-4
+    assert "certificate=" in repr(loose)

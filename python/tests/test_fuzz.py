@@ -95,8 +95,8 @@ def test_contact(n, lx, ly, e_star, scale, load, kind, tolerance, max_iterations
                     stiffness=stiffness)
     except REFUSALS:
         return
-    finite(r.pressure, r.gap, r.force, r.approach, r.mean_gap, r.residual)
-    assert r.residual <= tolerance
+    finite(r.pressure, r.gap, r.force, r.approach, r.mean_gap, r.residual, r.certificate)
+    assert r.residual <= tolerance and r.certificate <= tolerance
 
 
 @FUZZ
