@@ -20,7 +20,7 @@ pub enum BemError {
         iterations: usize,
         residual: f64,
         tolerance: f64,
-        last: Box<crate::solver::Solution>,
+        last: Box<crate::solution::Solution>,
     },
     /// The caller set the solve's [`crate::solver::Interrupt`].
     #[error("{what} interrupted after {iterations} iterations")]

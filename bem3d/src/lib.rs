@@ -17,6 +17,7 @@ mod pool;
 
 pub use error::{BemError, Result};
 pub mod sliding;
+pub mod solution;
 pub mod solver;
 pub mod stencil;
 pub use operator::{

@@ -401,3 +401,78 @@ fn overlap_cold_start_matches_the_uniform_start() {
         );
     }
 }
+
+/// Far beyond complete contact the gap is a small difference of large displacements and
+/// double precision cannot resolve it to 1e-10 of the rms height (the solver docs,
+/// "Complete contact"): such solves stop at the reachable tolerance in a few dozen
+/// iterations (they ran to the cap), and the answer is checked independently. On the
+/// free half-space the pressure beyond complete contact is affine in the force (the
+/// contact set cannot change): p(F3) - p(F1) = (F3 - F1)/(F2 - F1) (p(F2) - p(F1)). On the
+/// periodic one the pressure's fluctuation does not depend on the load at all.
+#[test]
+fn far_beyond_complete_contact_converges() {
+    let n = 128;
+    let h = self_affine(n, 0.8, 3);
+    let o = opts(1e-10, 500);
+    let free = |pm: f64| {
+        ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None)
+            .unwrap()
+            .solve(Load::MeanPressure(pm), &o, None)
+            .unwrap()
+    };
+    let loads = [10.0, 100.0, 1e4];
+    let sols: Vec<Solution> = loads.iter().map(|&pm| free(pm)).collect();
+    for (s, pm) in sols.iter().zip(loads) {
+        assert!(s.complete_contact(), "free, {pm} E*");
+        assert!(
+            s.iterations < 100,
+            "free, {pm} E*: {} iterations",
+            s.iterations
+        );
+        // The reachable tolerance: 1e3 ulps of p L / E* over the rms height (0.01).
+        assert!(s.residual <= 1e-10f64.max(1e3 * f64::EPSILON * pm / 0.01) * 1.0001);
+    }
+    let ratio = (loads[2] - loads[0]) / (loads[1] - loads[0]);
+    let peak = sols[2].pressure.iter().fold(0.0f64, |m, &p| m.max(p));
+    let off = (0..n * n)
+        .map(|i| {
+            let d1 = sols[1].pressure[i] - sols[0].pressure[i];
+            let d2 = sols[2].pressure[i] - sols[0].pressure[i];
+            (d2 - ratio * d1).abs()
+        })
+        .fold(0.0f64, f64::max);
+    // Measured 1.3e-12 of the peak.
+    assert!(
+        off < 1e-10 * peak,
+        "free: affine in the force to {:e}",
+        off / peak
+    );
+    let periodic = |pm: f64| {
+        ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None)
+            .unwrap()
+            .solve(Load::MeanPressure(pm), &o, None)
+            .unwrap()
+    };
+    let (a, b) = (periodic(1.0), periodic(1e6));
+    assert!(a.complete_contact() && b.complete_contact());
+    // Converged to its floor in 3 iterations, then 10 to see that it stalls.
+    assert!(
+        b.iterations <= 15,
+        "periodic, 1e6 E*: {} iterations",
+        b.iterations
+    );
+    let amp = a
+        .pressure
+        .iter()
+        .fold(0.0f64, |m, &p| m.max((p - 1.0).abs()));
+    let off = (0..n * n)
+        .map(|i| ((b.pressure[i] - 1e6) - (a.pressure[i] - 1.0)).abs())
+        .fold(0.0f64, f64::max);
+    // At 1e6 E* the solve stops at its reachable tolerance (1e3 ulps of 1e6 L / E* over
+    // the rms height: 2e-5); measured: the fluctuation within 2e-6 of its amplitude.
+    assert!(
+        off < 1e-5 * amp,
+        "periodic: fluctuation moved by {:e}",
+        off / amp
+    );
+}

@@ -4,9 +4,8 @@
 //! `(p - p*).K(p - p*) <= 2 c F h_rms`, on every path (full grid, candidate set, window;
 //! periodic and free), also after a warm start far from the answer.
 
+use super::common::{self, rel, sphere};
 use bem3d::*;
-mod common;
-use common::{rel, sphere};
 
 const TOL: f64 = 1e-4;
 
