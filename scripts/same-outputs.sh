@@ -7,7 +7,8 @@
 #   scripts/same-outputs.sh BASE_REF [SKIP_REGEX]
 #
 # BASE_REF is a git revision (built in a temporary worktree); the other build is the
-# work tree. SKIP_REGEX names scenes to leave out (default: fig6-full, a 48-minute run).
+# work tree. SKIP_REGEX names scenes to leave out (default: fig6-full, a 48-minute run,
+# and fig6-converged, a study of many CPU hours).
 # Exit status 0 when every compared file is identical.
 #
 # With RTOL set (e.g. RTOL=1e-6), a CSV that differs is compared number by number
@@ -18,7 +19,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 base_ref=${1:?usage: scripts/same-outputs.sh BASE_REF [SKIP_REGEX]}
-skip=${2:-^fig6-full$}
+skip=${2:-^(fig6-full|fig6-converged)$}
 tmp=$(mktemp -d)
 trap 'git worktree remove --force "$tmp/base" >/dev/null 2>&1 || true; rm -rf "$tmp"' EXIT
 
