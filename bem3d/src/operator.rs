@@ -125,7 +125,7 @@ pub enum Precision {
     /// f32 transforms (the default): the preconditioner only shapes the search
     /// directions, so its rounding (1e-7 relative) does not reach the solution, which is
     /// judged on K in double precision; an f32 convolution costs 0.68-0.86 of an f64
-    /// one (256^2-2048^2, one thread, Intel Xeon VM).
+    /// one (256^2-2048^2, one thread).
     #[default]
     Single,
     /// f64 transforms, as K's (for comparison).

@@ -5,16 +5,16 @@
 //! column passes). Started from a thread outside the pool, each loop is injected into
 //! the pool and the caller sleeps until it ends: a wake-up of a pool thread and of the
 //! caller per loop. Running the whole solve on a pool thread makes each loop start in
-//! place. Measured on the periodic benchmark surfaces (Intel Xeon, 2-core VM): 128^2 4.2x,
+//! place. Measured on the periodic benchmark surfaces: 128^2 4.2x,
 //! 256^2 1.6x, 512^2 1.24x faster on one thread; 1.4x and 1.3x at 128^2 and 256^2 on two.
 //!
 //! Between two loops an idle pool thread still goes to sleep within microseconds, and the
 //! next loop wakes it: a system call for the solving thread and, on a virtual machine, a
 //! costly wake-up of an idle virtual CPU, during which the solving thread does the
-//! loop's work alone. Measured (perf, AMD EPYC 2-core VM, periodic 512^2 at 1 % contact,
+//! loop's work alone. Measured (perf, periodic 512^2 at 1 % contact,
 //! two threads): 19 % of the samples in the kernel's scheduler (wake-ups and sleeps).
 //! So a solve started from outside the pool keeps the other threads busy-waiting for
-//! its loops' work ([`rayon::yield_now`]) until it returns. Measured on the same VM, two
+//! its loops' work ([`rayon::yield_now`]) until it returns. Measured the same way, two
 //! threads, alternated runs: in a spell of slow wake-ups (medians of 10 solves in one
 //! process) 512^2 at 1 % 0.154-0.188 s -> 0.102-0.111 s, at 20 % 0.250 -> 0.183 s,
 //! 1024^2 at 1 % 0.68-0.84 -> 0.54-0.68 s; in a spell of fast ones (8 % of the samples
@@ -23,7 +23,7 @@
 //! free. One thread: unchanged (no stand-bys). The waiting threads give their core back
 //! to the system every few polls ([`std::thread::yield_now`]), and no more threads stand
 //! by than the machine has cores besides the solving one (a pool larger than the machine
-//! keeps its other threads asleep; 8 threads on the 2-core VM, 512^2 at 1 %: once 0.092 s
+//! keeps its other threads asleep; 8 threads on 2 cores, 512^2 at 1 %: once 0.092 s
 //! with the previous code against 0.120 s with every thread standing by, once 0.089
 //! against 0.081 s, and 0.075 s with the limit).
 //!

@@ -1,93 +1,43 @@
 //! Constrained conjugate gradients for frictionless normal contact
 //! (Polonsky & Keer 1999), force- or displacement-controlled, preconditioned.
+//! The measurements behind its strategies and constants: `docs/solver.md`.
 //!
 //! The search direction is built from the preconditioned residual `[p > 0] M g`, with M
 //! the operator's approximate inverse ([`Compliance::precondition`]: the spectral
-//! stiffness E*|k|/2; an FFT-based preconditioner in the spirit of Vollebregt 2014, J.
-//! Comput. Phys. 257). On the benchmark surfaces M cuts the iterations 3-5x (512^2
-//! rough: 300 -> 70). M's transforms run in single precision ([`crate::Precision`]): it
-//! only shapes the directions, and the criterion is evaluated on K in double precision,
-//! so the fixed point is the same; measured (benchmark surfaces, 256^2-1024^2, 1 % and
-//! 20 % contact) the iterations were the same as with M in double precision, the
-//! solutions within 1e-9 of the peak pressure; the speed-up is 1.13-1.17x at 2048^2
-//! (one thread, 20 % contact, against one f64 transform shared by K and M) and within
-//! the noise (0.95-1.13x) at 256^2-1024^2; an f32 convolution costs 0.68-0.86 of an f64
-//! one. K's transforms run in single precision too while the criterion is above
+//! stiffness E*|k|/2, an FFT-based preconditioner in the spirit of Vollebregt 2014, J.
+//! Comput. Phys. 257); it cuts the iterations 3-5x on rough surfaces. M only shapes the
+//! directions, so its transforms run in single precision ([`crate::Precision`]); the
+//! criterion is always evaluated on K in double precision, so the fixed point is the
+//! same. K's transforms also run in single precision while the criterion is above
 //! `SINGLE_UNTIL` (1e-4, where the operator has them: [`Operand::ComplianceSingle`]);
-//! there the displacement carries rounding of about 1e-7 relative, far below the
-//! residual, and the iteration then goes on from a fresh `K p` in double precision.
-//! Measured (benchmark surfaces, one thread, interleaved A/B): the same iterations,
-//! 14-18 % less time at 1024^2 periodic and 14-23 % on the free half-space, at 1 % and
-//! 20 % contact. After that K t (the direction's, one per iteration) stays in single
-//! precision; only `K p` is recomputed in double precision: at 1e-4, again at
-//! `REFRESH_AGAIN` (1e-7) and before convergence is reported. Carried along by `- tau K
-//! t`, `K p` then takes rounding of about 1e-6 of its change since the last
-//! recomputation, which shrinks with the residual (about 1e-10 after 1e-4, 1e-13 after
-//! 1e-7), and the final check sees a fresh double-precision `K p` as before. Measured
-//! on the benchmark surfaces (512^2 and 1024^2 periodic at 1 % and 20 % contact, free
-//! at 1 %; AMD EPYC VM): the same iterations, peak pressures within 2e-13 relative of
-//! the iteration with K t in double precision after 1e-4 (within 3e-11 without the
-//! second recomputation). The direction t and the preconditioned residual (M's output,
-//! single precision already) are stored in single precision: K's input, the update and
-//! `<q, t>` all read the stored t, so p and `K p` move consistently, and only the
-//! direction is rounded (a search direction need not be exact). Measured on the
-//! benchmark surfaces (0.1-20 % contact, 512^2 and 1024^2, periodic; 1 % and 20 % free
-//! at 1024^2): the same iterations, peak pressures within 2e-12 relative (3e-11 on the
-//! candidate-set path at 0.1 %, 512^2); 4-5 % less time at 1024^2 (one thread,
-//! interleaved A/B: three of the sweeps' streams halved). Each iteration applies K once
-//! (to the direction) and M once; the displacement `K p` is carried along (see
-//! [`ContactSolver::solve`]). Both are convolutions, and the sweeps that produce their
-//! inputs or consume their outputs run inside the transforms' row passes
-//! ([`Fft2::load_rows`](crate::fft::Fft2::load_rows)), on rows still in cache. K's
-//! column pass also returns `<t, K t>` (Parseval,
-//! [`Fft2::transform_columns`](crate::fft::Fft2::transform_columns)), so the step
-//! length is known before K t's rows come back and the projected update runs in K's
-//! inverse row pass (K t is never stored); the sweeps that need only the contact set
-//! read a one-byte flag instead of p. Measured (interleaved A/B, one thread, the 1024^2
-//! benchmark surface, Intel Xeon VM): the flag 4-5 % of the solve, the fused update 7-9
-//! % more, at 1 % and 20 % contact. While the contact set still changes in more cells
-//! than point loads can follow (after a cold start at 1 % contact: the first 10 and 14
-//! iterations at 512^2 and 1024^2), K p is recomputed after each update; such an
-//! iteration needs K t for `<t, K t>` only: K's column pass stops there
-//! ([`Fft2::column_energy`](crate::fft::Fft2::column_energy)) and the update runs in
-//! the fresh K p's row pass (operators with transforms only: a dense K would be applied
-//! twice). Which iterations these are is predicted from the last update's changed cells
-//! (more than twice the point-load limit; a cold start counts as many); a wrong guess
-//! costs time, not accuracy: K p is then fresh where point loads would have updated it.
-//! Results are the same bit for bit where the guess holds (checked: the rough benchmark
-//! solves at 0.1-20 % contact, 256^2-1024^2, periodic and free); Hertz windows differ
-//! by rounding (their rounds start with a fresh guess and few changes). Measured (1 %
-//! contact, 1024^2, one thread, interleaved A/B): 4-5 % less time, periodic and free.
-//! At small contact fractions most rows hold no contact cell (at 1 % on the benchmark
-//! surfaces, 60 % of the rows; 89 % at 0.1 %): the inputs of K (t) and M (q) are zero
-//! there, and a zero row is not transformed ([`Fft2::load_rows`](crate::fft::Fft2::load_rows));
-//! M's output is read on the contact set only, so its rows off the set are neither
-//! transformed back nor swept (`rows_on`, marked by pass A). Results are the same
-//! bit for bit (checked: the benchmark solves at 0.1-20 % contact, 512^2 and 1024^2,
-//! periodic and free at 1 %, one and two threads). Measured (AMD EPYC VM, one thread,
-//! interleaved, medians of 8-20 solves): 10-15 % less time at 1 % contact (512^2,
-//! 1024^2, periodic and free), within the noise at 20 %. The sweeps skip those rows
-//! too: pass A reads p only in the rows pass D flagged as holding pressure (`rows_p`)
-//! and leaves p and w unwritten when no rescale is pending, pass B reads p only in the
-//! contact rows, and the direction pass only writes K's zero input in rows off the set
-//! in this and the last iteration (t and y_prev are zero there, `rows_t`). Again the
-//! same results bit for bit (the same solves, one and two threads); measured (same
-//! VM, one thread, 512^2 at 1 %, 30 solves each under perf): the sweeps' samples 16 %
-//! fewer, the solve's about 8 %.
+//! then `K p` is recomputed in double precision, again at `REFRESH_AGAIN` (1e-7) and
+//! before convergence is reported, while the direction's product `K t` stays in single
+//! precision (its rounding shrinks with the step). The direction t and M's output are
+//! stored in single precision; K's input, the update and `<q, t>` all read the stored t,
+//! so p and `K p` move consistently.
+//!
+//! Each iteration applies K once (to the direction) and M once; `K p` is carried along
+//! (see [`ContactSolver::solve`]). The sweeps that produce the transforms' inputs or
+//! consume their outputs run inside their row passes
+//! ([`Fft2::load_rows`](crate::fft::Fft2::load_rows)); K's column pass also returns
+//! `<t, K t>` (Parseval, [`Fft2::transform_columns`](crate::fft::Fft2::transform_columns)),
+//! so the projected update runs in K's inverse row pass and `K t` is never stored. While
+//! the contact set changes in more cells than point loads can follow, `K p` is recomputed
+//! after each update instead ([`Fft2::column_energy`](crate::fft::Fft2::column_energy));
+//! which iterations these are is predicted from the last update (a wrong guess costs
+//! time, not accuracy). Rows without contact cells are neither transformed nor swept
+//! where their values are known to be zero (`rows_on`, `rows_p`, `rows_t`). The
+//! measurements behind each of these choices: `docs/solver.md`.
 //!
 //! The direction is `t = y + beta t` with Polak-Ribiere+'s
 //! `beta = max(0, <q, y - y_prev> / <q_prev, y_prev>)` (Gilbert & Nocedal 1992, SIAM J.
 //! Optim. 2), q the residual on the contact set: the Fletcher-Reeves (CG) value while
 //! the contact set holds, and a near-restart by itself when the set changes enough to
 //! spoil conjugacy. Polonsky & Keer instead restart (beta = 0) at every iteration that
-//! re-admits a cell; on rough surfaces a few cells enter for most of the solve, so
-//! their iteration degrades to steepest descent while the contact set forms. Measured
-//! on the benchmark surfaces (`reference_surface`, 1e-10, Polonsky & Keer's uniform
-//! cold start), iterations from 256^2 to 2048^2: at 20 % contact 44, 70, 127, 242 with
-//! restarts against 38, 50, 66, 96 with Polak-Ribiere+ (about N^0.22 in the cell count
-//! N); at 1 % 32, 43, 60, 82 against 33, 43, 56, 66; at 0.1 % 31, 33, 45, 58 against
-//! 30, 38, 51, 63. With M the identity, restarts and the uniform start the iteration
-//! would be Polonsky & Keer's.
+//! re-admits a cell, which on rough surfaces degrades their iteration to steepest descent
+//! while the contact set forms (iterations about N^0.45 in the cell count N against
+//! N^0.22 here; `docs/solver.md`). With M the identity, restarts and the uniform start the
+//! iteration is Polonsky & Keer's ([`reference`]).
 //!
 //! Conventions: `heights` are the rigid surface's topography (peaks up, towards the
 //! half-space). With `z = max(h) - h` the gap is `g = u + z - d` for approach d, surface
@@ -133,15 +83,9 @@
 //! grows, and a uniform start (every cell in contact) spends most of a low-load solve
 //! shedding cells. The start is instead the overlap `(d - z)+` of the heights with a
 //! plane whose overlap covers `6 p / (E* h')` of the domain (p the mean pressure, h'
-//! the rms slope): about three times the contact area of Persson's small-load
-//! estimate `A/A0 ~ 2 p / (E* h')` (the solve then sheds cells, as it does best),
-//! capped at the whole domain; uniform when the heights have no slope. Measured on the
-//! benchmark surfaces (256^2, 512^2, 1024^2; iterations uniform -> this start): 0.1 %
-//! contact 30, 38, 51 -> 13, 19, 23; 1 % 33, 43, 56 -> 23, 32, 38; 20 % 38, 50, 66 ->
-//! 34, 49, 68. Factors 3, 4 and 8 instead of 6 did about as well (within 2 iterations
-//! but for 0.1 % at 256^2 with 3: 15). Non-periodic Hertz (256^2-1024^2), both changes
-//! together (restarts and uniform start -> Polak-Ribiere+ and this start): 20 % contact
-//! 29, 33, 39 -> 20, 25, 26; 1 % 54, 63, 77 -> 15, 18, 21; 0.1 % 62, 82, 107 -> 13, 15, 19.
+//! the rms slope): about three times the contact area of Persson's small-load estimate
+//! `A/A0 ~ 2 p / (E* h')`, capped at the whole domain; uniform when the heights have no
+//! slope (about half the iterations of the uniform start at 0.1-1 % contact).
 //!
 //! Nested start: a cold solve under force control on the full grid, with both sides
 //! even and at least `NESTED_MIN` (512) cells and no mask, first solves the same load
@@ -149,19 +93,8 @@
 //! coarse cell's four cells) to `NESTED_TOLERANCE` (1e-3), and starts from that
 //! pressure, each coarse cell's value on its four cells, instead of the overlap start
 //! (the coarse grid's solver is kept for later solves; its own cold start nests again
-//! from `COARSE_NESTED_MIN`, 256 cells a side). Asperities finer than the coarse cells
-//! are not in that start, so the fine iteration begins at a residual of a few 1e-2
-//! whatever the coarse tolerance, and gains its iterations while the contact set forms.
-//! Measured on the benchmark surfaces (one thread, AMD EPYC VM; iterations cold ->
-//! nested; the coarse solve costs about a quarter of its iterations in fine ones):
-//! periodic 512^2 at 1 % and 20 % contact 33 -> 28, 47 -> 39; 1024^2 37 -> 32, 67 ->
-//! 54; 2048^2 at 0.1 %, 1 % and 20 % 32 -> 28, 51 -> 42, 92 -> 74; free 512^2 and
-//! 1024^2 at 1 % 35 -> 28, 41 -> 36; solve time 3-11 % less at 512^2, 9-14 % at 1024^2
-//! (free 1024^2: within the noise). At 256^2 it saved one iteration in 21 and 36 (a
-//! loss), hence the size limit. The gain varies with the surface and load: on the
-//! tests' surface (another realisation, 512^2) at 0.4 % and 8 % contact 27 -> 27 and
-//! 49 -> 44 (free, 0.4 %: 27 -> 25); the contact set then forms within a few
-//! iterations from either start.
+//! from `COARSE_NESTED_MIN`, 256 cells a side). It saves 10-20 % of the fine iterations
+//! from 512^2 up; below, the coarse solve costs more than it saves.
 //!
 //! Compact contacts on the non-periodic half-space (module `window`): a cold solve
 //! whose start (the overlap covering `3 p / (E* h')`, or the overlap at the prescribed
@@ -169,11 +102,7 @@
 //! iteration on that window, with the operator's own transforms at the window's size
 //! ([`Compliance::window`]), in rounds: solve on the window, apply K on the whole grid
 //! once, stop if the criterion holds there, else grow the window to the
-//! interpenetrating cells. Measured on a sphere (R = 1 on the unit square, one thread,
-//! Intel Xeon VM, solve only, 3 interleaved runs without -> with the window): 512^2 at
-//! 20 %, 1 % and 0.1 % contact 0.36-0.47 -> 0.13-0.15 s, 0.26-0.27 -> 0.04 s, 0.05-0.08
-//! (candidate set) -> 0.04-0.05 s; 1024^2 2.2-2.9 -> 0.71-0.93 s, 1.9-2.4 -> 0.21-0.27 s,
-//! 0.36-0.39 (candidate set) -> 0.17-0.21 s.
+//! interpenetrating cells (a sphere at 1 % contact: 5-9x faster).
 //!
 //! Small contact sets (module `restricted`): otherwise, a cold solve whose start set
 //! (the overlap covering `4 p / (E* h')`, or the overlap at the prescribed approach)
@@ -181,11 +110,7 @@
 //! candidate set C, K between its cells a dense matrix from the operator's real-space
 //! table ([`Compliance::restricted`]), in rounds: solve on C, apply K on the whole grid
 //! once, stop if the criterion holds there, else add the interpenetrating cells outside
-//! C. Measured on the benchmark surfaces at 0.1 % contact (one thread, Intel Xeon VM):
-//! 256^2 0.041 -> 0.004-0.007 s, 512^2 0.22 -> 0.027-0.035 s, 1024^2 1.25 -> 0.28-0.32 s
-//! (35, 46, 64 dense applications in all rounds). At 1 % contact and above the set
-//! exceeds the limit from 512^2 up: rough surfaces skip the attempt (then the full
-//! solve as before, same iterations).
+//! C (rough surfaces at 0.1 % contact: 4-8x faster).
 //!
 //! Both are the same fixed point as the full iteration, checked on the full grid;
 //! [`Solution::restricted`] says when one of them ran.
@@ -197,21 +122,12 @@
 //! of M's two transforms over the whole grid: y is needed on the contact cells only,
 //! and the residual is zero off them. The kernel decays like 1 / r^3, so the truncated
 //! M is another preconditioner, not the same one: the iterates differ, the fixed point
-//! does not. Measured on the benchmark surfaces at 1 % contact (nested start; fine
-//! iterations with transforms -> stencil; cold processes, interleaved, AMD EPYC 2-core
-//! VM): periodic 512^2 28 -> 28, 1.13x faster on two threads and 1.07x on one; periodic
-//! 1024^2 32 -> 33, 1.06x and 1.14x; free 512^2 27 -> 29, 1.04x on two threads; free
-//! 1024^2 34 -> 37, 1.02x (K there is the padded transform, M's share of an iteration
-//! smaller). At 2.3 % contact (512^2) the transforms are used; at 4 % the stencil took
-//! 1-6 more iterations.
+//! does not.
 //!
 //! Warm starts: a previous [`Solution`] is used as the initial iterate only where it
 //! pays, i.e. for small load steps: force ratios in [0.9, 1.05] and approach ratios in
-//! [1, 1.05]. Measured on the benchmark surfaces (128^2 and 512^2, 0.1-20 % contact):
-//! inside that window 5-60 % fewer iterations than a cold start; at force ratio 1.1
-//! the saving is gone at 20 % contact (50 vs 50 iterations at 512^2), and at approach
-//! ratio 1.2 a warm start costs up to 15 % more (104 vs 91 at 128^2). Outside the
-//! window the solve starts cold.
+//! [1, 1.05] (outside that window a warm start saved nothing or cost up to 15 % more;
+//! `docs/solver.md`). Outside the window the solve starts cold.
 
 use crate::error::{BemError, Result};
 use crate::fft::{copy_in, copy_out, ROWS_PER_CHUNK};

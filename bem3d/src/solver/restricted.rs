@@ -25,7 +25,7 @@
 //! storage (their pages already mapped), and the point-load corrections run row by row
 //! in parallel (each row's entries in the loads' order, the same sums as column by
 //! column, where the first iterations' few hundred changes cost five applications).
-//! Measured on the 1024^2 benchmark surface at 0.1 % contact (AMD EPYC VM, cold
+//! Measured on the 1024^2 benchmark surface at 0.1 % contact (cold
 //! processes, interleaved, medians of 14-20): 1.16x on two threads and 1.07x on one
 //! with the storage and the point loads, 1.29x and 1.15x with the copy too; the same
 //! 66 iterations, pressures within 6e-13 of the peak. With the copy forced on smaller
