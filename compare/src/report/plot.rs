@@ -287,6 +287,22 @@ fn fmt_tick(v: f64) -> String {
     }
 }
 
+/// Labelled points of a log axis on [lo, hi] (plotters alone labels too few on short
+/// ranges): 1 to 9 times the powers of ten within one decade, 1, 2 and 5 times them
+/// within three, the powers of ten beyond.
+fn log_keys(lo: f64, hi: f64) -> Vec<f64> {
+    let (a, b) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
+    let steps: &[f64] = if hi / lo < 1e3 {
+        &[1.0, 2.0, 5.0]
+    } else {
+        &[1.0]
+    };
+    (a..=b)
+        .flat_map(|k| steps.iter().map(move |m| m * 10f64.powi(k)))
+        .filter(|v| (lo..=hi).contains(v))
+        .collect()
+}
+
 /// Renders one figure to a PNG file.
 pub fn render(fig: &Figure, path: &Path) -> Result<()> {
     ensure_font();
@@ -295,14 +311,28 @@ pub fn render(fig: &Figure, path: &Path) -> Result<()> {
     let (((x0, x1), (y0, y1)), corner) = layout(fig);
     match (fig.log_x, fig.log_y) {
         (false, false) => draw_with!(root, fig, path, x0..x1, y0..y1, corner),
-        (true, false) => draw_with!(root, fig, path, (x0..x1).log_scale(), y0..y1, corner),
-        (false, true) => draw_with!(root, fig, path, x0..x1, (y0..y1).log_scale(), corner),
+        (true, false) => draw_with!(
+            root,
+            fig,
+            path,
+            (x0..x1).log_scale().with_key_points(log_keys(x0, x1)),
+            y0..y1,
+            corner
+        ),
+        (false, true) => draw_with!(
+            root,
+            fig,
+            path,
+            x0..x1,
+            (y0..y1).log_scale().with_key_points(log_keys(y0, y1)),
+            corner
+        ),
         (true, true) => draw_with!(
             root,
             fig,
             path,
-            (x0..x1).log_scale(),
-            (y0..y1).log_scale(),
+            (x0..x1).log_scale().with_key_points(log_keys(x0, x1)),
+            (y0..y1).log_scale().with_key_points(log_keys(y0, y1)),
             corner
         ),
     }

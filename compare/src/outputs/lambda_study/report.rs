@@ -267,14 +267,17 @@ fn against_bandwidth(s: &LambdaStudy, r: &Results, label: &str, what: &str) -> F
         &format!("{label}_{what}_vs_bandwidth"),
         title,
         &format!(
-            "bandwidth L / lambda_min [1] ({} cells per shortest wavelength)",
+            "bandwidth L / lambda_min [1] ({} cells per shortest wavelength; each H offset a little)",
             s.cells
         ),
         y,
     );
     fig.log_x = true;
     fig.log_y = what == "lambda";
+    // Each H's points sit a little apart in x so that no interval hides another's.
+    let nh = s.hurst.len() as f64;
     for (i, h) in s.hurst.iter().enumerate() {
+        let dodge = 1.0 + 0.025 * (i as f64 - 0.5 * (nh - 1.0));
         let mut cs: Vec<&CaseResult> = r
             .cases
             .iter()
@@ -292,7 +295,7 @@ fn against_bandwidth(s: &LambdaStudy, r: &Results, label: &str, what: &str) -> F
         };
         let pts: Vec<(f64, f64)> = cs
             .iter()
-            .map(|c| (c.case.band as f64, pick(c).value))
+            .map(|c| (c.case.band as f64 * dodge, pick(c).value))
             .filter(|p| p.1.is_finite())
             .collect();
         if pts.is_empty() {
@@ -300,7 +303,7 @@ fn against_bandwidth(s: &LambdaStudy, r: &Results, label: &str, what: &str) -> F
         }
         let bars = cs
             .iter()
-            .map(|c| (c.case.band as f64, pick(c).lo, pick(c).hi))
+            .map(|c| (c.case.band as f64 * dodge, pick(c).lo, pick(c).hi))
             .filter(|b| b.1.is_finite() && b.2.is_finite())
             .collect();
         let n: usize = cs.iter().map(|c| c.realisations).min().unwrap_or(0);
@@ -316,7 +319,7 @@ fn against_bandwidth(s: &LambdaStudy, r: &Results, label: &str, what: &str) -> F
         if what == "alpha" {
             let m: Vec<(f64, f64)> = cs
                 .iter()
-                .map(|c| (c.case.band as f64, c.alpha_mrd.value))
+                .map(|c| (c.case.band as f64 * dodge, c.alpha_mrd.value))
                 .filter(|p| p.1.is_finite())
                 .collect();
             fig = fig.with(Series::new(format!("H = {h} (MRD)"), m, Style::Line).colored(i));
