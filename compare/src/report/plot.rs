@@ -292,7 +292,9 @@ fn fmt_tick(v: f64) -> String {
 /// within three, the powers of ten beyond.
 fn log_keys(lo: f64, hi: f64) -> Vec<f64> {
     let (a, b) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
-    let steps: &[f64] = if hi / lo < 1e3 {
+    let steps: &[f64] = if hi / lo < 10.0 {
+        &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]
+    } else if hi / lo < 1e3 {
         &[1.0, 2.0, 5.0]
     } else {
         &[1.0]
