@@ -291,6 +291,11 @@ fn fmt_tick(v: f64) -> String {
 /// ranges): 1 to 9 times the powers of ten within one decade, 1, 2 and 5 times them
 /// within three, the powers of ten beyond.
 fn log_keys(lo: f64, hi: f64) -> Vec<f64> {
+    // A range a log axis cannot show (or wider than the doubles): no labels, no loop
+    // over billions of decades.
+    if !(lo > 0.0 && hi > lo && hi.is_finite()) {
+        return Vec::new();
+    }
     let (a, b) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
     let steps: &[f64] = if hi / lo < 10.0 {
         &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]
@@ -340,4 +345,28 @@ pub fn render(fig: &Figure, path: &Path) -> Result<()> {
     }
     root.present().map_err(|e| plot_err(path, e))?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::log_keys;
+
+    #[test]
+    fn log_keys_by_span_and_on_degenerate_ranges() {
+        assert_eq!(log_keys(28.0, 75.0), vec![30.0, 40.0, 50.0, 60.0, 70.0]);
+        assert_eq!(
+            log_keys(1.5, 120.0),
+            vec![2.0, 5.0, 10.0, 20.0, 50.0, 100.0]
+        );
+        assert_eq!(log_keys(1e-7, 1e2).len(), 10);
+        for (lo, hi) in [
+            (0.0, 1.0),
+            (1.0, f64::INFINITY),
+            (f64::NAN, 1.0),
+            (2.0, 1.0),
+        ] {
+            assert!(log_keys(lo, hi).is_empty(), "{lo} {hi}");
+        }
+        assert!(log_keys(1e-300, 1e300).len() <= 601);
+    }
 }
