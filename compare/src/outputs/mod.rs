@@ -55,6 +55,17 @@ pub trait Output: std::fmt::Debug + Send + Sync {
 }
 
 /// Work split into tasks, each saved to its own checkpoint file when done.
+/// A checkpoint folder's name from the text of the parameters its tasks depend on:
+/// FNV-1a, 16 hex digits.
+pub(crate) fn checkpoint_key(text: &str) -> String {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in text.bytes() {
+        h ^= b as u64;
+        h = h.wrapping_mul(0x0100_0000_01b3);
+    }
+    format!("{h:016x}")
+}
+
 pub trait Checkpointed {
     /// A hash of the output's parameters: its checkpoints live in `<work root>/<key>/`.
     fn key(&self) -> String;

@@ -193,12 +193,7 @@ impl Checkpointed for HurstSweep {
     fn key(&self) -> String {
         // FNV-1a of the parameters' debug form (f64 prints round-trip exactly).
         let text = format!("{self:?}");
-        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-        for b in text.bytes() {
-            h ^= b as u64;
-            h = h.wrapping_mul(0x0100_0000_01b3);
-        }
-        format!("{h:016x}")
+        super::checkpoint_key(&text)
     }
 
     fn task_files(&self) -> Vec<String> {

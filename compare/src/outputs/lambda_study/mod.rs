@@ -292,12 +292,7 @@ impl Checkpointed for LambdaStudy {
             "lambda_study nested-v1 seed={} loads={} realisations_1d={} points_1d_per_cell={} cells={}",
             self.seed, self.loads, self.realisations_1d, self.points_1d_per_cell, self.cells
         );
-        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-        for b in text.bytes() {
-            h ^= b as u64;
-            h = h.wrapping_mul(0x0100_0000_01b3);
-        }
-        format!("{h:016x}")
+        super::checkpoint_key(&text)
     }
 
     fn task_files(&self) -> Vec<String> {
