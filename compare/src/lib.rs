@@ -20,12 +20,13 @@
 //! A new output kind is one new file in `outputs/` implementing [`outputs::Output`] plus
 //! one line in [`outputs::KINDS`]; it reads the scene through [`context::Context`] and
 //! writes only into its [`report::Section`]. Module order, bottom to top (no cycles;
-//! `tests/architecture.rs` checks it): `error`, `plan`, `report`, `context`, `outputs`,
+//! `tests/architecture.rs` checks it): `error`, `files`, `plan`, `report`, `context`, `outputs`,
 //! `scene`, `run`, `shards`; `scenes` (embedded scene texts) and `bench` stand apart.
 
 pub mod bench;
 pub mod context;
 pub mod error;
+mod files;
 pub mod outputs;
 pub mod plan;
 pub mod report;

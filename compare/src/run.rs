@@ -60,7 +60,7 @@ pub fn run_in(scene: &Scene, work_root: &Path, control: &RunControl) -> Result<R
 
 /// Runs `scene` in memory: no report folder; checkpoints go to a temporary folder.
 pub fn run(scene: &Scene) -> Result<Report> {
-    let tmp = tempfile::tempdir().map_err(crate::error::io_err("temporary folder"))?;
+    let tmp = crate::files::ScratchDir::new()?;
     run_in(scene, tmp.path(), &RunControl::default())
 }
 

@@ -84,11 +84,60 @@ pub fn self_affine(n: usize, hurst: f64, seed: u64) -> Vec<f64> {
     h
 }
 
+/// Solves the dense system `a x = b` (`a` row-major, n x n) by Gaussian elimination with
+/// partial pivoting, and checks the result: the residual |a x - b| must be within 1e-9 of
+/// |a| |x| + |b| (max norms), so a singular or ill-conditioned system fails loudly
+/// instead of returning a wrong reference.
+///
+/// Written out here rather than taken from a linear-algebra crate: such a crate, as a
+/// test dependency, changes the features of crates the solver itself uses (integer
+/// support of `num-integer` below `rustfft`), and `cargo test` would then rebuild the
+/// whole workspace after `cargo build`.
+pub fn dense_solve(a: &[f64], b: &[f64]) -> Vec<f64> {
+    let n = b.len();
+    assert_eq!(a.len(), n * n);
+    let (mut m, mut x) = (a.to_vec(), b.to_vec());
+    for col in 0..n {
+        let piv = (col..n)
+            .max_by(|&i, &j| m[i * n + col].abs().total_cmp(&m[j * n + col].abs()))
+            .unwrap();
+        assert!(m[piv * n + col] != 0.0, "singular system at column {col}");
+        if piv != col {
+            for k in 0..n {
+                m.swap(piv * n + k, col * n + k);
+            }
+            x.swap(piv, col);
+        }
+        for r in col + 1..n {
+            let f = m[r * n + col] / m[col * n + col];
+            if f != 0.0 {
+                for k in col..n {
+                    m[r * n + k] -= f * m[col * n + k];
+                }
+                x[r] -= f * x[col];
+            }
+        }
+    }
+    for r in (0..n).rev() {
+        let s: f64 = (r + 1..n).map(|k| m[r * n + k] * x[k]).sum();
+        x[r] = (x[r] - s) / m[r * n + r];
+    }
+    let max = |v: &mut dyn Iterator<Item = f64>| v.fold(0.0f64, |a, b| a.max(b.abs()));
+    let residual =
+        max(&mut (0..n).map(|r| (0..n).map(|k| a[r * n + k] * x[k]).sum::<f64>() - b[r]));
+    let scale = max(&mut a.iter().copied()) * max(&mut x.iter().copied()) * n as f64
+        + max(&mut b.iter().copied());
+    assert!(
+        residual <= 1e-9 * scale,
+        "dense solve: residual {residual:e} of {scale:e}"
+    );
+    x
+}
+
 /// Dense reference: the same discrete LCP solved by an active-set method with direct
-/// (nalgebra LU with partial pivoting) solves on the contact set, force-controlled.
+/// solves ([`dense_solve`]) on the contact set, force-controlled.
 /// `matrix`: row-major n x n influence matrix (need not be symmetric).
 pub fn dense_reference(matrix: &[f64], z: &[f64], force: f64, area: f64) -> (Vec<f64>, f64) {
-    use nalgebra::{DMatrix, DVector};
     let n = z.len();
     let mut active: Vec<bool> = vec![true; n];
     for _ in 0..200 {
@@ -96,19 +145,24 @@ pub fn dense_reference(matrix: &[f64], z: &[f64], force: f64, area: f64) -> (Vec
         let m = idx.len();
         // [K_CC  -1] [p]   [-z_C]
         // [A 1^T  0] [d] = [ W  ]
-        let a = DMatrix::<f64>::from_fn(m + 1, m + 1, |r, c| {
-            if r < m && c < m {
-                matrix[idx[r] * n + idx[c]]
-            } else if r < m {
-                -1.0
-            } else if c < m {
-                area
-            } else {
-                0.0
+        let mut a = vec![0.0; (m + 1) * (m + 1)];
+        for r in 0..=m {
+            for c in 0..=m {
+                a[r * (m + 1) + c] = if r < m && c < m {
+                    matrix[idx[r] * n + idx[c]]
+                } else if r < m {
+                    -1.0
+                } else if c < m {
+                    area
+                } else {
+                    0.0
+                };
             }
-        });
-        let b = DVector::<f64>::from_fn(m + 1, |r, _| if r < m { -z[idx[r]] } else { force });
-        let x = a.lu().solve(&b).expect("the contact-set system is regular");
+        }
+        let b: Vec<f64> = (0..=m)
+            .map(|r| if r < m { -z[idx[r]] } else { force })
+            .collect();
+        let x = dense_solve(&a, &b);
         let mut p = vec![0.0; n];
         for (k, &i) in idx.iter().enumerate() {
             p[i] = x[k];

@@ -4,6 +4,7 @@
 
 use super::HurstSweep;
 use crate::error::{io_err, CompareError, Context as _, Result};
+use crate::files::write_atomic;
 use crate::outputs::RunControl;
 use bem3d::{BemError, ContactSolver, Load, NonPeriodicHalfSpace, SolverOptions};
 use mrd::rough_contact::RoughLine;
@@ -226,18 +227,6 @@ fn run_mrd(spec: &HurstSweep, h: usize) -> Result<MrdEnsemble> {
         seconds: t0.elapsed().as_secs_f64(),
         points: n1,
     })
-}
-
-pub(crate) fn write_atomic(path: &Path, text: &str) -> Result<()> {
-    let dir = path.parent().expect("checkpoints live in a folder");
-    let mut tmp = tempfile::NamedTempFile::new_in(dir)
-        .map_err(io_err(format!("temporary file in {}", dir.display())))?;
-    std::io::Write::write_all(&mut tmp, text.as_bytes()).map_err(io_err("writing checkpoint"))?;
-    tmp.persist(path).map_err(|e| CompareError::Io {
-        context: format!("saving {}", path.display()),
-        source: e.error,
-    })?;
-    Ok(())
 }
 
 /// Computes the missing tasks of `spec` (of this shard) into `work`.

@@ -5,7 +5,8 @@
 
 use super::LambdaStudy;
 use crate::error::{io_err, CompareError, Context as _, Result};
-use crate::outputs::hurst_sweep::tasks::{punch_curve, write_atomic, BemCurve, MrdEnsemble};
+use crate::files::write_atomic;
+use crate::outputs::hurst_sweep::tasks::{punch_curve, BemCurve, MrdEnsemble};
 use crate::outputs::RunControl;
 use mrd::rough_contact::RoughLine;
 use mrd::roughness::nested;
