@@ -34,14 +34,16 @@
 //! limit. Below the limit the solutions are the same bit for bit (512^2: 1.02x on two
 //! threads, 1.04x on one, with the point loads and the storage).
 
-use super::{reduce, ContactSolver, Refresh, Solution, SolverOptions};
+use super::fused::reduce;
+use super::iteration::Refresh;
+use super::{ContactSolver, Solution, SolverOptions};
 use crate::operator::{Compliance, DenseCompliance};
 use rayon::prelude::*;
 
 /// The restricted start covers this many times `p / (E* h')` of the domain (the full
-/// solve's start covers [`super::START_AREA`] times; a smaller set is cheaper here, and
+/// solve's start covers [`super::start::FULL_GRID_START_AREA`] times; a smaller set is cheaper here, and
 /// the rounds add what it misses).
-const START_AREA: f64 = 4.0;
+const CANDIDATE_START_AREA: f64 = 4.0;
 /// Largest candidate set: this many times the square root of the domain's cell count
 /// (a dense application then costs at most about 9 domain sweeps) ...
 const CELLS_PER_ROOT: f64 = 3.0;
@@ -83,7 +85,7 @@ impl<K: Compliance> ContactSolver<K> {
         // The start set's size first (a uniform start covers the domain).
         let estimate = match target_force {
             Some(f) => {
-                let fraction = self.start_fraction(f, START_AREA);
+                let fraction = self.start_fraction(f, CANDIDATE_START_AREA);
                 if fraction.is_finite() && fraction < 1.0 {
                     (fraction * self.domain_cells as f64).ceil() as usize
                 } else {
@@ -100,7 +102,7 @@ impl<K: Compliance> ContactSolver<K> {
         }
         let mut p = vec![0.0; n];
         match target_force {
-            Some(f) => self.cold_start(&mut p, f, START_AREA),
+            Some(f) => self.cold_start(&mut p, f, CANDIDATE_START_AREA),
             None => self.overlap_start(&mut p, fixed_approach),
         }
         // In parallel, in cell order (as the window path's scans).

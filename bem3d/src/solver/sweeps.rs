@@ -38,12 +38,12 @@ impl<const N: usize> Sums<N> {
     }
 
     /// The lanes added in order (sum `max_slot` combined by max instead; the solver's
-    /// [`combine`](super::combine)).
+    /// [`combine`](super::fused::combine)).
     fn total(self, max_slot: Option<usize>) -> [f64; N] {
         let lane = |l: usize| -> [f64; N] { std::array::from_fn(|k| self.0[k][l]) };
         let mut out = lane(0);
         for l in 1..LANES {
-            super::combine(&mut out, &lane(l), max_slot);
+            super::fused::combine(&mut out, &lane(l), max_slot);
         }
         out
     }

@@ -28,14 +28,14 @@ use crate::operator::{Compliance, NonPeriodicHalfSpace};
 use rayon::prelude::*;
 
 /// The start's overlap covers this many times `p / (E* h')` of the domain under force
-/// control (half the full solve's [`super::START_AREA`]). Measured on a sphere (R = 1
+/// control (half the full solve's [`super::start::FULL_GRID_START_AREA`]). Measured on a sphere (R = 1
 /// on the unit square, one thread, 512^2 and 1024^2), solve times at 0.1 %, 1 %, 20 %
 /// and 30 % contact with 6 / 3 / 2 here: 1024^2 0.24 / 0.17 / 0.20 s, 0.27 / 0.21 /
 /// 0.35 s, 2.9 (no window: the start's box exceeds the limit) / 0.84 / 1.74 s, 3.1 (no
 /// window) / 1.98 / 0.92 s; 512^2 within 0.03 s at 0.1-1 %, 0.59 (none) / 0.18 / 0.28 s
 /// at 20 %. A start that misses part of the contact costs a loose round on a small
 /// window.
-const START_AREA: f64 = 3.0;
+const WINDOW_START_AREA: f64 = 3.0;
 /// Largest window, as a fraction of the grid's cells: the window's transforms then
 /// cost at most 0.7 of the grid's per iteration, and its rounds add about three
 /// full-grid applications of K (a sphere at 20 % contact on 1024^2 takes 26 iterations
@@ -104,7 +104,7 @@ impl<K: Compliance> ContactSolver<K> {
         self.op.window(1, 1)?;
         let mut p = vec![0.0; n];
         match target_force {
-            Some(f) => self.cold_start(&mut p, f, START_AREA),
+            Some(f) => self.cold_start(&mut p, f, WINDOW_START_AREA),
             None => self.overlap_start(&mut p, fixed_approach),
         }
         // Bounding box of the cells to hold, inclusive: (x_lo, x_hi, y_lo, y_hi).
