@@ -2,6 +2,21 @@
 //! (Polonsky & Keer 1999), force- or displacement-controlled, preconditioned.
 //! The measurements behind its strategies and constants: `docs/solver.md`.
 //!
+//! Where to read what, in the order of a solve ([`ContactSolver::solve`]):
+//!
+//! | file | what |
+//! |---|---|
+//! | `solver/options.rs` | the problem's load ([`Load`]) and the [`SolverOptions`] |
+//! | `solver.rs` (here) | the solver's state, the heights, the checks, the choice of path |
+//! | `solver/window.rs`, `solver/restricted.rs` | compact or small contacts: the same iteration on a window or a candidate set, in rounds checked on the grid |
+//! | `solver/start.rs` | the initial pressure: overlap, uniform, nested (coarse grid) |
+//! | `solver/iteration.rs` | the iteration: seven named steps per iteration |
+//! | `solver/sweeps.rs` | the cell-by-cell arithmetic of each step (passes A-D) |
+//! | `solver/fused.rs` | operator applications fused with the sweeps, deterministic sums |
+//! | `solver/convergence.rs` | criterion, certificate, complete-contact floor, the [`Solution`] |
+//! | `solver/tangent.rs` | the tangent stiffness dF/dd of a solved contact |
+//! | `solver/reference.rs` | the published Polonsky-Keer iteration, for tests and comparisons |
+//!
 //! The search direction is built from the preconditioned residual `[p > 0] M g`, with M
 //! the operator's approximate inverse ([`Compliance::precondition`]: the spectral
 //! stiffness E*|k|/2, an FFT-based preconditioner in the spirit of Vollebregt 2014, J.
@@ -9,7 +24,7 @@
 //! directions, so its transforms run in single precision ([`crate::Precision`]); the
 //! criterion is always evaluated on K in double precision, so the fixed point is the
 //! same. K's transforms also run in single precision while the criterion is above
-//! `SINGLE_UNTIL` (1e-4, where the operator has them: [`Operand::ComplianceSingle`]);
+//! `SINGLE_UNTIL` (1e-4, where the operator has them: [`Operand::ComplianceSingle`](crate::operator::Operand::ComplianceSingle));
 //! then `K p` is recomputed in double precision, again at `REFRESH_AGAIN` (1e-7) and
 //! before convergence is reported, while the direction's product `K t` stays in single
 //! precision (its rounding shrinks with the step). The direction t and M's output are
@@ -37,7 +52,7 @@
 //! re-admits a cell, which on rough surfaces degrades their iteration to steepest descent
 //! while the contact set forms (iterations about N^0.45 in the cell count N against
 //! N^0.22 here; `docs/solver.md`). With M the identity, restarts and the uniform start the
-//! iteration is Polonsky & Keer's ([`reference`]).
+//! iteration is Polonsky & Keer's ([`reference`](mod@reference)).
 //!
 //! Conventions: `heights` are the rigid surface's topography (peaks up, towards the
 //! half-space). With `z = max(h) - h` the gap is `g = u + z - d` for approach d, surface
@@ -194,7 +209,7 @@ pub struct ContactSolver<K: Compliance> {
     /// Input and output of fused applications of an operator without a spectral form.
     fallback: [Vec<f64>; 2],
     /// Largest contact set, as a fraction of the grid's cells, on which M is applied by
-    /// its stencil: [`LOCAL_MAX_FRACTION`] (tests set others).
+    /// its stencil: [`iteration::LOCAL_MAX_FRACTION`] (tests set others).
     local_max_fraction: f64,
     /// The solver on the grid coarsened 2 x 2, for nested starts (built on first use;
     /// dropped with the heights).
@@ -202,8 +217,8 @@ pub struct ContactSolver<K: Compliance> {
     /// Whether cold solves under force control may start from the coarse grid's
     /// solution (module docs; on by default).
     nested: bool,
-    /// Fewest cells per side for a nested start: [`NESTED_MIN`], or
-    /// [`COARSE_NESTED_MIN`] for a coarse grid's solver.
+    /// Fewest cells per side for a nested start: [`start::NESTED_MIN`], or
+    /// [`start::COARSE_NESTED_MIN`] for a coarse grid's solver.
     nested_min: usize,
 }
 
@@ -224,7 +239,6 @@ fn warm_pays(warm: &Solution, load: Load, target_force: Option<f64>) -> bool {
     };
     warm.force > 0.0 && warm.approach > 0.0 && window.contains(&ratio)
 }
-
 
 impl<K: Compliance> ContactSolver<K> {
     /// `heights` (`ny x nx`, peaks up, finite); `mask`: cells that may touch (None: all).
@@ -426,9 +440,68 @@ impl<K: Compliance> ContactSolver<K> {
         opts: &SolverOptions,
         warm: Option<&Solution>,
     ) -> Result<Solution> {
+        let target_force = self.check(load, opts, warm)?;
+        let warm = warm.filter(|w| warm_pays(w, load, target_force));
+        let fixed_approach = match load {
+            Load::Approach(d) => d,
+            _ => 0.0,
+        };
+        // The paths in order (module docs): a window, a candidate set, the full grid.
+        let loaded = target_force.unwrap_or(fixed_approach) > 0.0;
+        if warm.is_none() && loaded {
+            if let Some(sol) = self.solve_windowed(target_force, fixed_approach, opts) {
+                return Ok(sol);
+            }
+            if let Some(sol) = self.solve_restricted(target_force, fixed_approach, opts) {
+                return Ok(sol);
+            }
+        }
         let n = self.op.cells();
-        let area = self.op.cell_area();
-        let nm = self.domain_cells;
+        let mut p = vec![0.0; n];
+        match (warm, load) {
+            (Some(w), _) => p
+                .par_iter_mut()
+                .zip(&self.mask)
+                .zip(&w.pressure)
+                .for_each(|((p, &m), w)| *p = m as f64 * w.max(0.0)),
+            (None, Load::Approach(d)) => self.overlap_start(&mut p, d),
+            (None, _) => {
+                let force = target_force.unwrap_or(0.0);
+                if !(force > 0.0 && self.nested_start(&mut p, force, opts)) {
+                    self.cold_start(&mut p, force, start::FULL_GRID_START_AREA);
+                }
+            }
+        }
+        if let Some(w) = target_force {
+            if w == 0.0 {
+                return Ok(self.finish_unloaded(0.0));
+            }
+            if p.iter().all(|&v| v == 0.0) {
+                // A warm start with no pressure on this domain: start from uniform.
+                self.uniform_start(&mut p);
+            }
+            let s: f64 = p.iter().sum::<f64>() * self.op.cell_area();
+            p.par_iter_mut().for_each(|v| *v *= w / s);
+        } else if let Load::Approach(d) = load {
+            if d == 0.0 || p.iter().all(|&v| v == 0.0) {
+                // No overlap anywhere: the first contact is at d = 0.
+                return Ok(self.finish_unloaded(d));
+            }
+        }
+        self.iterate(p, target_force, fixed_approach, opts, warm.is_some())
+    }
+
+    /// Refuses a load, options or warm start this solver cannot take (negative,
+    /// non-finite or beyond [`MAX_LOAD`]; an approach at or beyond complete contact of
+    /// an unmasked periodic surface; a warm start of another grid); returns the target
+    /// force (None under a prescribed approach).
+    fn check(
+        &self,
+        load: Load,
+        opts: &SolverOptions,
+        warm: Option<&Solution>,
+    ) -> Result<Option<f64>> {
+        let n = self.op.cells();
         let target_force = match load {
             Load::Force(f) => Some(f),
             Load::MeanPressure(pm) => Some(pm * self.op.lx() * self.op.ly()),
@@ -467,7 +540,7 @@ impl<K: Compliance> ContactSolver<K> {
         }
         opts.validate()?;
         if let Load::Approach(d) = load {
-            if self.op.is_periodic() && nm == n && d >= self.z_mean {
+            if self.op.is_periodic() && self.domain_cells == n && d >= self.z_mean {
                 return Err(BemError::Infeasible(format!(
                     "approach {d:e} reaches complete contact of a periodic surface \
                      (at max(h) - mean(h) = {:e} the force is unbounded); prescribe a \
@@ -484,54 +557,8 @@ impl<K: Compliance> ContactSolver<K> {
                 )));
             }
         }
-        let warm = warm.filter(|w| warm_pays(w, load, target_force));
-        let fixed_approach = match load {
-            Load::Approach(d) => d,
-            _ => 0.0,
-        };
-        let loaded = target_force.unwrap_or(fixed_approach) > 0.0;
-        if warm.is_none() && loaded {
-            if let Some(sol) = self.solve_windowed(target_force, fixed_approach, opts) {
-                return Ok(sol);
-            }
-            if let Some(sol) = self.solve_restricted(target_force, fixed_approach, opts) {
-                return Ok(sol);
-            }
-        }
-        let mut p = vec![0.0; n];
-        match (warm, load) {
-            (Some(w), _) => p
-                .par_iter_mut()
-                .zip(&self.mask)
-                .zip(&w.pressure)
-                .for_each(|((p, &m), w)| *p = m as f64 * w.max(0.0)),
-            (None, Load::Approach(d)) => self.overlap_start(&mut p, d),
-            (None, _) => {
-                let force = target_force.unwrap_or(0.0);
-                if !(force > 0.0 && self.nested_start(&mut p, force, opts)) {
-                    self.cold_start(&mut p, force, start::FULL_GRID_START_AREA);
-                }
-            }
-        }
-        if let Some(w) = target_force {
-            if w == 0.0 {
-                return Ok(self.finish_unloaded(0.0));
-            }
-            if p.iter().all(|&v| v == 0.0) {
-                // A warm start with no pressure on this domain: start from uniform.
-                self.uniform_start(&mut p);
-            }
-            let s: f64 = p.iter().sum::<f64>() * area;
-            p.par_iter_mut().for_each(|v| *v *= w / s);
-        } else if let Load::Approach(d) = load {
-            if d == 0.0 || p.iter().all(|&v| v == 0.0) {
-                // No overlap anywhere: the first contact is at d = 0.
-                return Ok(self.finish_unloaded(d));
-            }
-        }
-        self.iterate(p, target_force, fixed_approach, opts, warm.is_some())
+        Ok(target_force)
     }
-
 }
 
 #[cfg(test)]

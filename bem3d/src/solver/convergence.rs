@@ -60,7 +60,13 @@ impl<K: Compliance> ContactSolver<K> {
     }
 
     /// Collects the solution from p and w = K p + z.
-    pub(super) fn finish(&mut self, p: Vec<f64>, approach: f64, iterations: usize, residual: f64) -> Solution {
+    pub(super) fn finish(
+        &mut self,
+        p: Vec<f64>,
+        approach: f64,
+        iterations: usize,
+        residual: f64,
+    ) -> Solution {
         let area = self.op.cell_area();
         let d = if approach.is_finite() { approach } else { 0.0 };
         let gap: Vec<f64> = self
@@ -86,5 +92,21 @@ impl<K: Compliance> ContactSolver<K> {
             warm_started: false,
             restricted: false,
         }
+    }
+
+    /// The convergence criterion (module docs) of `p` with `w = K p + z` up to date.
+    pub(super) fn criterion(&self, p: &[f64], approach: f64) -> f64 {
+        let ch = self.chunk();
+        let [pg, ps, worst] = reduce(
+            (
+                p.par_chunks(ch),
+                self.w.par_chunks(ch),
+                self.mask.par_chunks(ch),
+            ),
+            |(p, w, m)| sweeps::criterion_terms(p, w, m, approach),
+            Some(2),
+        );
+        let h_rms = self.h_rms;
+        (if ps > 0.0 { pg / (ps * h_rms) } else { 0.0 }).max(worst / h_rms)
     }
 }

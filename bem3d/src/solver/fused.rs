@@ -166,7 +166,11 @@ pub(super) fn apply_fused<K: Compliance>(
 /// `<x, K x>` of the loaded input x alone, as [`apply_fused`] with `energy` returns it
 /// (bit for bit, [`Fft2::column_energy`](crate::fft::Fft2::column_energy)), without K x:
 /// no rows follow.
-pub(super) fn energy_fused<K: Compliance>(op: &mut K, which: Operand, fallback: &mut [Vec<f64>; 2]) -> f64 {
+pub(super) fn energy_fused<K: Compliance>(
+    op: &mut K,
+    which: Operand,
+    fallback: &mut [Vec<f64>; 2],
+) -> f64 {
     debug_assert!(which != Operand::Preconditioner);
     if let Some(s) = op.spectral(which) {
         return match s.transform {

@@ -1,10 +1,10 @@
 //! The projected, preconditioned conjugate-gradient iteration (solver module docs).
 
+use super::convergence::STALL_ITERATIONS;
 use super::fused::{
     apply_fused, energy_fused, finish_fused, load_fused, reduce, store_fused, sum_parts,
     with_scratch,
 };
-use super::convergence::STALL_ITERATIONS;
 use super::{sweeps, ContactSolver, Solution, SolverOptions};
 use crate::error::{BemError, Result};
 use crate::fft::{copy_in, copy_out, ROWS_PER_CHUNK};
@@ -41,7 +41,13 @@ impl<K: Compliance> ContactSolver<K> {
     /// and K p), marks the contact set (p > 0) in `active` and its rows in `rows_on`, and
     /// sums `w - offset` and the cell count over it. p is read in the rows `rows_p`
     /// marks only.
-    pub(super) fn pass_a(&mut self, p: &mut [f64], scale: f64, refresh: Refresh, offset: f64) -> [f64; 2] {
+    pub(super) fn pass_a(
+        &mut self,
+        p: &mut [f64],
+        scale: f64,
+        refresh: Refresh,
+        offset: f64,
+    ) -> [f64; 2] {
         let (nx, ch) = (self.op.nx(), self.chunk());
         let (loads, add_z) = match refresh {
             Refresh::Loads(l) => (l, 0.0),
@@ -85,7 +91,11 @@ impl<K: Compliance> ContactSolver<K> {
     /// Reads the changes pass D wrote to `r` in the chunks whose sums (`parts`, per
     /// chunk: total, changed cells, ...) count any, appending them to `loads` when
     /// given, and sets them back to zero (r is zero between passes).
-    pub(super) fn take_changes(&mut self, parts: &[[f64; 3]], mut loads: Option<&mut Vec<(usize, f64)>>) {
+    pub(super) fn take_changes(
+        &mut self,
+        parts: &[[f64; 3]],
+        mut loads: Option<&mut Vec<(usize, f64)>>,
+    ) {
         let fc = ROWS_PER_CHUNK * self.op.nx();
         for (b, part) in parts.iter().enumerate() {
             if part[1] == 0.0 {
@@ -106,7 +116,20 @@ impl<K: Compliance> ContactSolver<K> {
 
     /// The projected, preconditioned conjugate-gradient iteration from the pressure `p`
     /// (on the domain, meeting the load), under force control (`target_force`) or at
-    /// the approach `fixed_approach`.
+    /// the approach `fixed_approach`. One iteration, in order:
+    ///
+    /// 1. [`Self::contact_set`] (pass A): `w = K p + z` brought up to date, the contact
+    ///    set marked, the approach (force control: the mean gap over the set);
+    /// 2. [`Self::criterion_pass`] (pass B): the gap, the criterion and the residual q,
+    ///    loaded as M's input;
+    /// 3. [`Self::stop_test`]: converged (after a confirmation on a fresh `K p`), or a
+    ///    fresh `K p` at the precision schedule's switches, or on;
+    /// 4. [`Self::preconditioned_residual`]: `y = M q` (transforms or stencil) and the
+    ///    sums of its projection;
+    /// 5. [`Self::direction`]: Polak-Ribiere+'s beta and `t = y + beta t`, loaded as K's
+    ///    input;
+    /// 6. [`Self::step_length`]: `<t, K t>` from K's column pass, `tau = <q, t> / <t, K t>`;
+    /// 7. [`Self::update`] (pass D): the projected step, `K p` moved along (or recomputed).
     pub(super) fn iterate(
         &mut self,
         mut p: Vec<f64>,
@@ -115,11 +138,66 @@ impl<K: Compliance> ContactSolver<K> {
         opts: &SolverOptions,
         warm_started: bool,
     ) -> Result<Solution> {
-        let area = self.op.cell_area();
-        let nm = self.domain_cells;
-        let force_control = target_force.is_some();
-        // <q, y> of the previous iteration (0: no direction yet).
-        let mut gy_old = 0.0;
+        let mut st = self.begin(&p, target_force, fixed_approach, warm_started);
+        let (mut approach, mut residual);
+        loop {
+            let nc;
+            (approach, nc) = self.contact_set(&mut p, &mut st);
+            // M by its stencil on a small contact set (module docs) instead of its
+            // transforms (the same chunks, the same sums).
+            let local = nc <= self.local_max_fraction * self.op.cells() as f64
+                && self.op.local_stiffness().is_some();
+            let [pg, ps, worst, sum_q] = self.criterion_pass(&p, approach, local);
+            let h_rms = self.h_rms;
+            residual = (if ps > 0.0 { pg / (ps * h_rms) } else { 0.0 }).max(worst / h_rms);
+            if !residual.is_finite() {
+                return Err(BemError::Breakdown {
+                    what: "contact solve",
+                    iterations: st.it,
+                    residual,
+                    reason: "non-finite residual",
+                });
+            }
+            match self.stop_test(&p, approach, (residual, nc, ps), &mut st, opts) {
+                Next::Recompute => continue,
+                Next::Converged => {
+                    self.loads = std::mem::take(&mut st.loads);
+                    let mut sol = self.finish(p, approach, st.it, residual);
+                    sol.warm_started = st.warm_started;
+                    return Ok(sol);
+                }
+                Next::Iterate => {}
+            }
+            if st.it == opts.max_iterations {
+                break;
+            }
+            if opts.interrupted() {
+                return Err(BemError::Interrupted {
+                    what: "contact solve",
+                    iterations: st.it,
+                });
+            }
+            st.it += 1;
+            let sums = self.preconditioned_residual(approach, local);
+            let num = self.direction(sums, (nc, sum_q, approach), &mut st);
+            // While the contact set still changes in more cells than point loads can
+            // follow, K p is recomputed after the update anyway: K t is then needed for
+            // its energy only (predicted from the last iteration's changes, module docs).
+            let fresh = st.skips && st.changed_last > (2 * self.op.point_load_limit()) as f64;
+            let tau = self.step_length(num, fresh);
+            self.update(&mut p, tau, approach, fresh, &mut st);
+        }
+        self.not_converged(p, approach, residual, st, opts)
+    }
+
+    /// The iteration's state before its first step, with `w = K p` (pass A adds z).
+    fn begin(
+        &mut self,
+        p: &[f64],
+        target_force: Option<f64>,
+        fixed_approach: f64,
+        warm_started: bool,
+    ) -> State {
         // t and y_prev start at zero (y_prev is read before it is written; with beta = 0
         // its values do not matter). Written here, in parallel, each page of a fresh
         // buffer gets its own frame now: a page of `vec![0.0; n]` first read maps the
@@ -134,363 +212,411 @@ impl<K: Compliance> ContactSolver<K> {
             });
         self.rows_t.fill(false);
         self.rows_p.fill(true);
-        // Sum of t over the contact set of the coming iteration (pass D).
-        let mut t_on_set = 0.0;
-        // K p carried along in single precision while the residual is above
-        // SINGLE_UNTIL, where the operator rounds K so (its transforms; a dense
-        // matrix's copy, whose K t alone is rounded, K p fresh in double precision).
-        let mut single = self.op.rounds_single();
-        let mut residual;
-        // Residual below which K p is recomputed in double precision once more (-inf:
-        // no more).
-        let mut refresh_below = f64::NEG_INFINITY;
-        // Pending factor of the load constraint: p and K p are rescaled lazily in pass A
-        // (K is linear), saving a sweep.
-        let mut scale = 1.0;
-        let h_rms = self.h_rms;
-        let limit = self.op.point_load_limit();
-        // w = K p: pass A adds z.
-        self.op.apply(&p, &mut self.w);
-        let mut refresh_z = true;
-        // Whether w holds K p + z recomputed from scratch (not updated).
-        let mut exact = true;
-        // Complete contact's floor (module docs): the criterion's best value so far (to a
-        // factor 2) and the iterations since.
-        let mut stall = (f64::INFINITY, 0usize);
-        let mut loads = std::mem::take(&mut self.loads);
-        let mut it = 0;
-        let mut approach;
-        // Cells the last update changed against p - tau t (a cold start changes many).
-        let mut changed_last = if warm_started { 0.0 } else { f64::INFINITY };
-        // Whether K is a transform whose inverse half an iteration can skip (module
-        // docs); an operator applied as a whole would be applied twice.
-        let skips = self.op.spectral(Operand::Compliance).is_some();
-        loop {
-            let refresh = if refresh_z {
-                Refresh::AddZ
+        self.op.apply(p, &mut self.w);
+        State {
+            target_force,
+            fixed_approach,
+            it: 0,
+            gy_old: 0.0,
+            t_on_set: 0.0,
+            single: self.op.rounds_single(),
+            refresh_below: f64::NEG_INFINITY,
+            scale: 1.0,
+            refresh_z: true,
+            exact: true,
+            stall: (f64::INFINITY, 0),
+            loads: std::mem::take(&mut self.loads),
+            changed_last: if warm_started { 0.0 } else { f64::INFINITY },
+            skips: self.op.spectral(Operand::Compliance).is_some(),
+            warm_started,
+        }
+    }
+
+    /// Step 1 (pass A): `w` brought up to date, the contact set marked; returns the
+    /// approach (under force control the mean gap over the contact set) and the number
+    /// of contact cells.
+    fn contact_set(&mut self, p: &mut [f64], st: &mut State) -> (f64, f64) {
+        let refresh = if st.refresh_z {
+            Refresh::AddZ
+        } else {
+            Refresh::Loads(&st.loads)
+        };
+        let [sum_g, nc] = self.pass_a(p, st.scale, refresh, st.fixed_approach);
+        st.refresh_z = false;
+        st.loads.clear();
+        st.scale = 1.0;
+        let gbar = if st.target_force.is_some() && nc > 0.0 {
+            sum_g / nc
+        } else {
+            0.0
+        };
+        (st.fixed_approach + gbar, nc)
+    }
+
+    /// Step 2 (pass B, fused into M's row pass unless `local`): the gap `g = w -
+    /// approach` on the domain, the criterion's terms and the residual `q = [p > 0] g`
+    /// as M's input; returns (sum p |g|, sum p, max -g, sum q).
+    fn criterion_pass(&mut self, p: &[f64], approach: f64, local: bool) -> [f64; 4] {
+        let (nx, fc) = (self.op.nx(), ROWS_PER_CHUNK * self.op.nx());
+        let residual_of =
+            |(p, w, m, on), q: &mut [f64]| sweeps::residual(p, w, m, q, (on, nx), approach);
+        let chunks = (
+            p.par_chunks(fc),
+            self.w.par_chunks(fc),
+            self.mask.par_chunks(fc),
+            self.rows_on.par_chunks(ROWS_PER_CHUNK),
+        );
+        let parts = if local {
+            // The stencil reads q from the gap and the contact set: the chunk's q goes
+            // to a scratch buffer.
+            chunks
+                .into_par_iter()
+                .map(|item| with_scratch(item.0.len(), |q| residual_of(item, q)))
+                .collect()
+        } else {
+            load_fused(
+                &mut self.op,
+                Operand::Preconditioner,
+                &mut self.fallback,
+                chunks,
+                residual_of,
+            )
+        };
+        sum_parts(&parts, Some(2))
+    }
+
+    /// Step 3: whether the iterate is converged (module docs: criterion and certificate
+    /// within the tolerance on a freshly computed `K p`), or `K p` is to be recomputed
+    /// first (the precision schedule's switches, or to confirm convergence).
+    /// `(residual, nc, ps)`: the criterion, contact cells and pressure sum of step 2.
+    fn stop_test(
+        &mut self,
+        p: &[f64],
+        approach: f64,
+        (residual, nc, ps): (f64, f64, f64),
+        st: &mut State,
+        opts: &SolverOptions,
+    ) -> Next {
+        if st.single && residual <= SINGLE_UNTIL || residual <= st.refresh_below {
+            // K p in double precision from here on, from a fresh one (the direction is
+            // kept), and once more below REFRESH_AGAIN.
+            st.refresh_below = if st.single && residual > REFRESH_AGAIN {
+                REFRESH_AGAIN
             } else {
-                Refresh::Loads(&loads)
+                f64::NEG_INFINITY
             };
-            let [sum_g, nc] = self.pass_a(&mut p, scale, refresh, fixed_approach);
-            refresh_z = false;
-            loads.clear();
-            scale = 1.0;
-            // Force control: the approach is the mean gap over the contact set.
-            let gbar = if force_control && nc > 0.0 {
-                sum_g / nc
-            } else {
-                0.0
-            };
-            approach = fixed_approach + gbar;
-            // Pass B, fused into M's row pass: the gap `g = w - approach` on the domain,
-            // the criterion's terms (sum p |g|, sum p, max -g) and the residual
-            // `q = [p > 0] g`, with its sum, as M's input.
-            let (nx, fc) = (self.op.nx(), ROWS_PER_CHUNK * self.op.nx());
-            // M by its stencil on a small contact set (module docs) instead of its
-            // transforms (the same chunks, the same sums).
-            let local = nc <= self.local_max_fraction * self.op.cells() as f64
-                && self.op.local_stiffness().is_some();
-            let residual_of =
-                |(p, w, m, on), q: &mut [f64]| sweeps::residual(p, w, m, q, (on, nx), approach);
-            let chunks = (
-                p.par_chunks(fc),
-                self.w.par_chunks(fc),
-                self.mask.par_chunks(fc),
-                self.rows_on.par_chunks(ROWS_PER_CHUNK),
-            );
-            let parts = if local {
-                // The stencil reads q from the gap and the contact set: the chunk's q
-                // goes to a scratch buffer.
+            st.single = false;
+            self.recompute_w(p, st);
+            return Next::Recompute;
+        }
+        if residual < 0.5 * st.stall.0 {
+            st.stall = (residual, 0);
+        } else {
+            st.stall.1 += 1;
+        }
+        let tolerance = if nc as usize == self.domain_cells && st.stall.1 >= STALL_ITERATIONS {
+            self.complete_contact_tolerance(opts.tolerance, ps)
+        } else {
+            opts.tolerance
+        };
+        if residual > tolerance {
+            return Next::Iterate;
+        }
+        if !st.exact {
+            // Confirm on a fresh K p (the direction is kept).
+            self.recompute_w(p, st);
+            return Next::Recompute;
+        }
+        // Converged when the duality gap is within the tolerance too (module docs); it
+        // is at most twice the criterion, so this rarely iterates on.
+        if self.certificate(p, approach) <= tolerance {
+            Next::Converged
+        } else {
+            Next::Iterate
+        }
+    }
+
+    /// `w = K p` in double precision, from scratch (pass A adds z).
+    fn recompute_w(&mut self, p: &[f64], st: &mut State) {
+        self.op.apply(p, &mut self.w);
+        st.refresh_z = true;
+        st.exact = true;
+    }
+
+    /// Step 4: the preconditioned residual y = M q (M's transforms, or its stencil on
+    /// the contact cells), with the sums of the projected `y = [p > 0] (M q - ybar)`,
+    /// ybar its contact mean under force control (the direction keeps the total force);
+    /// y replaces y_prev once read. Returns (sum y, <q, y>, <q, y_prev>) over the set.
+    fn preconditioned_residual(&mut self, approach: f64, local: bool) -> [f64; 3] {
+        let (nx, fc) = (self.op.nx(), ROWS_PER_CHUNK * self.op.nx());
+        let chunks = (
+            self.active.par_chunks(fc),
+            self.w.par_chunks(fc),
+            self.y_prev.par_chunks_mut(fc),
+            self.rows_on.par_chunks(ROWS_PER_CHUNK),
+        );
+        let sums_of = |(act, w, y_prev, on), y: &[f64]| {
+            sweeps::preconditioned(act, w, y_prev, y, (on, nx), approach)
+        };
+        // (The stencil is made only once a set is small.)
+        let stencil = if local {
+            self.op.local_stiffness()
+        } else {
+            None
+        };
+        let parts: Vec<[f64; 3]> = match stencil {
+            Some(stencil) => {
+                // y = M q on the contact cells of each chunk's rows (in a scratch
+                // buffer), then its sums.
+                let grid = (&self.active[..], &self.w[..], approach);
                 chunks
                     .into_par_iter()
-                    .map(|item| with_scratch(item.0.len(), |q| residual_of(item, q)))
+                    .enumerate()
+                    .map(|(b, item)| {
+                        let len = item.0.len();
+                        with_scratch(len, |y| {
+                            stencil.apply_rows(grid, y, item.3, b * ROWS_PER_CHUNK);
+                            sums_of(item, y)
+                        })
+                    })
                     .collect()
-            } else {
-                load_fused(
-                    &mut self.op,
-                    Operand::Preconditioner,
-                    &mut self.fallback,
-                    chunks,
-                    residual_of,
-                )
-            };
-            let [pg, ps, worst, sum_q] = sum_parts(&parts, Some(2));
-            residual = (if ps > 0.0 { pg / (ps * h_rms) } else { 0.0 }).max(worst / h_rms);
-            if !residual.is_finite() {
-                return Err(BemError::Breakdown {
-                    what: "contact solve",
-                    iterations: it,
-                    residual,
-                    reason: "non-finite residual",
-                });
             }
-            if single && residual <= SINGLE_UNTIL || residual <= refresh_below {
-                // K p in double precision from here on, from a fresh one (the direction
-                // is kept), and once more below REFRESH_AGAIN.
-                refresh_below = if single && residual > REFRESH_AGAIN {
-                    REFRESH_AGAIN
-                } else {
-                    f64::NEG_INFINITY
-                };
-                single = false;
-                self.op.apply(&p, &mut self.w);
-                refresh_z = true;
-                exact = true;
-                continue;
-            }
-            if residual < 0.5 * stall.0 {
-                stall = (residual, 0);
-            } else {
-                stall.1 += 1;
-            }
-            let tolerance = if nc as usize == self.domain_cells && stall.1 >= STALL_ITERATIONS {
-                self.complete_contact_tolerance(opts.tolerance, ps)
-            } else {
-                opts.tolerance
-            };
-            if residual <= tolerance {
-                if !exact {
-                    // Confirm on a fresh K p (the direction is kept).
-                    self.op.apply(&p, &mut self.w);
-                    refresh_z = true;
-                    exact = true;
-                    continue;
-                }
-                // Converged when the duality gap is within the tolerance too (module
-                // docs); it is at most twice the criterion, so this rarely iterates on.
-                if self.certificate(&p, approach) <= tolerance {
-                    self.loads = loads;
-                    let mut sol = self.finish(p, approach, it, residual);
-                    sol.warm_started = warm_started;
-                    return Ok(sol);
-                }
-            }
-            if it == opts.max_iterations {
-                break;
-            }
-            if opts.interrupted() {
-                return Err(BemError::Interrupted {
-                    what: "contact solve",
-                    iterations: it,
-                });
-            }
-            it += 1;
-            // Preconditioned residual y = M q, with the sums of the projected
-            // y = [p > 0] (M q - ybar), ybar its contact mean under force control (the
-            // direction keeps the total force); y replaces y_prev once read.
-            let chunks = (
+            _ => finish_fused(
+                &mut self.op,
+                Operand::Preconditioner,
+                &mut self.fallback,
+                chunks,
+                sums_of,
+                Some(&self.rows_on),
+            ),
+        };
+        sum_parts(&parts, None)
+    }
+
+    /// Step 5: the conjugate direction `t = y + beta t` (Polak-Ribiere+, module docs),
+    /// loaded as K's input (single precision where the operator has it); the projected
+    /// y is kept. Under force control the old t is first projected too (its mean over
+    /// the contact set removed), so that t sums to zero there. `sums`: step 4's;
+    /// `(nc, sum_q, approach)`: the contact cells, the sum of q and the approach.
+    /// Returns `<q, t>`.
+    fn direction(
+        &mut self,
+        [sum_y, qy, qy_prev]: [f64; 3],
+        (nc, sum_q, approach): (f64, f64, f64),
+        st: &mut State,
+    ) -> f64 {
+        let force_control = st.target_force.is_some();
+        let ybar = if force_control && nc > 0.0 {
+            sum_y / nc
+        } else {
+            0.0
+        };
+        // <q, y>: the preconditioned residual norm (p > 0 implies the mask).
+        let gy = qy - ybar * sum_q;
+        // Polak-Ribiere+ (module docs): <q, y - y_prev> / <q_prev, y_prev>, >= 0.
+        let beta = if st.gy_old > 0.0 {
+            ((gy - qy_prev) / st.gy_old).max(0.0)
+        } else {
+            0.0
+        };
+        st.gy_old = gy;
+        let tbar = if force_control && nc > 0.0 {
+            st.t_on_set / nc
+        } else {
+            0.0
+        };
+        let dir = sweeps::Direction {
+            ybar,
+            tbar,
+            beta,
+            approach,
+        };
+        let (nx, fc) = (self.op.nx(), ROWS_PER_CHUNK * self.op.nx());
+        let parts = load_fused(
+            &mut self.op,
+            Operand::ComplianceSingle,
+            &mut self.fallback,
+            (
                 self.active.par_chunks(fc),
                 self.w.par_chunks(fc),
+                self.t.par_chunks_mut(fc),
                 self.y_prev.par_chunks_mut(fc),
                 self.rows_on.par_chunks(ROWS_PER_CHUNK),
-            );
-            let sums_of = |(act, w, y_prev, on), y: &[f64]| {
-                sweeps::preconditioned(act, w, y_prev, y, (on, nx), approach)
-            };
-            // (The stencil is made only once a set is small.)
-            let stencil = if local {
-                self.op.local_stiffness()
+                self.rows_t.par_chunks(ROWS_PER_CHUNK),
+            ),
+            |(act, w, t, y_prev, on, was), out| {
+                sweeps::direction(act, w, t, y_prev, out, (on, was, nx), dir)
+            },
+        );
+        self.rows_t.copy_from_slice(&self.rows_on);
+        let [num] = sum_parts(&parts, None);
+        num
+    }
+
+    /// Step 6: the step length `tau = <q, t> / <t, K t>` (`num` = `<q, t>`), with
+    /// `<t, K t>` over the whole grid from K's column pass (Parseval); K t's rows follow
+    /// in step 7 unless `fresh` (K p recomputed there instead). Under force control t
+    /// sums to zero on the contact set, so the step needs no shift of K t by a contact
+    /// mean.
+    fn step_length(&mut self, num: f64, fresh: bool) -> f64 {
+        let kt_op = Operand::ComplianceSingle;
+        let tkt = if fresh {
+            energy_fused(&mut self.op, kt_op, &mut self.fallback)
+        } else {
+            apply_fused(&mut self.op, kt_op, &mut self.fallback, true)
+        };
+        if tkt > 0.0 && num.is_finite() {
+            num / tkt
+        } else {
+            0.0
+        }
+    }
+
+    /// Step 7 (pass D): the projected update; interpenetrating cells without pressure
+    /// re-enter the contact set (Polonsky & Keer's overlap correction). With `fresh`,
+    /// the new p is loaded as the input of a fresh `K p`; else w follows p along t
+    /// exactly (K t's rows) and the cells where the projection departs from `p - tau t`
+    /// become point loads for pass A (or, beyond the operator's limit, `K p` is
+    /// recomputed).
+    fn update(&mut self, p: &mut [f64], tau: f64, approach: f64, fresh: bool, st: &mut State) {
+        // Re-admitted cells get -step g: the step times the stiffness of the longest
+        // wavelength (a small, scale-consistent pressure the next iterations adjust;
+        // measured on the benchmark surfaces: the preconditioner's diagonal or the
+        // inverse self-compliance as the scale cost 5-9 % more iterations). With unit E*
+        // and size this is Polonsky & Keer's -tau g.
+        let step = self.overlap_stiffness
+            * if tau > 0.0 {
+                tau
             } else {
-                None
+                1.0 / self.domain_cells as f64
             };
-            let parts: Vec<[f64; 3]> = match stencil {
-                Some(stencil) => {
-                    // y = M q on the contact cells of each chunk's rows (in a scratch
-                    // buffer), then its sums.
-                    let grid = (&self.active[..], &self.w[..], approach);
-                    chunks
-                        .into_par_iter()
-                        .enumerate()
-                        .map(|(b, item)| {
-                            let len = item.0.len();
-                            with_scratch(len, |y| {
-                                stencil.apply_rows(grid, y, item.3, b * ROWS_PER_CHUNK);
-                                sums_of(item, y)
-                            })
-                        })
-                        .collect()
-                }
-                _ => finish_fused(
-                    &mut self.op,
-                    Operand::Preconditioner,
-                    &mut self.fallback,
-                    chunks,
-                    sums_of,
-                    Some(&self.rows_on),
-                ),
-            };
-            let [sum_y, qy, qy_prev] = sum_parts(&parts, None);
-            let ybar = if force_control && nc > 0.0 {
-                sum_y / nc
-            } else {
-                0.0
-            };
-            // <q, y>: the preconditioned residual norm (p > 0 implies the mask).
-            let gy = qy - ybar * sum_q;
-            // Polak-Ribiere+ (module docs): <q, y - y_prev> / <q_prev, y_prev>, >= 0.
-            let beta = if gy_old > 0.0 {
-                ((gy - qy_prev) / gy_old).max(0.0)
-            } else {
-                0.0
-            };
-            gy_old = gy;
-            // Conjugate direction t = y + beta t, with <q, t>, as K's input; the
-            // projected y is kept. Under force control the old t is first projected too
-            // (its mean over the contact set removed), so that t sums to zero there.
-            let tbar = if force_control && nc > 0.0 {
-                t_on_set / nc
-            } else {
-                0.0
-            };
-            let dir = sweeps::Direction {
-                ybar,
-                tbar,
-                beta,
-                approach,
-            };
-            // A fresh K p in the precision it is carried in; K t in single precision to
-            // the end, where the operator has it (module docs).
-            let kp_op = if single {
-                Operand::ComplianceSingle
-            } else {
-                Operand::Compliance
-            };
-            let kt_op = Operand::ComplianceSingle;
-            let parts = load_fused(
-                &mut self.op,
-                kt_op,
-                &mut self.fallback,
-                (
-                    self.active.par_chunks(fc),
-                    self.w.par_chunks(fc),
-                    self.t.par_chunks_mut(fc),
-                    self.y_prev.par_chunks_mut(fc),
-                    self.rows_on.par_chunks(ROWS_PER_CHUNK),
-                    self.rows_t.par_chunks(ROWS_PER_CHUNK),
-                ),
-                |(act, w, t, y_prev, on, was), out| {
-                    sweeps::direction(act, w, t, y_prev, out, (on, was, nx), dir)
-                },
-            );
-            self.rows_t.copy_from_slice(&self.rows_on);
-            let [num] = sum_parts(&parts, None);
-            // K t, its rows fused with pass D below: the step length needs <t, K t> over
-            // the whole grid first, which K's column pass gives (Parseval). Under force
-            // control t sums to zero on the contact set, so the step needs no shift of
-            // K t by a contact mean.
-            // While the contact set still changes in more cells than point loads can
-            // follow, K p is recomputed after the update anyway: K t is then needed for
-            // its energy only (predicted from the last iteration's changes, module docs).
-            let fresh = skips && changed_last > (2 * limit) as f64;
-            let tkt = if fresh {
-                energy_fused(&mut self.op, kt_op, &mut self.fallback)
-            } else {
-                apply_fused(&mut self.op, kt_op, &mut self.fallback, true)
-            };
-            let tau = if tkt > 0.0 && num.is_finite() {
-                num / tkt
-            } else {
-                0.0
-            };
-            // Pass D: projected update; interpenetrating cells without pressure re-enter
-            // the contact set (Polonsky & Keer's overlap correction). w follows p along
-            // t exactly; the cells where the projection departs from p - tau t are
-            // collected (up to the limit) for pass A.
-            // Re-admitted cells get -step g: the step times the stiffness of the longest
-            // wavelength (a small, scale-consistent pressure the next iterations adjust;
-            // measured on the benchmark surfaces: the preconditioner's diagonal or the
-            // inverse self-compliance as the scale cost 5-9 % more iterations). With unit
-            // E* and size this is Polonsky & Keer's -tau g.
-            let step = self.overlap_stiffness * if tau > 0.0 { tau } else { 1.0 / nm as f64 };
-            // Per chunk: total pressure, changed cells, t summed over the new contact
-            // set; without a fresh K p, the change p_new - (p - tau t) goes to r.
-            let upd = sweeps::Update {
-                tau,
-                approach,
-                step,
-            };
-            let parts = if fresh {
-                // The update as the input of a fresh K p, in K's precision.
-                let parts = load_fused(
+        let upd = sweeps::Update {
+            tau,
+            approach,
+            step,
+        };
+        // A fresh K p in the precision it is carried in (module docs).
+        let kp_op = if st.single {
+            Operand::ComplianceSingle
+        } else {
+            Operand::Compliance
+        };
+        // Per chunk: total pressure, changed cells, t summed over the new contact set.
+        let parts = if fresh {
+            let parts = self.update_with_fresh_kp(p, upd, kp_op);
+            st.refresh_z = true;
+            st.exact = !st.single;
+            parts
+        } else {
+            self.update_along_kt(p, upd, kp_op, st)
+        };
+        let [total, changed, t_set] = sum_parts(&parts, None);
+        st.t_on_set = t_set;
+        st.changed_last = changed;
+        st.scale = match st.target_force {
+            Some(w) if total > 0.0 => w / (total * self.op.cell_area()),
+            _ => 1.0,
+        };
+    }
+
+    /// Step 7 with a fresh `K p`: the update as the input of K in `kp_op`'s precision,
+    /// then `w = K p` (pass A adds z). Returns the per-chunk sums of the update.
+    fn update_with_fresh_kp(
+        &mut self,
+        p: &mut [f64],
+        upd: sweeps::Update,
+        kp_op: Operand,
+    ) -> Vec<[f64; 3]> {
+        let (nx, fc) = (self.op.nx(), ROWS_PER_CHUNK * self.op.nx());
+        let parts = load_fused(
+            &mut self.op,
+            kp_op,
+            &mut self.fallback,
+            (
+                p.par_chunks_mut(fc),
+                self.t.par_chunks(fc),
+                self.w.par_chunks(fc),
+                self.mask.par_chunks(fc),
+                self.rows_p.par_chunks_mut(ROWS_PER_CHUNK),
+            ),
+            |(p, t, w, m, with_p), values| sweeps::advance(p, t, w, m, values, (with_p, nx), upd),
+        );
+        self.finish_into_w(kp_op);
+        parts
+    }
+
+    /// Step 7 along K t: w moves by `-tau K t` (K t's rows, fused with the update), and
+    /// the changes `p_new - (p - tau t)` go to r, then to the point loads of the next
+    /// pass A, or, when more than the operator's point-load limit, into a fresh `K p`
+    /// (in `kp_op`'s precision). Returns the per-chunk sums of the update.
+    fn update_along_kt(
+        &mut self,
+        p: &mut [f64],
+        upd: sweeps::Update,
+        kp_op: Operand,
+        st: &mut State,
+    ) -> Vec<[f64; 3]> {
+        let (nx, fc) = (self.op.nx(), ROWS_PER_CHUNK * self.op.nx());
+        let parts = store_fused(
+            &mut self.op,
+            Operand::ComplianceSingle,
+            &mut self.fallback,
+            (
+                p.par_chunks_mut(fc),
+                self.t.par_chunks(fc),
+                self.r.par_chunks_mut(fc),
+                self.w.par_chunks_mut(fc),
+                self.mask.par_chunks(fc),
+                self.rows_p.par_chunks_mut(ROWS_PER_CHUNK),
+            ),
+            |(p, t, r, w, m, with_p), kt| sweeps::update(p, t, r, (w, kt), m, (with_p, nx), upd),
+            None,
+        );
+        let changed = sum_parts(&parts, None)[1];
+        let too_many = changed > self.op.point_load_limit() as f64;
+        // The changes as point loads (unless too many), and r zero again.
+        self.take_changes(&parts, (!too_many).then_some(&mut st.loads));
+        if too_many {
+            // A fresh K p (in K's precision).
+            if st.single {
+                load_fused(
                     &mut self.op,
                     kp_op,
                     &mut self.fallback,
-                    (
-                        p.par_chunks_mut(fc),
-                        self.t.par_chunks(fc),
-                        self.w.par_chunks(fc),
-                        self.mask.par_chunks(fc),
-                        self.rows_p.par_chunks_mut(ROWS_PER_CHUNK),
-                    ),
-                    |(p, t, w, m, with_p), values| {
-                        sweeps::advance(p, t, w, m, values, (with_p, nx), upd)
-                    },
+                    p.par_chunks(fc),
+                    copy_in,
                 );
                 self.finish_into_w(kp_op);
-                refresh_z = true;
-                exact = !single;
-                parts
             } else {
-                let parts = store_fused(
-                    &mut self.op,
-                    kt_op,
-                    &mut self.fallback,
-                    (
-                        p.par_chunks_mut(fc),
-                        self.t.par_chunks(fc),
-                        self.r.par_chunks_mut(fc),
-                        self.w.par_chunks_mut(fc),
-                        self.mask.par_chunks(fc),
-                        self.rows_p.par_chunks_mut(ROWS_PER_CHUNK),
-                    ),
-                    |(p, t, r, w, m, with_p), kt| {
-                        sweeps::update(p, t, r, (w, kt), m, (with_p, nx), upd)
-                    },
-                    None,
-                );
-                let changed = sum_parts(&parts, None)[1];
-                let too_many = changed > limit as f64;
-                // The changes as point loads (unless too many), and r zero again.
-                self.take_changes(&parts, (!too_many).then_some(&mut loads));
-                if too_many {
-                    // A fresh K p (in K's precision).
-                    if single {
-                        load_fused(
-                            &mut self.op,
-                            kp_op,
-                            &mut self.fallback,
-                            p.par_chunks(fc),
-                            copy_in,
-                        );
-                        self.finish_into_w(kp_op);
-                    } else {
-                        self.op.apply(&p, &mut self.w);
-                    }
-                    refresh_z = true;
-                    exact = !single;
-                } else {
-                    exact = false;
-                }
-                parts
-            };
-            let [total, changed, t_set] = sum_parts(&parts, None);
-            t_on_set = t_set;
-            changed_last = changed;
-            scale = match target_force {
-                Some(w) if total > 0.0 => w / (total * area),
-                _ => 1.0,
-            };
+                self.op.apply(p, &mut self.w);
+            }
+            st.refresh_z = true;
+            st.exact = !st.single;
+        } else {
+            st.exact = false;
         }
-        // Not converged: report the last iterate, on a fresh K p.
-        p.iter_mut().for_each(|v| *v *= scale);
+        parts
+    }
+
+    /// The iteration cap reached: the last iterate, on a fresh `K p`, inside
+    /// [`BemError::NoConvergence`].
+    fn not_converged(
+        &mut self,
+        mut p: Vec<f64>,
+        mut approach: f64,
+        residual: f64,
+        st: State,
+        opts: &SolverOptions,
+    ) -> Result<Solution> {
+        p.iter_mut().for_each(|v| *v *= st.scale);
         self.op.apply(&p, &mut self.w);
-        let [sum_g, nc] = self.pass_a(&mut p, 1.0, Refresh::AddZ, fixed_approach);
-        if force_control && nc > 0.0 {
+        let [sum_g, nc] = self.pass_a(&mut p, 1.0, Refresh::AddZ, st.fixed_approach);
+        if st.target_force.is_some() && nc > 0.0 {
             approach = sum_g / nc;
         }
-        self.loads = loads;
+        self.loads = st.loads;
         let mut last = self.finish(p, approach, opts.max_iterations, residual);
-        last.warm_started = warm_started;
+        last.warm_started = st.warm_started;
         Err(BemError::NoConvergence {
             what: "contact solve",
             iterations: opts.max_iterations,
@@ -499,4 +625,54 @@ impl<K: Compliance> ContactSolver<K> {
             last: Box::new(last),
         })
     }
+}
+
+/// What the iteration carries from one step to the next, besides the solver's buffers.
+struct State {
+    /// Force control's target force (None: the approach `fixed_approach` is prescribed).
+    target_force: Option<f64>,
+    fixed_approach: f64,
+    /// Iterations done.
+    it: usize,
+    /// `<q, y>` of the previous iteration (0: no direction yet).
+    gy_old: f64,
+    /// Sum of t over the contact set of the coming iteration (from pass D).
+    t_on_set: f64,
+    /// Whether `K p` is carried in single precision: while the residual is above
+    /// [`SINGLE_UNTIL`], where the operator rounds K so (its transforms; a dense
+    /// matrix's copy, whose K t alone is rounded, K p fresh in double precision).
+    single: bool,
+    /// Residual below which `K p` is recomputed in double precision once more (-inf:
+    /// no more).
+    refresh_below: f64,
+    /// Pending factor of the load constraint: p and `K p` are rescaled lazily in pass A
+    /// (K is linear), saving a sweep.
+    scale: f64,
+    /// Whether `w` holds `K p` alone (pass A adds z) rather than `K p + z` with the
+    /// point loads of `loads` pending.
+    refresh_z: bool,
+    /// Whether `w` holds `K p + z` recomputed from scratch (not updated).
+    exact: bool,
+    /// Complete contact's floor (module docs): the criterion's best value so far (to a
+    /// factor 2) and the iterations since.
+    stall: (f64, usize),
+    /// Point-load corrections of `K p` pending for pass A (cell, pressure change).
+    loads: Vec<(usize, f64)>,
+    /// Cells the last update changed against `p - tau t` (a cold start changes many).
+    changed_last: f64,
+    /// Whether K is a transform whose inverse half an iteration can skip (module docs);
+    /// an operator applied as a whole would be applied twice.
+    skips: bool,
+    /// Whether the start was a previous solution (reported in the [`Solution`]).
+    warm_started: bool,
+}
+
+/// What the stop test decided.
+enum Next {
+    /// Converged: report the iterate.
+    Converged,
+    /// `K p` was recomputed from scratch: evaluate the iterate again.
+    Recompute,
+    /// Take another iteration.
+    Iterate,
 }

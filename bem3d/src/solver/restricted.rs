@@ -34,7 +34,6 @@
 //! limit. Below the limit the solutions are the same bit for bit (512^2: 1.02x on two
 //! threads, 1.04x on one, with the point loads and the storage).
 
-use super::fused::reduce;
 use super::iteration::Refresh;
 use super::{ContactSolver, Solution, SolverOptions};
 use crate::operator::{Compliance, DenseCompliance};
@@ -246,21 +245,5 @@ impl<K: Compliance> ContactSolver<K> {
         let mut sol = self.finish(std::mem::take(p), approach, iterations, residual);
         sol.restricted = true;
         Ok(sol)
-    }
-
-    /// The convergence criterion (module docs) of `p` with `w = K p + z` up to date.
-    fn criterion(&self, p: &[f64], approach: f64) -> f64 {
-        let ch = self.chunk();
-        let [pg, ps, worst] = reduce(
-            (
-                p.par_chunks(ch),
-                self.w.par_chunks(ch),
-                self.mask.par_chunks(ch),
-            ),
-            |(p, w, m)| super::sweeps::criterion_terms(p, w, m, approach),
-            Some(2),
-        );
-        let h_rms = self.h_rms;
-        (if ps > 0.0 { pg / (ps * h_rms) } else { 0.0 }).max(worst / h_rms)
     }
 }

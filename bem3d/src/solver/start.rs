@@ -17,7 +17,7 @@ pub(super) const NESTED_MIN: usize = 512;
 /// A coarse grid's own cold start nests again from this many cells per side: cheap at
 /// that size, and on the 512^2 benchmark surface at 1 % contact the fine iterations
 /// went from 32 to 28 (1024^2 and 20 % contact: the same iterations as with 512).
-const COARSE_NESTED_MIN: usize = 256;
+pub(super) const COARSE_NESTED_MIN: usize = 256;
 
 /// Tolerance of the nested start's coarse solve: the fine iteration starts from about
 /// the same residual whether the coarse solve stops at 1e-2, 1e-3 or 1e-10 (the coarse
