@@ -25,4 +25,6 @@ pub use operator::{
     Spectral, Transform,
 };
 pub use sliding::{SlidingContact, SlidingSolution};
-pub use solver::{ContactSolver, Interrupt, Load, Solution, SolverOptions, MAX_TOLERANCE};
+pub use solver::{
+    ContactSolver, Interrupt, Load, Path, Paths, Solution, SolverOptions, MAX_TOLERANCE,
+};

@@ -30,15 +30,51 @@ pub struct Solution {
     /// Whether the previous solution given as a warm start was used (the solver's
     /// module docs).
     pub warm_started: bool,
-    /// Whether the solve ran restricted to part of the grid (the solver's module docs):
-    /// a window around a compact contact (its `iterations` then count iterations on the
-    /// window, summed over its rounds) or a small candidate set of cells (a few
-    /// thousand at most; `iterations` then count applications of a dense K between
-    /// them).
-    pub restricted: bool,
+    /// The path that produced the solution (the solver's module docs): the full grid,
+    /// a window around a compact contact (`iterations` then count iterations on the
+    /// window, summed over its rounds) or a small candidate set of cells (a few thousand
+    /// at most; `iterations` then count applications of a dense K between them).
+    pub path: Path,
+    /// Whether the full-grid iteration started from the solution on the grid coarsened
+    /// 2 x 2 (the solver's nested start).
+    pub nested_start: bool,
+    /// Of `iterations`, those with `K p` carried in single precision (the first phase of
+    /// the solver's precision schedule; 0 where it is forbidden or the operator has no
+    /// single-precision form).
+    pub single_iterations: usize,
+    /// Of `iterations`, those that applied the preconditioner by its stencil on the
+    /// contact cells instead of by transforms.
+    pub stencil_iterations: usize,
+}
+
+/// Which of the solver's paths produced a [`Solution`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Path {
+    /// The iteration on the whole grid.
+    FullGrid,
+    /// The iteration on a window around a compact contact, in rounds checked on the grid.
+    Window,
+    /// The iteration on a candidate set of cells, in rounds checked on the grid.
+    CandidateSet,
+}
+
+impl Path {
+    /// The path's name in reports: `full grid`, `window` or `candidate set`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Path::FullGrid => "full grid",
+            Path::Window => "window",
+            Path::CandidateSet => "candidate set",
+        }
+    }
 }
 
 impl Solution {
+    /// Whether the solve ran on part of the grid (a window or a candidate set).
+    pub fn restricted(&self) -> bool {
+        self.path != Path::FullGrid
+    }
+
     /// Every domain cell in contact.
     pub fn complete_contact(&self) -> bool {
         self.contact_cells == self.domain_cells

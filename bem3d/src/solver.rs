@@ -128,7 +128,12 @@
 //! C (rough surfaces at 0.1 % contact: 4-8x faster).
 //!
 //! Both are the same fixed point as the full iteration, checked on the full grid;
-//! [`Solution::restricted`] says when one of them ran.
+//! [`Solution::path`] says which ran.
+//!
+//! Every strategy (window, candidate set, stencil, nested start, single precision) can
+//! be forbidden in [`SolverOptions::paths`] ([`Paths`]); the [`Solution`] reports the
+//! path, the start and how many iterations ran in single precision and by the stencil.
+//! Forbidding one changes the work, not the fixed point (tested path against path).
 //!
 //! M on small contact sets by its stencil: while the contact set holds at most
 //! `LOCAL_MAX_FRACTION` (2 %) of the grid's cells, the full iteration applies M as a
@@ -159,8 +164,8 @@ mod sweeps;
 mod tangent;
 mod window;
 
-pub use crate::solution::Solution;
-pub use options::{Interrupt, Load, SolverOptions, MAX_LOAD, MAX_TOLERANCE};
+pub use crate::solution::{Path, Solution};
+pub use options::{Interrupt, Load, Paths, SolverOptions, MAX_LOAD, MAX_TOLERANCE};
 
 /// Solver for one height map on one operator; buffers are allocated once.
 pub struct ContactSolver<K: Compliance> {
@@ -214,9 +219,6 @@ pub struct ContactSolver<K: Compliance> {
     /// The solver on the grid coarsened 2 x 2, for nested starts (built on first use;
     /// dropped with the heights).
     coarse: Option<Box<ContactSolver<K>>>,
-    /// Whether cold solves under force control may start from the coarse grid's
-    /// solution (module docs; on by default).
-    nested: bool,
     /// Fewest cells per side for a nested start: [`start::NESTED_MIN`], or
     /// [`start::COARSE_NESTED_MIN`] for a coarse grid's solver.
     nested_min: usize,
@@ -291,7 +293,6 @@ impl<K: Compliance> ContactSolver<K> {
             local_max_fraction: iteration::LOCAL_MAX_FRACTION,
             mask,
             coarse: None,
-            nested: true,
             nested_min: start::NESTED_MIN,
         }
     }
@@ -343,11 +344,6 @@ impl<K: Compliance> ContactSolver<K> {
             });
         self.coarse = None;
         Ok(())
-    }
-
-    /// Turns the nested start (module docs) on or off for the following solves.
-    pub fn set_nested_start(&mut self, on: bool) {
-        self.nested = on;
     }
 
     /// Rms slope sqrt(<(dh/dx)^2> + <(dh/dy)^2>), each mean over the pairs of adjacent
@@ -412,7 +408,7 @@ impl<K: Compliance> ContactSolver<K> {
     /// Solves for `load`, starting from a previous solution `warm` where that pays (see
     /// the module docs; [`Solution::warm_started`] says whether it was used). A cold
     /// solve of a compact contact runs on a window first, one with a small start set
-    /// restricted to a candidate set (module docs, [`Solution::restricted`]); if the
+    /// restricted to a candidate set (module docs, [`Solution::path`]); if the
     /// window or the set outgrows its limit or a round does not converge, the attempt is
     /// dropped and the next path (last: the full iteration below) runs from its own
     /// start with `max_iterations` of its own (an attempt spends at most
@@ -449,15 +445,20 @@ impl<K: Compliance> ContactSolver<K> {
         // The paths in order (module docs): a window, a candidate set, the full grid.
         let loaded = target_force.unwrap_or(fixed_approach) > 0.0;
         if warm.is_none() && loaded {
-            if let Some(sol) = self.solve_windowed(target_force, fixed_approach, opts) {
-                return Ok(sol);
+            if opts.paths.window {
+                if let Some(sol) = self.solve_windowed(target_force, fixed_approach, opts) {
+                    return Ok(sol);
+                }
             }
-            if let Some(sol) = self.solve_restricted(target_force, fixed_approach, opts) {
-                return Ok(sol);
+            if opts.paths.candidate_set {
+                if let Some(sol) = self.solve_restricted(target_force, fixed_approach, opts) {
+                    return Ok(sol);
+                }
             }
         }
         let n = self.op.cells();
         let mut p = vec![0.0; n];
+        let mut nested = false;
         match (warm, load) {
             (Some(w), _) => p
                 .par_iter_mut()
@@ -467,7 +468,8 @@ impl<K: Compliance> ContactSolver<K> {
             (None, Load::Approach(d)) => self.overlap_start(&mut p, d),
             (None, _) => {
                 let force = target_force.unwrap_or(0.0);
-                if !(force > 0.0 && self.nested_start(&mut p, force, opts)) {
+                nested = force > 0.0 && self.nested_start(&mut p, force, opts);
+                if !nested {
                     self.cold_start(&mut p, force, start::FULL_GRID_START_AREA);
                 }
             }
@@ -488,7 +490,11 @@ impl<K: Compliance> ContactSolver<K> {
                 return Ok(self.finish_unloaded(d));
             }
         }
-        self.iterate(p, target_force, fixed_approach, opts, warm.is_some())
+        let start = iteration::Start {
+            warm: warm.is_some(),
+            nested,
+        };
+        self.iterate(p, target_force, fixed_approach, opts, start)
     }
 
     /// Refuses a load, options or warm start this solver cannot take (negative,
@@ -718,7 +724,7 @@ mod tests {
             let share = by_stencil.contact_cells as f64 / (nx * ny) as f64;
             assert!((0.01..0.3).contains(&share), "{nx}x{ny}: contact {share}");
             assert!(
-                !by_stencil.restricted && !by_transforms.restricted,
+                !by_stencil.restricted() && !by_transforms.restricted(),
                 "{nx}x{ny}: {share}"
             );
             let peak = by_transforms.pressure.iter().fold(0.0f64, |m, &v| m.max(v));

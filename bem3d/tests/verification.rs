@@ -531,14 +531,26 @@ fn restricted_solve_matches_the_full_grid_solve() {
     let periodic = || PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
     let free = || NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
     let check = matches_full_grid;
+    // The same problems on the full grid (and, for the sphere, without a window).
+    let full = SolverOptions {
+        paths: Paths::full_grid(),
+        ..o.clone()
+    };
+    let no_window = SolverOptions {
+        paths: Paths {
+            window: false,
+            ..Paths::default()
+        },
+        ..o.clone()
+    };
     for pm in [1e-4, 3e-4] {
         let a = ContactSolver::new(periodic(), &rough_h, None)
             .unwrap()
             .solve(Load::MeanPressure(pm), &o, None)
             .unwrap();
-        let b = ContactSolver::new(common::full_grid_only(periodic()), &rough_h, None)
+        let b = ContactSolver::new(periodic(), &rough_h, None)
             .unwrap()
-            .solve(Load::MeanPressure(pm), &o, None)
+            .solve(Load::MeanPressure(pm), &full, None)
             .unwrap();
         check(&a, &b, &format!("rough, mean pressure {pm}"));
         // Most rows of the full grid hold no contact cell: its transforms skip them
@@ -551,18 +563,18 @@ fn restricted_solve_matches_the_full_grid_solve() {
             .solve(Load::Approach(b.approach), &o, None)
             .unwrap();
         assert!(
-            c.restricted && rel(c.force, b.force) < 1e-8,
+            c.restricted() && rel(c.force, b.force) < 1e-8,
             "approach control"
         );
     }
     // (A sphere on the free half-space takes a window first: here without one.)
-    let a = ContactSolver::new(common::no_window(free()), &ball, None)
+    let a = ContactSolver::new(free(), &ball, None)
         .unwrap()
-        .solve(Load::Force(2e-5), &o, None)
+        .solve(Load::Force(2e-5), &no_window, None)
         .unwrap();
-    let b = ContactSolver::new(common::full_grid_only(free()), &ball, None)
+    let b = ContactSolver::new(free(), &ball, None)
         .unwrap()
-        .solve(Load::Force(2e-5), &o, None)
+        .solve(Load::Force(2e-5), &full, None)
         .unwrap();
     check(&a, &b, "sphere, force 2e-5");
     // A circular mask (a rough punch): only its cells may carry pressure.
@@ -576,14 +588,10 @@ fn restricted_solve_matches_the_full_grid_solve() {
         .unwrap()
         .solve(Load::MeanPressure(1e-4), &o, None)
         .unwrap();
-    let b = ContactSolver::new(
-        common::full_grid_only(periodic()),
-        &rough_h,
-        Some(mask.clone()),
-    )
-    .unwrap()
-    .solve(Load::MeanPressure(1e-4), &o, None)
-    .unwrap();
+    let b = ContactSolver::new(periodic(), &rough_h, Some(mask.clone()))
+        .unwrap()
+        .solve(Load::MeanPressure(1e-4), &full, None)
+        .unwrap();
     check(&a, &b, "masked rough, mean pressure 1e-4");
     assert!((0..n * n).all(|k| mask[k] || a.pressure[k] == 0.0));
     // Above the set's limit (3 sqrt(cells) = 384 here) the solve is the full one.
@@ -591,7 +599,7 @@ fn restricted_solve_matches_the_full_grid_solve() {
         .unwrap()
         .solve(Load::MeanPressure(1e-2), &o, None)
         .unwrap();
-    assert!(!high.restricted && high.contact_cells > 384);
+    assert!(!high.restricted() && high.contact_cells > 384);
 }
 
 /// A restricted solve `a` (window or candidate set) against the full-grid solve `b` of
@@ -613,7 +621,7 @@ fn same_solution(a: &Solution, b: &Solution, what: &str) -> f64 {
 }
 
 fn matches_full_grid(a: &Solution, b: &Solution, what: &str) {
-    assert!(a.restricted && !b.restricted, "{what}: paths");
+    assert!(a.restricted() && !b.restricted(), "{what}: paths");
     assert!(
         a.residual <= 1e-12 && b.residual <= 1e-12,
         "{what}: residuals"
@@ -638,7 +646,7 @@ fn restricted_solve_is_bit_identical_whatever_the_thread_count() {
                 .unwrap()
                 .solve(Load::MeanPressure(2e-4), &SolverOptions::default(), None)
                 .unwrap();
-            assert!(sol.restricted);
+            assert!(sol.restricted());
             (sol.pressure, sol.approach.to_bits())
         })
     };
@@ -659,14 +667,18 @@ fn windowed_solve_matches_the_full_grid_solve() {
     };
     let free = || NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
     let check = matches_full_grid;
+    let full = SolverOptions {
+        paths: Paths::full_grid(),
+        ..o.clone()
+    };
     let pair = |h: &[f64], mask: Option<Vec<bool>>, load: Load| {
         let a = ContactSolver::new(free(), h, mask.clone())
             .unwrap()
             .solve(load, &o, None)
             .unwrap();
-        let b = ContactSolver::new(common::full_grid_only(free()), h, mask)
+        let b = ContactSolver::new(free(), h, mask)
             .unwrap()
-            .solve(load, &o, None)
+            .solve(load, &full, None)
             .unwrap();
         (a, b)
     };
@@ -710,7 +722,7 @@ fn windowed_solve_matches_the_full_grid_solve() {
         .unwrap()
         .solve(Load::MeanPressure(1e-2), &o, None)
         .unwrap();
-    assert!(!spread.restricted && spread.contact_cells > n * n / 20);
+    assert!(!spread.restricted() && spread.contact_cells > n * n / 20);
 }
 
 /// The windowed path is bit-identical for any thread count too.
@@ -725,7 +737,7 @@ fn windowed_solve_is_bit_identical_whatever_the_thread_count() {
                 .unwrap()
                 .solve(Load::Force(3e-3), &SolverOptions::default(), None)
                 .unwrap();
-            assert!(sol.restricted && sol.contact_cells > 3 * n);
+            assert!(sol.restricted() && sol.contact_cells > 3 * n);
             (sol.pressure, sol.approach.to_bits())
         })
     };
@@ -745,6 +757,11 @@ fn single_precision_preconditioner_reaches_the_same_solution() {
         tolerance: 1e-12,
         max_iterations: 10_000,
         ..Default::default()
+    };
+    // On the full grid: the sphere would otherwise take a window.
+    let full = SolverOptions {
+        paths: Paths::full_grid(),
+        ..o.clone()
     };
     let rough_h = common::self_affine(n, 0.8, 5);
     let ball = sphere(n, 1.0, 1.0);
@@ -787,7 +804,7 @@ fn single_precision_preconditioner_reaches_the_same_solution() {
         assert!(!single(b.spectral(Operand::Compliance).unwrap().transform));
     }
     let check = |a: Solution, b: Solution, what: &str| {
-        assert!(!a.restricted && !b.restricted, "{what}: paths");
+        assert!(!a.restricted() && !b.restricted(), "{what}: paths");
         let dp = same_solution(&a, &b, what);
         let (ia, ib) = (a.iterations as f64, b.iterations as f64);
         assert!(
@@ -801,9 +818,9 @@ fn single_precision_preconditioner_reaches_the_same_solution() {
     };
     for pm in [1e-2, 5e-4] {
         let solve = |p: Precision| {
-            ContactSolver::new(common::full_grid_only(periodic(p)), &rough_h, None)
+            ContactSolver::new(periodic(p), &rough_h, None)
                 .unwrap()
-                .solve(Load::MeanPressure(pm), &o, None)
+                .solve(Load::MeanPressure(pm), &full, None)
                 .unwrap()
         };
         check(
@@ -813,9 +830,9 @@ fn single_precision_preconditioner_reaches_the_same_solution() {
         );
     }
     let solve = |p: Precision| {
-        ContactSolver::new(common::full_grid_only(free(p)), &ball, None)
+        ContactSolver::new(free(p), &ball, None)
             .unwrap()
-            .solve(Load::Force(5e-3), &o, None)
+            .solve(Load::Force(5e-3), &full, None)
             .unwrap()
     };
     check(solve(Precision::Single), solve(Precision::Double), "sphere");
@@ -844,15 +861,23 @@ fn nested_start_reaches_the_cold_starts_solution_in_fewer_iterations() {
         nested: bool,
         o: &SolverOptions,
     ) -> Solution {
+        // The full-grid iteration (no candidate set at the lower load).
+        let paths = Paths {
+            nested_start: nested,
+            ..Paths::full_grid()
+        };
+        let o = SolverOptions { paths, ..o.clone() };
         let mut s = ContactSolver::new(op, h, None).unwrap();
-        s.set_nested_start(nested);
-        s.solve(Load::MeanPressure(pm), o, None).unwrap()
+        s.solve(Load::MeanPressure(pm), &o, None).unwrap()
     }
-    // The full-grid iteration (no candidate set at the lower load).
-    let periodic = || common::full_grid_only(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0));
-    let free = || common::full_grid_only(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0));
+    let periodic = || PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
+    let free = || NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
     let check = |a: Solution, b: Solution, what: &str| {
-        assert!(!a.restricted && !b.restricted, "{what}: paths");
+        assert!(!a.restricted() && !b.restricted(), "{what}: paths");
+        assert!(
+            a.nested_start && !b.nested_start,
+            "{what}: nested start reported"
+        );
         assert!(
             a.residual <= 1e-12 && b.residual <= 1e-12,
             "{what}: residuals"
@@ -896,12 +921,88 @@ fn nested_start_reaches_the_cold_starts_solution_in_fewer_iterations() {
     let mut mask = vec![true; n * n];
     mask[0] = false;
     let masked = |nested: bool| {
-        let mut s = ContactSolver::new(periodic(), &h, Some(mask.clone())).unwrap();
-        s.set_nested_start(nested);
-        let sol = s
-            .solve(Load::MeanPressure(5e-4), &SolverOptions::default(), None)
+        let paths = Paths {
+            nested_start: nested,
+            ..Paths::full_grid()
+        };
+        let o = SolverOptions {
+            paths,
+            ..Default::default()
+        };
+        let sol = ContactSolver::new(periodic(), &h, Some(mask.clone()))
+            .unwrap()
+            .solve(Load::MeanPressure(5e-4), &o, None)
             .unwrap();
         (sol.pressure, sol.iterations)
     };
     assert_eq!(masked(true), masked(false));
+}
+
+/// Every strategy a solve takes is reported in its [`Solution`], and forbidding it in
+/// [`SolverOptions::paths`] changes the path, not the answer (1e-9 of the peak pressure
+/// at tolerance 1e-12): a rough surface at about 0.1 % contact (candidate set; then the
+/// full grid with M by its stencil), at 20 % (full grid, K p in single precision in
+/// the early iterations) and a sphere on the free half-space (window).
+#[test]
+fn paths_are_reported_and_forbidding_one_keeps_the_answer() {
+    let n = 128;
+    let o = |paths: Paths| SolverOptions {
+        tolerance: 1e-12,
+        max_iterations: 10_000,
+        paths,
+        ..Default::default()
+    };
+    let all = Paths::default();
+    let h = common::self_affine(n, 0.8, 5);
+    let ball = sphere(n, 1.0, 1.0);
+    let periodic = |h: &[f64], load: Load, paths: Paths| {
+        ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), h, None)
+            .unwrap()
+            .solve(load, &o(paths), None)
+            .unwrap()
+    };
+    let low = Load::MeanPressure(1e-4);
+    let a = periodic(&h, low, all);
+    assert_eq!(a.path, Path::CandidateSet);
+    let b = periodic(&h, low, Paths::full_grid());
+    assert_eq!(b.path, Path::FullGrid);
+    assert!(b.stencil_iterations > 0 && b.stencil_iterations <= b.iterations);
+    assert!(b.single_iterations > 0 && b.single_iterations <= b.iterations);
+    same_solution(&a, &b, "candidate set forbidden");
+    let no_stencil = Paths {
+        stencil: false,
+        ..Paths::full_grid()
+    };
+    let c = periodic(&h, low, no_stencil);
+    assert_eq!((c.path, c.stencil_iterations), (Path::FullGrid, 0));
+    same_solution(&c, &b, "stencil forbidden");
+    let high = Load::MeanPressure(2e-2);
+    let d = periodic(&h, high, all);
+    assert_eq!((d.path, d.stencil_iterations), (Path::FullGrid, 0));
+    assert!(d.single_iterations > 0 && !d.nested_start);
+    let double = Paths {
+        single_precision: false,
+        ..all
+    };
+    let e = periodic(&h, high, double);
+    assert_eq!(e.single_iterations, 0);
+    same_solution(&e, &d, "single precision forbidden");
+    let plain = periodic(&h, high, Paths::plain());
+    assert_eq!((plain.single_iterations, plain.stencil_iterations), (0, 0));
+    same_solution(&plain, &d, "plain");
+    // The sphere on the free half-space: a window, else a candidate set or the grid.
+    let free = |paths: Paths| {
+        ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &ball, None)
+            .unwrap()
+            .solve(Load::Force(5e-3), &o(paths), None)
+            .unwrap()
+    };
+    let w = free(all);
+    assert_eq!(w.path, Path::Window);
+    let g = free(Paths {
+        window: false,
+        ..all
+    });
+    assert_ne!(g.path, Path::Window);
+    same_solution(&w, &g, "window forbidden");
 }

@@ -150,7 +150,30 @@ impl ContactResult {
     /// (`iterations` then count applications of a dense K between them).
     #[getter]
     fn restricted(&self) -> bool {
-        self.sol.restricted
+        self.sol.restricted()
+    }
+    /// The path the solve took: "full grid", "window" (a compact contact on the
+    /// non-periodic half-space) or "candidate set" (a small contact set).
+    #[getter]
+    fn path(&self) -> &'static str {
+        self.sol.path.name()
+    }
+    /// Whether the full-grid iteration started from the solution on the grid coarsened
+    /// 2 x 2 (large grids under force control).
+    #[getter]
+    fn nested_start(&self) -> bool {
+        self.sol.nested_start
+    }
+    /// Of `iterations`, those with K p carried in single precision.
+    #[getter]
+    fn single_precision_iterations(&self) -> usize {
+        self.sol.single_iterations
+    }
+    /// Of `iterations`, those that applied the preconditioner by its stencil on the
+    /// contact cells.
+    #[getter]
+    fn stencil_iterations(&self) -> usize {
+        self.sol.stencil_iterations
     }
     fn __repr__(&self) -> String {
         format!(

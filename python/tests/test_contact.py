@@ -213,8 +213,15 @@ def test_low_contact_runs_restricted_and_says_so():
     c = mrdw.Contact(h)
     low = c.solve(mean_pressure=1e-4)
     assert low.restricted and 0 < low.contact_cells < 3 * 64
+    assert low.path == "candidate set"
     assert low.residual <= 1e-10
-    assert not c.solve(mean_pressure=0.05).restricted
+    high = c.solve(mean_pressure=0.05)
+    assert not high.restricted and high.path == "full grid"
+    # The strategies of the full-grid iteration are counted in its iterations.
+    assert 0 <= high.single_precision_iterations <= high.iterations
+    assert 0 <= high.stencil_iterations <= high.iterations
+    assert high.single_precision_iterations > 0
+    assert high.nested_start is False  # 64^2: below the nested start's 512 cells a side
 
 
 def test_certificate_is_reported_and_within_the_tolerance():

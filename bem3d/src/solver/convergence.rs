@@ -3,7 +3,7 @@
 //! docs, "Convergence criterion" and "What a converged solve guarantees").
 
 use super::fused::reduce;
-use super::{sweeps, ContactSolver, Solution};
+use super::{sweeps, ContactSolver, Path, Solution};
 use crate::operator::Compliance;
 use rayon::prelude::*;
 
@@ -90,7 +90,10 @@ impl<K: Compliance> ContactSolver<K> {
             residual,
             domain_cells: self.domain_cells,
             warm_started: false,
-            restricted: false,
+            path: Path::FullGrid,
+            nested_start: false,
+            single_iterations: 0,
+            stencil_iterations: 0,
         }
     }
 

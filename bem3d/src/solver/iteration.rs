@@ -136,16 +136,17 @@ impl<K: Compliance> ContactSolver<K> {
         target_force: Option<f64>,
         fixed_approach: f64,
         opts: &SolverOptions,
-        warm_started: bool,
+        start: Start,
     ) -> Result<Solution> {
-        let mut st = self.begin(&p, target_force, fixed_approach, warm_started);
+        let mut st = self.begin(&p, target_force, fixed_approach, start, opts);
         let (mut approach, mut residual);
         loop {
             let nc;
             (approach, nc) = self.contact_set(&mut p, &mut st);
             // M by its stencil on a small contact set (module docs) instead of its
             // transforms (the same chunks, the same sums).
-            let local = nc <= self.local_max_fraction * self.op.cells() as f64
+            let local = opts.paths.stencil
+                && nc <= self.local_max_fraction * self.op.cells() as f64
                 && self.op.local_stiffness().is_some();
             let [pg, ps, worst, sum_q] = self.criterion_pass(&p, approach, local);
             let h_rms = self.h_rms;
@@ -162,9 +163,8 @@ impl<K: Compliance> ContactSolver<K> {
                 Next::Recompute => continue,
                 Next::Converged => {
                     self.loads = std::mem::take(&mut st.loads);
-                    let mut sol = self.finish(p, approach, st.it, residual);
-                    sol.warm_started = st.warm_started;
-                    return Ok(sol);
+                    let sol = self.finish(p, approach, st.it, residual);
+                    return Ok(st.report(sol));
                 }
                 Next::Iterate => {}
             }
@@ -178,13 +178,15 @@ impl<K: Compliance> ContactSolver<K> {
                 });
             }
             st.it += 1;
+            st.single_iterations += st.single as usize;
+            st.stencil_iterations += local as usize;
             let sums = self.preconditioned_residual(approach, local);
             let num = self.direction(sums, (nc, sum_q, approach), &mut st);
             // While the contact set still changes in more cells than point loads can
             // follow, K p is recomputed after the update anyway: K t is then needed for
             // its energy only (predicted from the last iteration's changes, module docs).
             let fresh = st.skips && st.changed_last > (2 * self.op.point_load_limit()) as f64;
-            let tau = self.step_length(num, fresh);
+            let tau = self.step_length(num, fresh, st.kt_op);
             self.update(&mut p, tau, approach, fresh, &mut st);
         }
         self.not_converged(p, approach, residual, st, opts)
@@ -196,7 +198,8 @@ impl<K: Compliance> ContactSolver<K> {
         p: &[f64],
         target_force: Option<f64>,
         fixed_approach: f64,
-        warm_started: bool,
+        start: Start,
+        opts: &SolverOptions,
     ) -> State {
         // t and y_prev start at zero (y_prev is read before it is written; with beta = 0
         // its values do not matter). Written here, in parallel, each page of a fresh
@@ -219,16 +222,23 @@ impl<K: Compliance> ContactSolver<K> {
             it: 0,
             gy_old: 0.0,
             t_on_set: 0.0,
-            single: self.op.rounds_single(),
+            single: opts.paths.single_precision && self.op.rounds_single(),
+            kt_op: if opts.paths.single_precision {
+                Operand::ComplianceSingle
+            } else {
+                Operand::Compliance
+            },
             refresh_below: f64::NEG_INFINITY,
             scale: 1.0,
             refresh_z: true,
             exact: true,
             stall: (f64::INFINITY, 0),
             loads: std::mem::take(&mut self.loads),
-            changed_last: if warm_started { 0.0 } else { f64::INFINITY },
+            changed_last: if start.warm { 0.0 } else { f64::INFINITY },
             skips: self.op.spectral(Operand::Compliance).is_some(),
-            warm_started,
+            start,
+            single_iterations: 0,
+            stencil_iterations: 0,
         }
     }
 
@@ -434,7 +444,7 @@ impl<K: Compliance> ContactSolver<K> {
         let (nx, fc) = (self.op.nx(), ROWS_PER_CHUNK * self.op.nx());
         let parts = load_fused(
             &mut self.op,
-            Operand::ComplianceSingle,
+            st.kt_op,
             &mut self.fallback,
             (
                 self.active.par_chunks(fc),
@@ -458,8 +468,7 @@ impl<K: Compliance> ContactSolver<K> {
     /// in step 7 unless `fresh` (K p recomputed there instead). Under force control t
     /// sums to zero on the contact set, so the step needs no shift of K t by a contact
     /// mean.
-    fn step_length(&mut self, num: f64, fresh: bool) -> f64 {
-        let kt_op = Operand::ComplianceSingle;
+    fn step_length(&mut self, num: f64, fresh: bool, kt_op: Operand) -> f64 {
         let tkt = if fresh {
             energy_fused(&mut self.op, kt_op, &mut self.fallback)
         } else {
@@ -559,7 +568,7 @@ impl<K: Compliance> ContactSolver<K> {
         let (nx, fc) = (self.op.nx(), ROWS_PER_CHUNK * self.op.nx());
         let parts = store_fused(
             &mut self.op,
-            Operand::ComplianceSingle,
+            st.kt_op,
             &mut self.fallback,
             (
                 p.par_chunks_mut(fc),
@@ -605,7 +614,7 @@ impl<K: Compliance> ContactSolver<K> {
         mut p: Vec<f64>,
         mut approach: f64,
         residual: f64,
-        st: State,
+        mut st: State,
         opts: &SolverOptions,
     ) -> Result<Solution> {
         p.iter_mut().for_each(|v| *v *= st.scale);
@@ -614,9 +623,9 @@ impl<K: Compliance> ContactSolver<K> {
         if st.target_force.is_some() && nc > 0.0 {
             approach = sum_g / nc;
         }
-        self.loads = st.loads;
-        let mut last = self.finish(p, approach, opts.max_iterations, residual);
-        last.warm_started = st.warm_started;
+        self.loads = std::mem::take(&mut st.loads);
+        let last = self.finish(p, approach, opts.max_iterations, residual);
+        let last = st.report(last);
         Err(BemError::NoConvergence {
             what: "contact solve",
             iterations: opts.max_iterations,
@@ -663,8 +672,35 @@ struct State {
     /// Whether K is a transform whose inverse half an iteration can skip (module docs);
     /// an operator applied as a whole would be applied twice.
     skips: bool,
-    /// Whether the start was a previous solution (reported in the [`Solution`]).
-    warm_started: bool,
+    /// K's form for the direction's `K t`: single precision where the paths allow it
+    /// (the operator falls back to double where it has no single-precision form).
+    kt_op: Operand,
+    /// What the iteration started from (reported in the [`Solution`]).
+    start: Start,
+    /// Iterations with `K p` carried in single precision, and with M by its stencil.
+    single_iterations: usize,
+    stencil_iterations: usize,
+}
+
+impl State {
+    /// `sol` with what the iteration knows of its path: the start and the iterations
+    /// per precision and preconditioner form.
+    fn report(&self, mut sol: Solution) -> Solution {
+        sol.warm_started = self.start.warm;
+        sol.nested_start = self.start.nested;
+        sol.single_iterations = self.single_iterations;
+        sol.stencil_iterations = self.stencil_iterations;
+        sol
+    }
+}
+
+/// What an iteration starts from, besides a cold start.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Start {
+    /// A previous solution (warm start).
+    pub(super) warm: bool,
+    /// The solution on the grid coarsened 2 x 2 (nested start).
+    pub(super) nested: bool,
 }
 
 /// What the stop test decided.

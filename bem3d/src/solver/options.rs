@@ -22,6 +22,62 @@ pub struct SolverOptions {
     /// Polled once per iteration: when it is set the solve stops with
     /// [`BemError::Interrupted`] (a caller's Ctrl-C).
     pub interrupt: Option<Interrupt>,
+    /// The strategies a solve may use (all by default); the [`Solution`](super::Solution)
+    /// says which ran.
+    pub paths: Paths,
+}
+
+/// The solver's strategies (its module docs), each allowed where it applies or
+/// forbidden. Every combination reaches the same fixed point: they change the work, not
+/// the answer (beyond the tolerance), which the tests check path against path.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Paths {
+    /// A window around a compact contact (non-periodic half-space).
+    pub window: bool,
+    /// A candidate set of cells for small contact sets.
+    pub candidate_set: bool,
+    /// The preconditioner by its stencil on small contact sets.
+    pub stencil: bool,
+    /// The start from the grid coarsened 2 x 2 (large grids under force control).
+    pub nested_start: bool,
+    /// K's single-precision form while the criterion is above 1e-4, and for the
+    /// direction's `K t` throughout (else K in double precision everywhere).
+    pub single_precision: bool,
+}
+
+impl Default for Paths {
+    fn default() -> Self {
+        Paths {
+            window: true,
+            candidate_set: true,
+            stencil: true,
+            nested_start: true,
+            single_precision: true,
+        }
+    }
+}
+
+impl Paths {
+    /// Every strategy except the restricted paths: the iteration on the whole grid.
+    pub fn full_grid() -> Self {
+        Paths {
+            window: false,
+            candidate_set: false,
+            ..Paths::default()
+        }
+    }
+
+    /// The plainest solve: the whole grid, M by transforms, a cold start, K in double
+    /// precision.
+    pub fn plain() -> Self {
+        Paths {
+            window: false,
+            candidate_set: false,
+            stencil: false,
+            nested_start: false,
+            single_precision: false,
+        }
+    }
 }
 
 /// Largest load a solve accepts, as a mean pressure over E* or an approach over the map's
@@ -46,6 +102,7 @@ impl SolverOptions {
             tolerance,
             max_iterations,
             interrupt: None,
+            paths: Paths::default(),
         }
     }
 

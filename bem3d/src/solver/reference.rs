@@ -15,7 +15,7 @@
 //!
 //! Conventions (heights, approach, mask) are the fast solver's.
 
-use super::{Load, Solution, SolverOptions};
+use super::{Load, Path, Solution, SolverOptions};
 use crate::error::{BemError, Result};
 use crate::operator::Compliance;
 
@@ -233,7 +233,10 @@ impl<'a> Problem<'a> {
             residual,
             domain_cells: cells as usize,
             warm_started: false,
-            restricted: false,
+            path: Path::FullGrid,
+            nested_start: false,
+            single_iterations: 0,
+            stencil_iterations: 0,
         }
     }
 }

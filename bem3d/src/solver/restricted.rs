@@ -34,8 +34,8 @@
 //! limit. Below the limit the solutions are the same bit for bit (512^2: 1.02x on two
 //! threads, 1.04x on one, with the point loads and the storage).
 
-use super::iteration::Refresh;
-use super::{ContactSolver, Solution, SolverOptions};
+use super::iteration::{Refresh, Start};
+use super::{ContactSolver, Path, Solution, SolverOptions};
 use crate::operator::{Compliance, DenseCompliance};
 use rayon::prelude::*;
 
@@ -66,6 +66,22 @@ pub(super) fn round_options(opts: &SolverOptions, tight: bool, spent: usize) -> 
         },
         max_iterations: opts.max_iterations.saturating_sub(spent).max(1),
         ..opts.clone()
+    }
+}
+
+/// The iterations of a restricted solve's rounds, summed.
+#[derive(Debug, Default)]
+pub(super) struct Tally {
+    pub(super) iterations: usize,
+    pub(super) single: usize,
+    pub(super) stencil: usize,
+}
+
+impl Tally {
+    pub(super) fn add(&mut self, sol: &Solution) {
+        self.iterations += sol.iterations;
+        self.single += sol.single_iterations;
+        self.stencil += sol.stencil_iterations;
     }
 }
 
@@ -119,7 +135,7 @@ impl<K: Compliance> ContactSolver<K> {
             self.op.ly() / self.op.ny() as f64,
         );
         let mut member = vec![false; n];
-        let mut iterations = 0;
+        let mut tally = Tally::default();
         let mut tight = false;
         // The solver on the current set (kept while the set holds), and whether the set
         // changed since it was built (its matrix's storage then serves the next one).
@@ -143,25 +159,35 @@ impl<K: Compliance> ContactSolver<K> {
                 inner = Some(ContactSolver::on_part(dense, mask, z, h_rms, stiffness));
             }
             let solver = inner.as_mut()?;
-            let inner_opts = round_options(opts, tight, iterations);
+            let inner_opts = round_options(opts, tight, tally.iterations);
             let start = cells.iter().map(|&i| p[i]).collect();
-            let sol = match solver.iterate(start, target_force, fixed_approach, &inner_opts, false)
-            {
+            let sol = match solver.iterate(
+                start,
+                target_force,
+                fixed_approach,
+                &inner_opts,
+                Start::default(),
+            ) {
                 Ok(sol) => sol,
                 // The full iteration takes over (and reports its own failure, if any).
                 Err(_) => return None,
             };
-            iterations += sol.iterations;
+            tally.add(&sol);
             p.par_iter_mut().for_each(|v| *v = 0.0);
             cells
                 .iter()
                 .zip(&sol.pressure)
                 .for_each(|(&i, &v)| p[i] = v);
-            let (approach, residual) =
-                match self.on_grid(&mut p, target_force, fixed_approach, iterations, opts) {
-                    Ok(sol) => return Some(sol),
-                    Err(found) => found,
-                };
+            let (approach, residual) = match self.on_grid(
+                &mut p,
+                target_force,
+                fixed_approach,
+                (&tally, Path::CandidateSet),
+                opts,
+            ) {
+                Ok(sol) => return Some(sol),
+                Err(found) => found,
+            };
             let (w, mask) = (&self.w, &self.mask);
             let mut entering: Vec<(f64, usize)> = (0..n)
                 .into_par_iter()
@@ -219,7 +245,8 @@ impl<K: Compliance> ContactSolver<K> {
         solver
     }
 
-    /// A pressure solved on part of the grid (after `iterations` in all), on the whole
+    /// A pressure solved on part of the grid (`tally`: its rounds' iterations in all, by
+    /// `path`), on the whole
     /// grid: `w = K p + z` there, the approach (under force control the mean gap over
     /// the contact) and the criterion (module docs). The restricted solution if the
     /// criterion meets the tolerance (`p` is taken), else the approach and criterion.
@@ -228,7 +255,7 @@ impl<K: Compliance> ContactSolver<K> {
         p: &mut Vec<f64>,
         target_force: Option<f64>,
         fixed_approach: f64,
-        iterations: usize,
+        (tally, path): (&Tally, Path),
         opts: &SolverOptions,
     ) -> std::result::Result<Solution, (f64, f64)> {
         self.op.apply(p, &mut self.w);
@@ -242,8 +269,10 @@ impl<K: Compliance> ContactSolver<K> {
         if residual > opts.tolerance || self.certificate(p, approach) > opts.tolerance {
             return Err((approach, residual));
         }
-        let mut sol = self.finish(std::mem::take(p), approach, iterations, residual);
-        sol.restricted = true;
+        let mut sol = self.finish(std::mem::take(p), approach, tally.iterations, residual);
+        sol.path = path;
+        sol.single_iterations = tally.single;
+        sol.stencil_iterations = tally.stencil;
         Ok(sol)
     }
 }

@@ -115,7 +115,7 @@ impl<K: Compliance> ContactSolver<K> {
     /// then runs as without it).
     pub(super) fn nested_start(&mut self, p: &mut [f64], force: f64, opts: &SolverOptions) -> bool {
         let (nx, ny) = (self.op.nx(), self.op.ny());
-        if !self.nested
+        if !opts.paths.nested_start
             || nx < self.nested_min
             || ny < self.nested_min
             || self.domain_cells != self.op.cells()

@@ -22,8 +22,10 @@
 //! would exceed [`MAX_FRACTION`] of the grid's cells, or a round that does not
 //! converge, gives the attempt up (the next path runs from its own start).
 
+use super::iteration::Start;
+use super::restricted::Tally;
 use super::restricted::{round_options, LOOSE};
-use super::{ContactSolver, Solution, SolverOptions};
+use super::{ContactSolver, Path, Solution, SolverOptions};
 use crate::operator::{Compliance, NonPeriodicHalfSpace};
 use rayon::prelude::*;
 
@@ -113,7 +115,7 @@ impl<K: Compliance> ContactSolver<K> {
             let s: f64 = p.iter().sum::<f64>() * self.op.cell_area();
             p.par_iter_mut().for_each(|v| *v *= f / s);
         }
-        let mut iterations = 0;
+        let mut tally = Tally::default();
         // At a prescribed approach the contact lies inside the start's overlap (K has a
         // positive kernel: no displacement below the surface's level), so the first
         // window holds it and its round solves to the tolerance at once.
@@ -132,12 +134,18 @@ impl<K: Compliance> ContactSolver<K> {
                 inner = Some((win, self.on_window(op, win)));
             }
             let (_, solver) = inner.as_mut()?;
-            let inner_opts = round_options(opts, tight, iterations);
+            let inner_opts = round_options(opts, tight, tally.iterations);
             let start = gather(&p, nx, win);
             let sol = solver
-                .iterate(start, target_force, fixed_approach, &inner_opts, false)
+                .iterate(
+                    start,
+                    target_force,
+                    fixed_approach,
+                    &inner_opts,
+                    Start::default(),
+                )
                 .ok()?;
-            iterations += sol.iterations;
+            tally.add(&sol);
             scatter(&mut p, nx, win, &sol.pressure);
             // The interpenetrating cells outside the window, and the criterion: by direct
             // sums where they pay (gaps_outside), else on the whole grid.
@@ -157,7 +165,7 @@ impl<K: Compliance> ContactSolver<K> {
                         &mut p,
                         target_force,
                         fixed_approach,
-                        iterations,
+                        (&tally, Path::Window),
                         opts,
                     ) {
                         Ok(sol) => return Some(sol),

@@ -1,8 +1,6 @@
 //! Surfaces and measures shared by the solver's tests.
 #![allow(dead_code, clippy::needless_range_loop)]
 
-use bem3d::operator::HalfSpace;
-use bem3d::{Compliance, Operand, Spectral};
 use std::f64::consts::PI;
 
 pub fn rel(a: f64, b: f64) -> f64 {
@@ -228,55 +226,6 @@ pub fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
         .zip(b)
         .map(|(x, y)| (x - y).abs())
         .fold(0.0, f64::max)
-}
-
-/// An operator without windows, and without a real-space table unless `table`: the
-/// solver then cannot restrict it to a window (nor to a candidate set), the independent
-/// path for the restricted solves.
-pub struct Unrestricted<K> {
-    op: K,
-    table: bool,
-}
-
-/// Always the full-grid iteration.
-pub fn full_grid_only<K>(op: K) -> Unrestricted<K> {
-    Unrestricted { op, table: false }
-}
-
-/// No windows, but candidate sets.
-pub fn no_window<K>(op: K) -> Unrestricted<K> {
-    Unrestricted { op, table: true }
-}
-
-impl<K: Compliance> Compliance for Unrestricted<K> {
-    fn half_space(&self) -> &HalfSpace {
-        self.op.half_space()
-    }
-    fn is_periodic(&self) -> bool {
-        self.op.is_periodic()
-    }
-    fn apply(&mut self, p: &[f64], u: &mut [f64]) {
-        self.op.apply(p, u)
-    }
-    fn add_point_loads(&mut self, loads: &[(usize, f64)], u: &mut [f64]) {
-        self.op.add_point_loads(loads, u)
-    }
-    fn point_load_limit(&self) -> usize {
-        self.op.point_load_limit()
-    }
-    fn restricted(&self, cells: &[usize], buffer: Vec<f64>) -> Option<Vec<f64>> {
-        self.op.restricted(cells, buffer).filter(|_| self.table)
-    }
-    fn precondition(&mut self, g: &mut [f64]) {
-        self.op.precondition(g)
-    }
-    fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
-        self.op.spectral(which)
-    }
-    fn coarse(&self) -> Option<Self> {
-        let table = self.table;
-        self.op.coarse().map(|op| Unrestricted { op, table })
-    }
 }
 
 /// `f` on a rayon pool of `threads` threads (for the thread-count determinism tests).

@@ -100,7 +100,7 @@ fn the_certificate_bounds_the_pressure_error_on_every_path() {
             None,
             &format!("periodic rough, mean pressure {pm}"),
         );
-        assert_eq!(a.restricted, restricted, "path at mean pressure {pm}");
+        assert_eq!(a.restricted(), restricted, "path at mean pressure {pm}");
     }
     // Under displacement control too (against the force-controlled answer at the force
     // reached).
@@ -119,7 +119,7 @@ fn the_certificate_bounds_the_pressure_error_on_every_path() {
     // A sphere on the free half-space: a window around its compact contact.
     let ball = sphere(n, 1.0, 1.0);
     let a = check(free, &ball, Load::Force(1e-3), None, "sphere");
-    assert!(a.restricted, "the sphere's solve takes a window");
+    assert!(a.restricted(), "the sphere's solve takes a window");
     check(free, &rough, Load::MeanPressure(1e-2), None, "free rough");
 }
 

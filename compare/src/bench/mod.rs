@@ -240,7 +240,7 @@ pub fn run_bem_case(
                 .map_err(written)?;
         }
         writeln!(w, "RESULT kind={kind} n={n} time={t:e} iterations={} pair={pair:e} k={k_time:e} m={m_time:e} mem={:.1} base_mem={base_mem:.1} err_pressure_l2={:e} err_approach={:e} area={:e} restricted={}",
-            sol.iterations, mem, (num / den).sqrt(), ((sol.approach - refsol.approach) / refsol.approach).abs(), sol.contact_area, sol.restricted as u8).map_err(stdout)?;
+            sol.iterations, mem, (num / den).sqrt(), ((sol.approach - refsol.approach) / refsol.approach).abs(), sol.contact_area, sol.restricted() as u8).map_err(stdout)?;
         return Ok(());
     } else {
         let (a, r) = (0.25, 1.0);
@@ -268,7 +268,7 @@ pub fn run_bem_case(
         (t, sol, err)
     };
     writeln!(w, "RESULT kind=hertz n={n} time={t:e} iterations={} pair={pair:e} k={k_time:e} m={m_time:e} mem={:.1} base_mem={base_mem:.1} err_peak={:e} err_approach={:e} restricted={}",
-        sol.iterations, peak_memory_mib().unwrap_or(0.0), err.0, err.1, sol.restricted as u8).map_err(stdout)?;
+        sol.iterations, peak_memory_mib().unwrap_or(0.0), err.0, err.1, sol.restricted() as u8).map_err(stdout)?;
     Ok(())
 }
 

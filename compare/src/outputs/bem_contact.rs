@@ -13,8 +13,8 @@ use crate::error::{Context as _, Result};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
 use bem3d::{
-    BemError, Compliance, ContactSolver, Load, NonPeriodicHalfSpace, PeriodicHalfSpace, Solution,
-    SolverOptions,
+    BemError, Compliance, ContactSolver, Load, NonPeriodicHalfSpace, Path, PeriodicHalfSpace,
+    Solution, SolverOptions,
 };
 use mrd::topography::HeightMap;
 use serde::Deserialize;
@@ -206,12 +206,16 @@ impl Output for BemContact {
             "residual [1]".into(),
             "certificate [1]".into(),
             "converged [0/1]".into(),
+            "path [0 full grid/1 window/2 candidate set]".into(),
+            "nested_start [0/1]".into(),
+            "single_precision_iterations [count]".into(),
+            "stencil_iterations [count]".into(),
         ]);
         let mut t = Table::new("bem_contact", &cols);
         t.missing_ok = true;
         t.infinite_ok = true;
         t.notes.push(format!(
-            "{} {ny} x {nx} map from {} over {lx} x {ly}; E* = {e}; tolerance {:e} (criterion: bem3d::solver docs){}; certificate: bound of the energy's duality gap over F h_rms, at most the tolerance when converged (then the pressure error in the norm of K, (p - p*).K(p - p*), is at most 2 x tolerance x F x h_rms; bem3d::solver docs); converged = 0: the last iterate at max_iterations; iterations of restricted solves count iterations on a window around a compact contact (non-periodic) or applications of a dense K between a small candidate set (few contact cells; bem3d::solver docs)",
+            "{} {ny} x {nx} map from {} over {lx} x {ly}; E* = {e}; tolerance {:e} (criterion: bem3d::solver docs){}; certificate: bound of the energy's duality gap over F h_rms, at most the tolerance when converged (then the pressure error in the norm of K, (p - p*).K(p - p*), is at most 2 x tolerance x F x h_rms; bem3d::solver docs); converged = 0: the last iterate at max_iterations; iterations of restricted solves count iterations on a window around a compact contact (non-periodic) or applications of a dense K between a small candidate set (few contact cells; bem3d::solver docs); path, nested_start, single_precision_iterations (of iterations, those with K p carried in single precision) and stencil_iterations (those with the preconditioner applied by its stencil): the strategies the solve took (bem3d::Solution)",
             if self.periodic { "periodic" } else { "non-periodic" },
             path.display(),
             self.tolerance,
@@ -233,6 +237,14 @@ impl Output for BemContact {
                 sol.residual,
                 sol.certificate,
                 s.converged as u8 as f64,
+                match sol.path {
+                    Path::FullGrid => 0.0,
+                    Path::Window => 1.0,
+                    Path::CandidateSet => 2.0,
+                },
+                sol.nested_start as u8 as f64,
+                sol.single_iterations as f64,
+                sol.stencil_iterations as f64,
             ]);
             t.push(row);
             if self.fields {

@@ -71,6 +71,18 @@ class ContactResult:
         on the non-periodic half-space (`iterations` then count iterations on the
         window), or a small candidate set at low contact fractions (`iterations` then
         count applications of a dense K between its cells)."""
+    @property
+    def path(self) -> str:
+        """The path the solve took: "full grid", "window" or "candidate set"."""
+    @property
+    def nested_start(self) -> bool:
+        """Started from the solution on the grid coarsened 2 x 2."""
+    @property
+    def single_precision_iterations(self) -> int:
+        """Of `iterations`, those with K p carried in single precision."""
+    @property
+    def stencil_iterations(self) -> int:
+        """Of `iterations`, those with the preconditioner applied by its stencil."""
 
 class Contact:
     """Frictionless normal contact of a rigid rough surface on an elastic half-space
