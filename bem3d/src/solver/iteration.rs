@@ -37,83 +37,6 @@ pub(super) enum Refresh<'a> {
 }
 
 impl<K: Compliance> ContactSolver<K> {
-    /// Pass A: brings `w` up to date (`refresh`, then the pending force rescale of p
-    /// and K p), marks the contact set (p > 0) in `active` and its rows in `rows_on`, and
-    /// sums `w - offset` and the cell count over it. p is read in the rows `rows_p`
-    /// marks only.
-    pub(super) fn pass_a(
-        &mut self,
-        p: &mut [f64],
-        scale: f64,
-        refresh: Refresh,
-        offset: f64,
-    ) -> [f64; 2] {
-        let (nx, ch) = (self.op.nx(), self.chunk());
-        let (loads, add_z) = match refresh {
-            Refresh::Loads(l) => (l, 0.0),
-            Refresh::AddZ => (&[][..], 1.0),
-        };
-        if !loads.is_empty() {
-            self.op.add_point_loads(loads, &mut self.w);
-        }
-        // w = K p + z before, scale K p + z after (with add_z: w = K p before).
-        let zf = 1.0 - scale * (1.0 - add_z);
-        reduce(
-            (
-                p.par_chunks_mut(ch),
-                self.z.par_chunks(ch),
-                self.w.par_chunks_mut(ch),
-                self.active.par_chunks_mut(ch),
-                self.rows_p.par_chunks(ch / nx),
-                self.rows_on.par_chunks_mut(ch / nx),
-            ),
-            |(p, z, w, act, with_p, on)| {
-                sweeps::rescale(p, z, w, act, (with_p, on, nx), (scale, zf), offset)
-            },
-            None,
-        )
-    }
-
-    /// The second half of a fresh `K p` (in `k_op`'s precision) whose input is loaded:
-    /// K p into `w` (pass A then adds z).
-    pub(super) fn finish_into_w(&mut self, k_op: Operand) {
-        let fc = ROWS_PER_CHUNK * self.op.nx();
-        finish_fused(
-            &mut self.op,
-            k_op,
-            &mut self.fallback,
-            self.w.par_chunks_mut(fc),
-            copy_out,
-            None,
-        );
-    }
-
-    /// Reads the changes pass D wrote to `r` in the chunks whose sums (`parts`, per
-    /// chunk: total, changed cells, ...) count any, appending them to `loads` when
-    /// given, and sets them back to zero (r is zero between passes).
-    pub(super) fn take_changes(
-        &mut self,
-        parts: &[[f64; 3]],
-        mut loads: Option<&mut Vec<(usize, f64)>>,
-    ) {
-        let fc = ROWS_PER_CHUNK * self.op.nx();
-        for (b, part) in parts.iter().enumerate() {
-            if part[1] == 0.0 {
-                continue;
-            }
-            let start = b * fc;
-            let end = (start + fc).min(self.r.len());
-            for (i, r) in self.r[start..end].iter_mut().enumerate() {
-                if *r != 0.0 {
-                    if let Some(l) = loads.as_deref_mut() {
-                        l.push((start + i, *r));
-                    }
-                    *r = 0.0;
-                }
-            }
-        }
-    }
-
     /// The projected, preconditioned conjugate-gradient iteration from the pressure `p`
     /// (on the domain, meeting the load), under force control (`target_force`) or at
     /// the approach `fixed_approach`. One iteration, in order:
@@ -605,6 +528,79 @@ impl<K: Compliance> ContactSolver<K> {
             st.exact = false;
         }
         parts
+    }
+
+    /// Pass A: brings `w` up to date (`refresh`, then the pending force rescale of p
+    /// and K p), marks the contact set (p > 0) in `active` and its rows in `rows_on`, and
+    /// sums `w - offset` and the cell count over it. p is read in the rows `rows_p`
+    /// marks only.
+    pub(super) fn pass_a(
+        &mut self,
+        p: &mut [f64],
+        scale: f64,
+        refresh: Refresh,
+        offset: f64,
+    ) -> [f64; 2] {
+        let (nx, ch) = (self.op.nx(), self.chunk());
+        let (loads, add_z) = match refresh {
+            Refresh::Loads(l) => (l, 0.0),
+            Refresh::AddZ => (&[][..], 1.0),
+        };
+        if !loads.is_empty() {
+            self.op.add_point_loads(loads, &mut self.w);
+        }
+        // w = K p + z before, scale K p + z after (with add_z: w = K p before).
+        let zf = 1.0 - scale * (1.0 - add_z);
+        reduce(
+            (
+                p.par_chunks_mut(ch),
+                self.z.par_chunks(ch),
+                self.w.par_chunks_mut(ch),
+                self.active.par_chunks_mut(ch),
+                self.rows_p.par_chunks(ch / nx),
+                self.rows_on.par_chunks_mut(ch / nx),
+            ),
+            |(p, z, w, act, with_p, on)| {
+                sweeps::rescale(p, z, w, act, (with_p, on, nx), (scale, zf), offset)
+            },
+            None,
+        )
+    }
+
+    /// The second half of a fresh `K p` (in `k_op`'s precision) whose input is loaded:
+    /// K p into `w` (pass A then adds z).
+    fn finish_into_w(&mut self, k_op: Operand) {
+        let fc = ROWS_PER_CHUNK * self.op.nx();
+        finish_fused(
+            &mut self.op,
+            k_op,
+            &mut self.fallback,
+            self.w.par_chunks_mut(fc),
+            copy_out,
+            None,
+        );
+    }
+
+    /// Reads the changes pass D wrote to `r` in the chunks whose sums (`parts`, per
+    /// chunk: total, changed cells, ...) count any, appending them to `loads` when
+    /// given, and sets them back to zero (r is zero between passes).
+    fn take_changes(&mut self, parts: &[[f64; 3]], mut loads: Option<&mut Vec<(usize, f64)>>) {
+        let fc = ROWS_PER_CHUNK * self.op.nx();
+        for (b, part) in parts.iter().enumerate() {
+            if part[1] == 0.0 {
+                continue;
+            }
+            let start = b * fc;
+            let end = (start + fc).min(self.r.len());
+            for (i, r) in self.r[start..end].iter_mut().enumerate() {
+                if *r != 0.0 {
+                    if let Some(l) = loads.as_deref_mut() {
+                        l.push((start + i, *r));
+                    }
+                    *r = 0.0;
+                }
+            }
+        }
     }
 
     /// The iteration cap reached: the last iterate, on a fresh `K p`, inside
