@@ -43,8 +43,10 @@ def main():
             matplotlib.use("Agg")
             import matplotlib.pyplot as plt
         except ImportError:
-            print("matplotlib is not installed: no plot")
-            return
+            raise SystemExit(
+                f"--plot {args.plot}: matplotlib is not installed; install it with "
+                "pip install './python[plot]' (or pip install matplotlib)"
+            )
         fig, ax = plt.subplots(figsize=(5, 4.3))
         im = ax.imshow(r.pressure / e_star, origin="lower", extent=(0, length, 0, length),
                        cmap="magma")
