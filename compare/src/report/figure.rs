@@ -49,6 +49,9 @@ pub struct Figure {
     pub series: Vec<Series>,
     pub log_x: bool,
     pub log_y: bool,
+    /// Where the x axis is labelled, when the data sit at a few chosen values (e.g. the
+    /// bandwidths of a study); None: evenly by the axis' span.
+    pub x_keys: Option<Vec<f64>>,
 }
 
 impl Figure {
@@ -61,6 +64,7 @@ impl Figure {
             series: Vec::new(),
             log_x: false,
             log_y: false,
+            x_keys: None,
         }
     }
     pub fn with(mut self, s: Series) -> Self {

@@ -316,13 +316,21 @@ pub fn render(fig: &Figure, path: &Path) -> Result<()> {
     let root = BitMapBackend::new(path, (1000, 680)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| plot_err(path, e))?;
     let (((x0, x1), (y0, y1)), corner) = layout(fig);
+    let x_keys = match &fig.x_keys {
+        Some(keys) => keys
+            .iter()
+            .copied()
+            .filter(|v| (x0..=x1).contains(v))
+            .collect(),
+        None => log_keys(x0, x1),
+    };
     match (fig.log_x, fig.log_y) {
         (false, false) => draw_with!(root, fig, path, x0..x1, y0..y1, corner),
         (true, false) => draw_with!(
             root,
             fig,
             path,
-            (x0..x1).log_scale().with_key_points(log_keys(x0, x1)),
+            (x0..x1).log_scale().with_key_points(x_keys),
             y0..y1,
             corner
         ),
@@ -338,7 +346,7 @@ pub fn render(fig: &Figure, path: &Path) -> Result<()> {
             root,
             fig,
             path,
-            (x0..x1).log_scale().with_key_points(log_keys(x0, x1)),
+            (x0..x1).log_scale().with_key_points(x_keys),
             (y0..y1).log_scale().with_key_points(log_keys(y0, y1)),
             corner
         ),
