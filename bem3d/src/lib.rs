@@ -21,8 +21,8 @@ pub mod solution;
 pub mod solver;
 pub mod stencil;
 pub use operator::{
-    Compliance, DenseCompliance, NonPeriodicHalfSpace, Operand, PeriodicHalfSpace, Precision,
-    Spectral, Transform,
+    Compliance, DenseCompliance, GridForms, NonPeriodicHalfSpace, Operand, PeriodicHalfSpace,
+    Precision, Preconditioner, RealSpace, SolverOperator, Spectral, Transform,
 };
 pub use sliding::{SlidingContact, SlidingSolution};
 pub use solver::{

@@ -169,7 +169,7 @@ impl Stiffness {
     }
 
     /// M's stencil on the grid `dims`, made into `local` on first use
-    /// ([`Compliance::local_stiffness`]).
+    /// ([`Preconditioner::local_stiffness`]).
     fn stencil<'a>(
         &self,
         local: &'a OnceLock<Option<Stencil>>,
@@ -212,7 +212,9 @@ impl Stiffness {
     }
 }
 
-/// A linear surface compliance operator.
+/// An elastic half-space's compliance on a grid: `u = K p`, the grid's sizes, and K's
+/// spectral form where it is a convolution (what an operator is; what the solver's
+/// strategies need besides is in [`Preconditioner`], [`RealSpace`] and [`GridForms`]).
 pub trait Compliance: Send {
     fn half_space(&self) -> &HalfSpace;
     /// Periodic operators have no defined mean displacement (the k = 0 mode is left to
@@ -238,17 +240,6 @@ pub trait Compliance: Send {
     fn cells(&self) -> usize {
         self.nx() * self.ny()
     }
-    /// `u += K q` for a pressure `q` that is zero except at the listed `(cell, value)`
-    /// loads. The default builds `q` and applies `K`.
-    fn add_point_loads(&mut self, loads: &[(usize, f64)], u: &mut [f64]) {
-        let mut q = vec![0.0; self.cells()];
-        for &(c, v) in loads {
-            q[c] += v;
-        }
-        let mut ku = vec![0.0; self.cells()];
-        self.apply(&q, &mut ku);
-        u.iter_mut().zip(&ku).for_each(|(a, b)| *a += b);
-    }
     /// `u = K p` with K's products in single precision where the operator has such a
     /// form without transforms (a dense matrix's copy); the default applies K. The
     /// solver's fused applications of [`Operand::ComplianceSingle`] on an operator
@@ -268,7 +259,49 @@ pub trait Compliance: Send {
             })
         )
     }
-    /// Most loads for which [`Self::add_point_loads`] costs less than [`Self::apply`]
+    /// The transform and symbol that apply K or M as one convolution, if the operator
+    /// is one (the solver then fuses its sweeps into the transform's row passes).
+    fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
+        let _ = which;
+        None
+    }
+    fn cell_area(&self) -> f64 {
+        self.lx() * self.ly() / self.cells() as f64
+    }
+}
+
+/// An approximate inverse M of K for the solver's search directions (the defaults: the
+/// identity, no stencil, which leave the iteration plain Polonsky-Keer).
+pub trait Preconditioner: Compliance {
+    /// Preconditioner, in place: `g <- M g` with M an approximate inverse of K (a
+    /// surface stiffness). The default, the identity, leaves the solver plain
+    /// Polonsky-Keer.
+    fn precondition(&mut self, g: &mut [f64]) {
+        let _ = g;
+    }
+    /// M's convolution kernel near its centre ([`Stencil`]: the same M as
+    /// [`Self::precondition`], truncated), for small contact sets; None if M is no
+    /// convolution on this grid (the default) or the grid is smaller than the stencil.
+    fn local_stiffness(&mut self) -> Option<&Stencil> {
+        None
+    }
+}
+
+/// K by direct sums over its real-space table: point loads, K between a few cells (the
+/// candidate-set path) and at a few cells (the defaults: none, through `apply`).
+pub trait RealSpace: Compliance {
+    /// `u += K q` for a pressure `q` that is zero except at the listed `(cell, value)`
+    /// loads. The default builds `q` and applies `K`.
+    fn add_point_loads(&mut self, loads: &[(usize, f64)], u: &mut [f64]) {
+        let mut q = vec![0.0; self.cells()];
+        for &(c, v) in loads {
+            q[c] += v;
+        }
+        let mut ku = vec![0.0; self.cells()];
+        self.apply(&q, &mut ku);
+        u.iter_mut().zip(&ku).for_each(|(a, b)| *a += b);
+    }
+    /// Most loads for which [`Self::add_point_loads`] costs less than [`Compliance::apply`]
     /// (0: never).
     fn point_load_limit(&self) -> usize {
         0
@@ -289,6 +322,11 @@ pub trait Compliance: Send {
         let _ = (at, loads);
         None
     }
+}
+
+/// The same half-space on another grid: a window of this one, or the grid coarsened
+/// 2 x 2 (the window path and the nested start; the defaults: none).
+pub trait GridForms: Compliance {
     /// The same half-space on a window of `wx x wy` cells of this grid (same cells and
     /// modulus): between cells of the window K is then the same (up to rounding), for
     /// solves restricted to a window that holds the whole contact; None if the operator
@@ -306,28 +344,13 @@ pub trait Compliance: Send {
     {
         None
     }
-    /// Preconditioner, in place: `g <- M g` with M an approximate inverse of K (a
-    /// surface stiffness). The default, the identity, leaves the solver plain
-    /// Polonsky-Keer.
-    fn precondition(&mut self, g: &mut [f64]) {
-        let _ = g;
-    }
-    /// The transform and symbol that apply K or M as one convolution, if the operator
-    /// is one (the solver then fuses its sweeps into the transform's row passes).
-    fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
-        let _ = which;
-        None
-    }
-    /// M's convolution kernel near its centre ([`Stencil`]: the same M as
-    /// [`Self::precondition`], truncated), for small contact sets; None if M is no
-    /// convolution on this grid (the default) or the grid is smaller than the stencil.
-    fn local_stiffness(&mut self) -> Option<&Stencil> {
-        None
-    }
-    fn cell_area(&self) -> f64 {
-        self.lx() * self.ly() / self.cells() as f64
-    }
 }
+
+/// Everything the contact solver asks of an operator (implemented for every type with
+/// the four traits).
+pub trait SolverOperator: Compliance + Preconditioner + RealSpace + GridForms {}
+
+impl<T: Compliance + Preconditioner + RealSpace + GridForms> SolverOperator for T {}
 
 /// Periodic half-space: spectral Green's function, surface stiffness E* |k| / 2
 /// (Stanley & Kato 1997), so `u_hat = 2 p_hat / (E* |k|)` for k != 0 and 0 for k = 0.
@@ -509,10 +532,6 @@ impl Compliance for PeriodicHalfSpace {
     fn half_space(&self) -> &HalfSpace {
         &self.hs
     }
-    fn coarse(&self) -> Option<Self> {
-        let hs = halved(&self.hs)?;
-        Some(Self::new(hs.nx, hs.ny, hs.lx, hs.ly, hs.e_star))
-    }
     fn is_periodic(&self) -> bool {
         true
     }
@@ -520,6 +539,29 @@ impl Compliance for PeriodicHalfSpace {
         let dims = (self.hs.nx, self.hs.ny);
         self.fft.convolve(p, dims, &self.kernel, u);
     }
+    fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
+        let dims = (self.hs.nx, self.hs.ny);
+        Some(
+            self.stiffness
+                .pair(which, (&mut self.fft, &self.kernel), dims),
+        )
+    }
+}
+
+impl Preconditioner for PeriodicHalfSpace {
+    /// The exact inverse of K on mean-free fields (Vollebregt 2014 uses the same idea:
+    /// an FFT-based approximate inverse, restricted by the solver to the contact set).
+    fn precondition(&mut self, g: &mut [f64]) {
+        let dims = (self.hs.nx, self.hs.ny);
+        self.stiffness.apply(g, dims);
+    }
+    fn local_stiffness(&mut self) -> Option<&Stencil> {
+        self.stiffness
+            .stencil(&self.local, (self.hs.nx, self.hs.ny))
+    }
+}
+
+impl RealSpace for PeriodicHalfSpace {
     fn add_point_loads(&mut self, loads: &[(usize, f64)], u: &mut [f64]) {
         self.table.add_point_loads(self.hs.nx, loads, u);
     }
@@ -532,22 +574,12 @@ impl Compliance for PeriodicHalfSpace {
     fn point_load_limit(&self) -> usize {
         POINT_LOAD_LIMIT
     }
-    /// The exact inverse of K on mean-free fields (Vollebregt 2014 uses the same idea:
-    /// an FFT-based approximate inverse, restricted by the solver to the contact set).
-    fn precondition(&mut self, g: &mut [f64]) {
-        let dims = (self.hs.nx, self.hs.ny);
-        self.stiffness.apply(g, dims);
-    }
-    fn local_stiffness(&mut self) -> Option<&Stencil> {
-        self.stiffness
-            .stencil(&self.local, (self.hs.nx, self.hs.ny))
-    }
-    fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
-        let dims = (self.hs.nx, self.hs.ny);
-        Some(
-            self.stiffness
-                .pair(which, (&mut self.fft, &self.kernel), dims),
-        )
+}
+
+impl GridForms for PeriodicHalfSpace {
+    fn coarse(&self) -> Option<Self> {
+        let hs = halved(&self.hs)?;
+        Some(Self::new(hs.nx, hs.ny, hs.lx, hs.ly, hs.e_star))
     }
 }
 
@@ -560,8 +592,8 @@ const POINT_LOAD_LIMIT: usize = 48;
 
 /// A real-space influence table: the response at cell `(i, j)` of a grid of row length
 /// `nx` to a unit load at cell `(ic, jc)`, by value or by row. The direct sums
-/// ([`Compliance::restricted`], [`Compliance::displacements_at`],
-/// [`Compliance::add_point_loads`]) read it.
+/// ([`RealSpace::restricted`], [`RealSpace::displacements_at`],
+/// [`RealSpace::add_point_loads`]) read it.
 trait Table: Sync {
     /// The response at `(i, j)` to a load at `(ic, jc)`.
     fn value(&self, cell: (usize, usize), load: (usize, usize)) -> f64;
@@ -571,7 +603,7 @@ trait Table: Sync {
     fn row(&self, nx: usize, j: usize, load: (usize, usize)) -> (&[f64], &[f64]);
 
     /// The table between the listed cells of a grid of row length `nx`: a dense
-    /// row-major matrix (see [`Compliance::restricted`]), in `m`'s storage. Every entry
+    /// row-major matrix (see [`RealSpace::restricted`]), in `m`'s storage. Every entry
     /// is written by the rows' fill (in parallel, so a fresh matrix's pages are mapped
     /// by both threads); resizing a reused buffer writes only what it grows by.
     fn restricted(&self, nx: usize, cells: &[usize], mut m: Vec<f64>) -> Vec<f64> {
@@ -591,7 +623,7 @@ trait Table: Sync {
     }
 
     /// The sums over `loads` at the cells `at` only (see
-    /// [`Compliance::displacements_at`]), on a grid of row length `nx`.
+    /// [`RealSpace::displacements_at`]), on a grid of row length `nx`.
     fn displacements_at(&self, nx: usize, at: &[usize], loads: &[(usize, f64)]) -> Vec<f64> {
         let src: Vec<((usize, usize), f64)> =
             loads.iter().map(|&(c, v)| ((c % nx, c / nx), v)).collect();
@@ -824,10 +856,6 @@ impl Compliance for NonPeriodicHalfSpace {
     fn half_space(&self) -> &HalfSpace {
         &self.hs
     }
-    fn coarse(&self) -> Option<Self> {
-        let hs = halved(&self.hs)?;
-        Some(Self::new(hs.nx, hs.ny, hs.lx, hs.ly, hs.e_star))
-    }
     fn is_periodic(&self) -> bool {
         false
     }
@@ -837,49 +865,6 @@ impl Compliance for NonPeriodicHalfSpace {
         // back (the rest carries wrap-around values).
         let (nx, ny) = (self.hs.nx, self.hs.ny);
         self.fft.convolve(p, (nx, ny), &self.kernel, u);
-    }
-    fn add_point_loads(&mut self, loads: &[(usize, f64)], u: &mut [f64]) {
-        self.table.add_point_loads(self.hs.nx, loads, u);
-    }
-    fn restricted(&self, cells: &[usize], buffer: Vec<f64>) -> Option<Vec<f64>> {
-        Some(self.table.restricted(self.hs.nx, cells, buffer))
-    }
-    fn displacements_at(&self, at: &[usize], loads: &[(usize, f64)]) -> Option<Vec<f64>> {
-        Some(self.table.displacements_at(self.hs.nx, at, loads))
-    }
-    /// Love's coefficients of the window's offsets, copied from this grid's table.
-    fn window(&self, wx: usize, wy: usize) -> Option<NonPeriodicHalfSpace> {
-        let hs = self.hs;
-        if wx == 0 || wy == 0 || wx > hs.nx || wy > hs.ny {
-            return None;
-        }
-        let (hx, hy) = (hs.lx / hs.nx as f64, hs.ly / hs.ny as f64);
-        let window = HalfSpace {
-            nx: wx,
-            ny: wy,
-            lx: wx as f64 * hx,
-            ly: wy as f64 * hy,
-            e_star: hs.e_star,
-        };
-        let table = Mirrored::new(wx, wy, |i, j| self.table.offsets(j)[hs.nx - 1 + i]);
-        let precision = self.stiffness.precision();
-        Some(NonPeriodicHalfSpace::from_table(window, table, precision))
-    }
-    fn point_load_limit(&self) -> usize {
-        // A direct sum runs over the n cells, the transforms over the 4n padded ones
-        // (measured break-even 103, 227 and 191 loads at 256^2, 512^2, 1024^2).
-        3 * POINT_LOAD_LIMIT
-    }
-    /// The periodic stiffness of the unpadded grid: K's inverse up to the coupling
-    /// across the boundary, which the padding removes from K but not from M (a
-    /// quarter of the cost of an application of K).
-    fn precondition(&mut self, g: &mut [f64]) {
-        let dims = (self.hs.nx, self.hs.ny);
-        self.stiffness.apply(g, dims);
-    }
-    fn local_stiffness(&mut self) -> Option<&Stencil> {
-        self.stiffness
-            .stencil(&self.local, (self.hs.nx, self.hs.ny))
     }
     fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
         let dims = (self.hs.nx, self.hs.ny);
@@ -901,6 +886,62 @@ impl Compliance for NonPeriodicHalfSpace {
             self.stiffness
                 .pair(which, (&mut self.fft, &self.kernel), dims),
         )
+    }
+}
+
+impl Preconditioner for NonPeriodicHalfSpace {
+    /// The periodic stiffness of the unpadded grid: K's inverse up to the coupling
+    /// across the boundary, which the padding removes from K but not from M (a
+    /// quarter of the cost of an application of K).
+    fn precondition(&mut self, g: &mut [f64]) {
+        let dims = (self.hs.nx, self.hs.ny);
+        self.stiffness.apply(g, dims);
+    }
+    fn local_stiffness(&mut self) -> Option<&Stencil> {
+        self.stiffness
+            .stencil(&self.local, (self.hs.nx, self.hs.ny))
+    }
+}
+
+impl RealSpace for NonPeriodicHalfSpace {
+    fn add_point_loads(&mut self, loads: &[(usize, f64)], u: &mut [f64]) {
+        self.table.add_point_loads(self.hs.nx, loads, u);
+    }
+    fn restricted(&self, cells: &[usize], buffer: Vec<f64>) -> Option<Vec<f64>> {
+        Some(self.table.restricted(self.hs.nx, cells, buffer))
+    }
+    fn displacements_at(&self, at: &[usize], loads: &[(usize, f64)]) -> Option<Vec<f64>> {
+        Some(self.table.displacements_at(self.hs.nx, at, loads))
+    }
+    fn point_load_limit(&self) -> usize {
+        // A direct sum runs over the n cells, the transforms over the 4n padded ones
+        // (measured break-even 103, 227 and 191 loads at 256^2, 512^2, 1024^2).
+        3 * POINT_LOAD_LIMIT
+    }
+}
+
+impl GridForms for NonPeriodicHalfSpace {
+    fn coarse(&self) -> Option<Self> {
+        let hs = halved(&self.hs)?;
+        Some(Self::new(hs.nx, hs.ny, hs.lx, hs.ly, hs.e_star))
+    }
+    /// Love's coefficients of the window's offsets, copied from this grid's table.
+    fn window(&self, wx: usize, wy: usize) -> Option<NonPeriodicHalfSpace> {
+        let hs = self.hs;
+        if wx == 0 || wy == 0 || wx > hs.nx || wy > hs.ny {
+            return None;
+        }
+        let (hx, hy) = (hs.lx / hs.nx as f64, hs.ly / hs.ny as f64);
+        let window = HalfSpace {
+            nx: wx,
+            ny: wy,
+            lx: wx as f64 * hx,
+            ly: wy as f64 * hy,
+            e_star: hs.e_star,
+        };
+        let table = Mirrored::new(wx, wy, |i, j| self.table.offsets(j)[hs.nx - 1 + i]);
+        let precision = self.stiffness.precision();
+        Some(NonPeriodicHalfSpace::from_table(window, table, precision))
     }
 }
 
@@ -949,12 +990,12 @@ fn dense_product<T: Copy + Into<f64> + Sync>(matrix: &[T], p: &[f64], u: &mut [f
 }
 
 impl DenseCompliance {
-    /// `n` cells of size `hx x hy` in one row with the given row-major `n x n` matrix
-    /// (e.g. [`Compliance::restricted`] of a larger operator; crate-internal: the size
-    /// is asserted, not a user input), and its copy in single precision, written into
-    /// `single`'s storage (reused, e.g. the last such copy; contents do not matter):
-    /// the solver's K t then reads half the bytes
-    /// ([`Compliance::apply_single`]; `K p` stays in double precision).
+    /// `n` cells of size `hx x hy` in one row with the given row-major `n x n` matrix (e.g.
+    /// [`RealSpace::restricted`] of a larger operator; crate-internal: the size is
+    /// asserted, not a user input), and its copy in single precision, written into
+    /// `single`'s storage (reused, e.g. the last such copy; contents do not matter): the
+    /// solver's K t then reads half the bytes ([`Compliance::apply_single`]; `K p` stays in
+    /// double precision).
     pub(crate) fn from_matrix(
         n: usize,
         (hx, hy): (f64, f64),
@@ -1086,6 +1127,11 @@ impl Compliance for DenseCompliance {
     fn rounds_single(&mut self) -> bool {
         !self.single.is_empty()
     }
+}
+
+impl Preconditioner for DenseCompliance {}
+
+impl RealSpace for DenseCompliance {
     /// Row by row in parallel (each row's entries read in the loads' order, one row at
     /// a time in cache), each value summing the loads in list order as a column-wise
     /// sweep would: the same sums bit for bit, for any thread count. Column by column
@@ -1106,6 +1152,8 @@ impl Compliance for DenseCompliance {
         self.cells()
     }
 }
+
+impl GridForms for DenseCompliance {}
 
 #[cfg(test)]
 mod tests {
@@ -1150,7 +1198,7 @@ mod tests {
             let n = nx * ny;
             let loads = vec![(0, 1.5), (n - 1, -0.7), (nx - 1, 2.0), (n / 2 + 1, 0.3)];
             let ly = 0.8 * ny as f64 / nx as f64;
-            let ops: Vec<Box<dyn Compliance>> = vec![
+            let ops: Vec<Box<dyn RealSpace>> = vec![
                 Box::new(PeriodicHalfSpace::new(nx, ny, 1.0, 0.8, 2.0)),
                 Box::new(NonPeriodicHalfSpace::new(nx, ny, 1.0, 0.8, 2.0)),
                 // Square cells (square grids: the table built from a triangle).

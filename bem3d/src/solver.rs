@@ -17,19 +17,21 @@
 //! | `solver/tangent.rs` | the tangent stiffness dF/dd of a solved contact |
 //! | `solver/reference.rs` | the published Polonsky-Keer iteration, for tests and comparisons |
 //!
-//! The search direction is built from the preconditioned residual `[p > 0] M g`, with M
-//! the operator's approximate inverse ([`Compliance::precondition`]: the spectral
-//! stiffness E*|k|/2, an FFT-based preconditioner in the spirit of Vollebregt 2014, J.
-//! Comput. Phys. 257); it cuts the iterations 3-5x on rough surfaces. M only shapes the
-//! directions, so its transforms run in single precision ([`crate::Precision`]); the
-//! criterion is always evaluated on K in double precision, so the fixed point is the
+//! The search direction is built from the preconditioned residual `[p > 0] M g`, with M the
+//! operator's approximate inverse
+//! ([`Preconditioner::precondition`](crate::operator::Preconditioner::precondition): the
+//! spectral stiffness E*|k|/2, an FFT-based preconditioner in the spirit of Vollebregt
+//! 2014, J. Comput. Phys. 257); it cuts the iterations 3-5x on rough surfaces. M only
+//! shapes the directions, so its transforms run in single precision ([`crate::Precision`]);
+//! the criterion is always evaluated on K in double precision, so the fixed point is the
 //! same. K's transforms also run in single precision while the criterion is above
-//! `SINGLE_UNTIL` (1e-4, where the operator has them: [`Operand::ComplianceSingle`](crate::operator::Operand::ComplianceSingle));
-//! then `K p` is recomputed in double precision, again at `REFRESH_AGAIN` (1e-7) and
-//! before convergence is reported, while the direction's product `K t` stays in single
-//! precision (its rounding shrinks with the step). The direction t and M's output are
-//! stored in single precision; K's input, the update and `<q, t>` all read the stored t,
-//! so p and `K p` move consistently.
+//! `SINGLE_UNTIL` (1e-4, where the operator has them:
+//! [`Operand::ComplianceSingle`](crate::operator::Operand::ComplianceSingle)); then `K p`
+//! is recomputed in double precision, again at `REFRESH_AGAIN` (1e-7) and before
+//! convergence is reported, while the direction's product `K t` stays in single precision
+//! (its rounding shrinks with the step). The direction t and M's output are stored in
+//! single precision; K's input, the update and `<q, t>` all read the stored t, so p and
+//! `K p` move consistently.
 //!
 //! Each iteration applies K once (to the direction) and M once; `K p` is carried along
 //! (see [`ContactSolver::solve`]). The sweeps that produce the transforms' inputs or
@@ -102,30 +104,30 @@
 //! `A/A0 ~ 2 p / (E* h')`, capped at the whole domain; uniform when the heights have no
 //! slope (about half the iterations of the uniform start at 0.1-1 % contact).
 //!
-//! Nested start: a cold solve under force control on the full grid, with both sides
-//! even and at least `NESTED_MIN` (512) cells and no mask, first solves the same load
-//! on the grid coarsened 2 x 2 ([`Compliance::coarse`]; heights averaged over each
-//! coarse cell's four cells) to `NESTED_TOLERANCE` (1e-3), and starts from that
-//! pressure, each coarse cell's value on its four cells, instead of the overlap start
-//! (the coarse grid's solver is kept for later solves; its own cold start nests again
+//! Nested start: a cold solve under force control on the full grid, with both sides even
+//! and at least `NESTED_MIN` (512) cells and no mask, first solves the same load on the
+//! grid coarsened 2 x 2 ([`GridForms::coarse`](crate::operator::GridForms::coarse); heights
+//! averaged over each coarse cell's four cells) to `NESTED_TOLERANCE` (1e-3), and starts
+//! from that pressure, each coarse cell's value on its four cells, instead of the overlap
+//! start (the coarse grid's solver is kept for later solves; its own cold start nests again
 //! from `COARSE_NESTED_MIN`, 256 cells a side). It saves 10-20 % of the fine iterations
 //! from 512^2 up; below, the coarse solve costs more than it saves.
 //!
-//! Compact contacts on the non-periodic half-space (module `window`): a cold solve
-//! whose start (the overlap covering `3 p / (E* h')`, or the overlap at the prescribed
-//! approach) fits, with a margin, in a box of at most 0.7 of the grid runs the same
-//! iteration on that window, with the operator's own transforms at the window's size
-//! ([`Compliance::window`]), in rounds: solve on the window, apply K on the whole grid
-//! once, stop if the criterion holds there, else grow the window to the
-//! interpenetrating cells (a sphere at 1 % contact: 5-9x faster).
+//! Compact contacts on the non-periodic half-space (module `window`): a cold solve whose
+//! start (the overlap covering `3 p / (E* h')`, or the overlap at the prescribed approach)
+//! fits, with a margin, in a box of at most 0.7 of the grid runs the same iteration on that
+//! window, with the operator's own transforms at the window's size
+//! ([`GridForms::window`](crate::operator::GridForms::window)), in rounds: solve on the
+//! window, apply K on the whole grid once, stop if the criterion holds there, else grow the
+//! window to the interpenetrating cells (a sphere at 1 % contact: 5-9x faster).
 //!
-//! Small contact sets (module `restricted`): otherwise, a cold solve whose start set
-//! (the overlap covering `4 p / (E* h')`, or the overlap at the prescribed approach)
-//! holds at most `3 sqrt(N)` cells (and 4096) runs the same iteration restricted to a
-//! candidate set C, K between its cells a dense matrix from the operator's real-space
-//! table ([`Compliance::restricted`]), in rounds: solve on C, apply K on the whole grid
-//! once, stop if the criterion holds there, else add the interpenetrating cells outside
-//! C (rough surfaces at 0.1 % contact: 4-8x faster).
+//! Small contact sets (module `restricted`): otherwise, a cold solve whose start set (the
+//! overlap covering `4 p / (E* h')`, or the overlap at the prescribed approach) holds at
+//! most `3 sqrt(N)` cells (and 4096) runs the same iteration restricted to a candidate set
+//! C, K between its cells a dense matrix from the operator's real-space table
+//! ([`RealSpace::restricted`](crate::operator::RealSpace::restricted)), in rounds: solve on
+//! C, apply K on the whole grid once, stop if the criterion holds there, else add the
+//! interpenetrating cells outside C (rough surfaces at 0.1 % contact: 4-8x faster).
 //!
 //! Both are the same fixed point as the full iteration, checked on the full grid;
 //! [`Solution::path`] says which ran.
@@ -136,13 +138,14 @@
 //! Forbidding one changes the work, not the fixed point (tested path against path).
 //!
 //! M on small contact sets by its stencil: while the contact set holds at most
-//! `LOCAL_MAX_FRACTION` (2 %) of the grid's cells, the full iteration applies M as a
-//! sum over its kernel's values within a few cells of each contact cell
-//! ([`crate::stencil`], from the operator's [`Compliance::local_stiffness`]) instead
-//! of M's two transforms over the whole grid: y is needed on the contact cells only,
-//! and the residual is zero off them. The kernel decays like 1 / r^3, so the truncated
-//! M is another preconditioner, not the same one: the iterates differ, the fixed point
-//! does not.
+//! `LOCAL_MAX_FRACTION` (2 %) of the grid's cells, the full iteration applies M as a sum
+//! over its kernel's values within a few cells of each contact cell ([`crate::stencil`],
+//! from the operator's
+//! [`Preconditioner::local_stiffness`](crate::operator::Preconditioner::local_stiffness))
+//! instead of M's two transforms over the whole grid: y is needed on the contact cells
+//! only, and the residual is zero off them. The kernel decays like 1 / r^3, so the
+//! truncated M is another preconditioner, not the same one: the iterates differ, the fixed
+//! point does not.
 //!
 //! Warm starts: a previous [`Solution`] is used as the initial iterate only where it
 //! pays, i.e. for small load steps: force ratios in [0.9, 1.05] and approach ratios in
@@ -150,7 +153,7 @@
 //! `docs/solver.md`). Outside the window the solve starts cold.
 
 use crate::error::{BemError, Result};
-use crate::operator::Compliance;
+use crate::operator::SolverOperator;
 use rayon::prelude::*;
 
 mod convergence;
@@ -168,7 +171,7 @@ pub use crate::solution::{Path, Solution};
 pub use options::{Interrupt, Load, Paths, SolverOptions, MAX_LOAD, MAX_TOLERANCE};
 
 /// Solver for one height map on one operator; buffers are allocated once.
-pub struct ContactSolver<K: Compliance> {
+pub struct ContactSolver<K: SolverOperator> {
     op: K,
     z: Vec<f64>,
     /// 1 on cells that may touch, 0 elsewhere (numbers: the sweeps are branch-free).
@@ -242,7 +245,7 @@ fn warm_pays(warm: &Solution, load: Load, target_force: Option<f64>) -> bool {
     warm.force > 0.0 && warm.approach > 0.0 && window.contains(&ratio)
 }
 
-impl<K: Compliance> ContactSolver<K> {
+impl<K: SolverOperator> ContactSolver<K> {
     /// `heights` (`ny x nx`, peaks up, finite); `mask`: cells that may touch (None: all).
     pub fn new(op: K, heights: &[f64], mask: Option<Vec<bool>>) -> Result<Self> {
         // On the pool, as a solve (its parallel loops start in place).
@@ -417,10 +420,11 @@ impl<K: Compliance> ContactSolver<K> {
     ///
     /// Each iteration applies K once, to the conjugate direction t: `K p` moves by
     /// `-tau K t` and, where the projection clips a cell or re-admits an interpenetrating
-    /// one, by K of those few point changes (a direct real-space sum below the
-    /// operator's [`Compliance::point_load_limit`], a fresh `K p` above it). Before the
-    /// solver reports convergence, `K p` is recomputed from scratch and the criterion
-    /// re-evaluated, so rounding in the updates cannot pass for a solution.
+    /// one, by K of those few point changes (a direct real-space sum below the operator's
+    /// [`RealSpace::point_load_limit`](crate::operator::RealSpace::point_load_limit), a
+    /// fresh `K p` above it). Before the solver reports convergence, `K p` is recomputed
+    /// from scratch and the criterion re-evaluated, so rounding in the updates cannot pass
+    /// for a solution.
     pub fn solve(
         &mut self,
         load: Load,
@@ -685,7 +689,7 @@ mod tests {
                 })
                 .collect()
         };
-        fn run<K: Compliance>(op: K, h: &[f64], fraction: f64, threads: usize) -> Solution {
+        fn run<K: SolverOperator>(op: K, h: &[f64], fraction: f64, threads: usize) -> Solution {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .build()

@@ -8,7 +8,7 @@ use proptest::prelude::*;
 mod common;
 use common::self_affine;
 
-fn solve<K: Compliance>(op: K, h: &[f64], pm: f64) -> Solution {
+fn solve<K: SolverOperator>(op: K, h: &[f64], pm: f64) -> Solution {
     let mut s = ContactSolver::new(op, h, None).unwrap();
     s.solve(
         Load::MeanPressure(pm),

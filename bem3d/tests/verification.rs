@@ -435,7 +435,7 @@ fn bit_identical_whatever_the_thread_count() {
 }
 
 /// Polonsky & Keer's iteration as published (`bem3d::solver::reference`), at 1e-12.
-fn polonsky_keer<K: Compliance>(op: K, h: &[f64], mask: &[bool], load: Load) -> Solution {
+fn polonsky_keer<K: SolverOperator>(op: K, h: &[f64], mask: &[bool], load: Load) -> Solution {
     let opts = SolverOptions::new(1e-12, 100_000);
     bem3d::solver::reference::polonsky_keer(op, h, Some(mask), load, &opts).unwrap()
 }
@@ -854,7 +854,7 @@ fn nested_start_reaches_the_cold_starts_solution_in_fewer_iterations() {
         max_iterations: 10_000,
         ..Default::default()
     };
-    fn solve<K: Compliance>(
+    fn solve<K: SolverOperator>(
         op: K,
         h: &[f64],
         pm: f64,

@@ -4,7 +4,7 @@
 
 use super::fused::reduce;
 use super::{sweeps, ContactSolver, Path, Solution};
-use crate::operator::Compliance;
+use crate::operator::SolverOperator;
 use rayon::prelude::*;
 
 /// In complete contact the criterion is met to at most this many ulps of the load's
@@ -17,7 +17,7 @@ const COMPLETE_CONTACT_FLOOR: f64 = 1e3;
 /// may stop at its floor.
 pub(super) const STALL_ITERATIONS: usize = 10;
 
-impl<K: Compliance> ContactSolver<K> {
+impl<K: SolverOperator> ContactSolver<K> {
     /// The solution without contact: w = z (no pressure), approach `d`.
     pub(super) fn finish_unloaded(&mut self, d: f64) -> Solution {
         self.w.copy_from_slice(&self.z);

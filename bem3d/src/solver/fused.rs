@@ -5,7 +5,7 @@
 //! form goes through a plain buffer (`fallback`) with the same chunks and sums.
 
 use crate::fft::ROWS_PER_CHUNK;
-use crate::operator::{Compliance, Operand, Transform};
+use crate::operator::{Operand, SolverOperator, Transform};
 use rayon::prelude::*;
 
 thread_local! {
@@ -70,7 +70,7 @@ pub(super) fn load_fused<K, I, F, const A: usize>(
     load: F,
 ) -> Vec<[f64; A]>
 where
-    K: Compliance,
+    K: SolverOperator,
     I: IntoParallelIterator,
     I::Iter: IndexedParallelIterator,
     F: Fn(I::Item, &mut [f64]) -> [f64; A] + Sync,
@@ -102,7 +102,7 @@ pub(super) fn finish_fused<K, I, F, const B: usize>(
     wanted: Option<&[bool]>,
 ) -> Vec<[f64; B]>
 where
-    K: Compliance,
+    K: SolverOperator,
     I: IntoParallelIterator,
     I::Iter: IndexedParallelIterator,
     F: Fn(I::Item, &[f64]) -> [f64; B] + Sync,
@@ -119,7 +119,7 @@ where
 /// [`Fft2::transform_columns`](crate::fft::Fft2::transform_columns); the fallback sums
 /// in a fixed order) for a caller that needs it before the rows, else 0; the rows
 /// follow with [`store_fused`].
-pub(super) fn apply_fused<K: Compliance>(
+pub(super) fn apply_fused<K: SolverOperator>(
     op: &mut K,
     which: Operand,
     fallback: &mut [Vec<f64>; 2],
@@ -166,7 +166,7 @@ pub(super) fn apply_fused<K: Compliance>(
 /// `<x, K x>` of the loaded input x alone, as [`apply_fused`] with `energy` returns it
 /// (bit for bit, [`Fft2::column_energy`](crate::fft::Fft2::column_energy)), without K x:
 /// no rows follow.
-pub(super) fn energy_fused<K: Compliance>(
+pub(super) fn energy_fused<K: SolverOperator>(
     op: &mut K,
     which: Operand,
     fallback: &mut [Vec<f64>; 2],
@@ -192,7 +192,7 @@ pub(super) fn store_fused<K, I, F, const B: usize>(
     wanted: Option<&[bool]>,
 ) -> Vec<[f64; B]>
 where
-    K: Compliance,
+    K: SolverOperator,
     I: IntoParallelIterator,
     I::Iter: IndexedParallelIterator,
     F: Fn(I::Item, &[f64]) -> [f64; B] + Sync,

@@ -8,7 +8,7 @@ use super::fused::{
 use super::{sweeps, ContactSolver, Solution, SolverOptions};
 use crate::error::{BemError, Result};
 use crate::fft::{copy_in, copy_out, ROWS_PER_CHUNK};
-use crate::operator::{Compliance, Operand};
+use crate::operator::{Operand, SolverOperator};
 use rayon::prelude::*;
 
 /// Largest contact set, as a fraction of the grid's cells, on which the iteration applies
@@ -36,7 +36,7 @@ pub(super) enum Refresh<'a> {
     AddZ,
 }
 
-impl<K: Compliance> ContactSolver<K> {
+impl<K: SolverOperator> ContactSolver<K> {
     /// The projected, preconditioned conjugate-gradient iteration from the pressure `p`
     /// (on the domain, meeting the load), under force control (`target_force`) or at
     /// the approach `fixed_approach`. One iteration, in order:
@@ -51,7 +51,8 @@ impl<K: Compliance> ContactSolver<K> {
     ///    sums of its projection;
     /// 5. [`Self::direction`]: Polak-Ribiere+'s beta and `t = y + beta t`, loaded as K's
     ///    input;
-    /// 6. [`Self::step_length`]: `<t, K t>` from K's column pass, `tau = <q, t> / <t, K t>`;
+    /// 6. [`Self::step_length`]: `<t, K t>` from K's column pass,
+    ///    `tau = <q, t> / <t, K t>`;
     /// 7. [`Self::update`] (pass D): the projected step, `K p` moved along (or recomputed).
     pub(super) fn iterate(
         &mut self,

@@ -1,6 +1,6 @@
-//! Small contact sets: the solve restricted to a candidate set C of cells, K between
-//! them as a dense matrix ([`Compliance::restricted`]), inside an outer loop that grows
-//! C until no cell outside it interpenetrates.
+//! Small contact sets: the solve restricted to a candidate set C of cells, K between them
+//! as a dense matrix ([`RealSpace::restricted`](crate::operator::RealSpace::restricted)),
+//! inside an outer loop that grows C until no cell outside it interpenetrates.
 //!
 //! At a contact fraction of 0.1 % a 1024^2 grid has about a thousand cells in contact,
 //! and an application of `K_CC` (C: a few thousand cells) costs a fraction of a
@@ -36,11 +36,12 @@
 
 use super::iteration::{Refresh, Start};
 use super::{ContactSolver, Path, Solution, SolverOptions};
-use crate::operator::{Compliance, DenseCompliance};
+use crate::operator::{DenseCompliance, SolverOperator};
 use rayon::prelude::*;
 
 /// The restricted start covers this many times `p / (E* h')` of the domain (the full
-/// solve's start covers [`super::start::FULL_GRID_START_AREA`] times; a smaller set is cheaper here, and
+/// solve's start covers [`super::start::FULL_GRID_START_AREA`] times; a smaller set is
+/// cheaper here, and
 /// the rounds add what it misses).
 const CANDIDATE_START_AREA: f64 = 4.0;
 /// Largest candidate set: this many times the square root of the domain's cell count
@@ -85,7 +86,7 @@ impl Tally {
     }
 }
 
-impl<K: Compliance> ContactSolver<K> {
+impl<K: SolverOperator> ContactSolver<K> {
     /// Restricted solve from a cold start (module docs), under force control
     /// (`target_force` > 0) or at the approach `fixed_approach` > 0. None: not
     /// applicable, or given up (the full iteration then runs from its own start).

@@ -3,7 +3,7 @@
 //! coarsened 2 x 2 (nested start); solver module docs.
 
 use super::{ContactSolver, Load, SolverOptions};
-use crate::operator::Compliance;
+use crate::operator::SolverOperator;
 use rayon::prelude::*;
 
 /// Cold start under force control: the initial overlap covers this many times
@@ -29,9 +29,10 @@ const NESTED_TOLERANCE: f64 = 1e-3;
 /// surfaces); a coarse solve that does not converge leaves the cold start.
 const NESTED_MAX_ITERATIONS: usize = 200;
 
-impl<K: Compliance> ContactSolver<K> {
+impl<K: SolverOperator> ContactSolver<K> {
     /// Cold start under force control (module docs): p = (d - z)+ on the domain, d the
-    /// height quantile whose overlap covers `start_area p / (E* h')` of it ([`FULL_GRID_START_AREA`]
+    /// height quantile whose overlap covers `start_area p / (E* h')` of it
+    /// ([`FULL_GRID_START_AREA`]
     /// for the full iteration); the rescale to the force follows. Uniform pressure when
     /// the heights have no slope.
     pub(super) fn cold_start(&self, p: &mut [f64], force: f64, start_area: f64) {

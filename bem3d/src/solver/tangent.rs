@@ -2,9 +2,9 @@
 
 use super::{ContactSolver, Solution, SolverOptions};
 use crate::error::{BemError, Result};
-use crate::operator::Compliance;
+use crate::operator::SolverOperator;
 
-impl<K: Compliance> ContactSolver<K> {
+impl<K: SolverOperator> ContactSolver<K> {
     /// Tangent normal stiffness dF/dd with the contact set held fixed: solves
     /// `K_CC x = 1` on the contact cells C by conjugate gradients (K_CC is symmetric
     /// positive definite; preconditioned by the operator's M restricted to C) to

@@ -1,7 +1,7 @@
 //! Compact contacts on a non-periodic grid: the solve restricted to a window (a box of
-//! cells) that holds the whole contact, with the operator's own transforms at the
-//! window's size ([`Compliance::window`]), inside an outer loop that grows the window
-//! until no cell outside it interpenetrates.
+//! cells) that holds the whole contact, with the operator's own transforms at the window's
+//! size ([`GridForms::window`](crate::operator::GridForms::window)), inside an outer loop
+//! that grows the window until no cell outside it interpenetrates.
 //!
 //! A sphere pressed to 1 % contact on a 1024^2 grid touches a disc about 115 cells
 //! across; the non-periodic operator's zero-padded transforms run over 2048^2 cells, a
@@ -26,11 +26,12 @@ use super::iteration::Start;
 use super::restricted::Tally;
 use super::restricted::{round_options, LOOSE};
 use super::{ContactSolver, Path, Solution, SolverOptions};
-use crate::operator::{Compliance, NonPeriodicHalfSpace};
+use crate::operator::{NonPeriodicHalfSpace, SolverOperator};
 use rayon::prelude::*;
 
 /// The start's overlap covers this many times `p / (E* h')` of the domain under force
-/// control (half the full solve's [`super::start::FULL_GRID_START_AREA`]). Measured on a sphere (R = 1
+/// control (half the full solve's [`super::start::FULL_GRID_START_AREA`]). Measured on a
+/// sphere (R = 1
 /// on the unit square, one thread, 512^2 and 1024^2), solve times at 0.1 %, 1 %, 20 %
 /// and 30 % contact with 6 / 3 / 2 here: 1024^2 0.24 / 0.17 / 0.20 s, 0.27 / 0.21 /
 /// 0.35 s, 2.9 (no window: the start's box exceeds the limit) / 0.84 / 1.74 s, 3.1 (no
@@ -91,7 +92,7 @@ fn span(lo: usize, hi: usize, len: usize) -> (usize, usize) {
     (start, width)
 }
 
-impl<K: Compliance> ContactSolver<K> {
+impl<K: SolverOperator> ContactSolver<K> {
     /// Windowed solve from a cold start (module docs), under force control
     /// (`target_force` > 0) or at the approach `fixed_approach` > 0. None: not
     /// applicable, or given up (the next path then runs from its own start).

@@ -49,7 +49,7 @@ fn certificate_of<K: Compliance>(op: &mut K, h: &[f64], sol: &Solution, h_rms: f
 /// Solves `load` at TOL (after `warm`, if given), checks the certificate against its
 /// recomputation and the tolerance, then the bound it states against a solve to 1e-12
 /// under force control at the force reached. Returns the loose solution.
-fn check<K: Compliance>(
+fn check<K: SolverOperator>(
     op: impl Fn() -> K,
     h: &[f64],
     load: Load,

@@ -129,7 +129,7 @@ fn fft_pair_time(nx: usize, ny: usize) -> f64 {
 /// Time of one application of K and of M (the preconditioner) of `op`, in seconds:
 /// with the solve's iterations they split an iteration into K, M and the rest (the
 /// sweeps, fresh `K p` where the projection changed many cells, the set-up's share).
-fn operator_times<K: bem3d::Compliance>(mut op: K) -> (f64, f64) {
+fn operator_times<K: bem3d::SolverOperator>(mut op: K) -> (f64, f64) {
     let n = op.cells();
     let x: Vec<f64> = (0..n).map(|k| (k % 7) as f64).collect();
     let mut y = vec![0.0; n];

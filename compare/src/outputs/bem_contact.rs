@@ -13,8 +13,8 @@ use crate::error::{Context as _, Result};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
 use bem3d::{
-    BemError, Compliance, ContactSolver, Load, NonPeriodicHalfSpace, Path, PeriodicHalfSpace,
-    Solution, SolverOptions,
+    BemError, ContactSolver, Load, NonPeriodicHalfSpace, Path, PeriodicHalfSpace, Solution,
+    SolverOperator, SolverOptions,
 };
 use mrd::topography::HeightMap;
 use serde::Deserialize;
@@ -82,7 +82,7 @@ impl BemContact {
     }
 
     /// Solves every load in turn on operator `op`.
-    fn solve_all<K: Compliance>(
+    fn solve_all<K: SolverOperator>(
         &self,
         op: K,
         map: &HeightMap,
