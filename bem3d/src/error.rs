@@ -28,6 +28,10 @@ pub enum BemError {
         what: &'static str,
         iterations: usize,
     },
+    /// A strategy forced in [`crate::solver::Paths`] could not run (the operator lacks
+    /// it, the load or grid does not admit it, or it gave up).
+    #[error("the forced {path} path cannot run: {reason}")]
+    PathUnavailable { path: &'static str, reason: String },
     /// A grid needs more memory than this process may use.
     #[error(transparent)]
     Memory(#[from] sysmem::MemoryError),

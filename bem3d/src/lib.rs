@@ -26,5 +26,5 @@ pub use operator::{
 };
 pub use sliding::{SlidingContact, SlidingSolution};
 pub use solver::{
-    ContactSolver, Interrupt, Load, Path, Paths, Solution, SolverOptions, MAX_TOLERANCE,
+    Choice, ContactSolver, Interrupt, Load, Path, Paths, Solution, SolverOptions, MAX_TOLERANCE,
 };

@@ -133,9 +133,11 @@
 //! [`Solution::path`] says which ran.
 //!
 //! Every strategy (window, candidate set, stencil, nested start, single precision) can
-//! be forbidden in [`SolverOptions::paths`] ([`Paths`]); the [`Solution`] reports the
-//! path, the start and how many iterations ran in single precision and by the stencil.
-//! Forbidding one changes the work, not the fixed point (tested path against path).
+//! be forbidden or forced in [`SolverOptions::paths`] ([`Paths`], [`Choice`]: forced, it
+//! runs without the rules above that judge whether it pays, and a solve where it cannot
+//! run fails with [`BemError::PathUnavailable`]); the [`Solution`] reports the path, the
+//! start and how many iterations ran in single precision and by the stencil. Forbidding
+//! or forcing one changes the work, not the fixed point (tested path against path).
 //!
 //! M on small contact sets by its stencil: while the contact set holds at most
 //! `LOCAL_MAX_FRACTION` (2 %) of the grid's cells, the full iteration applies M as a sum
@@ -168,7 +170,7 @@ mod tangent;
 mod window;
 
 pub use crate::solution::{Path, Solution};
-pub use options::{Interrupt, Load, Paths, SolverOptions, MAX_LOAD, MAX_TOLERANCE};
+pub use options::{Choice, Interrupt, Load, Paths, SolverOptions, MAX_LOAD, MAX_TOLERANCE};
 
 /// Solver for one height map on one operator; buffers are allocated once.
 pub struct ContactSolver<K: SolverOperator> {
@@ -232,6 +234,11 @@ pub struct ContactSolver<K: SolverOperator> {
 const CHUNK: usize = 16_384;
 
 /// Whether starting from `warm` pays for `load` (module docs: small load steps only).
+/// The error of a forced path that cannot run.
+fn unavailable(path: &'static str, reason: String) -> BemError {
+    BemError::PathUnavailable { path, reason }
+}
+
 fn warm_pays(warm: &Solution, load: Load, target_force: Option<f64>) -> bool {
     let ratio = match (load, target_force) {
         (Load::Approach(d), _) => d / warm.approach,
@@ -441,7 +448,12 @@ impl<K: SolverOperator> ContactSolver<K> {
         warm: Option<&Solution>,
     ) -> Result<Solution> {
         let target_force = self.check(load, opts, warm)?;
-        let warm = warm.filter(|w| warm_pays(w, load, target_force));
+        self.check_forced(opts)?;
+        let paths = opts.paths;
+        // A forced start (window, candidate set, nested) overrides a warm one.
+        let forced_start =
+            paths.window.forced() || paths.candidate_set.forced() || paths.nested_start.forced();
+        let warm = warm.filter(|w| !forced_start && warm_pays(w, load, target_force));
         let fixed_approach = match load {
             Load::Approach(d) => d,
             _ => 0.0,
@@ -449,14 +461,22 @@ impl<K: SolverOperator> ContactSolver<K> {
         // The paths in order (module docs): a window, a candidate set, the full grid.
         let loaded = target_force.unwrap_or(fixed_approach) > 0.0;
         if warm.is_none() && loaded {
-            if opts.paths.window {
-                if let Some(sol) = self.solve_windowed(target_force, fixed_approach, opts) {
-                    return Ok(sol);
+            if paths.window.allowed() {
+                match self.solve_windowed(target_force, fixed_approach, opts) {
+                    Ok(sol) => return Ok(sol),
+                    Err(reason) if paths.window.forced() => {
+                        return Err(unavailable("window", reason))
+                    }
+                    Err(_) => {}
                 }
             }
-            if opts.paths.candidate_set {
-                if let Some(sol) = self.solve_restricted(target_force, fixed_approach, opts) {
-                    return Ok(sol);
+            if paths.candidate_set.allowed() {
+                match self.solve_restricted(target_force, fixed_approach, opts) {
+                    Ok(sol) => return Ok(sol),
+                    Err(reason) if paths.candidate_set.forced() => {
+                        return Err(unavailable("candidate_set", reason))
+                    }
+                    Err(_) => {}
                 }
             }
         }
@@ -469,10 +489,24 @@ impl<K: SolverOperator> ContactSolver<K> {
                 .zip(&self.mask)
                 .zip(&w.pressure)
                 .for_each(|((p, &m), w)| *p = m as f64 * w.max(0.0)),
+            (None, Load::Approach(_)) if paths.nested_start.forced() => {
+                return Err(unavailable(
+                    "nested_start",
+                    "it needs force control (the load is an approach)".into(),
+                ))
+            }
             (None, Load::Approach(d)) => self.overlap_start(&mut p, d),
             (None, _) => {
                 let force = target_force.unwrap_or(0.0);
-                nested = force > 0.0 && self.nested_start(&mut p, force, opts);
+                if force > 0.0 {
+                    match self.nested_start(&mut p, force, opts) {
+                        Ok(()) => nested = true,
+                        Err(reason) if paths.nested_start.forced() => {
+                            return Err(unavailable("nested_start", reason))
+                        }
+                        Err(_) => {}
+                    }
+                }
                 if !nested {
                     self.cold_start(&mut p, force, start::FULL_GRID_START_AREA);
                 }
@@ -499,6 +533,23 @@ impl<K: SolverOperator> ContactSolver<K> {
             nested,
         };
         self.iterate(p, target_force, fixed_approach, opts, start)
+    }
+
+    /// Refuses a forced stencil or single precision the operator does not have.
+    fn check_forced(&mut self, opts: &SolverOptions) -> Result<()> {
+        if opts.paths.stencil.forced() && self.op.local_stiffness().is_none() {
+            return Err(unavailable(
+                "stencil",
+                "the operator has no stencil of its preconditioner".into(),
+            ));
+        }
+        if opts.paths.single_precision.forced() && !self.op.rounds_single() {
+            return Err(unavailable(
+                "single_precision",
+                "the operator has no single-precision form".into(),
+            ));
+        }
+        Ok(())
     }
 
     /// Refuses a load, options or warm start this solver cannot take (negative,

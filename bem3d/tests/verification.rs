@@ -538,7 +538,7 @@ fn restricted_solve_matches_the_full_grid_solve() {
     };
     let no_window = SolverOptions {
         paths: Paths {
-            window: false,
+            window: Choice::Forbid,
             ..Paths::default()
         },
         ..o.clone()
@@ -863,7 +863,11 @@ fn nested_start_reaches_the_cold_starts_solution_in_fewer_iterations() {
     ) -> Solution {
         // The full-grid iteration (no candidate set at the lower load).
         let paths = Paths {
-            nested_start: nested,
+            nested_start: if nested {
+                Choice::Allow
+            } else {
+                Choice::Forbid
+            },
             ..Paths::full_grid()
         };
         let o = SolverOptions { paths, ..o.clone() };
@@ -922,7 +926,11 @@ fn nested_start_reaches_the_cold_starts_solution_in_fewer_iterations() {
     mask[0] = false;
     let masked = |nested: bool| {
         let paths = Paths {
-            nested_start: nested,
+            nested_start: if nested {
+                Choice::Allow
+            } else {
+                Choice::Forbid
+            },
             ..Paths::full_grid()
         };
         let o = SolverOptions {
@@ -970,7 +978,7 @@ fn paths_are_reported_and_forbidding_one_keeps_the_answer() {
     assert!(b.single_iterations > 0 && b.single_iterations <= b.iterations);
     same_solution(&a, &b, "candidate set forbidden");
     let no_stencil = Paths {
-        stencil: false,
+        stencil: Choice::Forbid,
         ..Paths::full_grid()
     };
     let c = periodic(&h, low, no_stencil);
@@ -981,7 +989,7 @@ fn paths_are_reported_and_forbidding_one_keeps_the_answer() {
     assert_eq!((d.path, d.stencil_iterations), (Path::FullGrid, 0));
     assert!(d.single_iterations > 0 && !d.nested_start);
     let double = Paths {
-        single_precision: false,
+        single_precision: Choice::Forbid,
         ..all
     };
     let e = periodic(&h, high, double);
@@ -1000,9 +1008,125 @@ fn paths_are_reported_and_forbidding_one_keeps_the_answer() {
     let w = free(all);
     assert_eq!(w.path, Path::Window);
     let g = free(Paths {
-        window: false,
+        window: Choice::Forbid,
         ..all
     });
     assert_ne!(g.path, Path::Window);
     same_solution(&w, &g, "window forbidden");
+}
+
+/// Each strategy forced in [`SolverOptions::paths`] runs where the rules that judge
+/// whether it pays would skip it, and reaches the same answer (1e-9 of the peak pressure
+/// at tolerance 1e-12): a rough surface at 9 % contact on a candidate set (1410 cells
+/// in contact, past the usual limit of 3 sqrt(N) = 384 cells for the start set), at 20 %
+/// with M by its stencil at every iteration (usually up to 2 % contact) and with a
+/// nested start at 128^2 (usually from 512^2); a sphere at more than 30 % contact on a
+/// window (usually at most 0.7 of the grid: here the whole of it). A forced path that cannot run is an error naming the path, not a
+/// fall-back.
+#[test]
+fn forced_paths_run_and_keep_the_answer() {
+    let n = 128;
+    let o = |paths: Paths| SolverOptions {
+        tolerance: 1e-12,
+        max_iterations: 10_000,
+        paths,
+        ..Default::default()
+    };
+    let h = common::self_affine(n, 0.8, 5);
+    let periodic = |load: Load, paths: Paths| {
+        ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None)
+            .unwrap()
+            .solve(load, &o(paths), None)
+    };
+    let high = Load::MeanPressure(2e-2);
+    let reference = periodic(high, Paths::default()).unwrap();
+    let fraction = reference.contact_cells as f64 / (n * n) as f64;
+    assert!(
+        (0.1..0.3).contains(&fraction),
+        "contact fraction {fraction}"
+    );
+    assert_eq!(
+        (reference.path, reference.stencil_iterations),
+        (Path::FullGrid, 0)
+    );
+    assert!(!reference.nested_start);
+    let force = |f: fn(&mut Paths)| {
+        let mut paths = Paths::default();
+        f(&mut paths);
+        paths
+    };
+    // A candidate set's start covers about twice the contact: about 9 % here.
+    let mid = Load::MeanPressure(8e-3);
+    let grid = periodic(mid, Paths::default()).unwrap();
+    let set = periodic(mid, force(|p| p.candidate_set = Choice::Force)).unwrap();
+    assert_eq!((grid.path, set.path), (Path::FullGrid, Path::CandidateSet));
+    assert!(grid.contact_cells > 384, "{} cells", grid.contact_cells);
+    same_solution(&set, &grid, "candidate set forced");
+    let stencil = periodic(high, force(|p| p.stencil = Choice::Force)).unwrap();
+    assert_eq!(stencil.path, Path::FullGrid);
+    assert_eq!(stencil.stencil_iterations, stencil.iterations);
+    same_solution(&stencil, &reference, "stencil forced");
+    let nested = periodic(high, force(|p| p.nested_start = Choice::Force)).unwrap();
+    assert!(nested.nested_start && nested.path == Path::FullGrid);
+    same_solution(&nested, &reference, "nested start forced");
+    let single = periodic(high, force(|p| p.single_precision = Choice::Force)).unwrap();
+    assert_eq!(single.pressure, reference.pressure);
+
+    // The sphere at 40 % contact: its window is the whole grid.
+    let ball = sphere(n, 1.0, 1.0);
+    let free = |paths: Paths| {
+        ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &ball, None)
+            .unwrap()
+            .solve(Load::Force(0.5), &o(paths), None)
+    };
+    let grid = free(Paths::default()).unwrap();
+    let fraction = grid.contact_cells as f64 / (n * n) as f64;
+    assert!(
+        fraction > 0.3 && grid.path != Path::Window,
+        "{fraction} {:?}",
+        grid.path
+    );
+    let window = free(force(|p| p.window = Choice::Force)).unwrap();
+    assert_eq!(window.path, Path::Window);
+    same_solution(&window, &grid, "window forced");
+
+    // What cannot run is an error naming the path.
+    let refused = |r: Result<Solution>, path: &str| match r {
+        Err(BemError::PathUnavailable { path: p, reason }) => {
+            assert_eq!(p, path, "{reason}");
+            reason
+        }
+        other => panic!("forced {path}: expected PathUnavailable, got {other:?}"),
+    };
+    // No window on the periodic half-space.
+    refused(
+        periodic(high, force(|p| p.window = Choice::Force)),
+        "window",
+    );
+    // A candidate set past its memory limit (4096 cells): about half the grid.
+    let reason = refused(
+        periodic(
+            Load::MeanPressure(0.2),
+            force(|p| p.candidate_set = Choice::Force),
+        ),
+        "candidate_set",
+    );
+    assert!(reason.contains("4096"), "{reason}");
+    // A nested start under a prescribed approach.
+    refused(
+        periodic(
+            Load::Approach(0.5 * reference.approach),
+            force(|p| p.nested_start = Choice::Force),
+        ),
+        "nested_start",
+    );
+    // Two forced starts at once: the options are refused before any work.
+    let both = force(|p| {
+        p.window = Choice::Force;
+        p.nested_start = Choice::Force;
+    });
+    assert!(matches!(
+        periodic(high, both),
+        Err(BemError::InvalidInput(_))
+    ));
 }

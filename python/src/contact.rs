@@ -2,8 +2,8 @@
 
 use crate::errors::{bem_err, value_error};
 use bem3d::{
-    ContactSolver, Interrupt, Load, NonPeriodicHalfSpace, PeriodicHalfSpace, Solution,
-    SolverOptions,
+    Choice, ContactSolver, Interrupt, Load, NonPeriodicHalfSpace, Paths, PeriodicHalfSpace,
+    Solution, SolverOptions,
 };
 use numpy::ndarray::Array2;
 use numpy::{AllowTypeChange, PyArray2, PyArrayLike1, PyArrayLike2};
@@ -216,13 +216,46 @@ struct Request {
     stiffness: bool,
 }
 
+/// The solver's strategies from a dict `{name: "forbid" | "allow" | "force"}` (names as
+/// the fields of [`Paths`]; a missing name is allowed).
+fn parse_paths(given: Option<&std::collections::HashMap<String, String>>) -> PyResult<Paths> {
+    let mut paths = Paths::default();
+    for (name, choice) in given.into_iter().flatten() {
+        let choice = match choice.as_str() {
+            "forbid" => Choice::Forbid,
+            "allow" => Choice::Allow,
+            "force" => Choice::Force,
+            other => {
+                return Err(value_error(format!(
+                    "paths[{name:?}] = {other:?}: give \"forbid\", \"allow\" or \"force\""
+                )))
+            }
+        };
+        let slot = match name.as_str() {
+            "window" => &mut paths.window,
+            "candidate_set" => &mut paths.candidate_set,
+            "stencil" => &mut paths.stencil,
+            "nested_start" => &mut paths.nested_start,
+            "single_precision" => &mut paths.single_precision,
+            other => {
+                return Err(value_error(format!(
+                    "paths: no strategy {other:?} (window, candidate_set, stencil, \
+                     nested_start, single_precision)"
+                )))
+            }
+        };
+        *slot = choice;
+    }
+    Ok(paths)
+}
+
 fn request(
     mean_pressure: Option<f64>,
     force: Option<f64>,
     approach: Option<f64>,
-    tolerance: f64,
-    max_iterations: usize,
+    (tolerance, max_iterations): (f64, usize),
     stiffness: bool,
+    paths: Paths,
 ) -> PyResult<Request> {
     let load = match (mean_pressure, force, approach) {
         (Some(p), None, None) => Load::MeanPressure(p),
@@ -235,7 +268,10 @@ fn request(
         }
     };
     // The command line's check (bem3d::SolverOptions::validate).
-    let opts = SolverOptions::new(tolerance, max_iterations);
+    let opts = SolverOptions {
+        paths,
+        ..SolverOptions::new(tolerance, max_iterations)
+    };
     opts.validate().map_err(|e| value_error(e.to_string()))?;
     Ok(Request {
         load,
@@ -396,7 +432,7 @@ impl Contact {
     }
 
     /// solve(mean_pressure=None, force=None, approach=None, *, tolerance=1e-10,
-    ///       max_iterations=10000, stiffness=False, warm=None) -> ContactResult
+    ///       max_iterations=10000, stiffness=False, warm=None, paths=None) -> ContactResult
     ///
     /// Solves for exactly one of: mean pressure over lx * ly [stress], total force
     /// [stress x length^2], or rigid-body approach from first contact [length].
@@ -404,8 +440,12 @@ impl Contact {
     /// where that pays (force ratios 0.9-1.05, approach ratios 1-1.05). `stiffness`: also
     /// the tangent stiffness dF/dd. Raises ValueError for bad input or an infeasible
     /// load, ConvergenceError (with `.last`) if the iteration cap is reached. The GIL is
-    /// released while solving.
-    #[pyo3(signature = (mean_pressure = None, force = None, approach = None, *, tolerance = 1e-10, max_iterations = 10_000, stiffness = false, warm = None))]
+    /// released while solving. `paths`: the solver's strategies, e.g.
+    /// `{"stencil": "force", "window": "forbid"}` (names: window, candidate_set, stencil,
+    /// nested_start, single_precision; values: "forbid", "allow" (the default), "force";
+    /// ValueError if a forced one cannot run). The result's `path`, `nested_start`,
+    /// `single_precision_iterations` and `stencil_iterations` say what ran.
+    #[pyo3(signature = (mean_pressure = None, force = None, approach = None, *, tolerance = 1e-10, max_iterations = 10_000, stiffness = false, warm = None, paths = None))]
     #[allow(clippy::too_many_arguments)]
     fn solve(
         &mut self,
@@ -417,14 +457,15 @@ impl Contact {
         max_iterations: usize,
         stiffness: bool,
         warm: Option<PyRef<'_, ContactResult>>,
+        paths: Option<std::collections::HashMap<String, String>>,
     ) -> PyResult<ContactResult> {
         let req = request(
             mean_pressure,
             force,
             approach,
-            tolerance,
-            max_iterations,
+            (tolerance, max_iterations),
             stiffness,
+            parse_paths(paths.as_ref())?,
         )?;
         if let Some(w) = &warm {
             if w.shape != self.shape {
@@ -439,11 +480,11 @@ impl Contact {
     }
 
     /// solve_many(mean_pressures=None, forces=None, approaches=None, *, tolerance=1e-10,
-    ///            max_iterations=10000, stiffness=False) -> list[ContactResult]
+    ///            max_iterations=10000, stiffness=False, paths=None) -> list[ContactResult]
     ///
     /// A load list solved in order, each warm-started from the previous solution where
-    /// that pays (as the CLI's bem_contact output does).
-    #[pyo3(signature = (mean_pressures = None, forces = None, approaches = None, *, tolerance = 1e-10, max_iterations = 10_000, stiffness = false))]
+    /// that pays (as the CLI's bem_contact output does); `paths` as in solve().
+    #[pyo3(signature = (mean_pressures = None, forces = None, approaches = None, *, tolerance = 1e-10, max_iterations = 10_000, stiffness = false, paths = None))]
     #[allow(clippy::too_many_arguments)]
     fn solve_many(
         &mut self,
@@ -454,7 +495,9 @@ impl Contact {
         tolerance: f64,
         max_iterations: usize,
         stiffness: bool,
+        paths: Option<std::collections::HashMap<String, String>>,
     ) -> PyResult<Vec<ContactResult>> {
+        let paths = parse_paths(paths.as_ref())?;
         let list = |a: &Option<PyArrayLike1<'_, f64, AllowTypeChange>>| {
             a.as_ref().map(|a| a.as_array().to_vec())
         };
@@ -471,7 +514,7 @@ impl Contact {
             };
         let mut out: Vec<ContactResult> = Vec::with_capacity(loads.len());
         for (p, f, d) in loads {
-            let req = request(p, f, d, tolerance, max_iterations, stiffness)?;
+            let req = request(p, f, d, (tolerance, max_iterations), stiffness, paths)?;
             let warm = out.last().map(|r| r.sol.clone());
             out.push(self.run(py, &req, warm.as_ref())?);
         }

@@ -89,7 +89,9 @@ pub fn mrd_err(py: Python<'_>, e: mrd::MrdError) -> PyErr {
 pub fn bem_err(py: Python<'_>, e: bem3d::BemError, shape: (usize, usize), area: f64) -> PyErr {
     let message = e.to_string();
     match e {
-        bem3d::BemError::InvalidInput(_) | bem3d::BemError::Infeasible(_) => value_error(message),
+        bem3d::BemError::InvalidInput(_)
+        | bem3d::BemError::Infeasible(_)
+        | bem3d::BemError::PathUnavailable { .. } => value_error(message),
         bem3d::BemError::NoConvergence {
             what,
             iterations,

@@ -224,6 +224,25 @@ def test_low_contact_runs_restricted_and_says_so():
     assert high.nested_start is False  # 64^2: below the nested start's 512 cells a side
 
 
+def test_paths_can_be_forced_or_forbidden():
+    h = rough(64)
+    c = mrdw.Contact(h)
+    base = c.solve(mean_pressure=0.05)
+    forced = c.solve(mean_pressure=0.05, paths={"stencil": "force", "nested_start": "force"})
+    assert forced.stencil_iterations == forced.iterations and forced.nested_start
+    plain = c.solve(mean_pressure=0.05, paths={"single_precision": "forbid"})
+    assert plain.single_precision_iterations == 0
+    for r in (forced, plain):
+        assert np.abs(r.pressure - base.pressure).max() <= 1e-8 * base.pressure.max()
+    # A forced path that cannot run, and bad names or values, are ValueErrors.
+    with pytest.raises(ValueError, match="forced window"):
+        c.solve(mean_pressure=0.05, paths={"window": "force"})
+    with pytest.raises(ValueError, match="no strategy"):
+        c.solve(mean_pressure=0.05, paths={"windw": "force"})
+    with pytest.raises(ValueError, match="forbid"):
+        c.solve_many(mean_pressures=[0.05], paths={"window": "always"})
+
+
 def test_certificate_is_reported_and_within_the_tolerance():
     # The certificate's value and bound are tested in Rust (bem3d/tests/certificate.rs);
     # here: it reaches Python, within the tolerance, and larger at a looser tolerance.

@@ -5,7 +5,7 @@ use super::fused::{
     apply_fused, energy_fused, finish_fused, load_fused, reduce, store_fused, sum_parts,
     with_scratch,
 };
-use super::{sweeps, ContactSolver, Solution, SolverOptions};
+use super::{sweeps, Choice, ContactSolver, Solution, SolverOptions};
 use crate::error::{BemError, Result};
 use crate::fft::{copy_in, copy_out, ROWS_PER_CHUNK};
 use crate::operator::{Operand, SolverOperator};
@@ -69,9 +69,11 @@ impl<K: SolverOperator> ContactSolver<K> {
             (approach, nc) = self.contact_set(&mut p, &mut st);
             // M by its stencil on a small contact set (module docs) instead of its
             // transforms (the same chunks, the same sums).
-            let local = opts.paths.stencil
-                && nc <= self.local_max_fraction * self.op.cells() as f64
-                && self.op.local_stiffness().is_some();
+            let local = match opts.paths.stencil {
+                Choice::Forbid => false,
+                Choice::Allow => nc <= self.local_max_fraction * self.op.cells() as f64,
+                Choice::Force => true,
+            } && self.op.local_stiffness().is_some();
             let [pg, ps, worst, sum_q] = self.criterion_pass(&p, approach, local);
             let h_rms = self.h_rms;
             residual = (if ps > 0.0 { pg / (ps * h_rms) } else { 0.0 }).max(worst / h_rms);
@@ -146,8 +148,8 @@ impl<K: SolverOperator> ContactSolver<K> {
             it: 0,
             gy_old: 0.0,
             t_on_set: 0.0,
-            single: opts.paths.single_precision && self.op.rounds_single(),
-            kt_op: if opts.paths.single_precision {
+            single: opts.paths.single_precision.allowed() && self.op.rounds_single(),
+            kt_op: if opts.paths.single_precision.allowed() {
                 Operand::ComplianceSingle
             } else {
                 Operand::Compliance

@@ -22,47 +22,76 @@ pub struct SolverOptions {
     /// Polled once per iteration: when it is set the solve stops with
     /// [`BemError::Interrupted`] (a caller's Ctrl-C).
     pub interrupt: Option<Interrupt>,
-    /// The strategies a solve may use (all by default); the [`Solution`](super::Solution)
-    /// says which ran.
+    /// The strategies a solve may or must use (all allowed by default); the
+    /// [`Solution`](super::Solution) says which ran.
     pub paths: Paths,
 }
 
-/// The solver's strategies (its module docs), each allowed where it applies or
-/// forbidden. Every combination reaches the same fixed point: they change the work, not
-/// the answer (beyond the tolerance), which the tests check path against path.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Paths {
-    /// A window around a compact contact (non-periodic half-space).
-    pub window: bool,
-    /// A candidate set of cells for small contact sets.
-    pub candidate_set: bool,
-    /// The preconditioner by its stencil on small contact sets.
-    pub stencil: bool,
-    /// The start from the grid coarsened 2 x 2 (large grids under force control).
-    pub nested_start: bool,
-    /// K's single-precision form while the criterion is above 1e-4, and for the
-    /// direction's `K t` throughout (else K in double precision everywhere).
-    pub single_precision: bool,
+/// Whether a solve may, must or must not use one of its strategies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Choice {
+    /// Never.
+    Forbid,
+    /// Where it applies and, by the solver's measured rules, pays (the default).
+    #[default]
+    Allow,
+    /// Wherever it can run, without the rules that judge whether it pays; a solve whose
+    /// forced strategy cannot run (the operator lacks it, the load or the grid does not
+    /// admit it, or it gives up) fails with [`BemError::PathUnavailable`] instead of
+    /// falling back to another path.
+    Force,
 }
 
-impl Default for Paths {
-    fn default() -> Self {
-        Paths {
-            window: true,
-            candidate_set: true,
-            stencil: true,
-            nested_start: true,
-            single_precision: true,
-        }
+impl Choice {
+    pub fn allowed(self) -> bool {
+        self != Choice::Forbid
     }
+    pub fn forced(self) -> bool {
+        self == Choice::Force
+    }
+}
+
+/// The solver's strategies (its module docs), each forbidden, allowed where it pays, or
+/// forced. Every combination reaches the same fixed point: they change the work, not
+/// the answer (beyond the tolerance), which the tests check path against path.
+///
+/// What forcing one means:
+/// - `window`: every solve runs on a window, whatever its size (up to the whole grid)
+///   and whatever a warm start offers; needs the non-periodic operator and a load.
+/// - `candidate_set`: every solve runs on a candidate set of up to 4096 cells (the
+///   dense matrix's memory), whatever its cost against the full grid; needs an operator
+///   with a real-space table and a load.
+/// - `stencil`: M by its stencil at every iteration of the grid and window paths,
+///   whatever the contact fraction; needs an operator with one.
+/// - `nested_start`: the start from the coarsened grid on any grid with even sides of
+///   at least 2 cells (its coarse solve nests by the usual rule); needs force control,
+///   no mask and an operator with a coarse form, and overrides a warm start.
+/// - `single_precision`: as allowed (the single-precision phase runs whenever the
+///   criterion is above 1e-4), and the operator must have a single-precision form.
+///
+/// At most one of `window`, `candidate_set` and `nested_start` (a full-grid start) can
+/// be forced.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Paths {
+    /// A window around a compact contact (non-periodic half-space).
+    pub window: Choice,
+    /// A candidate set of cells for small contact sets.
+    pub candidate_set: Choice,
+    /// The preconditioner by its stencil on small contact sets.
+    pub stencil: Choice,
+    /// The start from the grid coarsened 2 x 2 (large grids under force control).
+    pub nested_start: Choice,
+    /// K's single-precision form while the criterion is above 1e-4, and for the
+    /// direction's `K t` throughout (else K in double precision everywhere).
+    pub single_precision: Choice,
 }
 
 impl Paths {
     /// Every strategy except the restricted paths: the iteration on the whole grid.
     pub fn full_grid() -> Self {
         Paths {
-            window: false,
-            candidate_set: false,
+            window: Choice::Forbid,
+            candidate_set: Choice::Forbid,
             ..Paths::default()
         }
     }
@@ -71,12 +100,33 @@ impl Paths {
     /// precision.
     pub fn plain() -> Self {
         Paths {
-            window: false,
-            candidate_set: false,
-            stencil: false,
-            nested_start: false,
-            single_precision: false,
+            window: Choice::Forbid,
+            candidate_set: Choice::Forbid,
+            stencil: Choice::Forbid,
+            nested_start: Choice::Forbid,
+            single_precision: Choice::Forbid,
         }
+    }
+
+    /// Refuses two forced paths that exclude each other.
+    fn validate(&self) -> Result<()> {
+        let forced = [
+            ("window", self.window),
+            ("candidate_set", self.candidate_set),
+            ("nested_start", self.nested_start),
+        ];
+        let names: Vec<&str> = forced
+            .iter()
+            .filter(|(_, c)| c.forced())
+            .map(|(n, _)| *n)
+            .collect();
+        if names.len() > 1 {
+            return Err(BemError::InvalidInput(format!(
+                "paths: {} are forced together, but a solve takes one of them",
+                names.join(" and ")
+            )));
+        }
+        Ok(())
     }
 }
 
@@ -106,8 +156,9 @@ impl SolverOptions {
         }
     }
 
-    /// Refuses a tolerance outside (0, [`MAX_TOLERANCE`]] or no iterations; the one
-    /// check of the command line and the Python package.
+    /// Refuses a tolerance outside (0, [`MAX_TOLERANCE`]], no iterations or forced paths
+    /// that exclude each other; the one check of the command line and the Python
+    /// package.
     pub fn validate(&self) -> Result<()> {
         if !(self.tolerance > 0.0 && self.tolerance <= MAX_TOLERANCE) {
             return Err(BemError::InvalidInput(format!(
@@ -118,7 +169,7 @@ impl SolverOptions {
         if self.max_iterations == 0 {
             return Err(BemError::InvalidInput("max_iterations must be >= 1".into()));
         }
-        Ok(())
+        self.paths.validate()
     }
 
     /// Whether the caller asked the solve to stop.

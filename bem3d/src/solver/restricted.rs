@@ -88,49 +88,25 @@ impl Tally {
 
 impl<K: SolverOperator> ContactSolver<K> {
     /// Restricted solve from a cold start (module docs), under force control
-    /// (`target_force` > 0) or at the approach `fixed_approach` > 0. None: not
-    /// applicable, or given up (the full iteration then runs from its own start).
+    /// (`target_force` > 0) or at the approach `fixed_approach` > 0. Err: why it does
+    /// not apply or was given up (the full iteration then runs from its own start,
+    /// unless the candidate set is forced: then its limit is [`MAX_CELLS`] alone and the
+    /// reason is the solve's error).
     pub(super) fn solve_restricted(
         &mut self,
         target_force: Option<f64>,
         fixed_approach: f64,
         opts: &SolverOptions,
-    ) -> Option<Solution> {
+    ) -> Result<Solution, String> {
         let n = self.op.cells();
-        let limit = ((CELLS_PER_ROOT * (self.domain_cells as f64).sqrt()) as usize).min(MAX_CELLS);
-        // The start set's size first (a uniform start covers the domain).
-        let estimate = match target_force {
-            Some(f) => {
-                let fraction = self.start_fraction(f, CANDIDATE_START_AREA);
-                if fraction.is_finite() && fraction < 1.0 {
-                    (fraction * self.domain_cells as f64).ceil() as usize
-                } else {
-                    self.domain_cells
-                }
-            }
-            None => (0..n)
-                .into_par_iter()
-                .filter(|&i| self.mask[i] > 0 && self.z[i] < fixed_approach)
-                .count(),
+        let limit = if opts.paths.candidate_set.forced() {
+            MAX_CELLS
+        } else {
+            ((CELLS_PER_ROOT * (self.domain_cells as f64).sqrt()) as usize).min(MAX_CELLS)
         };
-        if estimate == 0 || estimate > limit {
-            return None;
-        }
-        let mut p = vec![0.0; n];
-        match target_force {
-            Some(f) => self.cold_start(&mut p, f, CANDIDATE_START_AREA),
-            None => self.overlap_start(&mut p, fixed_approach),
-        }
-        // In parallel, in cell order (as the window path's scans).
-        let mut cells: Vec<usize> = (0..n).into_par_iter().filter(|&i| p[i] > 0.0).collect();
-        if cells.is_empty() || cells.len() > limit || self.op.restricted(&[], Vec::new()).is_none()
-        {
-            return None;
-        }
-        if let Some(f) = target_force {
-            let s: f64 = p.iter().sum::<f64>() * self.op.cell_area();
-            p.par_iter_mut().for_each(|v| *v *= f / s);
-        }
+        let too_many =
+            |cells: usize| format!("a set of {cells} cells exceeds the limit of {limit}");
+        let (mut p, mut cells) = self.candidate_start(target_force, fixed_approach, limit)?;
         let (hx, hy) = (
             self.op.lx() / self.op.nx() as f64,
             self.op.ly() / self.op.ny() as f64,
@@ -150,7 +126,10 @@ impl<K: SolverOperator> ContactSolver<K> {
                     .take()
                     .map(|s| s.op.into_storage())
                     .unwrap_or_default();
-                let matrix = self.op.restricted(&cells, buffer)?;
+                let matrix = self
+                    .op
+                    .restricted(&cells, buffer)
+                    .ok_or("the operator has no real-space table")?;
                 let e_star = self.op.e_star();
                 let dense =
                     DenseCompliance::from_matrix(cells.len(), (hx, hy), e_star, matrix, single);
@@ -159,7 +138,9 @@ impl<K: SolverOperator> ContactSolver<K> {
                 let mask = vec![1; cells.len()];
                 inner = Some(ContactSolver::on_part(dense, mask, z, h_rms, stiffness));
             }
-            let solver = inner.as_mut()?;
+            let Some(solver) = inner.as_mut() else {
+                return Err("no candidate set was built".into());
+            };
             let inner_opts = round_options(opts, tight, tally.iterations);
             let start = cells.iter().map(|&i| p[i]).collect();
             let sol = match solver.iterate(
@@ -171,7 +152,7 @@ impl<K: SolverOperator> ContactSolver<K> {
             ) {
                 Ok(sol) => sol,
                 // The full iteration takes over (and reports its own failure, if any).
-                Err(_) => return None,
+                Err(e) => return Err(format!("a round on the candidate set failed: {e}")),
             };
             tally.add(&sol);
             p.par_iter_mut().for_each(|v| *v = 0.0);
@@ -186,7 +167,7 @@ impl<K: SolverOperator> ContactSolver<K> {
                 (&tally, Path::CandidateSet),
                 opts,
             ) {
-                Ok(sol) => return Some(sol),
+                Ok(sol) => return Ok(sol),
                 Err(found) => found,
             };
             let (w, mask) = (&self.w, &self.mask);
@@ -201,7 +182,7 @@ impl<K: SolverOperator> ContactSolver<K> {
             // Give up when even half the overlap would not fit; else the deepest cells
             // join first, at most doubling the set per round.
             if cells.len() + entering.len() / 2 > limit {
-                return None;
+                return Err(too_many(cells.len() + entering.len() / 2));
             }
             let room = cells.len().max(MIN_GROWTH);
             if entering.len() > room {
@@ -211,7 +192,9 @@ impl<K: SolverOperator> ContactSolver<K> {
             }
             if entering.is_empty() {
                 if tight {
-                    return None;
+                    return Err(format!(
+                        "a round at the tolerance left the criterion at {residual:.2e} on the grid"
+                    ));
                 }
                 tight = true;
                 continue;
@@ -220,13 +203,74 @@ impl<K: SolverOperator> ContactSolver<K> {
             cells.sort_unstable();
             grown = true;
             if cells.len() > limit {
-                return None;
+                return Err(too_many(cells.len()));
             }
             // Near the answer already: the next rounds solve to the tolerance (a loose
             // solve would stop at once, the few new cells being shallow).
             tight |= residual <= LOOSE;
         }
-        None
+        Err(format!(
+            "no candidate set held the contact in {MAX_ROUNDS} rounds"
+        ))
+    }
+
+    /// The candidate set's start: the pressure (scaled to the target force) and its
+    /// cells, or why it does not fit in `limit` cells or the operator has no
+    /// real-space table.
+    fn candidate_start(
+        &self,
+        target_force: Option<f64>,
+        fixed_approach: f64,
+        limit: usize,
+    ) -> Result<(Vec<f64>, Vec<usize>), String> {
+        let n = self.op.cells();
+        let too_many =
+            |cells: usize| format!("a set of {cells} cells exceeds the limit of {limit}");
+        // The start set's size first (a uniform start covers the domain).
+        let estimate = match target_force {
+            Some(f) => {
+                let fraction = self.start_fraction(f, CANDIDATE_START_AREA);
+                if fraction.is_finite() && fraction < 1.0 {
+                    (fraction * self.domain_cells as f64).ceil() as usize
+                } else {
+                    self.domain_cells
+                }
+            }
+            None => {
+                let (mask, z) = (&self.mask, &self.z);
+                (0..n)
+                    .into_par_iter()
+                    .filter(|&i| mask[i] > 0 && z[i] < fixed_approach)
+                    .count()
+            }
+        };
+        if estimate == 0 {
+            return Err("the start set is empty".into());
+        }
+        if estimate > limit {
+            return Err(too_many(estimate));
+        }
+        let mut p = vec![0.0; n];
+        match target_force {
+            Some(f) => self.cold_start(&mut p, f, CANDIDATE_START_AREA),
+            None => self.overlap_start(&mut p, fixed_approach),
+        }
+        // In parallel, in cell order (as the window path's scans).
+        let cells: Vec<usize> = (0..n).into_par_iter().filter(|&i| p[i] > 0.0).collect();
+        if cells.is_empty() {
+            return Err("the start set is empty".into());
+        }
+        if cells.len() > limit {
+            return Err(too_many(cells.len()));
+        }
+        if self.op.restricted(&[], Vec::new()).is_none() {
+            return Err("the operator has no real-space table".into());
+        }
+        if let Some(f) = target_force {
+            let s: f64 = p.iter().sum::<f64>() * self.op.cell_area();
+            p.par_iter_mut().for_each(|v| *v *= f / s);
+        }
+        Ok((p, cells))
     }
 
     /// A solver for the problem restricted to part of the grid: `op` between its cells,

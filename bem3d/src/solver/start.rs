@@ -2,7 +2,7 @@
 //! force control or at an approach), uniform pressure, or the solution of the grid
 //! coarsened 2 x 2 (nested start); solver module docs.
 
-use super::{ContactSolver, Load, SolverOptions};
+use super::{Choice, ContactSolver, Load, Paths, SolverOptions};
 use crate::operator::SolverOperator;
 use rayon::prelude::*;
 
@@ -110,33 +110,52 @@ impl<K: SolverOperator> ContactSolver<K> {
     /// Nested start under force control (module docs): the load solved to
     /// [`NESTED_TOLERANCE`] on the grid coarsened 2 x 2 (heights averaged over each
     /// coarse cell's four cells), each coarse cell's pressure given to its four cells.
-    /// False, with p untouched, where it does not apply: nesting off, a side below
-    /// [`NESTED_MIN`] ([`COARSE_NESTED_MIN`] on a coarse grid) or odd, a mask, an
-    /// operator without a coarse form, or a coarse solve that fails (the cold start
-    /// then runs as without it).
-    pub(super) fn nested_start(&mut self, p: &mut [f64], force: f64, opts: &SolverOptions) -> bool {
+    /// Err, with p untouched, where it does not apply (the reason): nesting forbidden, a
+    /// side below [`NESTED_MIN`] ([`COARSE_NESTED_MIN`] on a coarse grid; 2 when
+    /// forced) or odd, a mask, an operator without a coarse form, or a coarse solve that
+    /// fails (the cold start then runs as without it, unless nesting is forced).
+    pub(super) fn nested_start(
+        &mut self,
+        p: &mut [f64],
+        force: f64,
+        opts: &SolverOptions,
+    ) -> Result<(), String> {
         let (nx, ny) = (self.op.nx(), self.op.ny());
-        if !opts.paths.nested_start
-            || nx < self.nested_min
-            || ny < self.nested_min
-            || self.domain_cells != self.op.cells()
-        {
-            return false;
+        let min = if opts.paths.nested_start.forced() {
+            2
+        } else {
+            self.nested_min
+        };
+        if !opts.paths.nested_start.allowed() {
+            return Err("forbidden".into());
+        }
+        if nx < min || ny < min || nx % 2 == 1 || ny % 2 == 1 {
+            return Err(format!(
+                "the grid is {nx} x {ny} (both sides must be even and at least {min})"
+            ));
+        }
+        if self.domain_cells != self.op.cells() {
+            return Err("a mask restricts the domain".into());
         }
         if self.coarse.is_none() {
             self.coarse = self.coarse_solver().map(Box::new);
         }
         let Some(coarse) = self.coarse.as_deref_mut() else {
-            return false;
+            return Err("the operator has no coarse form".into());
         };
+        // The coarse grid nests by its own rule.
         let loose = SolverOptions {
             tolerance: NESTED_TOLERANCE.max(opts.tolerance),
             max_iterations: opts.max_iterations.min(NESTED_MAX_ITERATIONS),
+            paths: Paths {
+                nested_start: Choice::Allow,
+                ..opts.paths
+            },
             ..opts.clone()
         };
-        let Ok(sol) = coarse.solve_on_pool(Load::Force(force), &loose, None) else {
-            return false;
-        };
+        let sol = coarse
+            .solve_on_pool(Load::Force(force), &loose, None)
+            .map_err(|e| format!("the coarse solve failed: {e}"))?;
         // Each coarse cell's value on its 2 x 2 cells (both sides are even), row pairs
         // in parallel.
         let cx = nx / 2;
@@ -149,7 +168,7 @@ impl<K: SolverOperator> ContactSolver<K> {
                     }
                 }
             });
-        true
+        Ok(())
     }
 
     /// The solver on this grid coarsened 2 x 2 (heights averaged over each coarse

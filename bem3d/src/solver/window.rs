@@ -94,24 +94,30 @@ fn span(lo: usize, hi: usize, len: usize) -> (usize, usize) {
 
 impl<K: SolverOperator> ContactSolver<K> {
     /// Windowed solve from a cold start (module docs), under force control
-    /// (`target_force` > 0) or at the approach `fixed_approach` > 0. None: not
-    /// applicable, or given up (the next path then runs from its own start).
+    /// (`target_force` > 0) or at the approach `fixed_approach` > 0. Err: why it does
+    /// not apply or was given up (the next path then runs from its own start, unless
+    /// the window is forced: then the windows' size limit is lifted and the reason is
+    /// the solve's error).
     pub(super) fn solve_windowed(
         &mut self,
         target_force: Option<f64>,
         fixed_approach: f64,
         opts: &SolverOptions,
-    ) -> Option<Solution> {
+    ) -> Result<Solution, String> {
         let (n, nx, ny) = (self.op.cells(), self.op.nx(), self.op.ny());
         // Operators without windows stop here (a 1 x 1 probe costs next to nothing).
-        self.op.window(1, 1)?;
+        if self.op.window(1, 1).is_none() {
+            return Err("the operator has no windows (the non-periodic half-space has)".into());
+        }
+        let forced = opts.paths.window.forced();
         let mut p = vec![0.0; n];
         match target_force {
             Some(f) => self.cold_start(&mut p, f, WINDOW_START_AREA),
             None => self.overlap_start(&mut p, fixed_approach),
         }
         // Bounding box of the cells to hold, inclusive: (x_lo, x_hi, y_lo, y_hi).
-        let mut bounds = bounding_box_where(nx, n, |i| p[i] > 0.0)?;
+        let mut bounds =
+            bounding_box_where(nx, n, |i| p[i] > 0.0).ok_or("the start holds no cell")?;
         if let Some(f) = target_force {
             let s: f64 = p.iter().sum::<f64>() * self.op.cell_area();
             p.par_iter_mut().for_each(|v| *v *= f / s);
@@ -127,14 +133,21 @@ impl<K: SolverOperator> ContactSolver<K> {
             let (x0, wx) = span(bounds.0, bounds.1, nx);
             let (y0, wy) = span(bounds.2, bounds.3, ny);
             let win = Window { x0, y0, wx, wy };
-            if (wx * wy) as f64 > MAX_FRACTION * n as f64 {
-                return None;
+            if !forced && (wx * wy) as f64 > MAX_FRACTION * n as f64 {
+                return Err(format!(
+                    "a window of {wx} x {wy} cells exceeds {MAX_FRACTION} of the grid"
+                ));
             }
             if inner.as_ref().map(|(w, _)| *w) != Some(win) {
-                let op = self.op.window(wx, wy)?;
+                let op = self
+                    .op
+                    .window(wx, wy)
+                    .ok_or_else(|| format!("the operator has no {wx} x {wy} window"))?;
                 inner = Some((win, self.on_window(op, win)));
             }
-            let (_, solver) = inner.as_mut()?;
+            let Some((_, solver)) = inner.as_mut() else {
+                return Err("no window was built".into());
+            };
             let inner_opts = round_options(opts, tight, tally.iterations);
             let start = gather(&p, nx, win);
             let sol = solver
@@ -145,7 +158,7 @@ impl<K: SolverOperator> ContactSolver<K> {
                     &inner_opts,
                     Start::default(),
                 )
-                .ok()?;
+                .map_err(|e| format!("a round on the window failed: {e}"))?;
             tally.add(&sol);
             scatter(&mut p, nx, win, &sol.pressure);
             // The interpenetrating cells outside the window, and the criterion: by direct
@@ -169,7 +182,7 @@ impl<K: SolverOperator> ContactSolver<K> {
                         (&tally, Path::Window),
                         opts,
                     ) {
-                        Ok(sol) => return Some(sol),
+                        Ok(sol) => return Ok(sol),
                         Err(found) => found,
                     };
                     let (w, mask) = (&self.w, &self.mask);
@@ -182,7 +195,9 @@ impl<K: SolverOperator> ContactSolver<K> {
             // Interpenetrating cells outside the window join it.
             let Some(grow) = grow else {
                 if tight {
-                    return None;
+                    return Err(format!(
+                        "a round at the tolerance left the criterion at {residual:.2e} on the grid"
+                    ));
                 }
                 tight = true;
                 continue;
@@ -199,7 +214,7 @@ impl<K: SolverOperator> ContactSolver<K> {
                 bounds.3.max(grow.3).max(held.3),
             );
         }
-        None
+        Err(format!("no window held the contact in {MAX_ROUNDS} rounds"))
     }
 
     /// The gaps `(cell, g)` of the cells outside `win` that may interpenetrate at

@@ -1,7 +1,7 @@
 """Type stubs of the compiled module mrdw._mrdw (see the docstrings at run time)."""
 
 from os import PathLike
-from typing import Any, Literal, Optional, Sequence, Tuple, TypedDict, Union
+from typing import Any, Dict, Literal, Optional, Sequence, Tuple, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -106,9 +106,11 @@ class Contact:
         max_iterations: int = 10000,
         stiffness: bool = False,
         warm: Optional[ContactResult] = None,
+        paths: Optional[Dict[str, str]] = None,
     ) -> ContactResult:
         """Solve for exactly one of mean_pressure [stress], force [stress x length^2]
-        or approach [length]. Releases the GIL."""
+        or approach [length]. Releases the GIL. paths: {strategy: "forbid" | "allow" |
+        "force"} for window, candidate_set, stencil, nested_start, single_precision."""
     def solve_many(
         self,
         mean_pressures: Optional[ArrayLike] = None,
@@ -118,6 +120,7 @@ class Contact:
         tolerance: float = 1e-10,
         max_iterations: int = 10000,
         stiffness: bool = False,
+        paths: Optional[Dict[str, str]] = None,
     ) -> list[ContactResult]:
         """A load list, solved in order with warm starts where they pay."""
     @property
