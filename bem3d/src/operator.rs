@@ -644,12 +644,8 @@ trait Table: Sync {
                 for &(c, v) in loads {
                     let ic = c % nx;
                     let (before, after) = self.row(nx, j, (ic, c / nx));
-                    for (a, g) in row[ic..].iter_mut().zip(after) {
-                        *a += v * g;
-                    }
-                    for (a, g) in row[..ic].iter_mut().zip(before) {
-                        *a += v * g;
-                    }
+                    crate::wide::add_scaled(&mut row[ic..], v, after);
+                    crate::wide::add_scaled(&mut row[..ic], v, before);
                 }
             }
         });
@@ -962,31 +958,13 @@ pub struct DenseCompliance {
     single: Vec<f32>,
 }
 
-/// `sum a_i b_i`, products and sums in double precision (`a` in single or double),
-/// over eight independent partial sums (vectorised; a fixed order).
-fn dot<T: Copy + Into<f64>>(a: &[T], b: &[f64]) -> f64 {
-    let mut acc = [0.0; 8];
-    let (ca, cb) = (a.chunks_exact(8), b.chunks_exact(8));
-    let tail: f64 = ca
-        .remainder()
-        .iter()
-        .zip(cb.remainder())
-        .map(|(&x, y)| x.into() * y)
-        .sum();
-    for (x, y) in ca.zip(cb) {
-        for k in 0..8 {
-            acc[k] += x[k].into() * y[k];
-        }
-    }
-    acc.iter().sum::<f64>() + tail
-}
-
-/// `u = matrix p` (row-major, rows in parallel).
+/// `u = matrix p` (row-major, rows in parallel; each row's sum in double precision,
+/// the matrix in single or double: [`crate::wide::dot`]).
 fn dense_product<T: Copy + Into<f64> + Sync>(matrix: &[T], p: &[f64], u: &mut [f64]) {
     let n = p.len();
     u.par_iter_mut()
         .zip(matrix.par_chunks(n.max(1)))
-        .for_each(|(ua, row)| *ua = dot(row, p));
+        .for_each(|(ua, row)| *ua = crate::wide::dot(row, p));
 }
 
 impl DenseCompliance {

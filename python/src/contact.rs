@@ -189,14 +189,91 @@ impl ContactResult {
     }
 }
 
+/// A height map from an array (ny, nx) or a topography object (see [`Contact`]), not
+/// yet copied (its size is checked first), with the object's size and periodicity.
+pub struct HeightMap<'py> {
+    array: PyArrayLike2<'py, f64, AllowTypeChange>,
+    /// A topography object's heights, indexed (x, y): the map is their transpose.
+    by_x: bool,
+    pub size: Option<(f64, f64)>,
+    pub periodic: Option<bool>,
+}
+
+impl<'py> HeightMap<'py> {
+    pub fn extract(obj: &Bound<'py, PyAny>) -> PyResult<Self> {
+        let topography =
+            obj.hasattr("physical_sizes")? && obj.getattr("heights").is_ok_and(|h| h.is_callable());
+        if !topography {
+            return Ok(Self {
+                array: obj.extract()?,
+                by_x: false,
+                size: None,
+                periodic: None,
+            });
+        }
+        let bad = |what: String| value_error(format!("topography object: {what}"));
+        let array = obj
+            .call_method0("heights")?
+            .extract()
+            .map_err(|e| bad(format!("heights() must give a 2D float array ({e})")))?;
+        let size: (f64, f64) = obj
+            .getattr("physical_sizes")?
+            .extract()
+            .map_err(|e| bad(format!("physical_sizes must be (lx, ly) ({e})")))?;
+        let periodic = match obj.getattr("is_periodic") {
+            Ok(v) => Some(
+                v.extract::<bool>()
+                    .map_err(|e| bad(format!("is_periodic ({e})")))?,
+            ),
+            Err(_) => None,
+        };
+        Ok(Self {
+            array,
+            by_x: true,
+            size: Some(size),
+            periodic,
+        })
+    }
+
+    fn view(&self) -> numpy::ndarray::ArrayView2<'_, f64> {
+        let v = self.array.as_array();
+        if self.by_x {
+            v.reversed_axes()
+        } else {
+            v
+        }
+    }
+
+    /// (ny, nx).
+    pub fn shape(&self) -> (usize, usize) {
+        self.view().dim()
+    }
+
+    /// The heights row by row (y) in one copy (a memcpy for a C-ordered array): the
+    /// solver keeps no reference to numpy's memory while the GIL is released.
+    pub fn copy(&self) -> Vec<f64> {
+        let view = self.view();
+        match view.as_slice() {
+            Some(s) => s.to_vec(),
+            None => view.iter().copied().collect(),
+        }
+    }
+}
+
 /// Frictionless normal contact of a rigid rough surface on an elastic half-space (3D
 /// FFT boundary elements, preconditioned Polonsky-Keer).
 ///
-/// Contact(heights, size=(1.0, 1.0), e_star=1.0, periodic=True, mask=None)
+/// Contact(heights, size=None, e_star=1.0, periodic=None, mask=None)
 ///
-/// heights: 2D array (ny, nx) of surface heights, peaks up [length]; size: physical
-/// size (lx, ly) of the map [length]; e_star: contact modulus E* [stress] (Eq. 2);
-/// periodic: periodic half-space (False: isolated map, zero-padded FFTs); mask:
+/// heights: 2D array (ny, nx) of surface heights, peaks up [length], or a topography
+/// object with a `heights()` method and `physical_sizes` (a SurfaceTopography
+/// Topography, or any object like it: its heights are indexed (x, y) and are
+/// transposed to (ny, nx), its `physical_sizes` (lx, ly) is the size and its
+/// `is_periodic`, where present, the default of `periodic`); size: physical size
+/// (lx, ly) of the map [length] (default (1, 1), or the object's); e_star: contact
+/// modulus E* [stress] (Eq. 2); periodic: periodic half-space (False: isolated map,
+/// zero-padded FFTs; default True, or the object's); arguments given override the
+/// object's attributes. mask:
 /// optional boolean array (ny, nx) of the cells that may touch. The operator and
 /// buffers are built once; solve() may be called for many loads.
 #[pyclass(module = "mrdw._mrdw")]
@@ -359,17 +436,19 @@ impl Contact {
 #[pymethods]
 impl Contact {
     #[new]
-    #[pyo3(signature = (heights, size = (1.0, 1.0), e_star = 1.0, periodic = true, mask = None))]
+    #[pyo3(signature = (heights, size = None, e_star = 1.0, periodic = None, mask = None))]
     fn new(
         py: Python<'_>,
-        heights: PyArrayLike2<'_, f64, AllowTypeChange>,
-        size: (f64, f64),
+        heights: &Bound<'_, PyAny>,
+        size: Option<(f64, f64)>,
         e_star: f64,
-        periodic: bool,
+        periodic: Option<bool>,
         mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
     ) -> PyResult<Self> {
-        let view = heights.as_array();
-        let (ny, nx) = view.dim();
+        let map = HeightMap::extract(heights)?;
+        let size = size.or(map.size).unwrap_or((1.0, 1.0));
+        let periodic = periodic.or(map.periodic).unwrap_or(true);
+        let (ny, nx) = map.shape();
         if nx < 2 || ny < 2 {
             return Err(value_error(format!(
                 "heights must be a 2D array of at least 2 x 2 cells, got {ny} x {nx}"
@@ -386,12 +465,7 @@ impl Contact {
         }
         .check(periodic)
         .map_err(|e| bem_err(py, e, (ny, nx), lx * ly))?;
-        // One copy (a memcpy for a C-ordered array): the solver keeps no reference to
-        // numpy's memory while the GIL is released.
-        let h: Vec<f64> = match view.as_slice() {
-            Some(s) => s.to_vec(),
-            None => view.iter().copied().collect(),
-        };
+        let h = map.copy();
         let mask = match mask {
             None => None,
             Some(m) => {

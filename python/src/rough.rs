@@ -294,18 +294,28 @@ pub fn moments<'py>(
     Ok(d)
 }
 
-/// read_topography(path) -> ndarray (rows, cols)
+/// read_topography(source) -> ndarray (rows, cols)
 ///
-/// A height map from `.npy` (float32/float64, C or Fortran order) or a text matrix
-/// (any other extension), read by the same code as the CLI's bem_contact output.
+/// A height map from a file, `.npy` (float32/float64, C or Fortran order) or a text
+/// matrix (any other extension), read by the same code as the CLI's bem_contact output;
+/// or from a topography object with `heights()` (indexed (x, y)) and `physical_sizes`
+/// (a SurfaceTopography Topography, for one), as rows of y (its transpose).
 #[pyfunction]
 pub fn read_topography<'py>(
     py: Python<'py>,
-    path: std::path::PathBuf,
+    source: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let m = mrd::topography::HeightMap::read(&path).map_err(|e| mrd_err(py, e))?;
-    let a =
-        Array2::from_shape_vec((m.rows, m.cols), m.data).map_err(|e| value_error(e.to_string()))?;
+    let (shape, data) = match source.extract::<std::path::PathBuf>() {
+        Ok(path) => {
+            let m = mrd::topography::HeightMap::read(&path).map_err(|e| mrd_err(py, e))?;
+            ((m.rows, m.cols), m.data)
+        }
+        Err(_) => {
+            let m = crate::contact::HeightMap::extract(source)?;
+            (m.shape(), m.copy())
+        }
+    };
+    let a = Array2::from_shape_vec(shape, data).map_err(|e| value_error(e.to_string()))?;
     Ok(PyArray2::from_owned_array(py, a))
 }
 

@@ -252,3 +252,46 @@ def test_certificate_is_reported_and_within_the_tolerance():
     assert 0 < tight.certificate <= 1e-10
     assert tight.certificate < loose.certificate <= 1e-4
     assert "certificate=" in repr(loose)
+
+
+class TopographyLike:
+    """Stands in for a SurfaceTopography Topography: heights() indexed (x, y),
+    physical_sizes (lx, ly), and is_periodic where given."""
+
+    def __init__(self, heights_xy, sizes, periodic=None):
+        self._h = heights_xy
+        self.physical_sizes = sizes
+        if periodic is not None:
+            self.is_periodic = periodic
+
+    def heights(self):
+        return self._h
+
+
+def test_a_topography_object_is_taken_as_its_array():
+    h = rough(64)[:48]  # 48 rows (y) x 64 columns (x): a mix-up of axes would show
+    lx, ly = 2.0, 1.5
+    ref = mrdw.Contact(h, size=(lx, ly), periodic=False).solve(mean_pressure=0.02)
+    topo = TopographyLike(h.T, (lx, ly), periodic=False)
+    c = mrdw.Contact(topo)
+    assert c.shape == (48, 64) and c.size == (lx, ly)
+    r = c.solve(mean_pressure=0.02)
+    assert np.array_equal(r.pressure, ref.pressure)
+    assert np.array_equal(mrdw.read_topography(topo), h)
+    # Arguments override the object's attributes; without is_periodic: periodic.
+    assert np.array_equal(
+        mrdw.Contact(topo, periodic=True).solve(mean_pressure=0.02).pressure,
+        mrdw.Contact(h, size=(lx, ly)).solve(mean_pressure=0.02).pressure,
+    )
+    assert mrdw.Contact(TopographyLike(h.T, (lx, ly))).periodic
+    with pytest.raises(ValueError, match="physical_sizes"):
+        mrdw.Contact(TopographyLike(h.T, "wide"))
+
+
+def test_a_surfacetopography_topography_when_installed():
+    st = pytest.importorskip("SurfaceTopography")
+    h = rough(64)[:48]
+    topo = st.Topography(np.ascontiguousarray(h.T), (2.0, 1.5), periodic=True)
+    r = mrdw.Contact(topo).solve(mean_pressure=0.02)
+    ref = mrdw.Contact(h, size=(2.0, 1.5), periodic=True).solve(mean_pressure=0.02)
+    assert np.array_equal(r.pressure, ref.pressure)

@@ -1,8 +1,9 @@
 //! PNG rendering of figures (plotters, bitmap backend, embedded DejaVu Sans).
 
-use super::figure::{Figure, Style};
+use super::figure::{Figure, Series, Style};
 use crate::error::{CompareError, Result};
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::path::Path;
 
 const FONT: &[u8] = include_bytes!("../../../assets/DejaVuSans.ttf");
@@ -75,16 +76,25 @@ fn bounds(fig: &Figure) -> ((f64, f64), (f64, f64)) {
 /// coordinates scaled to [0, 1]; ties keep the upper left.
 type Bounds = ((f64, f64), (f64, f64));
 
-/// Axis ranges and legend corner: the corner that covers the fewest data, and when
-/// every corner covers some, headroom added above the data for the legend.
-fn layout(fig: &Figure) -> (Bounds, SeriesLabelPosition) {
+/// The least fraction of the plot's height the data keep when headroom is made for the
+/// legend; a taller legend goes beside the plot.
+const MIN_DATA_HEIGHT: f64 = 0.6;
+
+/// Axis ranges and the legend's place: the corner that covers the fewest data; when
+/// every corner covers some, headroom added above the data for the legend, or, if
+/// that would leave the data less than [`MIN_DATA_HEIGHT`] of the plot, no legend in
+/// the plot (None: it is drawn beside it).
+fn layout(fig: &Figure) -> (Bounds, Option<SeriesLabelPosition>) {
     let b = bounds(fig);
     let (covered, corner, h) = legend_corner(fig, b);
     if covered == 0 {
-        return (b, corner);
+        return (b, Some(corner));
     }
     let ((x0, x1), (y0, y1)) = b;
     let frac = 1.0 - h - 0.02;
+    if frac < MIN_DATA_HEIGHT {
+        return (b, None);
+    }
     let y1 = if fig.log_y {
         (y0.ln() + (y1.ln() - y0.ln()) / frac).exp()
     } else {
@@ -92,7 +102,60 @@ fn layout(fig: &Figure) -> (Bounds, SeriesLabelPosition) {
     };
     let b = ((x0, x1), (y0, y1));
     let (_, corner, _) = legend_corner(fig, b);
-    (b, corner)
+    (b, Some(corner))
+}
+
+/// The labelled series: (palette colour, style, label).
+fn legend_entries(fig: &Figure) -> Vec<(RGBColor, Style, &str)> {
+    fig.series
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| !s.label.is_empty())
+        .map(|(i, s)| (series_color(i, s), s.style, s.label.as_str()))
+        .collect()
+}
+
+fn series_color(index: usize, s: &Series) -> RGBColor {
+    PALETTE[s.color.unwrap_or(index) % PALETTE.len()]
+}
+
+/// Width in pixels of a legend drawn beside the plot.
+fn side_legend_width(fig: &Figure) -> u32 {
+    let chars = legend_entries(fig)
+        .iter()
+        .map(|e| e.2.chars().count())
+        .max()
+        .unwrap_or(0);
+    (chars as f64 * 8.5 + 60.0) as u32
+}
+
+/// The legend beside the plot: one row per labelled series, from the plot area's top,
+/// each with the glyph of its style.
+fn draw_side_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    fig: &Figure,
+    path: &Path,
+) -> Result<()> {
+    let err = |e| plot_err(path, e);
+    for (k, (color, style, label)) in legend_entries(fig).into_iter().enumerate() {
+        let y = 66 + 21 * k as i32;
+        let pen = color.stroke_width(2);
+        match style {
+            Style::Line => area.draw(&PathElement::new(vec![(4, y), (26, y)], pen)),
+            Style::Dashed => area.draw(&PathElement::new(vec![(4, y), (12, y)], pen)),
+            Style::Markers => area.draw(&Circle::new((14, y), 4, pen)),
+            Style::Crosses => area.draw(&Cross::new((14, y), 6, pen)),
+        }
+        .map_err(err)?;
+        let font = ("sans-serif", 15).into_font().color(&BLACK);
+        let text = Text::new(
+            label.to_string(),
+            (34, y),
+            font.pos(Pos::new(HPos::Left, VPos::Center)),
+        );
+        area.draw(&text).map_err(err)?;
+    }
+    Ok(())
 }
 
 /// The legend corner covering the fewest points (and that count, and the legend's
@@ -191,7 +254,7 @@ macro_rules! draw_with {
             .draw()
             .map_err(|e| plot_err($path, e))?;
         for (i, s) in $fig.series.iter().enumerate() {
-            let color = PALETTE[s.color.unwrap_or(i) % PALETTE.len()];
+            let color = series_color(i, s);
             let pts: Vec<(f64, f64)> = s
                 .points
                 .iter()
@@ -265,14 +328,16 @@ macro_rules! draw_with {
                 }
             }
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(160, 160, 160))
-            .label_font(("sans-serif", 15))
-            .position($corner)
-            .draw()
-            .map_err(|e| plot_err($path, e))?;
+        if let Some(corner) = $corner {
+            chart
+                .configure_series_labels()
+                .background_style(WHITE.mix(0.85))
+                .border_style(RGBColor(160, 160, 160))
+                .label_font(("sans-serif", 15))
+                .position(corner)
+                .draw()
+                .map_err(|e| plot_err($path, e))?;
+        }
     }};
 }
 
@@ -313,9 +378,20 @@ fn log_keys(lo: f64, hi: f64) -> Vec<f64> {
 /// Renders one figure to a PNG file.
 pub fn render(fig: &Figure, path: &Path) -> Result<()> {
     ensure_font();
-    let root = BitMapBackend::new(path, (1000, 680)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| plot_err(path, e))?;
     let (((x0, x1), (y0, y1)), corner) = layout(fig);
+    // A legend beside the plot widens the image (the plot keeps its size) and, if need
+    // be, heightens it.
+    let (side, rows) = match corner {
+        Some(_) => (0, 0),
+        None => (side_legend_width(fig), legend_entries(fig).len() as u32),
+    };
+    let height = 680.max(66 + 21 * rows + 20);
+    let canvas = BitMapBackend::new(path, (1000 + side, height)).into_drawing_area();
+    canvas.fill(&WHITE).map_err(|e| plot_err(path, e))?;
+    let (root, beside) = canvas.split_horizontally(1000);
+    if side > 0 {
+        draw_side_legend(&beside, fig, path)?;
+    }
     let x_keys = match &fig.x_keys {
         Some(keys) => keys
             .iter()
@@ -351,13 +427,38 @@ pub fn render(fig: &Figure, path: &Path) -> Result<()> {
             corner
         ),
     }
-    root.present().map_err(|e| plot_err(path, e))?;
+    canvas.present().map_err(|e| plot_err(path, e))?;
     Ok(())
 }
 
 #[cfg(test)]
 mod tests {
-    use super::log_keys;
+    use super::{layout, log_keys, render};
+    use crate::report::figure::{Figure, Series, Style};
+
+    /// Eighteen lines across the whole plot: every corner covers data and headroom for
+    /// an 18-row legend would squeeze them into 3/10 of the height, so the legend goes
+    /// beside the plot (a wider image) and the y range stays the data's. Two lines keep
+    /// a legend inside.
+    #[test]
+    fn a_tall_legend_goes_beside_the_plot() {
+        let lines = |n: usize| {
+            (0..n).fold(Figure::new("f", "t", "x", "y"), |f, k| {
+                let y = k as f64;
+                let pts = (0..=10).map(|i| (i as f64, y + 0.1 * i as f64)).collect();
+                f.with(Series::new(format!("line {k}"), pts, Style::Line))
+            })
+        };
+        let (((_, _), (_, y1)), corner) = layout(&lines(18));
+        assert!(corner.is_none() && y1 < 19.0, "{y1}");
+        assert!(layout(&lines(2)).1.is_some());
+        let dir = crate::files::ScratchDir::new().unwrap();
+        let file = dir.path().join("f.png");
+        render(&lines(18), &file).unwrap();
+        let png = std::fs::read(&file).unwrap();
+        let width = u32::from_be_bytes([png[16], png[17], png[18], png[19]]);
+        assert!(width > 1000, "{width}");
+    }
 
     #[test]
     fn log_keys_by_span_and_on_degenerate_ranges() {

@@ -90,12 +90,15 @@ class Contact:
 
     def __init__(
         self,
-        heights: ArrayLike,
-        size: Tuple[float, float] = (1.0, 1.0),
+        heights: Union[ArrayLike, Any],
+        size: Optional[Tuple[float, float]] = None,
         e_star: float = 1.0,
-        periodic: bool = True,
+        periodic: Optional[bool] = None,
         mask: Optional[ArrayLike] = None,
-    ) -> None: ...
+    ) -> None:
+        """heights: (ny, nx) array, or a topography object with heights() (indexed
+        (x, y)) and physical_sizes (e.g. SurfaceTopography's), whose size and
+        is_periodic are the defaults of size and periodic (else (1, 1) and True)."""
     def solve(
         self,
         mean_pressure: Optional[float] = None,
@@ -199,7 +202,9 @@ class Moments(TypedDict):
     rms_curvature: float
 
 def moments(h: ArrayLike, size: Union[float, Tuple[float, float]]) -> Moments: ...
-def read_topography(path: Union[str, PathLike[str]]) -> F64: ...
+def read_topography(source: Union[str, PathLike[str], Any]) -> F64:
+    """A height map (rows of y) from .npy or a text matrix, or from a topography
+    object with heights() and physical_sizes."""
 
 class LineFit(TypedDict):
     a: float
