@@ -521,6 +521,44 @@ fn bem_contact_on_an_npy_height_map() {
         t2.columns
     );
     assert_eq!(t2.get("force", 1), t.get("force", 1));
+    // The same map as an x-y-z list (cells of 1/128: the scene's size), points in reverse
+    // order: the same forces bit for bit; with cells of 1/64 a warning names the sizes.
+    let sphere = mrd::topography::HeightMap::read(&tmp.path().join("sphere.npy")).unwrap();
+    let xyz = |cell: f64| -> String {
+        (0..n * n)
+            .rev()
+            .map(|k| {
+                format!(
+                    "{:e} {:e} {:e}\n",
+                    (k % n) as f64 * cell,
+                    (k / n) as f64 * cell,
+                    sphere.data[k]
+                )
+            })
+            .collect()
+    };
+    std::fs::write(tmp.path().join("sphere.xyz"), xyz(1.0 / 128.0)).unwrap();
+    let listed = tmp.path().join("b3.toml");
+    std::fs::write(&listed, text.replace("sphere.npy", "sphere.xyz")).unwrap();
+    let s3 = run_scene(listed.to_str().unwrap(), &tmp.path().join("out3"));
+    let t3 = read_csv(&tmp.path().join("out3/bem_contact.csv"));
+    assert_eq!(
+        (t3.get("force", 0), t3.get("force", 1)),
+        (t.get("force", 0), t.get("force", 1))
+    );
+    assert_eq!(
+        s3["warnings"].as_array().map(Vec::len),
+        Some(0),
+        "{}",
+        s3["warnings"]
+    );
+    std::fs::write(tmp.path().join("sphere.xyz"), xyz(1.0 / 64.0)).unwrap();
+    let s4 = run_scene(listed.to_str().unwrap(), &tmp.path().join("out4"));
+    let w = s4["warnings"].to_string();
+    assert!(
+        w.contains("make the map 2 x 2") && w.contains("1 x 1"),
+        "{w}"
+    );
     // Bad maps: NaN inside, missing file.
     let mut bad = vec![0.0; 16];
     bad[5] = f64::NAN;

@@ -1,7 +1,12 @@
 //! Height maps on disk: NumPy `.npy` (float32/float64, little or big endian, C or
-//! Fortran order, format versions 1-3) and plain-text matrices (whitespace, comma or
-//! semicolon separated; `#` comments), plus two-column profile tables (r, z).
-//! Arrays are returned row-major `rows x cols`. Physical sizes come from the caller.
+//! Fortran order, format versions 1-3), plain-text matrices (whitespace, comma or
+//! semicolon separated; `#` comments), the ESRI ASCII grid (a text matrix after an
+//! `ncols` / `nrows` / `cellsize` header, as profilometer and GIS software export it)
+//! and x-y-z point lists (`.xyz`: one `x y z` line per point of a regular grid, in any
+//! order), plus two-column profile tables (r, z). Arrays are returned row-major
+//! `rows x cols`, row index along y (the ESRI grid's first row, its top, becomes the
+//! last). The grid and point-list formats carry their cell size
+//! ([`HeightMap::read_with_cell`]); the others leave the size to the caller.
 
 use crate::error::{MrdError, Result};
 use std::path::Path;
@@ -36,16 +41,29 @@ impl HeightMap {
         Ok(self)
     }
 
-    /// Reads `.npy` or text depending on the extension (`.npy` vs anything else).
+    /// Reads `.npy`, `.xyz` or text depending on the extension (a text file with an
+    /// ESRI header is read as that grid).
     pub fn read(path: &Path) -> Result<Self> {
-        if path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("npy"))
-        {
-            Self::read_npy(path)
-        } else {
-            Self::read_text(path)
+        Ok(Self::read_with_cell(path)?.0)
+    }
+
+    /// [`Self::read`], and the cell size `(dx, dy)` where the file states it (ESRI grid,
+    /// x-y-z list).
+    pub fn read_with_cell(path: &Path) -> Result<(Self, Option<(f64, f64)>)> {
+        let ext = |e: &str| path.extension().is_some_and(|x| x.eq_ignore_ascii_case(e));
+        if ext("npy") {
+            return Ok((Self::read_npy(path)?, None));
         }
+        let text = std::fs::read_to_string(path).map_err(|e| bad(path, e))?;
+        let (map, cell) = if ext("xyz") {
+            let (m, cell) = parse_xyz(&text).map_err(|m| bad(path, m))?;
+            (m, Some(cell))
+        } else if let Some(grid) = parse_esri(&text).map_err(|m| bad(path, m))? {
+            (grid.0, Some(grid.1))
+        } else {
+            (Self::parse_text(path, &text)?, None)
+        };
+        Ok((map.checked(path)?, cell))
     }
 
     pub fn read_npy(path: &Path) -> Result<Self> {
@@ -170,6 +188,10 @@ impl HeightMap {
 
     pub fn read_text(path: &Path) -> Result<Self> {
         let text = std::fs::read_to_string(path).map_err(|e| bad(path, e))?;
+        Self::parse_text(path, &text)?.checked(path)
+    }
+
+    fn parse_text(path: &Path, text: &str) -> Result<Self> {
         let mut data = Vec::new();
         let mut cols = 0;
         let mut rows = 0;
@@ -201,7 +223,7 @@ impl HeightMap {
             data.extend(vals);
             rows += 1;
         }
-        Self { rows, cols, data }.checked(path)
+        Ok(Self { rows, cols, data })
     }
 
     pub fn write_text(&self, path: &Path) -> Result<()> {
@@ -216,6 +238,153 @@ impl HeightMap {
         }
         std::fs::write(path, s).map_err(|e| bad(path, e))
     }
+}
+
+/// A map and its cell size (dx, dy).
+type WithCell = (HeightMap, (f64, f64));
+
+/// The numbers of a text line (whitespace, comma or semicolon separated).
+fn numbers(line: &str) -> std::result::Result<Vec<f64>, String> {
+    line.split(|c: char| c.is_whitespace() || c == ',' || c == ';')
+        .filter(|s| !s.is_empty())
+        .map(|s| {
+            s.parse::<f64>()
+                .map_err(|_| format!("`{s}` is not a number"))
+        })
+        .collect()
+}
+
+/// An ESRI ASCII grid: `ncols`, `nrows`, `xllcorner`/`xllcenter`,
+/// `yllcorner`/`yllcenter`, `cellsize` (or `dx` and `dy`) and optionally
+/// `nodata_value`, one per line, then `nrows` rows of `ncols` heights, the first row the
+/// top (largest y). None if the text has no such header; cells holding the no-data value
+/// are refused (a contact solve needs every height).
+fn parse_esri(text: &str) -> std::result::Result<Option<WithCell>, String> {
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'))
+        .peekable();
+    let mut keys = std::collections::HashMap::new();
+    while let Some(&(ln, line)) = lines.peek() {
+        let mut it = line.split_whitespace();
+        let key = it.next().unwrap_or("").to_ascii_lowercase();
+        if !key.starts_with(|c: char| c.is_ascii_alphabetic()) {
+            break;
+        }
+        let value = it
+            .next()
+            .and_then(|v| v.parse::<f64>().ok())
+            .ok_or(format!("line {}: header `{key}` needs a number", ln + 1))?;
+        keys.insert(key, value);
+        lines.next();
+    }
+    if !keys.contains_key("ncols") {
+        return Ok(None);
+    }
+    let count = |k: &str| match keys.get(k) {
+        Some(&v) if v >= 1.0 && v.fract() == 0.0 && v <= 1e9 => Ok(v as usize),
+        _ => Err(format!("header `{k}` must be a whole number >= 1")),
+    };
+    let (cols, rows) = (count("ncols")?, count("nrows")?);
+    let cell = match (keys.get("cellsize"), keys.get("dx"), keys.get("dy")) {
+        (Some(&c), _, _) => (c, c),
+        (None, Some(&dx), Some(&dy)) => (dx, dy),
+        _ => return Err("header needs `cellsize` (or `dx` and `dy`)".into()),
+    };
+    if !(cell.0 > 0.0 && cell.1 > 0.0 && cell.0.is_finite() && cell.1.is_finite()) {
+        return Err(format!("cell size {cell:?} must be positive"));
+    }
+    let mut top_first = Vec::with_capacity(rows * cols);
+    for (ln, line) in lines {
+        let vals = numbers(line).map_err(|m| format!("line {}: {m}", ln + 1))?;
+        top_first.extend(vals);
+    }
+    if top_first.len() != rows * cols {
+        return Err(format!(
+            "{} heights, but the header says {rows} x {cols}",
+            top_first.len()
+        ));
+    }
+    if let Some(&nodata) = keys.get("nodata_value") {
+        let missing = top_first.iter().filter(|&&v| v == nodata).count();
+        if missing > 0 {
+            return Err(format!(
+                "{missing} cells hold the no-data value {nodata}: fill or crop them first"
+            ));
+        }
+    }
+    // Row index along y: the file's last row first.
+    let data = top_first.chunks(cols).rev().flatten().copied().collect();
+    Ok(Some((HeightMap { rows, cols, data }, cell)))
+}
+
+/// An x-y-z point list on a regular grid: `#` comments and one header line allowed; the
+/// points in any order, each grid point exactly once, the spacings uniform to 1e-6 of a
+/// cell.
+fn parse_xyz(text: &str) -> std::result::Result<WithCell, String> {
+    let mut points = Vec::new();
+    for (ln, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        match numbers(line) {
+            Ok(v) if v.len() == 3 => points.push((v[0], v[1], v[2])),
+            Ok(v) => {
+                return Err(format!(
+                    "line {}: {} values, expected x y z",
+                    ln + 1,
+                    v.len()
+                ))
+            }
+            Err(_) if points.is_empty() => continue, // a header line
+            Err(m) => return Err(format!("line {}: {m}", ln + 1)),
+        }
+    }
+    // The grid's coordinates along one axis: distinct values, uniformly spaced.
+    let axis = |name: &str, v: Vec<f64>| -> std::result::Result<(Vec<f64>, f64), String> {
+        let mut v = v;
+        v.sort_by(f64::total_cmp);
+        v.dedup();
+        if v.iter().any(|x| !x.is_finite()) {
+            return Err(format!("non-finite {name} coordinate"));
+        }
+        if v.len() < 2 {
+            return Ok((v, 1.0));
+        }
+        let step = (v[v.len() - 1] - v[0]) / (v.len() - 1) as f64;
+        match v
+            .iter()
+            .enumerate()
+            .find(|(k, &x)| ((x - v[0]) / step - *k as f64).abs() > 1e-6)
+        {
+            Some((_, &x)) => Err(format!(
+                "{name} = {x} is off the regular grid of step {step}"
+            )),
+            None => Ok((v, step)),
+        }
+    };
+    let (xs, dx) = axis("x", points.iter().map(|p| p.0).collect())?;
+    let (ys, dy) = axis("y", points.iter().map(|p| p.1).collect())?;
+    let (cols, rows) = (xs.len(), ys.len());
+    let index = |v: f64, axis: &[f64], step: f64| ((v - axis[0]) / step).round() as usize;
+    let mut data = vec![0.0; rows * cols];
+    let mut seen = vec![false; rows * cols];
+    for &(x, y, z) in &points {
+        let cell = index(y, &ys, dy) * cols + index(x, &xs, dx);
+        if std::mem::replace(&mut seen[cell], true) {
+            return Err(format!("the point ({x}, {y}) appears twice"));
+        }
+        data[cell] = z;
+    }
+    if points.len() != rows * cols {
+        return Err(format!(
+            "{} points, but the coordinates span a {cols} x {rows} grid: every grid point once",
+            points.len()
+        ));
+    }
+    Ok((HeightMap { rows, cols, data }, (dx, dy)))
 }
 
 /// Reads a two-column profile table (r, z): `#` comments and one header line allowed.
@@ -347,6 +516,78 @@ mod tests {
             .contains("empty"));
         std::fs::write(&p, "1 x\n").unwrap();
         assert!(HeightMap::read(&p).is_err());
+    }
+
+    /// Both plain grid formats round-trip a map (x-y-z shuffled), carry its cell size,
+    /// and refuse what is not a full regular grid.
+    #[test]
+    fn esri_grids_and_xyz_lists() {
+        let dir = tempdir();
+        let m = HeightMap {
+            rows: 3,
+            cols: 4,
+            data: (0..12).map(|k| (k as f64 * 0.37).sin()).collect(),
+        };
+        // ESRI: the top row (largest y) first.
+        let p = dir.join("g.asc");
+        let mut s = String::from(
+            "ncols 4\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 0.5\nNODATA_value -9999\n",
+        );
+        for r in (0..3).rev() {
+            let row: Vec<String> = m.data[r * 4..r * 4 + 4]
+                .iter()
+                .map(|v| format!("{v:e}"))
+                .collect();
+            s += &(row.join(" ") + "\n");
+        }
+        std::fs::write(&p, &s).unwrap();
+        assert_eq!(
+            HeightMap::read_with_cell(&p).unwrap(),
+            (m.clone(), Some((0.5, 0.5)))
+        );
+        std::fs::write(
+            &p,
+            s.replacen("1e0", "-9999", 1)
+                .replace(&format!("{:e}", m.data[0]), "-9999"),
+        )
+        .unwrap();
+        let e = HeightMap::read(&p).unwrap_err().to_string();
+        assert!(e.contains("no-data"), "{e}");
+        std::fs::write(&p, s.replace("nrows 3", "nrows 4")).unwrap();
+        assert!(HeightMap::read(&p)
+            .unwrap_err()
+            .to_string()
+            .contains("header says"));
+
+        // x-y-z, shuffled, with a header line; x spacing 0.25, y spacing 0.5.
+        let p = dir.join("g.xyz");
+        let mut lines: Vec<String> = (0..12)
+            .map(|k| {
+                format!(
+                    "{} {} {:e}",
+                    (k % 4) as f64 * 0.25 + 1.0,
+                    (k / 4) as f64 * 0.5,
+                    m.data[k]
+                )
+            })
+            .collect();
+        lines.reverse();
+        lines.swap(2, 7);
+        let body = lines.join("\n");
+        std::fs::write(&p, format!("x y z\n{body}\n")).unwrap();
+        assert_eq!(
+            HeightMap::read_with_cell(&p).unwrap(),
+            (m.clone(), Some((0.25, 0.5)))
+        );
+        for (broken, why) in [
+            (lines[1..].join("\n"), "every grid point once"),
+            (format!("{body}\n{}", lines[0]), "appears twice"),
+            (body.replacen("1.25 ", "1.3 ", 1), "off the regular grid"),
+        ] {
+            std::fs::write(&p, broken).unwrap();
+            let e = HeightMap::read(&p).unwrap_err().to_string();
+            assert!(e.contains(why), "{why}: {e}");
+        }
     }
 
     fn tempdir() -> std::path::PathBuf {

@@ -296,8 +296,9 @@ pub fn moments<'py>(
 
 /// read_topography(source) -> ndarray (rows, cols)
 ///
-/// A height map from a file, `.npy` (float32/float64, C or Fortran order) or a text
-/// matrix (any other extension), read by the same code as the CLI's bem_contact output;
+/// A height map from a file, `.npy` (float32/float64, C or Fortran order), an `.xyz`
+/// point list, an ESRI ASCII grid or a text matrix (rows of y), read by the same code as
+/// the CLI's bem_contact output;
 /// or from a topography object with `heights()` (indexed (x, y)) and `physical_sizes`
 /// (a SurfaceTopography Topography, for one), as rows of y (its transpose).
 #[pyfunction]

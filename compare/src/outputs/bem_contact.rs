@@ -22,7 +22,8 @@ use serde::Deserialize;
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BemContact {
-    /// Height map file (peaks up), relative to the scene.
+    /// Height map file (peaks up), relative to the scene: `.npy`, a text matrix, an ESRI
+    /// ASCII grid or an `.xyz` point list ([`HeightMap::read_with_cell`]).
     heights: String,
     /// Physical size [lx, ly] of the map (length units).
     size: [f64; 2],
@@ -179,9 +180,18 @@ impl Output for BemContact {
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
         let path = env.ctx.resolve(&self.heights);
-        let map = HeightMap::read(&path).ctx("heights")?;
+        let (map, cell) = HeightMap::read_with_cell(&path).ctx("heights")?;
         let (nx, ny) = (map.cols, map.rows);
         let (lx, ly) = (self.size[0], self.size[1]);
+        if let Some((dx, dy)) = cell {
+            let (fx, fy) = (dx * nx as f64, dy * ny as f64);
+            if (fx - lx).abs() > 1e-6 * lx || (fy - ly).abs() > 1e-6 * ly {
+                out.warn(format!(
+                    "{}: its cells of {dx} x {dy} make the map {fx} x {fy}, but the scene's size is {lx} x {ly} (used)",
+                    path.display()
+                ));
+            }
+        }
         let e = env.ctx.material.e_star;
         let steps = if self.periodic {
             let op = PeriodicHalfSpace::try_new(nx, ny, lx, ly, e).ctx("heights")?;

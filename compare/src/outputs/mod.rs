@@ -177,7 +177,7 @@ pub const KINDS: &[Kind] = &[
     ),
     Kind::of::<bem_contact::BemContact>(
         "bem_contact",
-        "3D boundary-element contact of a height map from a file",
+        "3D boundary-element contact of a height map from a file (.npy, text matrix, ESRI ASCII grid, .xyz point list)",
     ),
     Kind::of::<contact_area::ContactArea>(
         "contact_area",
