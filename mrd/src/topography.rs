@@ -295,12 +295,13 @@ fn parse_esri(text: &str) -> std::result::Result<Option<WithCell>, String> {
     if !(cell.0 > 0.0 && cell.1 > 0.0 && cell.0.is_finite() && cell.1.is_finite()) {
         return Err(format!("cell size {cell:?} must be positive"));
     }
-    let mut top_first = Vec::with_capacity(rows * cols);
+    // Grown from the file's numbers, not sized from the header (which may be anything).
+    let mut top_first = Vec::new();
     for (ln, line) in lines {
         let vals = numbers(line).map_err(|m| format!("line {}: {m}", ln + 1))?;
         top_first.extend(vals);
     }
-    if top_first.len() != rows * cols {
+    if Some(top_first.len()) != rows.checked_mul(cols) {
         return Err(format!(
             "{} heights, but the header says {rows} x {cols}",
             top_first.len()
@@ -368,6 +369,13 @@ fn parse_xyz(text: &str) -> std::result::Result<WithCell, String> {
     let (xs, dx) = axis("x", points.iter().map(|p| p.0).collect())?;
     let (ys, dy) = axis("y", points.iter().map(|p| p.1).collect())?;
     let (cols, rows) = (xs.len(), ys.len());
+    // Checked before the grid is allocated (scattered points would span a huge one).
+    if Some(points.len()) != rows.checked_mul(cols) {
+        return Err(format!(
+            "{} points, but the coordinates span a {cols} x {rows} grid: every grid point once",
+            points.len()
+        ));
+    }
     let index = |v: f64, axis: &[f64], step: f64| ((v - axis[0]) / step).round() as usize;
     let mut data = vec![0.0; rows * cols];
     let mut seen = vec![false; rows * cols];
@@ -377,12 +385,6 @@ fn parse_xyz(text: &str) -> std::result::Result<WithCell, String> {
             return Err(format!("the point ({x}, {y}) appears twice"));
         }
         data[cell] = z;
-    }
-    if points.len() != rows * cols {
-        return Err(format!(
-            "{} points, but the coordinates span a {cols} x {rows} grid: every grid point once",
-            points.len()
-        ));
     }
     Ok((HeightMap { rows, cols, data }, (dx, dy)))
 }
@@ -558,6 +560,15 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("header says"));
+        // A header promising a huge grid is refused by the count, not by an allocation.
+        let huge = s
+            .replace("nrows 3", "nrows 1000000000")
+            .replace("ncols 4", "ncols 1000000000");
+        std::fs::write(&p, huge).unwrap();
+        assert!(HeightMap::read(&p)
+            .unwrap_err()
+            .to_string()
+            .contains("header says"));
 
         // x-y-z, shuffled, with a header line; x spacing 0.25, y spacing 0.5.
         let p = dir.join("g.xyz");
@@ -581,7 +592,11 @@ mod tests {
         );
         for (broken, why) in [
             (lines[1..].join("\n"), "every grid point once"),
-            (format!("{body}\n{}", lines[0]), "appears twice"),
+            (format!("{body}\n{}", lines[0]), "every grid point once"),
+            (
+                format!("{}\n{}", lines[1..].join("\n"), lines[1]),
+                "appears twice",
+            ),
             (body.replacen("1.25 ", "1.3 ", 1), "off the regular grid"),
         ] {
             std::fs::write(&p, broken).unwrap();

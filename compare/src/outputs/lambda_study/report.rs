@@ -328,7 +328,18 @@ fn against_bandwidth(s: &LambdaStudy, r: &Results, label: &str, what: &str) -> F
         }
     }
     if what == "lambda" {
-        let bands: Vec<f64> = s.bandwidths.iter().map(|&b| b as f64).collect();
+        // Over the bandwidths with data (the axis keeps every bandwidth of the study).
+        let with_data: Vec<f64> = r
+            .cases
+            .iter()
+            .filter(|c| c.case.role == Role::Ladder)
+            .map(|c| c.case.band as f64)
+            .collect();
+        let bands: Vec<f64> = if with_data.is_empty() {
+            s.bandwidths.iter().map(|&b| b as f64).collect()
+        } else {
+            with_data
+        };
         let (b0, b1) = (
             bands.iter().copied().fold(f64::INFINITY, f64::min),
             bands.iter().copied().fold(0.0, f64::max),
