@@ -269,7 +269,18 @@ fn parse_esri(text: &str) -> std::result::Result<Option<WithCell>, String> {
     while let Some(&(ln, line)) = lines.peek() {
         let mut it = line.split_whitespace();
         let key = it.next().unwrap_or("").to_ascii_lowercase();
-        if !key.starts_with(|c: char| c.is_ascii_alphabetic()) {
+        const KEYS: [&str; 9] = [
+            "ncols",
+            "nrows",
+            "xllcorner",
+            "yllcorner",
+            "xllcenter",
+            "yllcenter",
+            "cellsize",
+            "dx",
+            "dy",
+        ];
+        if !(KEYS.contains(&key.as_str()) || key == "nodata_value") {
             break;
         }
         let value = it
@@ -518,6 +529,10 @@ mod tests {
             .contains("empty"));
         std::fs::write(&p, "1 x\n").unwrap();
         assert!(HeightMap::read(&p).is_err());
+        // Words that parse as numbers are heights, not an ESRI header.
+        std::fs::write(&p, "inf 1\n2 3\n").unwrap();
+        let e = HeightMap::read(&p).unwrap_err().to_string();
+        assert!(e.contains("non-finite height at row 1, column 1"), "{e}");
     }
 
     /// Both plain grid formats round-trip a map (x-y-z shuffled), carry its cell size,
