@@ -57,10 +57,11 @@ impl Choice {
 ///
 /// What forcing one means:
 /// - `window`: every solve runs on a window, whatever its size (up to the whole grid)
-///   and whatever a warm start offers; needs the non-periodic operator and a load.
+///   and whatever a warm start offers; needs the non-periodic operator (a zero load
+///   needs no solve and is not refused).
 /// - `candidate_set`: every solve runs on a candidate set of up to 4096 cells (the
 ///   dense matrix's memory), whatever its cost against the full grid; needs an operator
-///   with a real-space table and a load.
+///   with a real-space table.
 /// - `stencil`: M by its stencil at every iteration of the grid and window paths,
 ///   whatever the contact fraction; needs an operator with one.
 /// - `nested_start`: the start from the coarsened grid on any grid with even sides of
@@ -69,8 +70,8 @@ impl Choice {
 /// - `single_precision`: as allowed (the single-precision phase runs whenever the
 ///   criterion is above 1e-4), and the operator must have a single-precision form.
 ///
-/// At most one of `window`, `candidate_set` and `nested_start` (a full-grid start) can
-/// be forced.
+/// At most one of `window`, `candidate_set` and `nested_start` can be forced: each is
+/// a different way to begin a cold solve.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Paths {
     /// A window around a compact contact (non-periodic half-space).
