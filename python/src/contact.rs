@@ -216,10 +216,11 @@ impl<'py> HeightMap<'py> {
             .call_method0("heights")?
             .extract()
             .map_err(|e| bad(format!("heights() must give a 2D float array ({e})")))?;
-        let size: (f64, f64) = obj
+        // None where the topography's size is unknown (then `size=` must be given).
+        let size: Option<(f64, f64)> = obj
             .getattr("physical_sizes")?
             .extract()
-            .map_err(|e| bad(format!("physical_sizes must be (lx, ly) ({e})")))?;
+            .map_err(|e| bad(format!("physical_sizes must be (lx, ly) or None ({e})")))?;
         let periodic = match obj.getattr("is_periodic") {
             Ok(v) => Some(
                 v.extract::<bool>()
@@ -230,7 +231,7 @@ impl<'py> HeightMap<'py> {
         Ok(Self {
             array,
             by_x: true,
-            size: Some(size),
+            size,
             periodic,
         })
     }
@@ -270,7 +271,8 @@ impl<'py> HeightMap<'py> {
 /// Topography, or any object like it: its heights are indexed (x, y) and are
 /// transposed to (ny, nx), its `physical_sizes` (lx, ly) is the size and its
 /// `is_periodic`, where present, the default of `periodic`); size: physical size
-/// (lx, ly) of the map [length] (default (1, 1), or the object's); e_star: contact
+/// (lx, ly) of the map [length] (default (1, 1), or the object's; required when the
+/// object's `physical_sizes` is None); e_star: contact
 /// modulus E* [stress] (Eq. 2); periodic: periodic half-space (False: isolated map,
 /// zero-padded FFTs; default True, or the object's); arguments given override the
 /// object's attributes. mask:
@@ -446,6 +448,11 @@ impl Contact {
         mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
     ) -> PyResult<Self> {
         let map = HeightMap::extract(heights)?;
+        if map.by_x && size.is_none() && map.size.is_none() {
+            return Err(value_error(
+                "the topography has no physical_sizes: give size=(lx, ly)",
+            ));
+        }
         let size = size.or(map.size).unwrap_or((1.0, 1.0));
         let periodic = periodic.or(map.periodic).unwrap_or(true);
         let (ny, nx) = map.shape();

@@ -286,6 +286,11 @@ def test_a_topography_object_is_taken_as_its_array():
     assert mrdw.Contact(TopographyLike(h.T, (lx, ly))).periodic
     with pytest.raises(ValueError, match="physical_sizes"):
         mrdw.Contact(TopographyLike(h.T, "wide"))
+    # A topography of unknown size needs size=.
+    with pytest.raises(ValueError, match="give size="):
+        mrdw.Contact(TopographyLike(h.T, None))
+    sized = mrdw.Contact(TopographyLike(h.T, None, periodic=False), size=(lx, ly))
+    assert np.array_equal(sized.solve(mean_pressure=0.02).pressure, ref.pressure)
 
 
 def test_a_surfacetopography_topography_when_installed():

@@ -98,7 +98,8 @@ class Contact:
     ) -> None:
         """heights: (ny, nx) array, or a topography object with heights() (indexed
         (x, y)) and physical_sizes (e.g. SurfaceTopography's), whose size and
-        is_periodic are the defaults of size and periodic (else (1, 1) and True)."""
+        is_periodic are the defaults of size and periodic (else (1, 1) and True; a
+        topography whose physical_sizes is None needs size)."""
     def solve(
         self,
         mean_pressure: Optional[float] = None,
