@@ -106,8 +106,12 @@ fn every_case_file_is_embedded() {
 fn all_embedded_scenes_run_and_match_closed_forms() {
     let tmp = tempfile::tempdir().unwrap();
     for (name, _) in compare::scenes::EMBEDDED {
-        if name.starts_with("fig6") || *name == "fig7" || *name == "fig7-3d" {
-            continue; // sweeps: tests/sweep.rs (fig6-ci); fig6, fig6-full, fig7(-3d) are long runs
+        if name.starts_with("fig6")
+            || *name == "fig7"
+            || *name == "fig7-3d"
+            || *name == "static-friction-3d"
+        {
+            continue; // sweeps: tests/sweep.rs (fig6-ci); the others are long runs
         }
         let out = tmp.path().join(name);
         let s = run_scene(name, &out);
@@ -249,6 +253,41 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
                 result(&s, "sliding_friction.xi_hi95"),
             );
             assert!(lo > 0.8 && hi < 1.6, "xi in [{lo}, {hi}]");
+        }
+        if *name == "static-friction-3d-ci" {
+            // Eq. (93) machinery: past complete contact xi = 1 on both sides and every
+            // geometry; below it 0 < xi < 1 and xi grows with f; the fit of Eq. (91) has
+            // b > 0 on both sides; every 3D solve converged; the refinement is reported.
+            let t = read_csv(&out.join("static_friction_3d.csv"));
+            let last = t.rows.len() - 1;
+            for k in 0..t.rows.len() {
+                let xi = t.get("xi_3d", k);
+                if t.get("area_3d", k) == 1.0 {
+                    assert!((xi - 1.0).abs() < 1e-12, "row {k}: {xi}");
+                    assert_eq!(t.get("xi_mrd_pi", k), 1.0);
+                } else {
+                    assert!(xi > 0.0 && xi < 1.0, "row {k}: {xi}");
+                    assert!(xi < t.get("xi_3d", k + 1) + t.get("xi_3d_ci95", k + 1));
+                }
+            }
+            assert_eq!(t.get("area_3d", last), 1.0);
+            assert_eq!(t.get("realisations_3d", 0), 4.0);
+            let fits = read_csv(&out.join("static_friction_3d_fit.csv"));
+            assert_eq!(fits.rows.len(), 6, "2 geometries x (3D + 2 lambdas)");
+            for k in 0..fits.rows.len() {
+                let (b, lo, hi) = (
+                    fits.get("b", k),
+                    fits.get("b_lo95", k),
+                    fits.get("b_hi95", k),
+                );
+                assert!(
+                    b > 0.0 && lo <= b && b <= hi,
+                    "fit row {k}: {b} [{lo}, {hi}]"
+                );
+            }
+            let change = result(&s, "static_friction_3d.refine_change");
+            assert!(change.abs() < result(&s, "static_friction_3d.refine_xi_ci95"));
+            assert!(s["failures"].as_array().unwrap().is_empty());
         }
         if *name == "contact-area-ci" {
             // Section 11: the MRD contact-length fraction is several times the 3D area

@@ -96,6 +96,21 @@ fn the_study_machinery_runs_pairs_and_reproduces() {
         (tol[8] - 1.0).abs() < 1e-4,
         "the tolerance moves lambda: {tol:?}"
     );
+    // Scatter between realisations (Section 9): per H the ladder case with the most
+    // realisations (the cap, 12), each CV inside its interval, both sides positive
+    // below complete contact.
+    let scatter = rows(&p("a/lambda_study_scatter.csv"));
+    assert!(!scatter.is_empty());
+    for r in &scatter {
+        assert_eq!(r[2], 12.0, "{r:?}");
+        assert!(
+            r[7] <= r[6] && r[6] <= r[8] && r[10] <= r[9] && r[9] <= r[11],
+            "{r:?}"
+        );
+        if r[5] == 1.0 {
+            assert!(r[6] > 0.0 && r[9] > 0.0, "{r:?}");
+        }
+    }
     // The same bytes on one thread, and after an interruption and a resume.
     ok(&mrdw(
         &[

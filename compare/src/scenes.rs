@@ -38,6 +38,14 @@ pub const EMBEDDED: &[(&str, &str)] = &[
     ),
     ("fig9", include_str!("../../cases/fig9.toml")),
     (
+        "static-friction-3d",
+        include_str!("../../cases/static-friction-3d.toml"),
+    ),
+    (
+        "static-friction-3d-ci",
+        include_str!("../../cases/static-friction-3d-ci.toml"),
+    ),
+    (
         "fig9-readings",
         include_str!("../../cases/fig9-readings.toml"),
     ),

@@ -32,6 +32,7 @@ pub mod rough_stiffness;
 mod sliding_friction;
 mod sliding_friction_3d;
 mod static_friction;
+mod static_friction_3d;
 mod tangential;
 mod viscoelastic;
 
@@ -162,6 +163,10 @@ pub const KINDS: &[Kind] = &[
     Kind::of::<static_friction::StaticFriction>(
         "static_friction",
         "static friction from the mean slope in contact (Section 10.2, Fig. 9)",
+    ),
+    Kind::of::<static_friction_3d::StaticFriction3d>(
+        "static_friction_3d",
+        "the mean slope in contact in 3D against MRD, Eq. (93) (Section 10.2)",
     ),
     Kind::of::<rough_stiffness::RoughStiffness>(
         "rough_stiffness",

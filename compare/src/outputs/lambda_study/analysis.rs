@@ -88,6 +88,8 @@ pub struct Results {
     pub f: Vec<f64>,
     pub cases: Vec<CaseResult>,
     pub pairs: Vec<Pair>,
+    /// Per H, the scatter between realisations (Section 9).
+    pub scatter: Vec<super::scatter::Scatter>,
     pub seconds_3d: f64,
     pub seconds_mrd: f64,
 }
@@ -97,8 +99,8 @@ type Curves = Vec<Vec<Option<f64>>>;
 /// The solved realisations of a case on the f grid, with their faces' control
 /// statistics, and the expectations of those statistics (from the case's control
 /// ensemble) when it has been computed.
-struct Sample {
-    k3: Curves,
+pub(super) struct Sample {
+    pub(super) k3: Curves,
     bem: Vec<BemCurve>,
     summit: Vec<f64>,
     winkler: Curves,
@@ -112,7 +114,7 @@ struct Controls {
 }
 
 /// The first `n` realisations of `case` (F / h of each realisation on the f grid).
-fn sample(s: &LambdaStudy, work: &Path, case: &Case, n: u64) -> Result<Sample> {
+pub(super) fn sample(s: &LambdaStudy, work: &Path, case: &Case, n: u64) -> Result<Sample> {
     let fs = s.f_grid();
     let mut out = Sample {
         k3: Vec::new(),
@@ -488,5 +490,6 @@ pub fn analyse(s: &LambdaStudy, work: &Path) -> Result<Results> {
             }
         }
     }
+    res.scatter = super::scatter::scatter(s, work)?;
     Ok(res)
 }

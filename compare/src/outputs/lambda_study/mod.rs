@@ -28,10 +28,12 @@
 //! not depend on the order of work, threads or interruptions.
 //!
 //! Files: [`tasks`] (cases, the adaptive plan, the checkpointed work), [`analysis`]
-//! (curves, fits, lambda, pairs), [`report`] (tables and figures).
+//! (curves, fits, lambda, pairs), [`scatter`] (the scatter between realisations, 3D
+//! against MRD), [`report`] (tables and figures).
 
 pub mod analysis;
 mod report;
+mod scatter;
 pub mod tasks;
 
 use super::{bad, count_in, Checkpointed, Env, Output, RunControl};

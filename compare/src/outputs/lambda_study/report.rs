@@ -28,6 +28,7 @@ pub fn report(s: &LambdaStudy, r: &Results, out: &mut Section) {
             out.figures.push(local_exponent_figure(r, c, &label));
         }
     }
+    super::scatter::report(&r.scatter, &r.f, &label, out);
     for c in r
         .cases
         .iter()
