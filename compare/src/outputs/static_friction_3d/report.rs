@@ -412,7 +412,7 @@ fn add_to_figure(
         figures.push(Figure::new(
             name,
             &format!(
-                "Eq. (93): mean slope in contact, 3D ({}, {}^2 cells, 95% CI) and MRD",
+                "Eq. (93), {} on {}^2 cells: 3D (95% CI) and MRD",
                 case.geometry.name(),
                 spec.grid(spec.cells)
             ),
@@ -458,14 +458,31 @@ fn add_to_figure(
     }
     if let Some([a, b, h]) = spec.paper {
         if h == case.hurst {
-            fig.series.push(
-                Series::new(
-                    format!("paper, Eq. (92)-(93): xi = {a} + {b} ln f (H = {h})"),
-                    fs.iter().map(|&f| (f, a + b * f.ln())).collect(),
-                    Style::Dashed,
-                )
-                .colored(spec.hurst.len() + 1),
-            );
+            // xi <= 1 far from the bound holds on both sides; the paper's law is drawn
+            // where it stays below XI_DRAWN, and said in the title where it does not.
+            let law: Vec<(f64, f64)> = fs
+                .iter()
+                .map(|&f| (f, a + b * f.ln()))
+                .filter(|p| p.1 <= XI_DRAWN)
+                .collect();
+            if law.is_empty() {
+                let lowest = a + b * fs[0].ln();
+                fig.title.push_str(&format!(
+                    "; Eq. (92) at H = {h}: > {lowest:.2}, off the plot"
+                ));
+            } else {
+                fig.series.push(
+                    Series::new(
+                        format!("paper, Eq. (92)-(93): xi = {a} + {b} ln f (H = {h})"),
+                        law,
+                        Style::Dashed,
+                    )
+                    .colored(spec.hurst.len() + 1),
+                );
+            }
         }
     }
 }
+
+/// Largest xi a figure draws the paper's law at (xi -> 1 at complete contact).
+const XI_DRAWN: f64 = 1.25;
