@@ -110,6 +110,7 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             || *name == "fig7"
             || *name == "fig7-3d"
             || *name == "static-friction-3d"
+            || *name == "rough-sphere"
         {
             continue; // sweeps: tests/sweep.rs (fig6-ci); the others are long runs
         }
@@ -288,6 +289,35 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             let change = result(&s, "static_friction_3d.refine_change");
             assert!(change.abs() < result(&s, "static_friction_3d.refine_xi_ci95"));
             assert!(s["failures"].as_array().unwrap().is_empty());
+            assert!(stages(&s).contains(&"bem3d".to_string()));
+            continue;
+        }
+        if *name == "rough-sphere-ci" {
+            // The smooth sphere is Hertz on both sides (3D at 16 cells per Hertz radius:
+            // 3 cells across the smallest contact, hence the stiffness tolerance; MRD to
+            // its spring spacing); roughness softens the contact at small forces on both
+            // sides; no contact reaches the map's edge; every solve converged.
+            let dev =
+                |k: &str| result(&s, &format!("rough_sphere.smooth_{k}_max_rel_dev_vs_hertz"));
+            assert!(dev("3d_d") < 5e-3 && dev("3d_a") < 0.03 && dev("3d_k") < 0.08);
+            assert!(dev("mrd_d") < 1e-3 && dev("mrd_a") < 2e-3 && dev("mrd_k") < 0.03);
+            let v = &s["results"]["rough_sphere.per_alpha"];
+            assert_eq!(v["0"]["lambda_0"]["within_5_percent"], true, "{v}");
+            let t = read_csv(&out.join("rough_sphere.csv"));
+            let first_rough = (0..t.rows.len())
+                .find(|&k| t.get("alpha", k) == 2.0)
+                .unwrap();
+            let k_h = t.get("k_hertz", first_rough);
+            assert!(t.get("k_3d", first_rough) < 0.9 * k_h);
+            assert!(t.get("k_mrd_0", first_rough) < 0.95 * k_h);
+            assert!(
+                s["warnings"].as_array().unwrap().is_empty(),
+                "{}",
+                s["warnings"]
+            );
+            assert!(s["failures"].as_array().unwrap().is_empty());
+            assert!(stages(&s).contains(&"bem3d_stiffness".to_string()));
+            continue;
         }
         if *name == "contact-area-ci" {
             // Section 11: the MRD contact-length fraction is several times the 3D area

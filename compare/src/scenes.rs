@@ -38,6 +38,14 @@ pub const EMBEDDED: &[(&str, &str)] = &[
     ),
     ("fig9", include_str!("../../cases/fig9.toml")),
     (
+        "rough-sphere",
+        include_str!("../../cases/rough-sphere.toml"),
+    ),
+    (
+        "rough-sphere-ci",
+        include_str!("../../cases/rough-sphere-ci.toml"),
+    ),
+    (
         "static-friction-3d",
         include_str!("../../cases/static-friction-3d.toml"),
     ),

@@ -28,6 +28,7 @@ pub mod hurst_sweep;
 pub mod lambda_study;
 mod pressure;
 mod profile_1d;
+mod rough_sphere;
 pub mod rough_stiffness;
 mod sliding_friction;
 mod sliding_friction_3d;
@@ -187,6 +188,10 @@ pub const KINDS: &[Kind] = &[
     Kind::of::<contact_area::ContactArea>(
         "contact_area",
         "real contact area and mean gap against force, 3D against MRD (Section 11)",
+    ),
+    Kind::of::<rough_sphere::RoughSphere>(
+        "rough_sphere",
+        "a sphere with self-affine roughness, 3D against MRD (Hess + Eq. 76), smooth to rough (Section 9)",
     ),
     Kind::of::<hurst_sweep::HurstSweep>(
         "hurst_sweep",

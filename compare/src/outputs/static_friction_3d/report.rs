@@ -136,7 +136,7 @@ fn lambda_name(l: &LambdaSpec) -> String {
 
 fn columns(spec: &StaticFriction3d) -> Vec<String> {
     let mut c: Vec<String> = [
-        "geometry [0 periodic, 1 disc]",
+        "geometry [0 periodic; 1 disc]",
         "hurst [1]",
         "f = sqrt(pi) F/(2 E* h sqrt(A)) [1]",
         "xi_3d [1]",
@@ -242,7 +242,7 @@ fn fits_table(spec: &StaticFriction3d) -> Table {
     let mut fits = Table::new(
         "static_friction_3d_fit",
         &[
-            "geometry [0 periodic, 1 disc]",
+            "geometry [0 periodic; 1 disc]",
             "hurst [1]",
             "lambda [1; 0 = 3D]",
             "a [1]",

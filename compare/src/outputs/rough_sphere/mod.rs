@@ -1,0 +1,217 @@
+//! `rough_sphere`: Section 9 says MRD "is also applicable to combined profiles (e.g., a
+//! rough parabolic indenter)". This output presses a sphere of radius R with self-affine
+//! roughness of rms height h superposed on the free half-space, in 3D and by MRD, for a
+//! ladder of roughness amplitudes from the smooth sphere (h = 0: Hertz on both sides) to
+//! roughness-dominated contact, and reports where MRD's force-approach, stiffness and
+//! apparent-radius curves stay within 5 % of 3D.
+//!
+//! - Roughness: nested self-affine surfaces (C2D ~ q^(-2H-2), modes |k| <= `bandwidth`
+//!   in units of 2 pi / side) on a square of side `side` x a_H, a_H the Hertz radius at
+//!   the largest load F_H = 4/3 E* R^(1/2) d_H^(3/2); each realisation scaled to rms
+//!   height h over the square. h comes from Greenwood and Tripp's alpha = h R / a_H^2
+//!   (their sigma is the summit-height rms; the rms height is used here).
+//! - 3D: heights -r^2 / (2R) + roughness on `grid`^2 cells, force controlled at `loads`
+//!   forces log-spaced from 1e-2 F_H to F_H, warm-started; the approach d of the mean
+//!   sphere (from the apex of the smooth sphere: d = approach from first contact - the
+//!   highest point), the tangent stiffness k = dF/dd, and the apparent contact radius.
+//! - MRD: springs E* dx on [-side/2, side/2] x a_H with the gap of the rule of Hess for
+//!   the sphere, x^2 / R (Eq. 11), minus a rough line of the same spectrum mapped by
+//!   C1D = lambda q C2D (Eq. 76; same scale factor as the surface), at the same forces.
+//! - Apparent radius: a = sqrt(5/2 <r^2>_p) in 3D and sqrt(5 <x^2>_q) in MRD, the
+//!   second moments of the pressure and of the spring forces; both are exactly the
+//!   Hertz radius for the smooth sphere (p ~ sqrt(a^2 - r^2), q ~ a^2 - x^2) and do not
+//!   jump with isolated far contacts. The outermost contact radius is reported too.
+
+mod report;
+mod runs;
+
+use super::rough_stiffness::LambdaSpec;
+use super::{bad, check_memory, count_in, positive, Env, Output, BYTES_PER_CELL_NON_PERIODIC};
+use crate::context::Context;
+use crate::error::{Context as _, Result};
+use crate::plan::Stage;
+use crate::report::Section;
+use rayon::prelude::*;
+use serde::Deserialize;
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RoughSphere {
+    /// Sphere radius R.
+    radius: f64,
+    /// Smooth-sphere approach at the largest load; a_H = sqrt(R d_H).
+    hertz_depth: f64,
+    hurst: f64,
+    /// Greenwood-Tripp alpha = h R / a_H^2 per case; 0 is the smooth sphere.
+    alpha: Vec<f64>,
+    /// Side of the square (3D map and MRD row) in units of a_H.
+    #[serde(default = "six")]
+    side: f64,
+    grid: usize,
+    /// Roughness modes |k| <= bandwidth (units of 2 pi / side).
+    bandwidth: usize,
+    realisations_3d: u64,
+    realisations_1d: u64,
+    /// MRD springs per 3D cell along x.
+    #[serde(default = "four")]
+    points_1d_factor: usize,
+    #[serde(default = "ten")]
+    loads: usize,
+    #[serde(default = "pi_only")]
+    lambda: Vec<LambdaSpec>,
+    #[serde(default = "tolerance")]
+    tolerance: f64,
+    #[serde(default)]
+    seed: u64,
+}
+
+fn six() -> f64 {
+    6.0
+}
+fn four() -> usize {
+    4
+}
+fn ten() -> usize {
+    10
+}
+fn pi_only() -> Vec<LambdaSpec> {
+    vec![LambdaSpec::default()]
+}
+fn tolerance() -> f64 {
+    1e-8
+}
+
+/// MRD within this of 3D counts as agreement (the issue's 5 %).
+const AGREEMENT: f64 = 0.05;
+
+impl RoughSphere {
+    fn a_hertz(&self) -> f64 {
+        (self.radius * self.hertz_depth).sqrt()
+    }
+    fn side_length(&self) -> f64 {
+        self.side * self.a_hertz()
+    }
+    fn forces(&self) -> Vec<f64> {
+        let f_h = mrd::reference::hertz::force(1.0, self.radius, self.hertz_depth);
+        mrd::friction::log_space(1e-2 * f_h, f_h, self.loads)
+    }
+    fn rms_height(&self, alpha: f64) -> f64 {
+        alpha * self.a_hertz().powi(2) / self.radius
+    }
+    fn realisations(&self, alpha: f64, n: u64) -> u64 {
+        // The smooth sphere is deterministic: one realisation.
+        if alpha == 0.0 {
+            1
+        } else {
+            n
+        }
+    }
+}
+
+impl Output for RoughSphere {
+    fn validate(&self, ctx: &Context) -> Result<()> {
+        if !(positive(self.radius) && positive(self.hertz_depth)) {
+            return bad("radius and hertz_depth must be > 0");
+        }
+        if self.hertz_depth > 0.1 * self.radius {
+            return bad("hertz_depth must be <= 0.1 radius (Hertz: small slopes)");
+        }
+        if !(-1.0..=3.0).contains(&self.hurst) {
+            return bad(format!("hurst = {} must lie in [-1, 3]", self.hurst));
+        }
+        if self.alpha.is_empty() || self.alpha.iter().any(|a| !(a.is_finite() && *a >= 0.0)) {
+            return bad("alpha needs at least one entry, each finite and >= 0");
+        }
+        if !(self.side.is_finite() && (2.5..=100.0).contains(&self.side)) {
+            return bad("side must lie in [2.5, 100] (units of the Hertz radius)");
+        }
+        count_in("grid", self.grid as u64, 16..=4096)?;
+        count_in(
+            "bandwidth",
+            self.bandwidth as u64,
+            1..=(self.grid as u64 - 1) / 2,
+        )?;
+        count_in(
+            "realisations_3d",
+            self.realisations_3d,
+            2..=super::MAX_REALISATIONS,
+        )?;
+        count_in(
+            "realisations_1d",
+            self.realisations_1d,
+            2..=super::MAX_REALISATIONS,
+        )?;
+        count_in("points_1d_factor", self.points_1d_factor as u64, 1..=64)?;
+        count_in("loads", self.loads as u64, 3..=super::MAX_LOADS)?;
+        if !(self.tolerance > 0.0 && self.tolerance < 1e-2) {
+            return bad("tolerance must lie in (0, 1e-2)");
+        }
+        for l in &self.lambda {
+            if let LambdaSpec::Value(v) = l {
+                if !positive(*v) {
+                    return bad(format!("lambda = {v} must be > 0"));
+                }
+            }
+            l.build(ctx)?
+                .at(self.hurst)
+                .ctx(format!("lambda {l:?} at H = {}", self.hurst))?;
+        }
+        let n = self.grid as f64;
+        check_memory(
+            n * n * BYTES_PER_CELL_NON_PERIODIC * rayon::current_num_threads() as f64,
+            &format!("3D grids of {n}^2 cells, one per thread"),
+        )
+    }
+
+    fn stages(&self, _: &Context) -> Vec<Stage> {
+        vec![
+            Stage::RoughSynthesis,
+            Stage::Bem3d,
+            Stage::Bem3dStiffness,
+            Stage::RoughContact,
+        ]
+    }
+
+    fn seed(&self) -> Option<u64> {
+        Some(self.seed)
+    }
+
+    fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
+        let lambdas: Vec<f64> = self
+            .lambda
+            .iter()
+            .map(|l| l.build(env.ctx)?.at(self.hurst).ctx("lambda"))
+            .collect::<Result<_>>()?;
+        let scale = runs::roughness_scale(self)?;
+        let stages = [Stage::RoughSynthesis, Stage::Bem3d, Stage::Bem3dStiffness];
+        let all_3d = out.stages_together(&stages, || {
+            self.alpha
+                .iter()
+                .map(|&a| {
+                    (0..self.realisations(a, self.realisations_3d))
+                        .into_par_iter()
+                        .map(|r| runs::press_3d(self, a, scale, r))
+                        .collect::<Result<Vec<_>>>()
+                })
+                .collect::<Result<Vec<_>>>()
+        })?;
+        let all_1d = out.stage(Stage::RoughContact, || {
+            self.alpha
+                .iter()
+                .map(|&a| {
+                    lambdas
+                        .iter()
+                        .map(|&lam| {
+                            (0..self.realisations(a, self.realisations_1d))
+                                .into_par_iter()
+                                .map(|r| runs::press_1d(self, a, scale, lam, r))
+                                .collect::<Result<Vec<_>>>()
+                        })
+                        .collect::<Result<Vec<_>>>()
+                })
+                .collect::<Result<Vec<_>>>()
+        })?;
+        report::report(self, &lambdas, &all_3d, &all_1d, out);
+        Ok(())
+    }
+}
