@@ -234,7 +234,7 @@ pub fn report(
             }
         }
         verdict.insert(format!("{alpha}"), Value::Object(v));
-        add_curves(spec, &mut figs, ai, alpha, &fs, &l3, &l1, lambdas);
+        add_curves(spec, &mut figs, (ai, alpha), &fs, (&l3, &l1), lambdas);
     }
     out.value("per_alpha", Value::Object(verdict));
     out.tables.push(t);
@@ -267,44 +267,35 @@ fn figures(spec: &RoughSphere) -> [Figure; 3] {
     [fd, k, a]
 }
 
-#[allow(clippy::too_many_arguments)]
+/// What figure `which` plots of a level at force f: (x, y, half-width of y).
+fn point(spec: &RoughSphere, which: usize, v: &Level, f: f64, f_h: f64) -> (f64, f64, f64) {
+    let d = hertz::depth(1.0, spec.radius, f);
+    let a_h = hertz::radius(spec.radius, d);
+    let k_h = 2.0 * a_h; // k = 2 E* a, E* = 1
+    match which {
+        0 => (v.approach.mean / spec.hertz_depth, f / f_h, 0.0),
+        1 => (f / f_h, v.stiffness.mean / k_h, v.stiffness.ci95 / k_h),
+        _ => (f / f_h, v.radius.mean / a_h, v.radius.ci95 / a_h),
+    }
+}
+
+/// Adds one alpha's curves (3D with bars, MRD per lambda) to the three figures.
 fn add_curves(
     spec: &RoughSphere,
     figs: &mut [Figure; 3],
-    color: usize,
-    alpha: f64,
+    (color, alpha): (usize, f64),
     fs: &[f64],
-    l3: &[Option<Level>],
-    l1: &[Vec<Option<Level>>],
+    (l3, l1): (&[Option<Level>], &[Vec<Option<Level>>]),
     lambdas: &[f64],
 ) {
     let f_h = fs[fs.len() - 1];
-    let d_hz = spec.hertz_depth;
-    let hz = |f: f64| {
-        let d = hertz::depth(1.0, spec.radius, f);
-        (
-            2.0 * hertz::radius(spec.radius, d),
-            hertz::radius(spec.radius, d),
-        )
-    };
-    let pick = |l: &[Option<Level>], g: &dyn Fn(&Level, f64) -> (f64, f64, f64)| {
+    let pick = |l: &[Option<Level>], which: usize| {
         (0..fs.len())
-            .filter_map(|k| l[k].map(|v| g(&v, fs[k])))
+            .filter_map(|k| l[k].map(|v| point(spec, which, &v, fs[k], f_h)))
             .collect::<Vec<_>>()
     };
-    let curves: [Box<dyn Fn(&Level, f64) -> (f64, f64, f64)>; 3] = [
-        Box::new(|v, f| (v.approach.mean / d_hz, f / f_h, 0.0)),
-        Box::new(|v, f| {
-            (
-                f / f_h,
-                v.stiffness.mean / hz(f).0,
-                v.stiffness.ci95 / hz(f).0,
-            )
-        }),
-        Box::new(|v, f| (f / f_h, v.radius.mean / hz(f).1, v.radius.ci95 / hz(f).1)),
-    ];
-    for (fig, g) in figs.iter_mut().zip(&curves) {
-        let p3 = pick(l3, g.as_ref());
+    for (which, fig) in figs.iter_mut().enumerate() {
+        let p3 = pick(l3, which);
         fig.series.push(
             Series::new(
                 format!("3D, alpha = {alpha}"),
@@ -315,7 +306,7 @@ fn add_curves(
             .colored(color),
         );
         for (j, lam) in lambdas.iter().enumerate() {
-            let p1 = pick(&l1[j], g.as_ref());
+            let p1 = pick(&l1[j], which);
             fig.series.push(
                 Series::new(
                     format!("MRD lambda = {lam:.2}, alpha = {alpha}"),

@@ -53,7 +53,7 @@ pub fn roughness_scale(spec: &RoughSphere) -> Result<f64> {
     let n = z.len() as f64;
     let mean = z.iter().sum::<f64>() / n;
     let rms = (z.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt();
-    if !(rms > 0.0) {
+    if rms.is_nan() || rms <= 0.0 {
         return Err(crate::error::CompareError::Scene(
             "rough_sphere: the roughness band is empty".into(),
         ));
