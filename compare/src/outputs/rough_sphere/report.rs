@@ -148,7 +148,7 @@ pub fn report(
             .count();
         if edges > 0 {
             out.warn(format!(
-                "alpha = {alpha}: {edges} contacts reached the edge of the map or row: widen `side`"
+                "alpha = {alpha}: at {edges} states a contact lies beyond 0.9 of the half-side: the map bounds the contact; widen `side`"
             ));
         }
         let l3 = levels(r3, nf);

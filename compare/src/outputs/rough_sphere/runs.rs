@@ -22,10 +22,14 @@ pub struct State {
     pub radius: f64,
     /// Distance of the farthest contact from the axis.
     pub outermost: f64,
-    /// Whether the contact reached the edge of the map or row (then the map is too
-    /// small for this load).
+    /// Whether a contact lies farther from the axis than 0.9 of the half-side (then
+    /// the map or row, not the sphere, bounds the contact).
     pub edge: bool,
 }
+
+/// A contact farther from the axis than this fraction of the side (0.9 of the
+/// half-side) is bounded by the map, not by the sphere.
+const EDGE: f64 = 0.45;
 
 /// A realisation's states at each force (None: not converged; counted).
 #[derive(Debug, Clone)]
@@ -115,14 +119,12 @@ pub fn press_3d(spec: &RoughSphere, alpha: f64, scale: f64, r: u64) -> Result<Ru
             }
             Err(e) => return Err(e).ctx("3D stiffness"),
         };
-        let (mut pr2, mut p, mut outermost, mut edge) = (0.0, 0.0, 0.0f64, false);
+        let (mut pr2, mut p, mut outermost) = (0.0, 0.0, 0.0f64);
         for (c, &pc) in sol.pressure.iter().enumerate() {
             if pc > 0.0 {
                 pr2 += pc * r2(c);
                 p += pc;
                 outermost = outermost.max(r2(c).sqrt());
-                let (i, j) = (c % n, c / n);
-                edge |= i == 0 || j == 0 || i == n - 1 || j == n - 1;
             }
         }
         run.states.push(Some(State {
@@ -131,7 +133,7 @@ pub fn press_3d(spec: &RoughSphere, alpha: f64, scale: f64, r: u64) -> Result<Ru
             stiffness,
             radius: (2.5 * pr2 / p).sqrt(),
             outermost,
-            edge,
+            edge: outermost > EDGE * side,
         }));
         warm = Some(sol);
     }
@@ -161,14 +163,13 @@ pub fn press_1d(spec: &RoughSphere, alpha: f64, scale: f64, lambda: f64, r: u64)
     let mut states = Vec::new();
     for force in spec.forces() {
         let s = row.at_force(force).ctx("MRD")?;
-        let (mut qx2, mut q, mut outermost, mut edge) = (0.0, 0.0, 0.0f64, false);
+        let (mut qx2, mut q, mut outermost) = (0.0, 0.0, 0.0f64);
         for i in 0..n1 {
             let qi = s.depth - gaps[i];
             if qi > 0.0 {
                 qx2 += qi * x[i] * x[i];
                 q += qi;
                 outermost = outermost.max(x[i].abs());
-                edge |= i == 0 || i == n1 - 1;
             }
         }
         states.push(Some(State {
@@ -177,7 +178,7 @@ pub fn press_1d(spec: &RoughSphere, alpha: f64, scale: f64, lambda: f64, r: u64)
             stiffness: s.stiffness,
             radius: (5.0 * qx2 / q).sqrt(),
             outermost,
-            edge,
+            edge: outermost > EDGE * side,
         }));
     }
     Ok(Run {
