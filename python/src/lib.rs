@@ -25,6 +25,8 @@ fn _mrdw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // roughness
     m.add_function(wrap_pyfunction!(rough::spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(rough::line_spectrum, m)?)?;
+    m.add_function(wrap_pyfunction!(rough::calibrated_lambda, m)?)?;
+    m.add_function(wrap_pyfunction!(rough::calibrated_lambda_table, m)?)?;
     m.add_function(wrap_pyfunction!(rough::surface, m)?)?;
     m.add_function(wrap_pyfunction!(rough::line, m)?)?;
     m.add_function(wrap_pyfunction!(rough::psd, m)?)?;

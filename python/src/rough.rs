@@ -93,6 +93,30 @@ pub fn line_spectrum<'py>(
     ))
 }
 
+/// calibrated_lambda(hurst) -> float
+///
+/// lambda(H) of Eq. (76) from the project's calibration (the table the CLI's
+/// `lambda = "calibrated"` uses: the `fig6-converged` study at bandwidth 128, 95 %
+/// intervals within +/- 10 % for H <= 1.5; provenance in `calibrated_lambda_table()`),
+/// linear between its rows. Use as `line_spectrum(..., lam=calibrated_lambda(H))`.
+/// ValueError outside the table's range [-1, 3].
+#[pyfunction]
+pub fn calibrated_lambda(hurst: f64) -> PyResult<f64> {
+    mrd::roughness::LambdaTable::from_csv(compare::outputs::rough_stiffness::DEFAULT_LAMBDA_CSV)
+        .and_then(|t| t.at(hurst))
+        .map_err(|e| value_error(format!("calibrated_lambda({hurst}): {e}")))
+}
+
+/// calibrated_lambda_table() -> str
+///
+/// The shipped calibration as CSV text: provenance comments, then the columns hurst,
+/// lambda, lambda_lo95, lambda_hi95, misfit_max, misfit_rms, bandwidth,
+/// realisations_3d, cells_per_min_wavelength.
+#[pyfunction]
+pub fn calibrated_lambda_table() -> &'static str {
+    compare::outputs::rough_stiffness::DEFAULT_LAMBDA_CSV
+}
+
 fn grid_of(shape: (usize, usize), size: (f64, f64)) -> Grid {
     Grid {
         nx: shape.1,

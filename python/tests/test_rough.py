@@ -122,3 +122,24 @@ def test_roughness_bad_input():
         mrdw.surface((2, 8), (1, 1), 0.8, 1, 2, 3)
     with pytest.raises(ValueError, match="1D or 2D"):
         mrdw.moments(np.zeros((2, 2, 2)), 1.0)
+
+
+def test_calibrated_lambda_is_the_shipped_table():
+    # The table's rows are returned exactly, linear in between; outside [-1, 3] is a
+    # ValueError; the text carries its provenance and the documented columns.
+    text = mrdw.calibrated_lambda_table()
+    assert "fig6-converged" in text
+    rows = [
+        [float(v) for v in line.split(",")]
+        for line in text.splitlines()
+        if line and not line.startswith("#") and not line.startswith("hurst")
+    ]
+    assert [r[0] for r in rows] == [-1, -0.5, 0, 0.5, 1, 1.5, 2, 2.5, 3]
+    for r in rows:
+        assert mrdw.calibrated_lambda(r[0]) == r[1]
+        assert r[2] <= r[1] <= r[3] and r[6] == 128
+    mid = mrdw.calibrated_lambda(0.25)
+    assert abs(mid - 0.5 * (rows[2][1] + rows[3][1])) < 1e-12
+    for bad in (-1.5, 3.5, float("nan")):
+        with pytest.raises(ValueError):
+            mrdw.calibrated_lambda(bad)

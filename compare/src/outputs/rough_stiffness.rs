@@ -16,8 +16,9 @@ use mrd::roughness::{Lambda, LambdaTable, SelfAffine, TabulatedSpectrum};
 use serde::Deserialize;
 use std::f64::consts::PI;
 
-/// The project's own lambda(H), calibrated by the `fig6` scene (provenance in the file).
-pub const DEFAULT_LAMBDA_CSV: &str = include_str!("../../data/lambda_fig6.csv");
+/// The project's own lambda(H), calibrated by the `fig6-converged` study at bandwidth 128
+/// (provenance in the file).
+pub const DEFAULT_LAMBDA_CSV: &str = include_str!("../../data/lambda_calibrated.csv");
 
 /// A height map on disk and its physical size.
 #[derive(Debug, Clone, Deserialize, PartialEq)]
@@ -30,7 +31,7 @@ pub struct MeasuredSurface {
 }
 
 /// lambda of Eq. (76): a number, "pi" (Eq. 73), "cut" (straight cut), "calibrated" (the
-/// embedded table from the `fig6` scene), or the path of a CSV table `hurst, lambda`
+/// embedded table from the `fig6-converged` study), or the path of a CSV table `hurst, lambda`
 /// (relative to the scene), e.g. a sweep's `<label>_lambda_table.csv`.
 #[derive(Debug, Clone, Deserialize, PartialEq)]
 #[serde(untagged)]

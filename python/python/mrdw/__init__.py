@@ -11,7 +11,9 @@ of reduction of dimensionality in contact and friction mechanics, Friction 1 (20
     r = c.solve(mean_pressure=0.01 * E)      # or force=..., approach=...
     r.pressure, r.gap, r.contact_fraction, r.mean_gap, r.iterations, r.residual
 
-Roughness: spectrum, line_spectrum, surface, line, psd, moments, read_topography.
+Roughness: spectrum, line_spectrum, calibrated_lambda (lambda(H) of Eq. 76; the
+table with its provenance: calibrated_lambda_table), surface, line, psd, moments,
+read_topography.
 MRD: Profile (sphere, cone, power_law, flattened_sphere, flat_punch, tabulated),
 normal, pressure, adhesion, pull_off, cattaneo_mindlin, damping, hess_inverse,
 RoughLine, fit_line. Scenes: scenes(), run_scene(name_or_path).
@@ -29,6 +31,8 @@ from ._mrdw import (
     ContactResult,
     spectrum,
     line_spectrum,
+    calibrated_lambda,
+    calibrated_lambda_table,
     surface,
     line,
     psd,
@@ -55,6 +59,8 @@ __all__ = [
     "ContactResult",
     "spectrum",
     "line_spectrum",
+    "calibrated_lambda",
+    "calibrated_lambda_table",
     "surface",
     "line",
     "psd",

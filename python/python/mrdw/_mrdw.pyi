@@ -161,6 +161,12 @@ def line_spectrum(
 ) -> F64:
     """C1D = lam |q| C2D (Eq. 76) [length^3]."""
 
+def calibrated_lambda(hurst: float) -> float:
+    """lambda(H) of Eq. (76) from the shipped calibration (fig6-converged, bandwidth 128)."""
+
+def calibrated_lambda_table() -> str:
+    """The shipped calibration as CSV text with its provenance."""
+
 def surface(
     shape: Tuple[int, int],
     size: Tuple[float, float],

@@ -229,6 +229,11 @@ fn calibrated_csv(s: &LambdaStudy, r: &Results) -> String {
         "# {} -- lambda(H) of Eq. (76), C1D = lambda q C2D, calibrated by lambda_study on 3D circular rough punches:\n# bandwidth L/lambda_min = {}, {} cells per shortest wavelength, solver tolerance {:e}, seed {}, {} MRD lines per H,\n# fit range k/(E* L) in [{}, {}] (the whole common range of the curves); 95 % bootstrap intervals over 3D realisations;\n# misfit_max, misfit_rms: |ln k3D - ln kMRD| after calibration over that range.\n",
         crate::report::tool_version(), s.calibrate_at, s.cells, s.tolerance, s.seed, s.realisations_1d, s.window[0], s.window[1]
     );
+    text.push_str(&format!(
+        "# compute: {:.1} h of 3D solves (every case of the study; task wall times summed, one task per core) and {:.2} h of MRD ensembles (wall, all cores)\n",
+        r.seconds_3d / 3600.0,
+        r.seconds_mrd / 3600.0
+    ));
     text.push_str("hurst,lambda,lambda_lo95,lambda_hi95,misfit_max,misfit_rms,bandwidth,realisations_3d,cells_per_min_wavelength\n");
     for h in &s.hurst {
         if let Some(c) = main_case(s, r, *h) {
