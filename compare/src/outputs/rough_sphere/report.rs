@@ -263,7 +263,7 @@ fn figures(spec: &RoughSphere) -> [Figure; 3] {
         "force F / F_H [1]",
         "a / a_Hertz(F) [1]",
     );
-    a.log_x = true;
+    a = a.log_log();
     [fd, k, a]
 }
 
