@@ -278,13 +278,18 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
             incomplete(&report)
         }
         Command::Scenes => {
+            let width = scenes::EMBEDDED
+                .iter()
+                .map(|(n, _)| n.len())
+                .max()
+                .unwrap_or(0);
             for (name, text) in scenes::EMBEDDED {
                 let mark = if *name == scenes::DEFAULT {
                     " (default)"
                 } else {
                     ""
                 };
-                say!(out, "{name:<18} {}{mark}", scenes::title(text));
+                say!(out, "{name:<width$} {}{mark}", scenes::title(text));
             }
             Ok(())
         }

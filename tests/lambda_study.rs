@@ -79,10 +79,15 @@ fn the_study_machinery_runs_pairs_and_reproduces() {
     let cases = rows(&p("a/lambda_study_cases.csv"));
     assert_eq!(cases.len(), 8, "{cases:?}");
     for c in &cases {
-        let (role, n) = (c[4], c[5]);
-        // The target (+/- 2 %) is out of reach: the ladder goes to the cap, 12; the
-        // checks keep the minimum, 4.
-        assert_eq!(n, if role == 0.0 { 12.0 } else { 4.0 }, "{c:?}");
+        let (band, role, n) = (c[1], c[4], c[5]);
+        // The target (+/- 2 %) is out of reach: the ladder goes to the cap, 12, and to
+        // the scatter's 16 at bandwidth 8; the checks keep the minimum, 4.
+        let want = match (role, band) {
+            (0.0, 8.0) => 16.0,
+            (0.0, _) => 12.0,
+            _ => 4.0,
+        };
+        assert_eq!(n, want, "{c:?}");
         assert!(
             c[6] > 0.0 && c[7] <= c[6] && c[6] <= c[8],
             "lambda in its interval: {c:?}"
@@ -96,13 +101,13 @@ fn the_study_machinery_runs_pairs_and_reproduces() {
         (tol[8] - 1.0).abs() < 1e-4,
         "the tolerance moves lambda: {tol:?}"
     );
-    // Scatter between realisations (Section 9): per H the ladder case with the most
-    // realisations (the cap, 12), each CV inside its interval, both sides positive
+    // Scatter between realisations (Section 9): per H the ladder case at the scatter's
+    // bandwidth (8, 16 realisations), each CV inside its interval, both sides positive
     // below complete contact.
     let scatter = rows(&p("a/lambda_study_scatter.csv"));
     assert!(!scatter.is_empty());
     for r in &scatter {
-        assert_eq!(r[2], 12.0, "{r:?}");
+        assert_eq!((r[1], r[2]), (8.0, 16.0), "{r:?}");
         assert!(
             r[7] <= r[6] && r[6] <= r[8] && r[10] <= r[9] && r[9] <= r[11],
             "{r:?}"

@@ -64,6 +64,9 @@ pub struct LambdaStudy {
     pub resolution: Option<Resolution>,
     /// A second solver tolerance at `calibrate_at` for one H.
     pub tolerance_check: Option<ToleranceCheck>,
+    /// The scatter between realisations (Section 9) on the main ladder at one
+    /// bandwidth, with at least this many realisations per H there.
+    pub scatter: Option<ScatterAt>,
     pub realisations: Realisations,
     /// [H_max, relative half-width] pairs, H_max ascending: the target of lambda's 95 %
     /// interval for H <= H_max.
@@ -109,6 +112,13 @@ pub struct Resolution {
 pub struct ToleranceCheck {
     pub hurst: f64,
     pub tolerance: f64,
+}
+
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ScatterAt {
+    pub bandwidth: usize,
+    pub realisations: u64,
 }
 
 #[derive(Debug, Clone, Copy, Deserialize, PartialEq)]
@@ -220,6 +230,16 @@ impl Output for LambdaStudy {
         bem3d::SolverOptions::new(self.tolerance, 1)
             .validate()
             .map_err(|e| crate::error::CompareError::Scene(e.to_string()))?;
+        if let Some(sc) = &self.scatter {
+            if !self.bandwidths.contains(&sc.bandwidth) {
+                return bad("scatter.bandwidth must be one of bandwidths");
+            }
+            count_in(
+                "scatter.realisations",
+                sc.realisations,
+                3..=super::MAX_REALISATIONS,
+            )?;
+        }
         let r = self.realisations;
         count_in("realisations.min", r.min, 2..=super::MAX_REALISATIONS)?;
         count_in("realisations.max", r.max, r.min..=super::MAX_REALISATIONS)?;

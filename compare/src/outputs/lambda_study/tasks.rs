@@ -195,8 +195,19 @@ pub fn done(work: &Path, case: &Case) -> u64 {
         .count() as u64
 }
 
-/// How many realisations `case` needs given `n` done (complete batches decide).
+/// How many realisations `case` needs given `n` done: the adaptive rule below, and at
+/// least `scatter.realisations` on the main ladder at the scatter's bandwidth.
 fn needed(s: &LambdaStudy, work: &Path, case: &Case, n: u64) -> Result<u64> {
+    let floor = match s.scatter {
+        Some(sc) if case.role == Role::Ladder && case.band == sc.bandwidth => sc.realisations,
+        _ => 0,
+    };
+    Ok(adaptive(s, work, case, n)?.max(floor))
+}
+
+/// The adaptive rule: realisations in batches until lambda meets its target (complete
+/// batches decide).
+fn adaptive(s: &LambdaStudy, work: &Path, case: &Case, n: u64) -> Result<u64> {
     let r = s.realisations;
     if case.role != Role::Ladder || n < r.min {
         return Ok(r.min);
