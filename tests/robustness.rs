@@ -401,3 +401,46 @@ fn half_lengths_and_scene_names_get_true_messages() {
         "a folder, not a scene file",
     );
 }
+
+/// The 3D claims' kinds name a bad value before anything runs.
+#[test]
+fn static_friction_3d_and_rough_sphere_refuse_bad_values() {
+    let tmp = tempfile::tempdir().unwrap();
+    let head = "name = \"b\"\n[material]\ne_star = 1.0\n[[outputs]]\n";
+    let sf = "kind = \"static_friction_3d\"\nbandwidth = 6\nrealisations_3d = 2\nrealisations_1d = 2\nf_max = 1.0\n";
+    let rs = "kind = \"rough_sphere\"\nradius = 1.0\nhurst = 0.8\ngrid = 64\nrealisations_3d = 2\nrealisations_1d = 2\n";
+    for (body, needle) in [
+        (format!("{sf}hurst = [1.5]\nf_min = 1e-3\n"), "hurst = 1.5 must lie in [0, 1]"),
+        (format!("{sf}hurst = [0.7]\nf_min = 2.0\n"), "need 0 < f_min < f_max"),
+        (
+            format!("{sf}hurst = [0.7]\nf_min = 1e-3\nlambda = [-1.0]\n"),
+            "lambda = -1 must be > 0",
+        ),
+        (
+            format!("{sf}hurst = [0.7]\nf_min = 1e-3\ngeometry = [\"disc\"]\nrefine = {{ hurst = 0.7, geometry = \"periodic\", f = 0.1 }}\n"),
+            "refine: hurst and geometry must be among the output's",
+        ),
+        (
+            format!("{rs}hertz_depth = 1e-3\nbandwidth = 8\nalpha = [-1.0]\n"),
+            "alpha needs at least one entry, each finite and >= 0",
+        ),
+        (
+            format!("{rs}hertz_depth = 0.5\nbandwidth = 8\nalpha = [0.1]\n"),
+            "hertz_depth must be <= 0.1 radius",
+        ),
+        (
+            format!("{rs}hertz_depth = 1e-3\nbandwidth = 40\nalpha = [0.1]\n"),
+            "bandwidth = 40 must lie in 1..=31",
+        ),
+        (
+            format!("{rs}hertz_depth = 1e-3\nbandwidth = 8\nalpha = [0.1]\nside = 1.0\n"),
+            "side must lie in [2.5, 100]",
+        ),
+    ] {
+        let scene = tmp.path().join("b.toml");
+        std::fs::write(&scene, format!("{head}{body}")).unwrap();
+        let o = mrdw_in(tmp.path(), &["run", "b.toml", "--out", "o"]);
+        refused(&o, needle);
+        assert!(!tmp.path().join("o").exists(), "{needle}: a report was written");
+    }
+}
