@@ -40,7 +40,8 @@ fn spectrum(spec: &StaticFriction3d, geometry: Geometry, hurst: f64) -> Result<S
     SelfAffine::new(hurst, q0, q0, q1).ctx("spectrum")
 }
 
-/// Mean square forward-difference gradient of each cell, periodic (Eq. 86 in x and y).
+/// The squared forward-difference gradient |grad z|^2 of each cell, periodic (Eq. 86 in
+/// x and y).
 fn squared_gradients(z: &[f64], n: usize) -> Vec<f64> {
     let dx = 1.0 / n as f64;
     (0..n * n)
