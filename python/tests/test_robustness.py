@@ -72,7 +72,10 @@ def test_ctrl_c_stops_a_3d_solve():
             "-c",
             textwrap.dedent(
                 """
-                import sys, numpy as np, mrdw
+                import signal, sys, numpy as np, mrdw
+                # A shell that starts the tests in the background hands its children
+                # SIGINT ignored, and Python keeps it so: install Python's handler.
+                signal.signal(signal.SIGINT, signal.default_int_handler)
                 h = mrdw.surface((128, 128), (1.0, 1.0), 0.8, 8.0, 8.0, 200.0, rms_slope=0.1, seed=1)
                 c = mrdw.Contact(h)
                 print("solving", flush=True)
@@ -93,7 +96,10 @@ def test_ctrl_c_stops_a_3d_solve():
     assert proc.poll() is None, "the solve ended before the interrupt: the test proves nothing"
     t0 = time.monotonic()
     proc.send_signal(signal.SIGINT)
-    out, err = proc.communicate(timeout=30)
+    try:
+        out, err = proc.communicate(timeout=30)
+    finally:
+        proc.kill()  # never leave a solving child behind
     assert time.monotonic() - t0 < 2.0
     assert proc.returncode == 7, err
     assert "interrupted" in out
