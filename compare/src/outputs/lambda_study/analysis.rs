@@ -121,12 +121,11 @@ pub(super) fn sample(s: &LambdaStudy, work: &Path, case: &Case, n: u64) -> Resul
         bem: Vec::new(),
         summit: Vec::new(),
         winkler: Vec::new(),
-        controls: load::<ControlEnsemble>(work, &control_file(case, s.control_realisations))?.map(
-            |c| Controls {
+        controls: load::<ControlEnsemble>(work, &control_file(case, s.control_count(case.grid())))?
+            .map(|c| Controls {
                 summit: c.batches.iter().map(|f| f.summit).collect(),
                 winkler: c.batches.into_iter().map(|f| f.winkler).collect(),
-            },
-        ),
+            }),
     };
     for r in 0..n {
         if let Some(c) = load::<StudyCurve>(work, &case_file(case, r))? {

@@ -77,6 +77,10 @@ pub struct LambdaStudy {
     /// Surfaces per case grid (no solve) for the expectations of the control variates.
     #[serde(default = "two_thousand")]
     pub control_realisations: u64,
+    /// Fewer control surfaces on large grids, where one costs about a second: `[side,
+    /// m]` gives grids of at least `side` cells a side `m` surfaces (their expectations
+    /// then carry an error still far below the one of the solved realisations' mean).
+    pub control_realisations_large: Option<[u64; 2]>,
     /// The calibration and fit range in k/(E* L).
     #[serde(default = "window")]
     pub window: [f64; 2],
@@ -152,6 +156,15 @@ fn targets() -> Vec<[f64; 2]> {
 }
 
 impl LambdaStudy {
+    /// Control surfaces of a case's grid (`control_realisations`, or the large grids'
+    /// count).
+    pub fn control_count(&self, grid: usize) -> u64 {
+        match self.control_realisations_large {
+            Some([side, m]) if grid as u64 >= side => m,
+            _ => self.control_realisations,
+        }
+    }
+
     /// The target relative half-width of lambda's interval at `hurst`.
     pub fn target_at(&self, hurst: f64) -> f64 {
         self.target
@@ -254,6 +267,14 @@ impl Output for LambdaStudy {
             self.control_realisations,
             2..=super::MAX_REALISATIONS,
         )?;
+        if let Some([side, m]) = self.control_realisations_large {
+            count_in("control_realisations_large side", side, 2..=65_536)?;
+            count_in(
+                "control_realisations_large m",
+                m,
+                2..=super::MAX_REALISATIONS,
+            )?;
+        }
         count_in("loads", self.loads as u64, 6..=super::MAX_LOADS)?;
         count_in("points_1d_per_cell", self.points_1d_per_cell as u64, 2..=64)?;
         let [lo, hi] = self.window;

@@ -250,7 +250,7 @@ pub fn plan(s: &LambdaStudy, work: &Path) -> Result<Vec<Task>> {
             grids.push((c.hurst, c.band, c.cells));
             let t = Task::Control {
                 case: *c,
-                m: s.control_realisations,
+                m: s.control_count(c.grid()),
             };
             if !work.join(t.file_name()).exists() {
                 todo.push(t);
