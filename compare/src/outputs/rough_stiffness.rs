@@ -47,6 +47,23 @@ impl Default for LambdaSpec {
 }
 
 impl LambdaSpec {
+    /// Checks every entry of `specs` before a run: numbers > 0, tables readable and
+    /// covering each of `hurst`.
+    pub fn check_all(specs: &[LambdaSpec], ctx: &Context, hurst: &[f64]) -> Result<()> {
+        for l in specs {
+            if let LambdaSpec::Value(v) = l {
+                if !positive(*v) {
+                    return bad(format!("lambda = {v} must be > 0"));
+                }
+            }
+            let law = l.build(ctx)?;
+            for &h in hurst {
+                law.at(h).ctx(format!("lambda {l:?} at H = {h}"))?;
+            }
+        }
+        Ok(())
+    }
+
     /// The lambda law this names (tables are read through the scene's path resolver).
     pub fn build(&self, ctx: &Context) -> Result<Lambda> {
         Ok(match self {

@@ -146,16 +146,7 @@ impl Output for RoughSphere {
         if !(self.tolerance > 0.0 && self.tolerance < 1e-2) {
             return bad("tolerance must lie in (0, 1e-2)");
         }
-        for l in &self.lambda {
-            if let LambdaSpec::Value(v) = l {
-                if !positive(*v) {
-                    return bad(format!("lambda = {v} must be > 0"));
-                }
-            }
-            l.build(ctx)?
-                .at(self.hurst)
-                .ctx(format!("lambda {l:?} at H = {}", self.hurst))?;
-        }
+        LambdaSpec::check_all(&self.lambda, ctx, &[self.hurst])?;
         let n = self.grid as f64;
         check_memory(
             n * n * BYTES_PER_CELL_NON_PERIODIC * rayon::current_num_threads() as f64,

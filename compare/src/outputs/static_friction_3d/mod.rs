@@ -188,17 +188,7 @@ impl Output for StaticFriction3d {
         if !(self.tolerance > 0.0 && self.tolerance < 1e-2) {
             return bad("tolerance must lie in (0, 1e-2)");
         }
-        for l in &self.lambda {
-            if let LambdaSpec::Value(v) = l {
-                if !positive(*v) {
-                    return bad(format!("lambda = {v} must be > 0"));
-                }
-            }
-            let law = l.build(ctx)?;
-            for &h in &self.hurst {
-                law.at(h).ctx(format!("lambda {l:?} at H = {h}"))?;
-            }
-        }
+        LambdaSpec::check_all(&self.lambda, ctx, &self.hurst)?;
         if let Some(r) = &self.refine {
             if !self.hurst.contains(&r.hurst) || !self.geometry.contains(&r.geometry) {
                 return bad("refine: hurst and geometry must be among the output's");
