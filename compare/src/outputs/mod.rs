@@ -296,6 +296,14 @@ pub(crate) fn default_springs() -> usize {
 pub(crate) fn default_realisations() -> u64 {
     100
 }
+/// lambda = pi alone, the default of the kinds that take a list of lambdas.
+pub(crate) fn default_lambdas() -> Vec<rough_stiffness::LambdaSpec> {
+    vec![rough_stiffness::LambdaSpec::default()]
+}
+/// The 3D solver tolerance of the comparison kinds.
+pub(crate) fn default_tolerance() -> f64 {
+    1e-8
+}
 pub(crate) fn default_force_points() -> usize {
     30
 }

@@ -57,9 +57,9 @@ pub struct RoughSphere {
     points_1d_factor: usize,
     #[serde(default = "ten")]
     loads: usize,
-    #[serde(default = "pi_only")]
+    #[serde(default = "super::default_lambdas")]
     lambda: Vec<LambdaSpec>,
-    #[serde(default = "tolerance")]
+    #[serde(default = "super::default_tolerance")]
     tolerance: f64,
     #[serde(default)]
     seed: u64,
@@ -73,12 +73,6 @@ fn four() -> usize {
 }
 fn ten() -> usize {
     10
-}
-fn pi_only() -> Vec<LambdaSpec> {
-    vec![LambdaSpec::default()]
-}
-fn tolerance() -> f64 {
-    1e-8
 }
 
 /// MRD within this of 3D counts as agreement (the 5 %).

@@ -107,9 +107,9 @@ pub struct StaticFriction3d {
     #[serde(default = "tenth")]
     fit_max_area: f64,
     /// lambda of Eq. (76) for the MRD lines: one curve per entry.
-    #[serde(default = "pi_only")]
+    #[serde(default = "super::default_lambdas")]
     lambda: Vec<LambdaSpec>,
-    #[serde(default = "tolerance")]
+    #[serde(default = "super::default_tolerance")]
     tolerance: f64,
     #[serde(default)]
     seed: u64,
@@ -129,12 +129,6 @@ fn both() -> Vec<Geometry> {
 }
 fn tenth() -> f64 {
     0.1
-}
-fn pi_only() -> Vec<LambdaSpec> {
-    vec![LambdaSpec::default()]
-}
-fn tolerance() -> f64 {
-    1e-8
 }
 
 /// Bootstrap resamples of the fits.
