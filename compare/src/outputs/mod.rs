@@ -231,6 +231,12 @@ pub(crate) fn count_in(key: &str, value: u64, range: std::ops::RangeInclusive<u6
     }
 }
 
+/// The 3D and MRD ensemble sizes of a comparison: at least 2 each, for intervals.
+pub(crate) fn check_ensembles(realisations_3d: u64, realisations_1d: u64) -> Result<()> {
+    count_in("realisations_3d", realisations_3d, 2..=MAX_REALISATIONS)?;
+    count_in("realisations_1d", realisations_1d, 2..=MAX_REALISATIONS)
+}
+
 /// Most realisations any output computes (tasks are listed before they run).
 pub(crate) const MAX_REALISATIONS: u64 = 100_000;
 /// Most load points of a force-controlled curve.

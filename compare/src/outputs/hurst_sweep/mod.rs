@@ -127,17 +127,7 @@ impl Output for HurstSweep {
         if !(self.upper_cutoff_ratio > 0.0 && self.upper_cutoff_ratio <= 1.0) {
             return bad("upper_cutoff_ratio must lie in (0, 1]".into());
         }
-        // At least 2 realisations, for intervals.
-        super::count_in(
-            "realisations_3d",
-            self.realisations_3d,
-            2..=super::MAX_REALISATIONS,
-        )?;
-        super::count_in(
-            "realisations_1d",
-            self.realisations_1d,
-            2..=super::MAX_REALISATIONS,
-        )?;
+        super::check_ensembles(self.realisations_3d, self.realisations_1d)?;
         super::count_in("loads", self.loads as u64, 6..=super::MAX_LOADS)?;
         super::count_in("points_1d_factor", self.points_1d_factor as u64, 2..=64)?;
         if !(self.tolerance > 0.0 && self.tolerance < 1e-2) {

@@ -125,16 +125,7 @@ impl Output for RoughSphere {
             self.bandwidth as u64,
             1..=(self.grid as u64 - 1) / 2,
         )?;
-        count_in(
-            "realisations_3d",
-            self.realisations_3d,
-            2..=super::MAX_REALISATIONS,
-        )?;
-        count_in(
-            "realisations_1d",
-            self.realisations_1d,
-            2..=super::MAX_REALISATIONS,
-        )?;
+        super::check_ensembles(self.realisations_3d, self.realisations_1d)?;
         count_in("points_1d_factor", self.points_1d_factor as u64, 1..=64)?;
         count_in("loads", self.loads as u64, 3..=super::MAX_LOADS)?;
         if !(self.tolerance > 0.0 && self.tolerance < 1e-2) {

@@ -162,16 +162,7 @@ impl Output for StaticFriction3d {
         count_in("cells", self.cells as u64, 4..=64)?;
         let n = self.grid(self.cells) as u64;
         count_in("cells x bandwidth", n, 16..=4096)?;
-        count_in(
-            "realisations_3d",
-            self.realisations_3d,
-            2..=super::MAX_REALISATIONS,
-        )?;
-        count_in(
-            "realisations_1d",
-            self.realisations_1d,
-            2..=super::MAX_REALISATIONS,
-        )?;
+        super::check_ensembles(self.realisations_3d, self.realisations_1d)?;
         count_in("f_points", self.f_points as u64, 3..=super::MAX_LOADS)?;
         if !(positive(self.f_min) && positive(self.f_max) && self.f_max > self.f_min) {
             return bad("need 0 < f_min < f_max");
