@@ -116,6 +116,22 @@ fn the_study_machinery_runs_pairs_and_reproduces() {
             assert!(r[6] > 0.0 && r[9] > 0.0, "{r:?}");
         }
     }
+    // The same for F at fixed approach u: each CV inside its interval, mean forces
+    // rising with u on both sides, and MRD's F/(E* h L) = mean((u + (z - mean)/h)+) at
+    // least u (Jensen; equal in complete contact, checked in compare's unit tests).
+    let force = rows(&p("a/lambda_study_scatter_force.csv"));
+    assert!(!force.is_empty());
+    for (i, r) in force.iter().enumerate() {
+        assert_eq!((r[1], r[2]), (8.0, 16.0), "{r:?}");
+        assert!(
+            r[9] <= r[8] && r[8] <= r[10] && r[12] <= r[11] && r[11] <= r[13],
+            "{r:?}"
+        );
+        if i > 0 && force[i - 1][0] == r[0] {
+            assert!(r[6] > force[i - 1][6] && r[7] > force[i - 1][7], "{r:?}");
+        }
+        assert!(r[7] >= r[4] - 1e-12, "{r:?}");
+    }
     // The same bytes on one thread, and after an interruption and a resume.
     ok(&mrdw(
         &[

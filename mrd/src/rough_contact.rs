@@ -39,6 +39,8 @@ pub struct RoughLine {
     pub rms_height: f64,
     /// rms forward-difference slope over the whole line (Eq. 88, as in Eq. 86).
     pub rms_slope: f64,
+    /// Highest point minus mean height.
+    mean_gap: f64,
 }
 
 impl RoughLine {
@@ -84,6 +86,7 @@ impl RoughLine {
             e_star,
             rms_height,
             rms_slope,
+            mean_gap: zmax - mean,
         })
     }
 
@@ -95,6 +98,11 @@ impl RoughLine {
     }
     pub fn length(&self) -> f64 {
         self.length
+    }
+    /// Approach (from the first contact) at which the rigid plane reaches the mean
+    /// height: the highest point minus the mean.
+    pub fn mean_plane_depth(&self) -> f64 {
+        self.mean_gap
     }
     /// Approach at which the contact becomes complete.
     pub fn full_contact_depth(&self) -> f64 {

@@ -101,15 +101,15 @@ type Curves = Vec<Vec<Option<f64>>>;
 /// ensemble) when it has been computed.
 pub(super) struct Sample {
     pub(super) k3: Curves,
-    bem: Vec<BemCurve>,
-    summit: Vec<f64>,
+    pub(super) bem: Vec<BemCurve>,
+    pub(super) summit: Vec<f64>,
     winkler: Curves,
     controls: Option<Controls>,
 }
 
 /// The control ensemble's statistics (one entry per batch of surfaces).
 struct Controls {
-    summit: Vec<f64>,
+    pub(super) summit: Vec<f64>,
     winkler: Curves,
 }
 

@@ -29,9 +29,11 @@
 //!
 //! Files: [`tasks`] (cases, the adaptive plan, the checkpointed work), [`analysis`]
 //! (curves, fits, lambda, pairs), [`scatter`] (the scatter between realisations, 3D
-//! against MRD), [`report`] (tables and figures).
+//! against MRD: of k at fixed force, and in [`approach`] of F at fixed approach),
+//! [`report`] (tables and figures).
 
 pub mod analysis;
+mod approach;
 mod report;
 mod scatter;
 pub mod tasks;
@@ -176,6 +178,12 @@ impl LambdaStudy {
     /// Reduced forces f = F/(E* h L) of the common grid of every curve.
     pub fn f_grid(&self) -> Vec<f64> {
         mrd::friction::log_space(1e-7, 1e2, 91)
+    }
+
+    /// Reduced approaches u = (rigid indentation past the mean height) / h of the
+    /// scatter of F at fixed approach: -4 to 4 in steps of 1/8.
+    pub fn approach_grid(&self) -> Vec<f64> {
+        (-32..=32).map(|i| i as f64 / 8.0).collect()
     }
 
     fn check_band(&self, b: usize, cells: usize) -> Result<()> {

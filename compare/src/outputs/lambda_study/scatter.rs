@@ -7,10 +7,10 @@
 //! intervals; and the two distributions of k / mean k side by side (quantiles) at the
 //! middle of the calibration window.
 //!
-//! F at fixed approach, which the issue also names, is not in the checkpoints on the MRD
-//! side (the ensembles hold k on the f grid), so it is left out here.
+//! The same for the force at fixed approach: [`super::approach`].
 
 use super::analysis::{sample, Estimate};
+use super::approach::{self, ForceScatter};
 use super::tasks::{cases, done, load, mrd_file, Case, Role};
 use super::LambdaStudy;
 use crate::error::Result;
@@ -38,6 +38,8 @@ pub struct Scatter {
     /// The f index of the quantile comparison and its (p, k/mean 3D, k/mean MRD).
     pub quantile_at: usize,
     pub quantiles: Vec<(f64, f64, f64)>,
+    /// The scatter of F at fixed approach (where the MRD side is computed).
+    pub force: Option<ForceScatter>,
 }
 
 /// s / mean of `v` over the indices `idx` (sample standard deviation).
@@ -48,7 +50,7 @@ fn cv(v: &[f64], idx: &[usize]) -> f64 {
     var.sqrt() / m
 }
 
-fn cv_estimate(v: &[f64], rng: &mut ChaCha8Rng) -> Estimate {
+pub(super) fn cv_estimate(v: &[f64], rng: &mut ChaCha8Rng) -> Estimate {
     let n = v.len();
     let all: Vec<usize> = (0..n).collect();
     let boot = (0..RESAMPLES)
@@ -137,7 +139,14 @@ fn of_case(s: &LambdaStudy, work: &Path, case: &Case) -> Result<Option<Scatter>>
             (p, q3[i], quantile(&q1, p))
         })
         .collect();
+    let fs = s.f_grid();
+    let f_in = |j: &usize| fs[*j];
+    let f_window = [
+        window.first().map_or(f64::NAN, f_in),
+        window.last().map_or(f64::NAN, f_in),
+    ];
     Ok(Some(Scatter {
+        force: approach::of_case(s, work, case, n, f_window)?,
         case: *case,
         realisations: data.k3.len(),
         lines: ens.stiffness.len(),
@@ -303,6 +312,8 @@ pub fn report(sc: &[Scatter], fs: &[f64], label: &str, out: &mut Section) {
     out.figures
         .extend(cv_figs.into_iter().filter(|f| !f.series.is_empty()));
     out.figures.push(q_fig);
+    let forces: Vec<ForceScatter> = sc.iter().filter_map(|x| x.force.clone()).collect();
+    approach::report(&forces, label, out);
 }
 
 #[cfg(test)]

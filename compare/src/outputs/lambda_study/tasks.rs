@@ -11,7 +11,7 @@ use crate::outputs::RunControl;
 use mrd::rough_contact::RoughLine;
 use mrd::roughness::nested;
 use mrd::roughness::synthesis::Grid;
-use mrd::roughness::SelfAffine;
+use mrd::roughness::{LineSpectrum, SelfAffine};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
@@ -58,6 +58,21 @@ impl Case {
 /// The MRD ensemble of one H and bandwidth.
 pub fn mrd_file(hurst: f64, band: usize) -> String {
     format!("mrd_H{hurst}_B{band}.json")
+}
+
+/// The MRD forces at fixed approach of one H and bandwidth (the scatter's).
+pub fn approach_file(hurst: f64, band: usize) -> String {
+    format!("mrdu_H{hurst}_B{band}.json")
+}
+
+/// The study's MRD lines at fixed approach: F/(E* h L) of each line at each reduced
+/// approach u of [`LambdaStudy::approach_grid`] (rigid indentation past the line's mean
+/// height, in units of its rms height h; 0 before the first contact).
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct ApproachEnsemble {
+    pub approach: Vec<f64>,
+    pub force: Vec<Vec<f64>>,
+    pub seconds: f64,
 }
 
 /// Every case of the study, main ladder first (in the order of `hurst` and
@@ -156,6 +171,7 @@ pub const CONTROL_BATCHES: u64 = 20;
 pub enum Task {
     Bem { case: Case, r: u64 },
     Mrd { hurst: f64, band: usize },
+    MrdApproach { hurst: f64, band: usize },
     Control { case: Case, m: u64 },
 }
 
@@ -164,6 +180,7 @@ impl Task {
         match self {
             Task::Bem { case, r } => case.file(*r),
             Task::Mrd { hurst, band } => mrd_file(*hurst, *band),
+            Task::MrdApproach { hurst, band } => approach_file(*hurst, *band),
             Task::Control { case, m } => control_file(case, *m),
         }
     }
@@ -173,7 +190,7 @@ impl Task {
     /// bandwidths above `calibrate_at`.
     fn priority(&self) -> u8 {
         match self {
-            Task::Mrd { .. } => 0,
+            Task::Mrd { .. } | Task::MrdApproach { .. } => 0,
             Task::Bem { case, .. } | Task::Control { case, .. } if case.role == Role::Above => 2,
             Task::Bem { .. } | Task::Control { .. } => 1,
         }
@@ -183,7 +200,7 @@ impl Task {
     fn cost(&self) -> usize {
         match self {
             Task::Bem { case, .. } | Task::Control { case, .. } => case.grid() * case.grid(),
-            Task::Mrd { .. } => 0,
+            Task::Mrd { .. } | Task::MrdApproach { .. } => 0,
         }
     }
 }
@@ -243,6 +260,10 @@ pub fn plan(s: &LambdaStudy, work: &Path) -> Result<Vec<Task>> {
         if !work.join(mrd_file(hurst, band)).exists() {
             todo.push(Task::Mrd { hurst, band });
         }
+        let scatter = s.scatter.is_some_and(|sc| sc.bandwidth == band);
+        if scatter && !work.join(approach_file(hurst, band)).exists() {
+            todo.push(Task::MrdApproach { hurst, band });
+        }
     }
     let mut grids: Vec<(f64, usize, usize)> = Vec::new();
     for c in &cs {
@@ -271,7 +292,7 @@ pub fn plan(s: &LambdaStudy, work: &Path) -> Result<Vec<Task>> {
             t.cost(),
             match t {
                 Task::Bem { r, .. } => *r,
-                Task::Mrd { .. } | Task::Control { .. } => 0,
+                Task::Mrd { .. } | Task::MrdApproach { .. } | Task::Control { .. } => 0,
             },
         )
     });
@@ -404,16 +425,21 @@ fn run_control(s: &LambdaStudy, case: &Case, m: u64) -> Result<ControlEnsemble> 
     })
 }
 
+/// MRD line `r` of H and bandwidth `band` (C1D = pi q C2D) as springs of length 1, E* = 1.
+fn mrd_line(s: &LambdaStudy, line: &LineSpectrum, band: usize, r: u64) -> Result<RoughLine> {
+    let n1 = s.points_1d_per_cell * s.cells * band;
+    let z = nested::line(&|q| line.c1d(q), band, n1, 1.0, s.seed, r).ctx("1D line")?;
+    RoughLine::new(&z, 1.0, 1.0).ctx("1D line")
+}
+
 fn run_mrd(s: &LambdaStudy, hurst: f64, band: usize) -> Result<MrdEnsemble> {
     let t0 = Instant::now();
-    let n1 = s.points_1d_per_cell * s.cells * band;
     let line = spectrum(hurst, band).ctx("study spectrum")?.to_line(PI);
     let fs = s.f_grid();
     let stiffness: Vec<Vec<f64>> = (0..s.realisations_1d)
         .into_par_iter()
         .map(|r| -> Result<Vec<f64>> {
-            let z = nested::line(&|q| line.c1d(q), band, n1, 1.0, s.seed, r).ctx("1D line")?;
-            let rl = RoughLine::new(&z, 1.0, 1.0).ctx("1D line")?;
+            let rl = mrd_line(s, &line, band, r)?;
             let full_force = rl.at_depth(rl.full_contact_depth()).ctx("1D")?.force;
             fs.iter()
                 .map(|&f| {
@@ -429,7 +455,38 @@ fn run_mrd(s: &LambdaStudy, hurst: f64, band: usize) -> Result<MrdEnsemble> {
     Ok(MrdEnsemble {
         stiffness,
         seconds: t0.elapsed().as_secs_f64(),
-        points: n1,
+        points: s.points_1d_per_cell * s.cells * band,
+    })
+}
+
+/// The same lines as [`run_mrd`], their force at each reduced approach u past the mean
+/// height: depth from the highest point d = u h + (max - mean).
+fn run_mrd_approach(s: &LambdaStudy, hurst: f64, band: usize) -> Result<ApproachEnsemble> {
+    let t0 = Instant::now();
+    let line = spectrum(hurst, band).ctx("study spectrum")?.to_line(PI);
+    let us = s.approach_grid();
+    let force: Vec<Vec<f64>> = (0..s.realisations_1d)
+        .into_par_iter()
+        .map(|r| -> Result<Vec<f64>> {
+            let rl = mrd_line(s, &line, band, r)?;
+            let h = rl.rms_height;
+            let above_mean = rl.mean_plane_depth();
+            us.iter()
+                .map(|&u| {
+                    let d = u * h + above_mean;
+                    Ok(if d <= 0.0 {
+                        0.0
+                    } else {
+                        rl.at_depth(d).ctx("1D")?.force / h
+                    })
+                })
+                .collect()
+        })
+        .collect::<Result<_>>()?;
+    Ok(ApproachEnsemble {
+        approach: us,
+        force,
+        seconds: t0.elapsed().as_secs_f64(),
     })
 }
 
@@ -480,6 +537,9 @@ pub fn compute(s: &LambdaStudy, work: &Path, control: &RunControl) -> Result<()>
             let text = match t {
                 Task::Bem { case, r } => serde_json::to_string(&run_bem(s, case, *r)?),
                 Task::Mrd { hurst, band } => serde_json::to_string(&run_mrd(s, *hurst, *band)?),
+                Task::MrdApproach { hurst, band } => {
+                    serde_json::to_string(&run_mrd_approach(s, *hurst, *band)?)
+                }
                 Task::Control { case, m } => serde_json::to_string(&run_control(s, case, *m)?),
             }
             .map_err(|e| CompareError::Internal(e.to_string()))?;
@@ -514,5 +574,49 @@ pub fn load<T: for<'de> Deserialize<'de>>(work: &Path, file: &str) -> Result<Opt
             .map_err(|e| CompareError::Internal(format!("{}: {e}", p.display()))),
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
         Err(e) => Err(io_err(format!("reading {}", p.display()))(e)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mrd_force_at_fixed_approach_is_exact_in_complete_contact() {
+        let s: LambdaStudy = toml::from_str(
+            "hurst = [0.5]\nbandwidths = [8]\ncalibrate_at = 8\nrealisations_1d = 16\n\
+             realisations = { min = 4, max = 4, batch = 4 }\ncells = 4\nseed = 3",
+        )
+        .unwrap();
+        let e = run_mrd_approach(&s, 0.5, 8).unwrap();
+        assert_eq!(e.approach, s.approach_grid());
+        let line = spectrum(0.5, 8).unwrap().to_line(PI);
+        let mut complete = 0;
+        for (r, f) in e.force.iter().enumerate() {
+            let rl = mrd_line(&s, &line, 8, r as u64).unwrap();
+            let h = rl.rms_height;
+            // Complete contact from u = (mean - min) / h on: F/(E* h L) = u exactly
+            // (every spring compressed by u h + z - mean; the heights average to the mean).
+            let u_full = (rl.full_contact_depth() - rl.mean_plane_depth()) / h;
+            // Before the first contact, u < -(max - mean) / h: no force.
+            let u_first = -rl.mean_plane_depth() / h;
+            for (j, &u) in e.approach.iter().enumerate() {
+                if u >= u_full {
+                    assert!(
+                        (f[j] - u).abs() < 1e-12 * u.abs().max(1.0),
+                        "{r} {u}: {}",
+                        f[j]
+                    );
+                    complete += 1;
+                }
+                if u <= u_first {
+                    assert_eq!(f[j], 0.0);
+                }
+                if j > 0 {
+                    assert!(f[j] >= f[j - 1]);
+                }
+            }
+        }
+        assert!(complete > 16, "{complete}");
     }
 }
