@@ -77,14 +77,16 @@ fn the_study_machinery_runs_pairs_and_reproduces() {
     ok(&mrdw(&["run", "fig6-converged-ci", "--out", &s("a")], &[]));
     // Cases: (H, bandwidth, cells, tolerance, role, realisations, lambda, lo, hi, ...).
     let cases = rows(&p("a/lambda_study_cases.csv"));
-    assert_eq!(cases.len(), 8, "{cases:?}");
+    assert_eq!(cases.len(), 10, "{cases:?}");
     for c in &cases {
         let (band, role, n) = (c[1], c[4], c[5]);
         // The target (+/- 2 %) is out of reach: the ladder goes to the cap, 12, and to
-        // the scatter's 16 at bandwidth 8; the checks keep the minimum, 4.
+        // the scatter's 16 at bandwidth 8; the checks keep the minimum, 4, but the
+        // largest grid's two (bandwidth 32), which take top_check's 2.
         let want = match (role, band) {
             (0.0, 8.0) => 16.0,
             (0.0, _) => 12.0,
+            (2.0 | 3.0, 32.0) => 2.0,
             _ => 4.0,
         };
         assert_eq!(n, want, "{c:?}");
@@ -93,14 +95,23 @@ fn the_study_machinery_runs_pairs_and_reproduces() {
             "lambda in its interval: {c:?}"
         );
     }
-    // Pairs: two ladder bandwidths, the extra one, two resolutions, the tolerance.
+    // Pairs: two ladder bandwidths, the extra one, two resolutions, the tolerance, and
+    // the largest grid's resolution and tolerance, each against its own bandwidth.
     let pairs = rows(&p("a/lambda_study_pairs.csv"));
-    assert_eq!(pairs.len(), 6, "{pairs:?}");
-    let tol = pairs.iter().find(|r| r[3] == 1e-10).unwrap();
-    assert!(
-        (tol[8] - 1.0).abs() < 1e-4,
-        "the tolerance moves lambda: {tol:?}"
-    );
+    assert_eq!(pairs.len(), 8, "{pairs:?}");
+    for tol in pairs.iter().filter(|r| r[3] == 1e-10) {
+        assert_eq!((tol[4], tol[5], tol[6]), (tol[1], tol[2], 1e-8), "{tol:?}");
+        assert!(
+            (tol[8] - 1.0).abs() < 1e-4,
+            "the tolerance moves lambda: {tol:?}"
+        );
+    }
+    assert_eq!(pairs.iter().filter(|r| r[3] == 1e-10).count(), 2);
+    let top = pairs
+        .iter()
+        .find(|r| r[1] == 32.0 && r[2] == 8.0)
+        .expect("top resolution pair");
+    assert_eq!((top[4], top[5], top[7]), (32.0, 4.0, 2.0), "{top:?}");
     // Scatter between realisations (Section 9): per H the ladder case at the scatter's
     // bandwidth (8, 16 realisations), each CV inside its interval, both sides positive
     // below complete contact.

@@ -444,3 +444,39 @@ fn static_friction_3d_and_rough_sphere_refuse_bad_values() {
         assert!(!tmp.path().join("o").exists(), "{needle}: a report was written");
     }
 }
+
+/// The lambda study's checks name a bad value before anything runs.
+#[test]
+fn lambda_study_refuses_bad_checks() {
+    let tmp = tempfile::tempdir().unwrap();
+    let head = "name = \"b\"\n[material]\ne_star = 1.0\n[[outputs]]\n";
+    let ls = "kind = \"lambda_study\"\nhurst = [0.0, 1.0]\nbandwidths = [8, 16]\ncells = 4\ncalibrate_at = 16\nrealisations = { min = 4, max = 8, batch = 4 }\nrealisations_1d = 16\n";
+    for (body, needle) in [
+        (
+            format!("{ls}top_check = {{ hurst = 0.5, bandwidth = 16, tolerance = 1e-10, realisations = 2 }}\n"),
+            "top_check.hurst must be one of hurst",
+        ),
+        (
+            format!("{ls}top_check = {{ hurst = 0.0, bandwidth = 32, tolerance = 1e-10, realisations = 2 }}\n"),
+            "top_check.bandwidth must be one of bandwidths",
+        ),
+        (
+            format!("{ls}top_check = {{ hurst = 0.0, bandwidth = 16, tolerance = 1e-10, realisations = 1 }}\n"),
+            "top_check.realisations",
+        ),
+        (
+            format!("{ls}top_check = {{ hurst = 0.0, bandwidth = 16, tolerance = 0.5, realisations = 2 }}\n"),
+            "top_check",
+        ),
+        (
+            format!("{ls}scatter = {{ bandwidth = 32, realisations = 8 }}\n"),
+            "scatter.bandwidth must be one of bandwidths",
+        ),
+    ] {
+        let scene = tmp.path().join("b.toml");
+        std::fs::write(&scene, format!("{head}{body}")).unwrap();
+        let o = mrdw_in(tmp.path(), &["run", "b.toml", "--out", "o"]);
+        refused(&o, needle);
+        assert!(!tmp.path().join("o").exists(), "{needle}: a report was written");
+    }
+}

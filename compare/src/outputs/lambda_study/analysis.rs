@@ -416,7 +416,8 @@ fn reference(s: &LambdaStudy, case: &Case) -> Option<Case> {
     };
     match case.role {
         Role::Ladder | Role::Above if case.band != s.calibrate_at => Some(main),
-        Role::Resolution => Some(Case {
+        // Other cells or tolerance: the main case of the same bandwidth.
+        Role::Resolution | Role::Tolerance => Some(Case {
             band: case.band,
             role: if case.band <= s.calibrate_at {
                 Role::Ladder
@@ -425,7 +426,6 @@ fn reference(s: &LambdaStudy, case: &Case) -> Option<Case> {
             },
             ..main
         }),
-        Role::Tolerance => Some(main),
         _ => None,
     }
 }

@@ -69,6 +69,9 @@ pub struct LambdaStudy {
     /// The scatter between realisations (Section 9) on the main ladder at one
     /// bandwidth, with at least this many realisations per H there.
     pub scatter: Option<ScatterAt>,
+    /// The largest grid's accuracy check: at one H and bandwidth, a few realisations at
+    /// twice `cells` and at a second tolerance, paired with that bandwidth's case.
+    pub top_check: Option<TopCheck>,
     pub realisations: Realisations,
     /// [H_max, relative half-width] pairs, H_max ascending: the target of lambda's 95 %
     /// interval for H <= H_max.
@@ -111,6 +114,15 @@ pub struct Extra {
 pub struct Resolution {
     pub bandwidth: usize,
     pub cells: Vec<usize>,
+}
+
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct TopCheck {
+    pub hurst: f64,
+    pub bandwidth: usize,
+    pub tolerance: f64,
+    pub realisations: u64,
 }
 
 #[derive(Debug, Clone, Deserialize, PartialEq)]
@@ -251,6 +263,27 @@ impl Output for LambdaStudy {
         bem3d::SolverOptions::new(self.tolerance, 1)
             .validate()
             .map_err(|e| crate::error::CompareError::Scene(e.to_string()))?;
+        if let Some(t) = &self.top_check {
+            if !self.hurst.contains(&t.hurst) {
+                return bad("top_check.hurst must be one of hurst");
+            }
+            let extra = self
+                .extra
+                .iter()
+                .any(|e| e.bandwidth == t.bandwidth && e.hurst.contains(&t.hurst));
+            if !self.bandwidths.contains(&t.bandwidth) && !extra {
+                return bad("top_check.bandwidth must be one of bandwidths, or an extra bandwidth of its hurst");
+            }
+            self.check_band(t.bandwidth, 2 * self.cells)?;
+            bem3d::SolverOptions::new(t.tolerance, 1)
+                .validate()
+                .map_err(|e| crate::error::CompareError::Scene(format!("top_check: {e}")))?;
+            count_in(
+                "top_check.realisations",
+                t.realisations,
+                2..=super::MAX_REALISATIONS,
+            )?;
+        }
         if let Some(sc) = &self.scatter {
             if !self.bandwidths.contains(&sc.bandwidth) {
                 return bad("scatter.bandwidth must be one of bandwidths");

@@ -131,7 +131,28 @@ pub fn cases(s: &LambdaStudy) -> Vec<Case> {
             ..main(t.hurst, s.calibrate_at)
         });
     }
+    if let Some(t) = &s.top_check {
+        push(Case {
+            cells: 2 * s.cells,
+            role: Role::Resolution,
+            ..main(t.hurst, t.bandwidth)
+        });
+        push(Case {
+            tolerance: t.tolerance,
+            role: Role::Tolerance,
+            ..main(t.hurst, t.bandwidth)
+        });
+    }
     v
+}
+
+/// Whether `case` is one of the two checks of `top_check`.
+fn top_checked(s: &LambdaStudy, case: &Case) -> bool {
+    s.top_check.is_some_and(|t| {
+        t.hurst == case.hurst
+            && t.bandwidth == case.band
+            && matches!(case.role, Role::Resolution | Role::Tolerance)
+    })
 }
 
 /// The control ensemble of a case's grid: face statistics of many surfaces (no solve),
@@ -187,11 +208,11 @@ impl Task {
 
     /// Which round a task belongs to: MRD ensembles first, then the cases the shipped
     /// table and the checks need (adaptive) with their control ensembles, then
-    /// bandwidths above `calibrate_at`.
-    fn priority(&self) -> u8 {
+    /// bandwidths above `calibrate_at` (their checks included).
+    fn priority(&self, s: &LambdaStudy) -> u8 {
         match self {
             Task::Mrd { .. } | Task::MrdApproach { .. } => 0,
-            Task::Bem { case, .. } | Task::Control { case, .. } if case.role == Role::Above => 2,
+            Task::Bem { case, .. } | Task::Control { case, .. } if case.band > s.calibrate_at => 2,
             Task::Bem { .. } | Task::Control { .. } => 1,
         }
     }
@@ -213,8 +234,12 @@ pub fn done(work: &Path, case: &Case) -> u64 {
 }
 
 /// How many realisations `case` needs given `n` done: the adaptive rule below, and at
-/// least `scatter.realisations` on the main ladder at the scatter's bandwidth.
+/// least `scatter.realisations` on the main ladder at the scatter's bandwidth;
+/// `top_check.realisations` for the largest grid's checks.
 fn needed(s: &LambdaStudy, work: &Path, case: &Case, n: u64) -> Result<u64> {
+    if top_checked(s, case) {
+        return Ok(s.top_check.map_or(0, |t| t.realisations));
+    }
     let floor = match s.scatter {
         Some(sc) if case.role == Role::Ladder && case.band == sc.bandwidth => sc.realisations,
         _ => 0,
@@ -266,7 +291,9 @@ pub fn plan(s: &LambdaStudy, work: &Path) -> Result<Vec<Task>> {
         }
     }
     let mut grids: Vec<(f64, usize, usize)> = Vec::new();
-    for c in &cs {
+    // The largest grid's checks have too few realisations for control variates (the
+    // means of fewer than 6 are plain): no control ensemble for them.
+    for c in cs.iter().filter(|c| !top_checked(s, c)) {
         if !grids.contains(&(c.hurst, c.band, c.cells)) {
             grids.push((c.hurst, c.band, c.cells));
             let t = Task::Control {
@@ -508,10 +535,10 @@ pub fn compute(s: &LambdaStudy, work: &Path, control: &RunControl) -> Result<()>
     let mut computed = 0;
     loop {
         let all = plan(s, work)?;
-        let first = all.iter().map(Task::priority).min();
+        let first = all.iter().map(|t| t.priority(s)).min();
         let todo: Vec<Task> = all
             .into_iter()
-            .filter(|t| Some(t.priority()) == first)
+            .filter(|t| Some(t.priority(s)) == first)
             .enumerate()
             .filter(|(i, _)| control.shard.is_none_or(|(k, n)| i % n == k))
             .map(|(_, t)| t)
