@@ -450,11 +450,19 @@ fn pair(s: &LambdaStudy, work: &Path, case: &Case, refc: &Case) -> Result<Option
     };
     let all: Vec<usize> = (0..a.len()).collect();
     let mut rng = rng_for(s, case, n, 1);
+    // Two cases on one grid (the tolerance checks) share their control ensemble: one
+    // resample serves both, so the ratio's interval holds only what differs.
+    let grid = |c: &Case| control_file(c, s.control_count(c.grid()));
+    let shared = grid(case) == grid(refc);
     let boot = (0..RESAMPLES)
         .filter_map(|_| {
             let idx = resample(&mut rng, a.len());
             let ca = resample(&mut rng, a.all_controls().len());
-            let cb = resample(&mut rng, b.all_controls().len());
+            let cb = if shared {
+                ca.clone()
+            } else {
+                resample(&mut rng, b.all_controls().len())
+            };
             ratio(&idx, &ca, &cb)
         })
         .collect();
