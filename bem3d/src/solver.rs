@@ -405,6 +405,10 @@ impl<K: SolverOperator> ContactSolver<K> {
     pub fn operator(&self) -> &K {
         &self.op
     }
+    /// `u = K p` on the solver's operator (`u` overwritten).
+    pub fn displacement(&mut self, p: &[f64], u: &mut [f64]) {
+        crate::pool::on_pool(|| self.op.apply(p, u))
+    }
     pub fn h_rms(&self) -> f64 {
         self.h_rms
     }
