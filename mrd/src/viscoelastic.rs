@@ -15,7 +15,9 @@ pub use crate::rheology::Prony;
 
 /// Time-steps the spring row under a prescribed depth history `depth(t)` sampled at
 /// `times` (increasing, from 0 with depth 0), with `n_half` springs on [0, half_length]
-/// (mirrored). Returns the force at each time.
+/// (mirrored). Returns the force at each time. Springs follow the profile while
+/// `d > g_i`, so a decreasing depth may leave them in tension: for unloading use
+/// [`SpringRow`], whose springs separate at zero force.
 pub fn simulate(
     profile: &Profile,
     modulus: &Prony,
@@ -77,6 +79,154 @@ pub fn simulate(
         out.push(force(&u, &h));
     }
     Ok(out)
+}
+
+/// A row of viscoelastic springs under a rigid profile that may lose contact (Eq. 63
+/// with unilateral contact): spring i, of gap g_i, carries
+/// `f_i = dx Int E*(t - t') du_i/dt' dt' >= 0`; in contact u_i = d - g_i, out of it
+/// f_i = 0 and u_i recovers freely (creep recovery), its gap `u_i + g_i - d >= 0`.
+/// Hereditary integrals as in [`simulate`] (exact for u_i piecewise linear in time):
+/// over a step, `f_i = dx (E_eff u_i + H_i)` with `E_eff = E_inf + sum_k E_k b_k` and
+/// `H_i` the history, so each spring's state is a closed-form choice: contact when its
+/// force at u_i = d - g_i is >= 0, else u_i = -H_i / E_eff. Under force control the total
+/// force `E_eff dx sum_i (d - d_i)+` with thresholds `d_i = g_i - H_i / E_eff` is inverted
+/// exactly (the elastic foundation's sort and prefix sums). During monotonic indentation
+/// no spring separates and the row is [`simulate`]'s; on unloading springs separate when
+/// their force reaches zero (Ting's problem in one dimension).
+#[derive(Debug, Clone)]
+pub struct SpringRow {
+    gaps: Vec<f64>,
+    dx: f64,
+    modulus: Prony,
+    u: Vec<f64>,
+    /// h[i * m + k]: spring i, Prony term k.
+    h: Vec<f64>,
+    time: f64,
+}
+
+/// The load at the end of a step of a [`SpringRow`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RowLoad {
+    Depth(f64),
+    Force(f64),
+}
+
+/// The state of a [`SpringRow`] after a step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RowState {
+    pub time: f64,
+    pub depth: f64,
+    pub force: f64,
+    /// Springs in contact.
+    pub contacts: usize,
+}
+
+impl SpringRow {
+    /// Springs of width `dx` with gaps `gaps` (finite), undeformed at t = 0.
+    pub fn new(gaps: &[f64], dx: f64, modulus: &Prony) -> Result<Self> {
+        positive("dx", dx)?;
+        if gaps.is_empty() || gaps.iter().any(|g| !g.is_finite()) {
+            return Err(MrdError::InvalidData(
+                "a spring row needs at least one spring and finite gaps".into(),
+            ));
+        }
+        Ok(Self {
+            gaps: gaps.to_vec(),
+            dx,
+            modulus: modulus.clone(),
+            u: vec![0.0; gaps.len()],
+            h: vec![0.0; gaps.len() * modulus.terms.len()],
+            time: 0.0,
+        })
+    }
+
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Spring displacements u_i.
+    pub fn displacement(&self) -> &[f64] {
+        &self.u
+    }
+
+    /// Advances by `dt` to `load` (depth from the profile's reference, or total force).
+    pub fn step(&mut self, dt: f64, load: RowLoad) -> Result<RowState> {
+        positive("time step", dt)?;
+        let m = self.modulus.terms.len();
+        let ab: Vec<(f64, f64)> = self
+            .modulus
+            .terms
+            .iter()
+            .map(|&(_, tau)| {
+                let x = -dt / tau;
+                (x.exp(), -x.exp_m1() * tau / dt)
+            })
+            .collect();
+        let e_eff = self.modulus.relaxed
+            + self
+                .modulus
+                .terms
+                .iter()
+                .zip(&ab)
+                .map(|(t, c)| t.0 * c.1)
+                .sum::<f64>();
+        // H_i / E_eff: the displacement the history holds at zero force.
+        let free: Vec<f64> = (0..self.gaps.len())
+            .map(|i| {
+                -(0..m)
+                    .map(|k| {
+                        let (a, b) = ab[k];
+                        self.modulus.terms[k].0 * (a * self.h[i * m + k] - b * self.u[i])
+                    })
+                    .sum::<f64>()
+                    / e_eff
+            })
+            .collect();
+        // Spring i touches from d > g_i + free_i on.
+        let thresholds: Vec<f64> = self.gaps.iter().zip(&free).map(|(g, f)| g + f).collect();
+        let depth = match load {
+            RowLoad::Depth(d) => {
+                if !d.is_finite() {
+                    return Err(MrdError::InvalidParameter {
+                        name: "depth",
+                        value: d,
+                        reason: "must be finite",
+                    });
+                }
+                d
+            }
+            RowLoad::Force(f) => {
+                crate::error::non_negative("force", f)?;
+                let low = thresholds.iter().cloned().fold(f64::INFINITY, f64::min);
+                let shifted: Vec<f64> = thresholds.iter().map(|t| t - low).collect();
+                let row = crate::foundation::Foundation::new(&shifted, self.dx, e_eff)?;
+                row.at_force(f)?.depth + low
+            }
+        };
+        let mut force = 0.0;
+        let mut contacts = 0;
+        for i in 0..self.gaps.len() {
+            let u_new = if depth > thresholds[i] {
+                contacts += 1;
+                force += e_eff * (depth - thresholds[i]);
+                depth - self.gaps[i]
+            } else {
+                free[i]
+            };
+            for k in 0..m {
+                let (a, b) = ab[k];
+                self.h[i * m + k] = a * self.h[i * m + k] + b * (u_new - self.u[i]);
+            }
+            self.u[i] = u_new;
+        }
+        self.time += dt;
+        Ok(RowState {
+            time: self.time,
+            depth,
+            force: force * self.dx,
+            contacts,
+        })
+    }
 }
 
 /// Radok's solution for monotonic indentation: `F(t) = Int_0^t E*(t - s) dPhi(d(s))/ds ds`
@@ -160,5 +310,114 @@ mod tests {
         }
         assert!(Prony::new(-1.0, vec![]).is_err());
         assert!(Prony::new(1.0, vec![(1.0, 0.0)]).is_err());
+    }
+
+    #[test]
+    fn spring_row_loading_is_simulate_and_unloading_separates_as_the_closed_form() {
+        // Monotonic indentation: the row and [`simulate`] agree.
+        let p = Profile::single(Shape::paraboloid(1.0).unwrap());
+        let g = Prony::new(1.0, vec![(4.0, 0.5), (1.0, 0.05)]).unwrap();
+        let times: Vec<f64> = (0..=200).map(|k| k as f64 / 100.0).collect();
+        let depth = |t: f64| 0.05 * t;
+        let f = simulate(&p, &g, &depth, &times, 2000, 0.5).unwrap();
+        let (_, dx, gaps) = crate::foundation::half_line(&p, 2000, 0.5).unwrap();
+        let mut row = SpringRow::new(&gaps, dx, &g).unwrap();
+        for k in 1..times.len() {
+            let s = row.step(0.01, RowLoad::Depth(depth(times[k]))).unwrap();
+            assert!(
+                (2.0 * s.force / f[k] - 1.0).abs() < 1e-12,
+                "t = {}",
+                times[k]
+            );
+        }
+        // One spring (unit width, gap 0), standard linear solid E* = 1 + 4 exp(-t/0.5):
+        // u = t up to t = 1, then the indenter retreats at the same speed. The force
+        // F = u + 4 h, h = Int exp(-(t - s)/tau) du(s), reaches 0 at t_d (bisection);
+        // afterwards the spring recovers freely, u = u(t_d) exp(-(t - t_d)/tau_r),
+        // tau_r = tau E*(0)/E_inf = 2.5.
+        let (e1, tau) = (4.0, 0.5);
+        let sls = Prony::new(1.0, vec![(e1, tau)]).unwrap();
+        let u = |t: f64| if t <= 1.0 { t } else { 2.0 - t };
+        let h = |t: f64| {
+            if t <= 1.0 {
+                tau * (1.0 - (-t / tau).exp())
+            } else {
+                let h1 = tau * (1.0 - (-1.0 / tau).exp());
+                h1 * (-(t - 1.0) / tau).exp() - tau * (1.0 - (-(t - 1.0) / tau).exp())
+            }
+        };
+        let force = |t: f64| u(t) + e1 * h(t);
+        let (mut lo, mut hi) = (1.0, 2.0);
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if force(mid) > 0.0 {
+                lo = mid
+            } else {
+                hi = mid
+            }
+        }
+        let t_d = lo;
+        assert!(t_d > 1.0 && t_d < 2.0);
+        let dt = 1e-3;
+        let mut one = SpringRow::new(&[0.0], 1.0, &sls).unwrap();
+        let mut separated_at = None;
+        for k in 1..=4000 {
+            let t = k as f64 * dt;
+            let s = one.step(dt, RowLoad::Depth(u(t))).unwrap();
+            if s.contacts == 1 {
+                // Exact while in contact (u piecewise linear, kink on a step).
+                assert!((s.force - force(t)).abs() < 1e-9, "t = {t}");
+            } else {
+                assert_eq!(s.force, 0.0);
+                separated_at.get_or_insert(t);
+            }
+        }
+        let t_sep = separated_at.expect("the spring separates");
+        assert!((t_sep - t_d).abs() <= dt, "{t_sep} vs {t_d}");
+        let exact = u(t_d) * (-(4.0 - t_d) / (tau * 5.0)).exp();
+        let got = one.displacement()[0];
+        assert!((got / exact - 1.0).abs() < 1e-2, "{got} vs {exact}");
+    }
+
+    #[test]
+    fn spring_row_under_force_control_holds_the_force_and_creeps() {
+        let gaps: Vec<f64> = (0..500).map(|i| ((i * 7919) % 500) as f64 * 1e-4).collect();
+        let dx = 1.0 / 500.0;
+        // Constant modulus: the elastic foundation.
+        let el = Prony::new(2.0, vec![]).unwrap();
+        let mut row = SpringRow::new(&gaps, dx, &el).unwrap();
+        let found = crate::foundation::Foundation::new(&gaps, dx, 2.0).unwrap();
+        for f in [1e-5, 1e-4, 3e-5] {
+            let s = row.step(0.1, RowLoad::Force(f)).unwrap();
+            let e = found.at_force(f).unwrap();
+            assert!((s.depth - e.depth).abs() < 1e-12 && s.contacts == e.contacts);
+        }
+        // A held force creeps: the depth grows, the force stays, contact grows.
+        let g = Prony::new(1.0, vec![(4.0, 0.5)]).unwrap();
+        let mut row = SpringRow::new(&gaps, dx, &g).unwrap();
+        let mut last = row.step(0.01, RowLoad::Force(1e-4)).unwrap();
+        for _ in 0..600 {
+            let s = row.step(0.05, RowLoad::Force(1e-4)).unwrap();
+            assert!((s.force / 1e-4 - 1.0).abs() < 1e-12);
+            assert!(s.depth > last.depth && s.contacts >= last.contacts);
+            last = s;
+        }
+        // Long-time limit (30 s, 12 retardation times tau E*(0)/E_inf): the relaxed
+        // foundation's depth.
+        let relaxed = crate::foundation::Foundation::new(&gaps, dx, 1.0)
+            .unwrap()
+            .at_force(1e-4)
+            .unwrap();
+        assert!(
+            (last.depth / relaxed.depth - 1.0).abs() < 1e-3,
+            "{} vs {}",
+            last.depth,
+            relaxed.depth
+        );
+        assert!(row.step(0.0, RowLoad::Force(1e-4)).is_err());
+        assert!(row.step(0.1, RowLoad::Force(-1.0)).is_err());
+        assert!(row.step(0.1, RowLoad::Depth(f64::NAN)).is_err());
+        assert!(SpringRow::new(&[], 1.0, &g).is_err());
+        assert!(SpringRow::new(&[f64::INFINITY], 1.0, &g).is_err());
     }
 }
