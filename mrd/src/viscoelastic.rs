@@ -213,9 +213,9 @@ impl SpringRow {
             } else {
                 free[i]
             };
-            for k in 0..m {
-                let (a, b) = ab[k];
-                self.h[i * m + k] = a * self.h[i * m + k] + b * (u_new - self.u[i]);
+            let du = u_new - self.u[i];
+            for (h, &(a, b)) in self.h[i * m..(i + 1) * m].iter_mut().zip(&ab) {
+                *h = a * *h + b * du;
             }
             self.u[i] = u_new;
         }
