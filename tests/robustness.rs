@@ -480,3 +480,47 @@ fn lambda_study_refuses_bad_checks() {
         assert!(!tmp.path().join("o").exists(), "{needle}: a report was written");
     }
 }
+
+/// The viscoelastic rough punch names a bad value before anything runs.
+#[test]
+fn viscoelastic_rough_refuses_bad_values() {
+    let tmp = tempfile::tempdir().unwrap();
+    let head = "name = \"b\"\n[material]\ne_star = 1.0\n[[outputs]]\n";
+    let vr = "kind = \"viscoelastic_rough\"\nhurst = 0.8\nbandwidth = 4\ncells = 4\nrealisations_3d = 2\nrealisations_1d = 2\nforce = 0.05\nramp = 1.0\nhold = 1.0\nunload = 0.25\n";
+    for (body, needle) in [
+        (
+            format!("{vr}steps = 10\nmodulus = {{ relaxed = 1.0, terms = [[4.0, 0.05]] }}\n"),
+            "exceeds the shortest relaxation time 5.000e-2: give at least 20 steps",
+        ),
+        (
+            format!("{vr}steps = 10\nmodulus = {{ relaxed = 1.0, terms = [[-4.0, 0.5]] }}\n"),
+            "modulus",
+        ),
+        (
+            format!("{vr}steps = 10\nmodulus = {{ relaxed = 0.0, terms = [[4.0, 0.5]] }}\n"),
+            "modulus.relaxed must be > 0",
+        ),
+        (
+            format!("{vr}steps = 10\nmodulus = {{ relaxed = 1.0, terms = [[4.0, f64::NAN]] }}\n")
+                .replace("f64::NAN", "nan"),
+            "modulus",
+        ),
+    ] {
+        let scene = tmp.path().join("b.toml");
+        std::fs::write(&scene, format!("{head}{body}")).unwrap();
+        let o = mrdw_in(tmp.path(), &["run", "b.toml", "--out", "o"]);
+        refused(&o, needle);
+        assert!(
+            !tmp.path().join("o").exists(),
+            "{needle}: a report was written"
+        );
+    }
+    let scene = tmp.path().join("b.toml");
+    let body = format!("{vr}steps = 10\nmodulus = {{ relaxed = 1.0, terms = [[4.0, 0.5]] }}\n")
+        .replace("unload = 0.25", "unload = 1.0");
+    std::fs::write(&scene, format!("{head}{body}")).unwrap();
+    refused(
+        &mrdw_in(tmp.path(), &["run", "b.toml", "--out", "o"]),
+        "unload must lie in [0, 1)",
+    );
+}

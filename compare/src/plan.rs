@@ -36,6 +36,8 @@ pub enum Stage {
     ViscoelasticSliding,
     /// Steady sliding of rough surfaces over a viscoelastic half-space (bem3d).
     ViscoelasticSliding3d,
+    /// Transient contact of rough surfaces on a viscoelastic half-space (bem3d).
+    Viscoelastic3d,
     /// Random rough lines or surfaces (Eqs. 70-72).
     RoughSynthesis,
     /// Rough line on the MRD foundation (sorted gaps, exact queries).
@@ -66,6 +68,7 @@ impl Stage {
             Stage::Viscoelastic => "viscoelastic_springs",
             Stage::ViscoelasticSliding => "viscoelastic_sliding",
             Stage::ViscoelasticSliding3d => "viscoelastic_sliding_3d",
+            Stage::Viscoelastic3d => "viscoelastic_3d",
             Stage::RoughSynthesis => "rough_synthesis",
             Stage::RoughContact => "rough_contact_mrd",
             Stage::Bem3d => "bem3d",

@@ -46,6 +46,14 @@ pub const EMBEDDED: &[(&str, &str)] = &[
         include_str!("../../cases/rough-sphere-ci.toml"),
     ),
     (
+        "viscoelastic-rough",
+        include_str!("../../cases/viscoelastic-rough.toml"),
+    ),
+    (
+        "viscoelastic-rough-ci",
+        include_str!("../../cases/viscoelastic-rough-ci.toml"),
+    ),
+    (
         "static-friction-3d",
         include_str!("../../cases/static-friction-3d.toml"),
     ),

@@ -36,6 +36,7 @@ mod static_friction;
 mod static_friction_3d;
 mod tangential;
 mod viscoelastic;
+mod viscoelastic_rough;
 
 /// One requested output.
 pub trait Output: std::fmt::Debug + Send + Sync {
@@ -192,6 +193,10 @@ pub const KINDS: &[Kind] = &[
     Kind::of::<rough_sphere::RoughSphere>(
         "rough_sphere",
         "a sphere with self-affine roughness, 3D against MRD (Hess + Eq. 76), smooth to rough (Section 9)",
+    ),
+    Kind::of::<viscoelastic_rough::ViscoelasticRough>(
+        "viscoelastic_rough",
+        "a rough punch on a viscoelastic half-space through ramp, hold, unload and reload, 3D against MRD springs (Eq. 63, Section 8)",
     ),
     Kind::of::<hurst_sweep::HurstSweep>(
         "hurst_sweep",

@@ -1,0 +1,227 @@
+//! `viscoelastic_rough`: Section 8 says MRD springs with the time-dependent modulus of
+//! Eq. (63) reproduce a viscoelastic contact, and (Radok) that "at the given indentation
+//! depth, the configurations of an elastic and of a viscous medium are strictly
+//! identical ... only during the indentation phase". This output puts it next to 3D:
+//! the rough punch of the Hurst sweep (a rigid disc of diameter L with a self-affine
+//! face, modes |k| <= `bandwidth` in units of 2 pi / L, on the free half-space) pressed
+//! into a generalised-Maxwell half-space, E*(t) = E_inf + sum_k E_k exp(-t / tau_k),
+//! under a force history: a ramp to f = F / (E_inf h L) over `ramp`, a hold, an unload
+//! to `unload` of that force over `ramp`, a reload over `ramp`. Against it MRD lines of
+//! length L (C1D = lambda q C2D, Eq. 76) on springs E*(t) dx that separate at zero force
+//! (Eq. 63; Ting's problem in 1D).
+//!
+//! Each side is also solved elastically at the same approach: Radok's prediction is that
+//! while the contact does not recede the contact set is the elastic one at the current
+//! approach (whatever the modulus), so area / elastic area = 1 through ramp and hold
+//! (under a held force the approach creeps and the area grows with it); on unloading the
+//! material lags behind the withdrawing punch and the contact is smaller than the
+//! elastic one at the same approach. Reported per step: approach / h and contact fraction (3D: cells of the
+//! face; MRD: springs), mean over realisations with a 95 % interval (3D), and the ratio
+//! to the elastic contact fraction; per phase the largest deviation from Radok on each
+//! side and the MRD / 3D approach ratio.
+
+mod report;
+mod runs;
+
+use super::rough_stiffness::LambdaSpec;
+use super::{bad, check_memory, count_in, Env, Output, BYTES_PER_CELL_NON_PERIODIC};
+use crate::context::Context;
+use crate::error::{Context as _, Result};
+use crate::plan::Stage;
+use crate::report::Section;
+use rayon::prelude::*;
+use serde::Deserialize;
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModulusSpec {
+    /// E_inf, the relaxed contact modulus (> 0: the forces are in its units).
+    pub relaxed: f64,
+    /// [E_k, tau_k] pairs.
+    pub terms: Vec<[f64; 2]>,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ViscoelasticRough {
+    hurst: f64,
+    bandwidth: usize,
+    /// Cells per shortest wavelength: the 3D grid is bandwidth x cells a side.
+    #[serde(default = "eight")]
+    cells: usize,
+    realisations_3d: u64,
+    realisations_1d: u64,
+    /// MRD springs per 3D cell across.
+    #[serde(default = "sixteen")]
+    points_1d_per_cell: usize,
+    #[serde(default = "super::default_lambdas")]
+    lambda: Vec<LambdaSpec>,
+    modulus: ModulusSpec,
+    /// f = F / (E_inf h L) at the end of the ramp.
+    force: f64,
+    /// Duration of the ramp, of the unload and of the reload.
+    ramp: f64,
+    /// Duration of the hold.
+    hold: f64,
+    /// The unload goes down to this fraction of the force.
+    unload: f64,
+    /// Time steps per ramp.
+    steps: usize,
+    #[serde(default = "super::default_tolerance")]
+    tolerance: f64,
+    #[serde(default)]
+    seed: u64,
+}
+
+fn eight() -> usize {
+    8
+}
+fn sixteen() -> usize {
+    16
+}
+
+/// The four phases of the history, in order.
+pub const PHASES: [&str; 4] = ["ramp", "hold", "unload", "reload"];
+
+impl ViscoelasticRough {
+    fn grid(&self) -> usize {
+        self.bandwidth * self.cells
+    }
+
+    fn dt(&self) -> f64 {
+        self.ramp / self.steps as f64
+    }
+
+    fn hold_steps(&self) -> usize {
+        (self.hold / self.dt()).round().max(1.0) as usize
+    }
+
+    /// (dt, f at the step's end) for every step, and the phase of each.
+    fn history(&self) -> Vec<(f64, f64)> {
+        let (dt, n, f) = (self.dt(), self.steps, self.force);
+        let lerp = |a: f64, b: f64, k: usize| a + (b - a) * k as f64 / n as f64;
+        let mut out: Vec<(f64, f64)> = (1..=n).map(|k| (dt, lerp(0.0, f, k))).collect();
+        out.extend((0..self.hold_steps()).map(|_| (dt, f)));
+        out.extend((1..=n).map(|k| (dt, lerp(f, self.unload * f, k))));
+        out.extend((1..=n).map(|k| (dt, lerp(self.unload * f, f, k))));
+        out
+    }
+
+    /// Phase index of each step of [`Self::history`].
+    fn phases(&self) -> Vec<usize> {
+        let n = self.steps;
+        let mut p = vec![0; n];
+        p.extend(vec![1; self.hold_steps()]);
+        p.extend(vec![2; n]);
+        p.extend(vec![3; n]);
+        p
+    }
+
+    fn relaxation(&self) -> Result<bem3d::viscoelastic::Relaxation> {
+        let terms = self.modulus.terms.iter().map(|t| (t[0], t[1])).collect();
+        bem3d::viscoelastic::Relaxation::new(self.modulus.relaxed, terms)
+            .map_err(|e| crate::error::CompareError::Scene(format!("modulus: {e}")))
+    }
+
+    fn prony(&self) -> Result<mrd::viscoelastic::Prony> {
+        let terms = self.modulus.terms.iter().map(|t| (t[0], t[1])).collect();
+        mrd::viscoelastic::Prony::new(self.modulus.relaxed, terms).ctx("modulus")
+    }
+}
+
+impl Output for ViscoelasticRough {
+    fn validate(&self, ctx: &Context) -> Result<()> {
+        if !(-1.0..=3.0).contains(&self.hurst) {
+            return bad(format!("hurst = {} must lie in [-1, 3]", self.hurst));
+        }
+        count_in("bandwidth", self.bandwidth as u64, 2..=512)?;
+        count_in("cells", self.cells as u64, 3..=32)?;
+        count_in("points_1d_per_cell", self.points_1d_per_cell as u64, 1..=64)?;
+        super::check_ensembles(self.realisations_3d, self.realisations_1d)?;
+        self.relaxation()?;
+        if self.modulus.relaxed <= 0.0 {
+            return bad("modulus.relaxed must be > 0 (the forces are in its units)");
+        }
+        if !(self.force.is_finite() && self.force > 0.0) {
+            return bad("force must be finite and > 0");
+        }
+        if !(self.ramp.is_finite() && self.ramp > 0.0 && self.hold.is_finite() && self.hold >= 0.0)
+        {
+            return bad("ramp must be > 0 and hold >= 0, both finite");
+        }
+        if !(self.unload.is_finite() && (0.0..1.0).contains(&self.unload)) {
+            return bad("unload must lie in [0, 1) (a fraction of the force)");
+        }
+        count_in("steps", self.steps as u64, 2..=100_000)?;
+        // The integration is exact for piecewise-linear displacement at any step, but a
+        // step longer than a relaxation time cannot resolve that term's response.
+        let tau_min = self
+            .modulus
+            .terms
+            .iter()
+            .map(|t| t[1])
+            .fold(f64::INFINITY, f64::min);
+        if self.dt() > tau_min {
+            return bad(format!(
+                "the time step ramp / steps = {:.3e} exceeds the shortest relaxation time {tau_min:.3e}: give at least {} steps",
+                self.dt(),
+                (self.ramp / tau_min).ceil()
+            ));
+        }
+        if self.history().len() > 1_000_000 {
+            return bad("the history has more than 1e6 steps (hold / (ramp / steps))");
+        }
+        if !(self.tolerance > 0.0 && self.tolerance < 1e-2) {
+            return bad("tolerance must lie in (0, 1e-2)");
+        }
+        LambdaSpec::check_all(&self.lambda, ctx, &[self.hurst])?;
+        let g = self.grid() as f64;
+        // Two solvers (viscoelastic, elastic) per realisation, one realisation per thread.
+        check_memory(
+            2.0 * g * g * BYTES_PER_CELL_NON_PERIODIC * rayon::current_num_threads() as f64,
+            &format!("3D grids of {g}^2 cells, two per thread"),
+        )
+    }
+
+    fn stages(&self, _: &Context) -> Vec<Stage> {
+        vec![
+            Stage::RoughSynthesis,
+            Stage::Viscoelastic3d,
+            Stage::Bem3d,
+            Stage::Viscoelastic,
+        ]
+    }
+
+    fn seed(&self) -> Option<u64> {
+        Some(self.seed)
+    }
+
+    fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
+        let lambdas: Vec<f64> = self
+            .lambda
+            .iter()
+            .map(|l| l.build(env.ctx)?.at(self.hurst).ctx("lambda"))
+            .collect::<Result<_>>()?;
+        let (relaxation, prony) = (self.relaxation()?, self.prony()?);
+        let stages = [Stage::RoughSynthesis, Stage::Viscoelastic3d, Stage::Bem3d];
+        let runs_3d = out.stages_together(&stages, || {
+            (0..self.realisations_3d)
+                .into_par_iter()
+                .map(|r| runs::run_3d(self, &relaxation, r))
+                .collect::<Result<Vec<_>>>()
+        })?;
+        let runs_1d = out.stage(Stage::Viscoelastic, || {
+            lambdas
+                .iter()
+                .map(|&lam| {
+                    (0..self.realisations_1d)
+                        .into_par_iter()
+                        .map(|r| runs::run_1d(self, &prony, lam, r))
+                        .collect::<Result<Vec<_>>>()
+                })
+                .collect::<Result<Vec<_>>>()
+        })?;
+        report::report(self, &lambdas, &runs_3d, &runs_1d, out);
+        Ok(())
+    }
+}
