@@ -239,3 +239,38 @@ fn lifted_off_surface_recovers_and_bad_steps_are_refused() {
         assert!(Relaxation::new(e_inf, terms).is_err());
     }
 }
+
+/// Li, Brenner & Frerot (arXiv 2511.19402, 2025) prove that for any linear viscoelastic
+/// medium the contact area cannot decrease while a reduced load is held after a load
+/// decrease. Checked here on a rough periodic surface with two relaxation times: load,
+/// hold, drop to a quarter, hold; the contact cells never decrease after the drop (and
+/// they do grow: the medium creeps).
+#[test]
+fn area_does_not_decrease_after_a_load_decrease() {
+    let n = 64;
+    let h = bumpy(n);
+    let modulus = Relaxation::new(1.0, vec![(3.0, 0.2), (2.0, 2.0)]).unwrap();
+    let mut vc = TransientContact::new(
+        PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0),
+        &h,
+        None,
+        modulus,
+    )
+    .unwrap();
+    let f1 = 2e-3;
+    for _ in 0..30 {
+        vc.step(0.05, Load::Force(f1), &opts()).unwrap();
+    }
+    let mut cells = Vec::new();
+    for _ in 0..80 {
+        cells.push(
+            vc.step(0.05, Load::Force(f1 / 4.0), &opts())
+                .unwrap()
+                .contact_cells,
+        );
+    }
+    for w in cells.windows(2) {
+        assert!(w[1] >= w[0], "{cells:?}");
+    }
+    assert!(cells[79] > cells[0], "{cells:?}");
+}

@@ -420,4 +420,25 @@ mod tests {
         assert!(SpringRow::new(&[], 1.0, &g).is_err());
         assert!(SpringRow::new(&[f64::INFINITY], 1.0, &g).is_err());
     }
+
+    #[test]
+    fn spring_row_contact_does_not_shrink_after_a_load_decrease() {
+        // Li, Brenner & Frerot (arXiv 2511.19402, 2025): for any linear viscoelastic
+        // medium the contact area cannot decrease while a reduced load is held.
+        let gaps: Vec<f64> = (0..2000)
+            .map(|i| (0.37 * i as f64).sin().abs() * 1e-3 + (i % 13) as f64 * 1e-5)
+            .collect();
+        let g = Prony::new(1.0, vec![(3.0, 0.2), (2.0, 2.0)]).unwrap();
+        let mut row = SpringRow::new(&gaps, 1.0 / 2000.0, &g).unwrap();
+        for _ in 0..30 {
+            row.step(0.05, RowLoad::Force(2e-4)).unwrap();
+        }
+        let contacts: Vec<usize> = (0..80)
+            .map(|_| row.step(0.05, RowLoad::Force(5e-5)).unwrap().contacts)
+            .collect();
+        for w in contacts.windows(2) {
+            assert!(w[1] >= w[0], "{contacts:?}");
+        }
+        assert!(contacts[79] > contacts[0], "{contacts:?}");
+    }
 }
