@@ -31,7 +31,8 @@ const EXAMPLES: &str = "Examples:
   mrdw show jkr > my.toml       start a new scene from an embedded one
   mrdw run fig6-full --shard 0/4 --out shards/0    one machine's share of a sweep
   mrdw merge shards/0 shards/1 shards/2 shards/3   combine the shares into one report
-  mrdw bench mrd | rough | bem | sliding | sliding3d   run time (and error) of the solvers
+  mrdw bench mrd | rough | bem | sliding | sliding3d | viscoelastic
+                                                     run time (and error) of the solvers
   mrdw bench report [--quick]   run time against error as a report folder, reports/bench/
 
 Report folders: --out may name a new folder, an empty one, or a report folder mrdw
@@ -142,6 +143,10 @@ enum BenchTarget {
     /// 3D viscoelastic sliding: one velocity point of fig7-3d at k v = 1e-2 .. 1e2 rad/s
     /// on grids 128^2 .. (--max-n)^2 (default up to 512).
     Sliding3d,
+    /// Transient viscoelastic contact: seconds per time step of the 3D rough punch against
+    /// elastic solves of the same grid, 128^2 .. (--max-n)^2 (default up to 512), and of
+    /// 400 MRD lines on viscoelastic springs.
+    Viscoelastic,
     /// Run time against error as a report folder (CSV + PNG): axisymmetric cases with
     /// closed forms (MRD semi-analytic, springs, 3D), rough contacts (alpha against a
     /// reference, 3D and MRD), scaling with fitted exponents.
@@ -326,6 +331,10 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
                 BenchTarget::Sliding3d => {
                     let n = if max_n == 1024 { 512 } else { max_n as usize };
                     compare::bench::run_sliding_3d(&mut out.0, n)?
+                }
+                BenchTarget::Viscoelastic => {
+                    let n = if max_n == 1024 { 512 } else { max_n as usize };
+                    compare::bench::run_viscoelastic(&mut out.0, n)?
                 }
                 BenchTarget::Bem => {
                     compare::bench::run_bem(&mut out.0, max_n as usize, write_surfaces.as_deref())?

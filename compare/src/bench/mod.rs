@@ -3,6 +3,8 @@
 
 pub mod report;
 mod rough_ladder;
+mod viscoelastic;
+pub use viscoelastic::run_viscoelastic;
 
 use mrd::discrete::DiscreteAxisymmetric;
 use mrd::oscillation::OscillatingContact;

@@ -1,0 +1,134 @@
+//! `mrdw bench viscoelastic`: the cost of a time step of the transient viscoelastic
+//! contact (`bem3d::viscoelastic`) against elastic solves of the same grid, and of the
+//! MRD springs (`mrd::viscoelastic::SpringRow`) for the same history.
+
+use bem3d::viscoelastic::{Relaxation, TransientContact};
+use bem3d::{ContactSolver, Load, NonPeriodicHalfSpace, SolverOptions};
+use mrd::roughness::nested;
+use mrd::roughness::synthesis::Grid;
+use mrd::roughness::SelfAffine;
+use mrd::viscoelastic::{Prony, RowLoad, SpringRow};
+use std::f64::consts::{PI, TAU};
+use std::io::Write;
+use std::time::Instant;
+
+/// Steps of the ramp and of the hold.
+const STEPS: usize = 40;
+
+/// The force at the end of step k (1-based) of the history: a ramp to f over STEPS
+/// steps, then a hold of STEPS steps.
+fn force(k: usize, full: f64) -> f64 {
+    full * (k.min(STEPS) as f64 / STEPS as f64)
+}
+
+/// The rough punch of `viscoelastic-rough` (H = 0.8, 8 cells per shortest wavelength,
+/// disc face), standard linear solid E*(t) = 1 + 4 exp(-t), a ramp to f = 0.05 over
+/// 2 tau and a hold of 2 tau (80 steps): wall time per viscoelastic step, per cold
+/// elastic solve at the final force and per warm-started elastic solve along the same
+/// force history on grids 128^2 .. max_n^2; then 400 MRD lines of the same bandwidth
+/// through the same history.
+pub fn run_viscoelastic(w: &mut dyn Write, max_n: usize) -> std::io::Result<()> {
+    writeln!(
+        w,
+        "Transient viscoelastic contact (bem3d::viscoelastic): rough punch H = 0.8, 8 cells per shortest wavelength, E*(t) = 1 + 4 exp(-t), ramp to f = 0.05 over 2 tau and hold 2 tau in {} steps, tolerance 1e-8, {} threads, {}\n",
+        2 * STEPS,
+        rayon::current_num_threads(),
+        super::cpu_model()
+    )?;
+    writeln!(
+        w,
+        "{:>6} | {:>14} | {:>14} | {:>14} | {:>12} | {:>10}",
+        "grid", "step [s]", "elastic warm", "elastic cold", "step / warm", "contact"
+    )?;
+    writeln!(w, "{}", "-".repeat(84))?;
+    let relaxation = Relaxation::new(1.0, vec![(4.0, 1.0)]).expect("modulus");
+    let dt = 2.0 / STEPS as f64;
+    let opts = SolverOptions::new(1e-8, 100_000);
+    for n in [128usize, 256, 512, 1024, 2048, 4096] {
+        if n > max_n.max(128) {
+            break;
+        }
+        let band = n / 8;
+        let sa = SelfAffine::new(
+            0.8,
+            TAU * (1.0 - 1e-9),
+            TAU * (1.0 - 1e-9),
+            TAU * (band as f64 + 0.5),
+        )
+        .expect("spectrum");
+        let z =
+            nested::surface(&|q| sa.c2d(q), band, &Grid::square(n, 1.0), 2026, 0).expect("surface");
+        let mask = bem3d::mask::disc(n, n, 1.0, 1.0, 0.5);
+        let op = || NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
+        let mut el = ContactSolver::new(op(), &z, Some(mask.clone())).expect("solver");
+        let full = 0.05 * el.h_rms();
+        let mut ve = TransientContact::new(op(), &z, Some(mask.clone()), relaxation.clone())
+            .expect("solver");
+        let t0 = Instant::now();
+        let mut cells = 0;
+        for k in 1..=2 * STEPS {
+            cells = ve
+                .step(dt, Load::Force(force(k, full)), &opts)
+                .expect("step")
+                .contact_cells;
+        }
+        let step = t0.elapsed().as_secs_f64() / (2 * STEPS) as f64;
+        let t0 = Instant::now();
+        let mut warm: Option<bem3d::Solution> = None;
+        for k in 1..=2 * STEPS {
+            warm = Some(
+                el.solve(Load::Force(force(k, full)), &opts, warm.as_ref())
+                    .expect("solve"),
+            );
+        }
+        let warm_t = t0.elapsed().as_secs_f64() / (2 * STEPS) as f64;
+        let mut cold = ContactSolver::new(op(), &z, Some(mask)).expect("solver");
+        let t0 = Instant::now();
+        cold.solve(Load::Force(full), &opts, None).expect("solve");
+        let cold_t = t0.elapsed().as_secs_f64();
+        let domain = bem3d::mask::disc(n, n, 1.0, 1.0, 0.5)
+            .iter()
+            .filter(|&&m| m)
+            .count();
+        writeln!(
+            w,
+            "{n:>6} | {step:>14.4e} | {warm_t:>14.4e} | {cold_t:>14.4e} | {:>12.2} | {:>10.2e}",
+            step / warm_t,
+            cells as f64 / domain as f64
+        )?;
+    }
+    // MRD: 400 lines of the largest bandwidth, 16 springs per 3D cell.
+    let n = max_n.max(128).min(4096);
+    let band = n / 8;
+    let sa = SelfAffine::new(
+        0.8,
+        TAU * (1.0 - 1e-9),
+        TAU * (1.0 - 1e-9),
+        TAU * (band as f64 + 0.5),
+    )
+    .expect("spectrum");
+    let line = sa.to_line(PI);
+    let prony = Prony::new(1.0, vec![(4.0, 1.0)]).expect("modulus");
+    let points = 16 * n;
+    let t0 = Instant::now();
+    for r in 0..400u64 {
+        let z = nested::line(&|q| line.c1d(q), band, points, 1.0, 2026, r).expect("line");
+        let top = z.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+        let gaps: Vec<f64> = z.iter().map(|v| top - v).collect();
+        let mean = z.iter().sum::<f64>() / points as f64;
+        let h = (z.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / points as f64).sqrt();
+        let mut row = SpringRow::new(&gaps, 1.0 / points as f64, &prony).expect("row");
+        for k in 1..=2 * STEPS {
+            row.step(dt, RowLoad::Force(force(k, 0.05 * h)))
+                .expect("step");
+        }
+    }
+    let total = t0.elapsed().as_secs_f64();
+    writeln!(
+        w,
+        "\nMRD (mrd::viscoelastic::SpringRow, one thread): 400 lines of {points} springs (bandwidth {band}), the same {} steps: {total:.3} s in all, {:.3e} s per line and step",
+        2 * STEPS,
+        total / (400.0 * 2.0 * STEPS as f64)
+    )?;
+    Ok(())
+}
