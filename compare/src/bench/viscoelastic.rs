@@ -98,7 +98,7 @@ pub fn run_viscoelastic(w: &mut dyn Write, max_n: usize) -> std::io::Result<()> 
         )?;
     }
     // MRD: 400 lines of the largest bandwidth, 16 springs per 3D cell.
-    let n = max_n.max(128).min(4096);
+    let n = max_n.clamp(128, 4096);
     let band = n / 8;
     let sa = SelfAffine::new(
         0.8,
