@@ -293,6 +293,23 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             assert!(stages(&s).contains(&"bem3d".to_string()));
             continue;
         }
+        if *name == "tangential-viscoelastic" {
+            // Work = stored + viscous + friction dissipation to trapezoid accuracy; the
+            // viscoelastic loop dissipates more than the relaxed elastic one (its
+            // glassy stiffness makes it slip more, and its dashpots dissipate).
+            let r = result(
+                &s,
+                "tangential_viscoelastic.energy_balance_max_residual_over_work",
+            );
+            assert!(r < 1e-4, "{r}");
+            let ve = result(&s, "tangential_viscoelastic.cycle_dissipation");
+            let el = result(
+                &s,
+                "tangential_viscoelastic.cycle_dissipation_relaxed_elastic",
+            );
+            assert!(ve > 10.0 * el && el > 0.0, "{ve} {el}");
+            continue;
+        }
         if *name == "viscoelastic-rough-ci" {
             // Physics in tests/viscoelastic_rough.rs; here: the transient 3D stage ran.
             assert!(stages(&s).contains(&"viscoelastic_3d".to_string()));

@@ -46,6 +46,10 @@ pub const EMBEDDED: &[(&str, &str)] = &[
         include_str!("../../cases/rough-sphere-ci.toml"),
     ),
     (
+        "tangential-viscoelastic",
+        include_str!("../../cases/tangential-viscoelastic.toml"),
+    ),
+    (
         "viscoelastic-rough",
         include_str!("../../cases/viscoelastic-rough.toml"),
     ),

@@ -259,6 +259,11 @@ pub struct TangentialRowState {
     pub force: f64,
     /// Loaded springs that stick.
     pub sticking: usize,
+    /// Friction work of the step, sum over slipping springs of f_i (du - dw_i) with f_i
+    /// at the step's end (the slip direction does not change within a step).
+    pub slip_work: f64,
+    /// The outermost sticking spring's index (None: nothing sticks).
+    pub stick_edge: Option<usize>,
 }
 
 impl TangentialRow {
@@ -313,7 +318,8 @@ impl TangentialRow {
                 .map(|(t, c)| t.0 * c.1)
                 .sum::<f64>();
         let du = ux - self.displacement;
-        let (mut force, mut sticking) = (0.0, 0usize);
+        let (mut force, mut sticking, mut slip_work) = (0.0, 0usize, 0.0);
+        let mut stick_edge = None;
         for i in 0..self.normal.len() {
             let hist = &mut self.h[i * m..(i + 1) * m];
             // f / dx = g_eff w_new + history.
@@ -329,12 +335,14 @@ impl TangentialRow {
             let trial = g_eff * (self.w[i] + du) + history;
             let (w_new, f) = if self.normal[i] > 0.0 && trial.abs() <= limit {
                 sticking += 1;
+                stick_edge = Some(i);
                 (self.w[i] + du, trial)
             } else {
                 let f = limit * trial.signum();
                 ((f - history) / g_eff, f)
             };
             let dw = w_new - self.w[i];
+            slip_work += f * self.dx * (du - dw);
             for (h, &(a, b)) in hist.iter_mut().zip(&ab) {
                 *h = a * *h + b * dw;
             }
@@ -348,7 +356,35 @@ impl TangentialRow {
             displacement: ux,
             force,
             sticking,
+            slip_work,
+            stick_edge,
         })
+    }
+
+    /// Energy stored in the springs, dx sum_i (G_inf w_i^2 + sum_k G_k h_ik^2) / 2 (the
+    /// Maxwell branch k's spring is stretched by h_ik).
+    pub fn stored_energy(&self) -> f64 {
+        let m = self.modulus.terms.len();
+        let mut e = 0.0;
+        for i in 0..self.w.len() {
+            e += self.modulus.relaxed * self.w[i] * self.w[i];
+            for (k, t) in self.modulus.terms.iter().enumerate() {
+                e += t.0 * self.h[i * m + k].powi(2);
+            }
+        }
+        0.5 * self.dx * e
+    }
+
+    /// Power dissipated in the dashpots, dx sum_i sum_k (G_k / tau_k) h_ik^2.
+    pub fn viscous_power(&self) -> f64 {
+        let m = self.modulus.terms.len();
+        let mut p = 0.0;
+        for i in 0..self.w.len() {
+            for (k, t) in self.modulus.terms.iter().enumerate() {
+                p += t.0 / t.1 * self.h[i * m + k].powi(2);
+            }
+        }
+        self.dx * p
     }
 }
 

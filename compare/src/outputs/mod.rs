@@ -35,6 +35,7 @@ mod sliding_friction_3d;
 mod static_friction;
 mod static_friction_3d;
 mod tangential;
+mod tangential_viscoelastic;
 mod viscoelastic;
 mod viscoelastic_rough;
 
@@ -193,6 +194,10 @@ pub const KINDS: &[Kind] = &[
     Kind::of::<rough_sphere::RoughSphere>(
         "rough_sphere",
         "a sphere with self-affine roughness, 3D against MRD (Hess + Eq. 76), smooth to rough (Section 9)",
+    ),
+    Kind::of::<tangential_viscoelastic::TangentialViscoelastic>(
+        "tangential_viscoelastic",
+        "Cattaneo-Mindlin on viscoelastic tangential springs: ramp, hold, cycle, stick zone and energy (Eqs. 64-65)",
     ),
     Kind::of::<viscoelastic_rough::ViscoelasticRough>(
         "viscoelastic_rough",
