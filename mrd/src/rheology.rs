@@ -68,6 +68,29 @@ impl Prony {
         (re, im)
     }
 
+    /// The factors of a time step dt of the hereditary integrals
+    /// `h_k(t) = Int exp(-(t - t')/tau_k) du/dt' dt'`, exact for u linear over the step:
+    /// `h_k <- a_k h_k + b_k du` with `a_k = exp(-dt/tau_k)`, `b_k = (tau_k/dt)(1 - a_k)`;
+    /// and the step's effective modulus `M_inf + sum_k M_k b_k` (the response to du).
+    pub fn step_factors(&self, dt: f64) -> (Vec<(f64, f64)>, f64) {
+        let ab: Vec<(f64, f64)> = self
+            .terms
+            .iter()
+            .map(|&(_, tau)| {
+                let x = -dt / tau;
+                (x.exp(), -x.exp_m1() * tau / dt)
+            })
+            .collect();
+        let effective = self.relaxed
+            + self
+                .terms
+                .iter()
+                .zip(&ab)
+                .map(|(t, c)| t.0 * c.1)
+                .sum::<f64>();
+        (ab, effective)
+    }
+
     /// The same material with every modulus times `factor` (e.g. 4 for E* = 4 G).
     pub fn scaled(&self, factor: f64) -> Self {
         Self {

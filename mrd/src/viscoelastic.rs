@@ -153,23 +153,7 @@ impl SpringRow {
     pub fn step(&mut self, dt: f64, load: RowLoad) -> Result<RowState> {
         positive("time step", dt)?;
         let m = self.modulus.terms.len();
-        let ab: Vec<(f64, f64)> = self
-            .modulus
-            .terms
-            .iter()
-            .map(|&(_, tau)| {
-                let x = -dt / tau;
-                (x.exp(), -x.exp_m1() * tau / dt)
-            })
-            .collect();
-        let e_eff = self.modulus.relaxed
-            + self
-                .modulus
-                .terms
-                .iter()
-                .zip(&ab)
-                .map(|(t, c)| t.0 * c.1)
-                .sum::<f64>();
+        let (ab, e_eff) = self.modulus.step_factors(dt);
         // H_i / E_eff: the displacement the history holds at zero force.
         let free: Vec<f64> = (0..self.gaps.len())
             .map(|i| {
@@ -300,23 +284,7 @@ impl TangentialRow {
             });
         }
         let m = self.modulus.terms.len();
-        let ab: Vec<(f64, f64)> = self
-            .modulus
-            .terms
-            .iter()
-            .map(|&(_, tau)| {
-                let x = -dt / tau;
-                (x.exp(), -x.exp_m1() * tau / dt)
-            })
-            .collect();
-        let g_eff = self.modulus.relaxed
-            + self
-                .modulus
-                .terms
-                .iter()
-                .zip(&ab)
-                .map(|(t, c)| t.0 * c.1)
-                .sum::<f64>();
+        let (ab, g_eff) = self.modulus.step_factors(dt);
         let du = ux - self.displacement;
         let (mut force, mut sticking, mut slip_work) = (0.0, 0usize, 0.0);
         let mut stick_edge = None;
