@@ -21,6 +21,12 @@ fn force(k: usize, full: f64) -> f64 {
     full * (k.min(STEPS) as f64 / STEPS as f64)
 }
 
+/// The punch face's spectrum: H = 0.8, modes |k| in 1..=band (units 2 pi / L).
+fn spectrum(band: usize) -> SelfAffine {
+    let q0 = TAU * (1.0 - 1e-9);
+    SelfAffine::new(0.8, q0, q0, TAU * (band as f64 + 0.5)).expect("spectrum")
+}
+
 /// The rough punch of `viscoelastic-rough` (H = 0.8, 8 cells per shortest wavelength,
 /// disc face), standard linear solid E*(t) = 1 + 4 exp(-t), a ramp to f = 0.05 over
 /// 2 tau and a hold of 2 tau (80 steps): wall time per viscoelastic step, per cold
@@ -49,13 +55,7 @@ pub fn run_viscoelastic(w: &mut dyn Write, max_n: usize) -> std::io::Result<()> 
             break;
         }
         let band = n / 8;
-        let sa = SelfAffine::new(
-            0.8,
-            TAU * (1.0 - 1e-9),
-            TAU * (1.0 - 1e-9),
-            TAU * (band as f64 + 0.5),
-        )
-        .expect("spectrum");
+        let sa = spectrum(band);
         let z =
             nested::surface(&|q| sa.c2d(q), band, &Grid::square(n, 1.0), 2026, 0).expect("surface");
         let mask = bem3d::mask::disc(n, n, 1.0, 1.0, 0.5);
@@ -100,14 +100,7 @@ pub fn run_viscoelastic(w: &mut dyn Write, max_n: usize) -> std::io::Result<()> 
     // MRD: 400 lines of the largest bandwidth, 16 springs per 3D cell.
     let n = max_n.clamp(128, 4096);
     let band = n / 8;
-    let sa = SelfAffine::new(
-        0.8,
-        TAU * (1.0 - 1e-9),
-        TAU * (1.0 - 1e-9),
-        TAU * (band as f64 + 0.5),
-    )
-    .expect("spectrum");
-    let line = sa.to_line(PI);
+    let line = spectrum(band).to_line(PI);
     let prony = Prony::new(1.0, vec![(4.0, 1.0)]).expect("modulus");
     let points = 16 * n;
     let t0 = Instant::now();
