@@ -19,7 +19,8 @@
 //! lies in the window k/(E* L) in [window[0], window[1]] (the whole common range, not one
 //! point). The residual misfit max and rms |Delta ln k| over that range is what MRD with
 //! the calibrated lambda gets wrong. Intervals: 95 % bootstrap over realisations (200
-//! resamples; paired comparisons resample the realisations the two cases share).
+//! resamples; paired comparisons resample the realisations the two cases share and use
+//! their plain means, the pairing taking the place of the control variates).
 //!
 //! Realisations: every case computes `realisations.min`; a case of the main ladder at or
 //! below `calibrate_at` adds batches of `realisations.batch` (up to `realisations.max`)
