@@ -515,7 +515,29 @@ fn viscoelastic_rough_refuses_bad_values() {
             "{needle}: a report was written"
         );
     }
+    // A hold of 1e15 ramps: refused before anything is allocated, on both kinds.
     let scene = tmp.path().join("b.toml");
+    let body = format!("{vr}steps = 10\nmodulus = {{ relaxed = 1.0, terms = [[4.0, 0.5]] }}\n")
+        .replace("hold = 1.0", "hold = 1e15");
+    std::fs::write(&scene, format!("{head}{body}")).unwrap();
+    refused(
+        &mrdw_in(tmp.path(), &["run", "b.toml", "--out", "o"]),
+        "more than 1e6 steps",
+    );
+    let tv = "kind = \"tangential_viscoelastic\"\nmu = 0.3\nnormal_force = 0.1\ng_inf = 0.5\nprony = [[2.0, 0.5]]\namplitude = 0.2\nramp_time = 1.0\nhold_time = 1e15\n";
+    let profile = "[profile]\nshapes = [{ kind = \"sphere\", radius = 5.0 }]\n";
+    std::fs::write(
+        &scene,
+        format!(
+            "{}{profile}[[outputs]]\n{tv}",
+            head.trim_end_matches("[[outputs]]\n")
+        ),
+    )
+    .unwrap();
+    refused(
+        &mrdw_in(tmp.path(), &["run", "b.toml", "--out", "o"]),
+        "more than 1e6 steps",
+    );
     let body = format!("{vr}steps = 10\nmodulus = {{ relaxed = 1.0, terms = [[4.0, 0.5]] }}\n")
         .replace("unload = 0.25", "unload = 1.0");
     std::fs::write(&scene, format!("{head}{body}")).unwrap();

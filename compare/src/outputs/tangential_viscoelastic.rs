@@ -100,6 +100,10 @@ impl Output for TangentialViscoelastic {
                 ));
             }
         }
+        // Counted before the history is built, so that no huge hold allocates.
+        if (self.hold_time / self.ramp_time + 5.0) * self.steps as f64 > 1e6 {
+            return bad("the history has more than 1e6 steps (hold_time / (ramp_time / steps))");
+        }
         check_springs(self.springs, 2.0 + self.prony.len() as f64)
     }
 
