@@ -12,7 +12,7 @@
 //! where either side's mean force is 0. MRD: the lines' exact F(d)
 //! (`tasks::ApproachEnsemble`).
 
-use super::analysis::{sample, Estimate};
+use super::analysis::{Estimate, Sample};
 use super::scatter::cv_estimate;
 use super::tasks::{approach_file, load, ApproachEnsemble, Case};
 use super::LambdaStudy;
@@ -76,20 +76,19 @@ pub(super) fn hermite_force(pts: &[(f64, f64, f64)], d: f64) -> Option<f64> {
     )
 }
 
-/// The scatter of F at fixed approach of `case` with `n` realisations, if the MRD
-/// forces at fixed approach are in `work`. `f_window`: the reduced forces of the
-/// stiffness scatter's calibration window.
+/// The scatter of F at fixed approach of `case`, whose 3D realisations are `data` (the
+/// stiffness scatter's sample), if the MRD forces at fixed approach are in `work`.
+/// `f_window`: the reduced forces of the stiffness scatter's calibration window.
 pub fn of_case(
     s: &LambdaStudy,
     work: &Path,
     case: &Case,
-    n: u64,
+    data: &Sample,
     f_window: [f64; 2],
 ) -> Result<Option<ForceScatter>> {
     let Some(ens) = load::<ApproachEnsemble>(work, &approach_file(case.hurst, case.band))? else {
         return Ok(None);
     };
-    let data = sample(s, work, case, n)?;
     if data.bem.len() < 3 || ens.approach != s.approach_grid() {
         return Ok(None);
     }

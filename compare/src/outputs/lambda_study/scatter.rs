@@ -146,7 +146,7 @@ fn of_case(s: &LambdaStudy, work: &Path, case: &Case) -> Result<Option<Scatter>>
         window.last().map_or(f64::NAN, f_in),
     ];
     Ok(Some(Scatter {
-        force: approach::of_case(s, work, case, n, f_window)?,
+        force: approach::of_case(s, work, case, &data, f_window)?,
         case: *case,
         realisations: data.k3.len(),
         lines: ens.stiffness.len(),
