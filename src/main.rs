@@ -100,9 +100,9 @@ enum Command {
         /// Largest log10 of the number of springs (mrd, rough, sliding): 3..=8.
         #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u32).range(3..=8))]
         max_exp: u32,
-        /// Largest grid side (bem, sliding3d: 128..=16384): periodic 128.. up to this; the
-        /// periodic surfaces at 0.1 % contact ("sparse") and Hertz 128.. up to
-        /// min(this, 1024).
+        /// Largest grid side (bem, sliding3d, large: 128..=16384). bem: periodic 128.. up
+        /// to this, the periodic surfaces at 0.1 % contact ("sparse") and Hertz 128.. up
+        /// to min(this, 1024); large: 4096.. up to this (default 16384).
         #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u64).range(128..=16384))]
         max_n: u64,
         /// Also write the periodic surfaces and our pressures as .npy here (bem), for
@@ -120,11 +120,14 @@ enum Command {
     /// Internal: one benchmark case in a fresh process (for its peak memory).
     #[command(hide = true)]
     BenchCase {
-        #[arg(value_parser = ["periodic", "sparse", "hertz"])]
+        #[arg(value_parser = ["periodic", "sparse", "hertz", "large"])]
         kind: String,
         n: usize,
         #[arg(long)]
         write_surfaces: Option<PathBuf>,
+        /// Mean pressure over E* (large).
+        #[arg(long, default_value_t = 1e-2)]
+        mean_pressure: f64,
     },
 }
 
@@ -143,6 +146,11 @@ enum BenchTarget {
     /// 3D viscoelastic sliding: one velocity point of fig7-3d at k v = 1e-2 .. 1e2 rad/s
     /// on grids 128^2 .. (--max-n)^2 (default up to 512).
     Sliding3d,
+    /// The 3D solver's memory on big periodic grids: 4096^2 .. (--max-n)^2 (default
+    /// 16384) at 0.1 %, 1 % and 20 % contact; time, iterations, peak resident memory and
+    /// bytes per cell, each case in a fresh process (refused before allocating when the
+    /// memory is not there).
+    Large,
     /// Transient viscoelastic contact: seconds per time step of the 3D rough punch against
     /// elastic solves of the same grid, 128^2 .. (--max-n)^2 (default up to 512), and of
     /// 400 MRD lines on viscoelastic springs.
@@ -336,6 +344,10 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
                     let n = if max_n == 1024 { 512 } else { max_n as usize };
                     compare::bench::run_viscoelastic(&mut out.0, n)?
                 }
+                BenchTarget::Large => {
+                    let n = if max_n == 1024 { 16384 } else { max_n as usize };
+                    compare::bench::run_large(&mut out.0, n)?
+                }
                 BenchTarget::Bem => {
                     compare::bench::run_bem(&mut out.0, max_n as usize, write_surfaces.as_deref())?
                 }
@@ -363,8 +375,13 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
             kind,
             n,
             write_surfaces,
+            mean_pressure,
         } => {
-            compare::bench::run_bem_case(&mut out.0, &kind, n, write_surfaces.as_deref())?;
+            if kind == "large" {
+                compare::bench::run_large_case(&mut out.0, n, mean_pressure)?;
+            } else {
+                compare::bench::run_bem_case(&mut out.0, &kind, n, write_surfaces.as_deref())?;
+            }
             Ok(())
         }
     }

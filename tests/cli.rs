@@ -752,6 +752,30 @@ fn data_file_errors_name_the_file_and_the_range() {
     assert!(!err.contains("profile table"), "{err}");
 }
 
+/// `mrdw bench large` at CI scale (128^2): three cases in fresh processes, the contact
+/// growing with the load, each solve converged to its tolerance and certificate, and a
+/// peak memory per cell reported (never timings).
+#[test]
+fn bench_large_reports_converged_cases_and_their_memory() {
+    let o = mrdw(&["bench", "large", "--max-n", "128"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout);
+    let rows: Vec<Vec<&str>> = text
+        .lines()
+        .filter(|l| l.trim_start().starts_with("128^2"))
+        .map(|l| l.split('|').map(str::trim).collect())
+        .collect();
+    assert_eq!(rows.len(), 3, "{text}");
+    let num = |r: &[&str], k: usize| -> f64 { r[k].trim_end_matches('%').parse().unwrap() };
+    for pair in rows.windows(2) {
+        assert!(num(&pair[0], 2) < num(&pair[1], 2), "{text}");
+    }
+    for r in &rows {
+        assert!(num(r, 6) > 0.0 && num(r, 7) > 0.0, "{text}");
+        assert!(num(r, 8) <= 1e-10 && num(r, 9) <= 1e-10, "{text}");
+    }
+}
+
 /// `mrdw bench report --quick`: the report folder is complete and the orders of
 /// convergence it fits from its ladders are the known ones (never timings).
 #[test]

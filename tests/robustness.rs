@@ -105,7 +105,7 @@ fn the_process_address_space_limit_is_honoured() {
         .current_dir(tmp.path())
         .args([
             "-c",
-            &format!("ulimit -v 600000 && exec {exe} run b.toml --out r --threads 1"),
+            &format!("ulimit -v 300000 && exec {exe} run b.toml --out r --threads 1"),
         ])
         .output()
         .unwrap();
@@ -356,6 +356,19 @@ fn benchmark_commands_refuse_what_they_cannot_do() {
         &mrdw_in(tmp.path(), &["bench-case", "periodic", "0"]),
         "grid side n = 0 must lie in 16..=16384",
     );
+    refused(
+        &mrdw_in(tmp.path(), &["bench-case", "large", "65536"]),
+        "grid side n = 65536 must lie in 16..=16384",
+    );
+    for p in ["0", "1.5", "NaN"] {
+        refused(
+            &mrdw_in(
+                tmp.path(),
+                &["bench-case", "large", "64", "--mean-pressure", p],
+            ),
+            "must lie in (0, 1) (a fraction of E*)",
+        );
+    }
     let o = mrdw_in(
         tmp.path(),
         &[

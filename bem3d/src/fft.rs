@@ -5,9 +5,11 @@
 //! spectrum, `(nx/2 + 1) x ny`, and transformed there while they are in cache. Inverse
 //! reverses the steps, the row pass gathering its rows from the spectrum.
 //! [`Fft2::convolve`] multiplies each column block by a symbol and transforms it back
-//! inside the column pass, so a convolution streams the grid six times (the input; the
-//! row buffer and the spectrum, each written and read once; the output), without the
-//! separate passes of a forward transform, a product and an inverse transform.
+//! inside the column pass, writing it back to the row buffer's columns, so a convolution
+//! holds one grid-sized buffer (the row spectra) and streams the grid six times (the
+//! input; the row buffer written, read and written by the column pass, read by the row
+//! pass; the output), without the separate passes of a forward transform, a product and
+//! an inverse transform.
 //! A zero input row is not transformed (its spectrum is read as zeros), and an inverse
 //! pass can leave out rows its caller does not read ([`Fft2::store_some_rows`]): a
 //! solver's inputs and outputs restricted to a small contact set skip most rows.
@@ -104,12 +106,13 @@ pub struct Fft2<T: FftFloat = f64> {
     zero_rows: Vec<bool>,
     /// `nc` zeros: the spectrum of a zero row.
     zero_row: Vec<Complex<T>>,
-    /// The spectrum of a convolution (`nc x ny`), allocated on first use.
+    /// A transposed spectrum (`nc x ny`) for [`Fft2::spectrum_of_even`], which hands it
+    /// over; empty otherwise (a convolution's spectrum lives in `rows`).
     work: Vec<Complex<T>>,
     /// Row width and count held in `rows` by [`Fft2::load_rows`].
     loaded: Option<(usize, usize)>,
-    /// Row width and count of a convolution held in `work` by
-    /// [`Fft2::convolve_columns`] or [`Fft2::transform_columns`], awaiting
+    /// Row width and count of a convolution held in `rows` (transformed back along
+    /// columns) by [`Fft2::convolve_columns`] or [`Fft2::transform_columns`], awaiting
     /// [`Fft2::store_rows`].
     convolved: Option<(usize, usize)>,
 }
@@ -206,6 +209,38 @@ fn weighed_energy<T: FftFloat, S: Copy>(
     (acc[0] + acc[1]) + (acc[2] + acc[3])
 }
 
+/// A spectrum a row pass reads: transposed (`nc x ny`, as [`Fft2::forward`] writes
+/// it) or in the row buffer's layout (`ny x nc`, after an in-place column pass).
+#[derive(Clone, Copy)]
+enum Spectrum<'a, T> {
+    Transposed(&'a [Complex<T>]),
+    Rows(&'a [Complex<T>]),
+}
+
+/// The row buffer shared by the tasks of an in-place column pass, each of which reads
+/// and writes only its own block of columns.
+struct SharedRows<T>(*mut Complex<T>, usize);
+
+// SAFETY: the tasks touch disjoint stretches (see `stretch`); Complex<T> is Send.
+unsafe impl<T: Send> Send for SharedRows<T> {}
+unsafe impl<T: Send> Sync for SharedRows<T> {}
+
+impl<T> SharedRows<T> {
+    /// The `len` values from `start`. SAFETY: no other task writes them meanwhile.
+    unsafe fn stretch<'a>(&self, start: usize, len: usize) -> &'a [Complex<T>] {
+        assert!(start + len <= self.1, "stretch inside the row buffer");
+        unsafe { std::slice::from_raw_parts(self.0.add(start), len) }
+    }
+
+    /// The `len` values from `start`, to write. SAFETY: no other task reads or writes
+    /// them meanwhile.
+    #[allow(clippy::mut_from_ref)]
+    unsafe fn stretch_mut<'a>(&self, start: usize, len: usize) -> &'a mut [Complex<T>] {
+        assert!(start + len <= self.1, "stretch inside the row buffer");
+        unsafe { std::slice::from_raw_parts_mut(self.0.add(start), len) }
+    }
+}
+
 /// Target size of a column block in complex values (256 KiB: in a core's L2 cache).
 const COLUMN_BLOCK: usize = 16_384;
 
@@ -284,6 +319,7 @@ impl<T: FftFloat> Fft2<T> {
         );
         let chunk = width * ROW_CHUNK;
         let items = output[..rows.min(ny) * width].par_chunks_mut(chunk);
+        let spec = Spectrum::Transposed(spec);
         self.row_pass_inverse(spec, width, rows.min(ny), items, copy_out, None);
     }
 
@@ -476,15 +512,14 @@ impl<T: FftFloat> Fft2<T> {
             .convolved
             .take()
             .expect("store_rows without convolve_columns");
-        let work = std::mem::take(&mut self.work);
-        let sums = self.row_pass_inverse(&work, width, rows, items, store, wanted);
-        self.work = work;
-        sums
+        let spec = Spectrum::Rows(&self.rows);
+        self.row_pass_inverse(spec, width, rows, items, store, wanted)
     }
 
-    /// The column pass of a convolution of the loaded rows into `work`; with `weigh`
-    /// (a real symbol's value), also `<x, s * x>` (see [`Self::transform_columns`]);
-    /// without `back`, only that number (the pass stops after the forward transform).
+    /// The column pass of a convolution of the loaded rows, in place in `rows`; with
+    /// `weigh` (a real symbol's value), also `<x, s * x>` (see
+    /// [`Self::transform_columns`]); without `back`, only that number (the pass stops
+    /// after the forward transform).
     fn column_step<S, W>(&mut self, symbol: &[S], weigh: Option<W>, back: bool) -> f64
     where
         S: Copy + Sync,
@@ -497,16 +532,14 @@ impl<T: FftFloat> Fft2<T> {
             self.spectrum_len(),
             "symbol length against the spectrum's (nx/2 + 1) * ny"
         );
-        let mut work = self.take_work();
-        let energy = self.column_pass(&mut work, rows, Some(symbol), weigh, back);
-        self.work = work;
+        let energy = self.column_pass_in_place(rows, symbol, weigh, back);
         if back {
             self.convolved = Some((width, rows));
         }
         energy
     }
 
-    /// The work buffer (the spectrum of a convolution), allocated zeroed on first use.
+    /// The work buffer (a transposed spectrum), allocated zeroed on first use.
     fn take_work(&mut self) -> Vec<Complex<T>> {
         let work = std::mem::take(&mut self.work);
         if work.len() == self.spectrum_len() {
@@ -518,12 +551,10 @@ impl<T: FftFloat> Fft2<T> {
 
     /// The spectrum (`nc x ny`, as [`Self::forward`] gives it) of a grid even in y
     /// (row `j` equal to row `ny - j`) whose row `j <= ny / 2` is `fill(j, row)` (all
-    /// `nx` values), computed in the transform's work buffer and returned from there
-    /// (valid until the next convolution): an operator's symbol without a grid-sized
-    /// input array and a spectrum of its own. Only rows `0..=ny/2` are filled and
+    /// `nx` values): an operator's symbol without a grid-sized input array. Only rows `0..=ny/2` are filled and
     /// transformed, the others take their mirror's spectrum. The same values as
     /// [`Self::forward`] of that grid, bit for bit.
-    pub fn spectrum_of_even(&mut self, fill: impl Fn(usize, &mut [f64]) + Sync) -> &[Complex<T>] {
+    pub fn spectrum_of_even(&mut self, fill: impl Fn(usize, &mut [f64]) + Sync) -> Vec<Complex<T>> {
         let (nx, ny, nc) = (self.nx, self.ny, self.nc);
         let half = ny / 2 + 1;
         let chunks = (0..half.div_ceil(ROW_CHUNK)).into_par_iter();
@@ -547,13 +578,11 @@ impl<T: FftFloat> Fft2<T> {
             });
         let mut work = self.take_work();
         self.column_pass::<T, fn(T) -> f64>(&mut work, ny, None, None, false);
-        self.work = work;
-        &self.work
+        work
     }
 
     /// [`Self::inverse`] of the real spectrum `symbol` (`nc x ny` values, zero
-    /// imaginary parts) into `output`, in the transform's work buffer: a kernel's
-    /// real-space table without a spectrum of its own.
+    /// imaginary parts) into `output`: a kernel's real-space table.
     pub fn inverse_of_real(&mut self, symbol: &[f64], output: &mut [f64]) {
         assert_eq!(
             symbol.len(),
@@ -565,7 +594,6 @@ impl<T: FftFloat> Fft2<T> {
             .zip(symbol.par_iter())
             .for_each(|(w, &s)| *w = Complex::new(T::of_f64(s), T::default()));
         self.inverse(&mut work, output);
-        self.work = work;
     }
 
     /// Columns per block of the column pass: about [`COLUMN_BLOCK`] values.
@@ -645,13 +673,100 @@ impl<T: FftFloat> Fft2<T> {
         parts.iter().sum::<f64>() / (nx * ny) as f64
     }
 
-    /// Complex-to-real transforms of the first `rows` rows, gathered from `spec` (`nc x
-    /// ny`, transformed along columns) a chunk at a time, normalised, cropped to
-    /// `width` columns and handed to `store` with the chunk's item; rows that `wanted`
-    /// (if given) does not mark are not computed (their values are left as they were).
+    /// The column pass of a convolution in place in the row buffer (its first `filled`
+    /// rows; the others count as zero): each block of columns is gathered into a block
+    /// of the thread's own, transformed, weighed (`<x, s * x>` with `weigh`, as
+    /// [`Self::column_pass`]), and with `back` multiplied by `symbol`, transformed back
+    /// (unnormalised) and written back to its columns, every row. The same operations
+    /// on the same values as [`Self::column_pass`] into a transposed spectrum, without
+    /// a second grid-sized buffer.
+    fn column_pass_in_place<S, W>(
+        &mut self,
+        filled: usize,
+        symbol: &[S],
+        weigh: Option<W>,
+        back: bool,
+    ) -> f64
+    where
+        S: Copy + Sync,
+        W: Fn(S) -> f64 + Sync,
+        Complex<T>: MulAssign<S>,
+    {
+        let (nx, ny, nc) = (self.nx, self.ny, self.nc);
+        let twice = |c: usize| c > 0 && !(nx % 2 == 0 && c == nc - 1);
+        let per = self.columns_per_block();
+        let (fwd, inv) = (&self.fwd_y, &self.inv_y);
+        let (zero_rows, zero_row) = (&self.zero_rows, &self.zero_row);
+        let scratch_len = fwd
+            .get_inplace_scratch_len()
+            .max(inv.get_inplace_scratch_len());
+        let rows = SharedRows(self.rows.as_mut_ptr(), self.rows.len());
+        let parts: Vec<f64> = (0..nc.div_ceil(per))
+            .into_par_iter()
+            .map_init(
+                || {
+                    (
+                        vec![Complex::default(); scratch_len],
+                        vec![Complex::default(); per * ny],
+                    )
+                },
+                |(scratch, block), b| {
+                    let c0 = b * per;
+                    let width = per.min(nc - c0);
+                    let block = &mut block[..width * ny];
+                    // Row r's stretch of this block's columns becomes entry r of each.
+                    // SAFETY: blocks hold disjoint columns; each task reads and writes
+                    // only its own columns' stretches.
+                    transpose(block, ny, filled, |r| {
+                        if zero_rows[r] {
+                            &zero_row[c0..c0 + width]
+                        } else {
+                            unsafe { rows.stretch(r * nc + c0, width) }
+                        }
+                    });
+                    for col in block.chunks_mut(ny) {
+                        col[filled..]
+                            .iter_mut()
+                            .for_each(|v| *v = Complex::default());
+                    }
+                    fwd.process_with_scratch(block, scratch);
+                    let mut energy = 0.0;
+                    if let Some(weigh) = &weigh {
+                        for (c, col) in block.chunks(ny).enumerate() {
+                            let e = weighed_energy(col, &symbol[(c0 + c) * ny..], weigh);
+                            energy += if twice(c0 + c) { 2.0 * e } else { e };
+                        }
+                    }
+                    if back {
+                        for (v, k) in block.iter_mut().zip(&symbol[c0 * ny..]) {
+                            *v *= *k;
+                        }
+                        inv.process_with_scratch(block, scratch);
+                        for r in 0..ny {
+                            // SAFETY: as above.
+                            let dst = unsafe { rows.stretch_mut(r * nc + c0, width) };
+                            for (c, d) in dst.iter_mut().enumerate() {
+                                *d = block[c * ny + r];
+                            }
+                        }
+                    }
+                    energy
+                },
+            )
+            .collect();
+        if back {
+            self.zero_rows.fill(false);
+        }
+        parts.iter().sum::<f64>() / (nx * ny) as f64
+    }
+
+    /// Complex-to-real transforms of the first `rows` rows of `spec` (transformed along
+    /// columns), a chunk at a time, normalised, cropped to `width` columns and handed to
+    /// `store` with the chunk's item; rows that `wanted` (if given) does not mark are not
+    /// computed (their values are left as they were).
     fn row_pass_inverse<I, F, const B: usize>(
         &self,
-        spec: &[Complex<T>],
+        spec: Spectrum<'_, T>,
         width: usize,
         rows: usize,
         items: I,
@@ -685,9 +800,17 @@ impl<T: FftFloat> Fft2<T> {
                     let r0 = b * ROW_CHUNK;
                     let count = ROW_CHUNK.min(rows - r0);
                     let want = |k: usize| wanted.is_none_or(|w| w[r0 + k]);
-                    // Column c's stretch of this chunk's rows becomes entry c of each.
                     if (0..count).any(want) {
-                        transpose(buf, nc, nc, |c| &spec[c * ny + r0..c * ny + r0 + count]);
+                        match spec {
+                            // Column c's stretch of this chunk's rows becomes entry c of
+                            // each.
+                            Spectrum::Transposed(spec) => {
+                                transpose(buf, nc, nc, |c| &spec[c * ny + r0..c * ny + r0 + count])
+                            }
+                            Spectrum::Rows(spec) => {
+                                buf[..count * nc].copy_from_slice(&spec[r0 * nc..(r0 + count) * nc])
+                            }
+                        }
                     }
                     let rows = buf
                         .chunks_mut(nc)

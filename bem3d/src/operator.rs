@@ -29,10 +29,12 @@ pub struct HalfSpace {
 /// areas, forces of order E* h l) stay finite and normal in double precision.
 pub const SCALE_RANGE: (f64, f64) = (1e-100, 1e100);
 
-/// Estimated peak bytes per grid cell of a contact solve, operator and solver together
-/// (measured peaks: 394 MiB at 2048^2 periodic, 236 MiB at 1024^2 non-periodic).
-pub const BYTES_PER_CELL_PERIODIC: f64 = 128.0;
-pub const BYTES_PER_CELL_NON_PERIODIC: f64 = 256.0;
+/// Estimated peak bytes per grid cell of a contact solve, operator, solver, the caller's
+/// heights and the solution together, with a margin (measured peaks of whole processes,
+/// `mrdw bench large` and `bench-case`: periodic 64-71 B per cell at 4096^2-8192^2
+/// with the heights dropped after set-up, 79 with them kept; non-periodic 183 at 2048^2).
+pub const BYTES_PER_CELL_PERIODIC: f64 = 84.0;
+pub const BYTES_PER_CELL_NON_PERIODIC: f64 = 200.0;
 
 /// Refuses a size `lx x ly` or a modulus E* outside [`SCALE_RANGE`] (before the grid is
 /// known, e.g. while a scene is checked).
@@ -820,6 +822,7 @@ impl NonPeriodicHalfSpace {
         });
         // The kernel is even in x and y, so its spectrum is real.
         let kernel = spec.par_iter().map(|c| c.re).collect();
+        drop(spec);
         Self {
             hs,
             fft,

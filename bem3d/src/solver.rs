@@ -109,8 +109,9 @@
 //! grid coarsened 2 x 2 ([`GridForms::coarse`](crate::operator::GridForms::coarse); heights
 //! averaged over each coarse cell's four cells) to `NESTED_TOLERANCE` (1e-3), and starts
 //! from that pressure, each coarse cell's value on its four cells, instead of the overlap
-//! start (the coarse grid's solver is kept for later solves; its own cold start nests again
-//! from `COARSE_NESTED_MIN`, 256 cells a side). It saves 10-20 % of the fine iterations
+//! start (the coarse grid's solver is kept for later solves up to 2048^2 cells and released
+//! above, `LARGE_GRID_CELLS`; its own cold start nests again from
+//! `COARSE_NESTED_MIN`, 256 cells a side). It saves 10-20 % of the fine iterations
 //! from 512^2 up; below, the coarse solve costs more than it saves.
 //!
 //! Compact contacts on the non-periodic half-space (module `window`): a cold solve whose
@@ -192,10 +193,10 @@ pub struct ContactSolver<K: SolverOperator> {
     /// Conjugate direction, stored in single precision (module docs); K's input and the
     /// update read the stored values.
     t: Vec<f32>,
-    /// Each cell's departure of the projected step from `p - tau t` (pass D), read for
-    /// the point-load corrections of `K p`; zero between iterations (pass D writes only
-    /// the changed cells, the iteration clears them once read).
-    r: Vec<f64>,
+    /// The cells whose projected step departs from `p - tau t` (pass D) and by how much,
+    /// one list per row chunk of the sweeps, read for the point-load corrections of
+    /// `K p`; empty between iterations.
+    changes: Vec<Vec<(usize, f64)>>,
     /// The previous iteration's projected preconditioned residual (Polak-Ribiere's beta);
     /// between M's application and the next direction, this iteration's raw `M q`; in
     /// single precision, as M computes.
@@ -224,10 +225,20 @@ pub struct ContactSolver<K: SolverOperator> {
     /// The solver on the grid coarsened 2 x 2, for nested starts (built on first use;
     /// dropped with the heights).
     coarse: Option<Box<ContactSolver<K>>>,
+    /// Grids with more cells than this run memory-lean: [`LARGE_GRID_CELLS`] (tests set
+    /// others).
+    large_grid_cells: usize,
     /// Fewest cells per side for a nested start: [`start::NESTED_MIN`], or
     /// [`start::COARSE_NESTED_MIN`] for a coarse grid's solver.
     nested_min: usize,
 }
+
+/// Grids with more cells than this (above 2048^2) trade the speed of repeated solves
+/// on one solver for memory: the coarse solver of a nested start is released after the
+/// start (its operator and buffers are about a fifth of the fine solve's memory), and the
+/// solution's gap is written over the solver's w (the next solve maps w's pages again).
+/// The results are the same either way.
+const LARGE_GRID_CELLS: usize = 1 << 22;
 
 /// Sweep chunk, in cells (rounded to whole rows): fixed, so that partial sums (and
 /// results) do not depend on the thread count.
@@ -292,7 +303,7 @@ impl<K: SolverOperator> ContactSolver<K> {
             z_mean: 0.0,
             slope_rms: 0.0,
             t: vec![0.0; n],
-            r: vec![0.0; n],
+            changes: vec![Vec::new(); ny.div_ceil(crate::fft::ROWS_PER_CHUNK)],
             y_prev: vec![0.0; n],
             active: vec![0; n],
             rows_on: vec![false; ny],
@@ -301,6 +312,7 @@ impl<K: SolverOperator> ContactSolver<K> {
             loads: Vec::new(),
             fallback: [Vec::new(), Vec::new()],
             local_max_fraction: iteration::LOCAL_MAX_FRACTION,
+            large_grid_cells: LARGE_GRID_CELLS,
             mask,
             coarse: None,
             nested_min: start::NESTED_MIN,
@@ -720,6 +732,59 @@ mod tests {
             "{} {want}",
             s.slope_rms
         );
+    }
+
+    /// The memory-lean handling of large grids (coarse solver released after a nested
+    /// start, the gap written over w) against the default on a grid where both run: the
+    /// same bits through cold, repeated and warm solves, under force and approach.
+    #[test]
+    fn lean_large_grid_handling_changes_no_bit() {
+        let n = 512;
+        let h: Vec<f64> = (0..n * n)
+            .map(|k| {
+                let (x, y) = ((k % n) as f64 / n as f64, (k / n) as f64 / n as f64);
+                let phase = |a: f64, b: f64, c: f64| {
+                    (2.0 * std::f64::consts::PI * (a * x + b * y) + c).cos()
+                };
+                0.01 * (phase(1.0, 2.0, 0.3)
+                    + 0.5 * phase(5.0, -3.0, 1.0)
+                    + 0.2 * phase(-11.0, 17.0, 2.0))
+            })
+            .collect();
+        let opts = SolverOptions {
+            tolerance: 1e-10,
+            ..Default::default()
+        };
+        let run = |large: usize| {
+            let op = PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
+            let mut s = ContactSolver::new(op, &h, None).unwrap();
+            s.large_grid_cells = large;
+            let first = s.solve(Load::MeanPressure(2e-3), &opts, None).unwrap();
+            let kept = s.coarse.is_some();
+            let again = s.solve(Load::MeanPressure(2e-3), &opts, None).unwrap();
+            let warm = s
+                .solve(Load::MeanPressure(3e-3), &opts, Some(&again))
+                .unwrap();
+            let approach = s.solve(Load::Approach(warm.approach), &opts, None).unwrap();
+            (kept, [first, again, warm, approach])
+        };
+        let (kept, default) = run(LARGE_GRID_CELLS);
+        let (kept_lean, lean) = run(0);
+        assert!(
+            kept && !kept_lean,
+            "coarse solver kept: {kept}, {kept_lean}"
+        );
+        assert!(default[0].nested_start && lean[0].nested_start);
+        for (a, b) in default.iter().zip(&lean) {
+            assert!(a.gap.iter().any(|&g| g > 0.0) && a.contact_cells > 0);
+            assert_eq!(
+                (a.iterations, a.approach.to_bits()),
+                (b.iterations, b.approach.to_bits())
+            );
+            let same =
+                |x: &[f64], y: &[f64]| x.iter().zip(y).all(|(u, v)| u.to_bits() == v.to_bits());
+            assert!(same(&a.pressure, &b.pressure) && same(&a.gap, &b.gap));
+        }
     }
 
     /// M by its stencil (small contact sets) against M by its transforms: the same

@@ -69,14 +69,22 @@ impl<K: SolverOperator> ContactSolver<K> {
     ) -> Solution {
         let area = self.op.cell_area();
         let d = if approach.is_finite() { approach } else { 0.0 };
-        let gap: Vec<f64> = self
-            .w
-            .par_iter()
-            .zip(&self.mask)
-            .map(|(w, &m)| if m > 0 { (w - d).max(0.0) } else { 0.0 })
-            .collect();
         let contact_cells = p.iter().filter(|&&v| v > 0.0).count();
         let certificate = self.certificate(&p, d);
+        let gap_of = |w: f64, m: u8| if m > 0 { (w - d).max(0.0) } else { 0.0 };
+        let gap: Vec<f64> = if p.len() > self.large_grid_cells {
+            // Written over w (a solve recomputes w from its start), the solver's w
+            // replaced by zeroed pages that cost no memory until the next solve writes
+            // them: the same values without a third grid alive.
+            let mut gap = std::mem::replace(&mut self.w, vec![0.0; p.len()]);
+            gap.par_iter_mut()
+                .zip(&self.mask)
+                .for_each(|(w, &m)| *w = gap_of(*w, m));
+            gap
+        } else {
+            let w = self.w.par_iter().zip(&self.mask);
+            w.map(|(&w, &m)| gap_of(w, m)).collect()
+        };
         Solution {
             certificate,
             force: p.iter().sum::<f64>() * area,

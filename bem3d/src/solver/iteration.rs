@@ -481,7 +481,7 @@ impl<K: SolverOperator> ContactSolver<K> {
     }
 
     /// Step 7 along K t: w moves by `-tau K t` (K t's rows, fused with the update), and
-    /// the changes `p_new - (p - tau t)` go to r, then to the point loads of the next
+    /// the changes `p_new - (p - tau t)` go to the per-chunk lists `changes`, then to the point loads of the next
     /// pass A, or, when more than the operator's point-load limit, into a fresh `K p`
     /// (in `kp_op`'s precision). Returns the per-chunk sums of the update.
     fn update_along_kt(
@@ -499,18 +499,20 @@ impl<K: SolverOperator> ContactSolver<K> {
             (
                 p.par_chunks_mut(fc),
                 self.t.par_chunks(fc),
-                self.r.par_chunks_mut(fc),
+                self.changes.par_iter_mut().enumerate(),
                 self.w.par_chunks_mut(fc),
                 self.mask.par_chunks(fc),
                 self.rows_p.par_chunks_mut(ROWS_PER_CHUNK),
             ),
-            |(p, t, r, w, m, with_p), kt| sweeps::update(p, t, r, (w, kt), m, (with_p, nx), upd),
+            |(p, t, (b, changes), w, m, with_p), kt| {
+                sweeps::update(p, t, (changes, b * fc), (w, kt), m, (with_p, nx), upd)
+            },
             None,
         );
         let changed = sum_parts(&parts, None)[1];
         let too_many = changed > self.op.point_load_limit() as f64;
         // The changes as point loads (unless too many), and r zero again.
-        self.take_changes(&parts, (!too_many).then_some(&mut st.loads));
+        self.take_changes((!too_many).then_some(&mut st.loads));
         if too_many {
             // A fresh K p (in K's precision).
             if st.single {
@@ -584,25 +586,14 @@ impl<K: SolverOperator> ContactSolver<K> {
         );
     }
 
-    /// Reads the changes pass D wrote to `r` in the chunks whose sums (`parts`, per
-    /// chunk: total, changed cells, ...) count any, appending them to `loads` when
-    /// given, and sets them back to zero (r is zero between passes).
-    fn take_changes(&mut self, parts: &[[f64; 3]], mut loads: Option<&mut Vec<(usize, f64)>>) {
-        let fc = ROWS_PER_CHUNK * self.op.nx();
-        for (b, part) in parts.iter().enumerate() {
-            if part[1] == 0.0 {
-                continue;
+    /// Appends the changes pass D listed, chunk by chunk in cell order, to `loads` when
+    /// given, and empties the lists (keeping their storage).
+    fn take_changes(&mut self, mut loads: Option<&mut Vec<(usize, f64)>>) {
+        for list in &mut self.changes {
+            if let Some(l) = loads.as_deref_mut() {
+                l.extend_from_slice(list);
             }
-            let start = b * fc;
-            let end = (start + fc).min(self.r.len());
-            for (i, r) in self.r[start..end].iter_mut().enumerate() {
-                if *r != 0.0 {
-                    if let Some(l) = loads.as_deref_mut() {
-                        l.push((start + i, *r));
-                    }
-                    *r = 0.0;
-                }
-            }
+            list.clear();
         }
     }
 

@@ -168,6 +168,9 @@ impl<K: SolverOperator> ContactSolver<K> {
                     }
                 }
             });
+        if self.op.cells() > self.large_grid_cells {
+            self.coarse = None;
+        }
         Ok(())
     }
 

@@ -375,16 +375,16 @@ pub(super) struct Update {
 
 /// Pass D: the projected update `p = max(p - tau t, 0)` on the contact set, cells of
 /// the domain (`mask`) without pressure and with negative gap re-admitted at
-/// `-step g`, `w -= tau K t`; the change against `p - tau t` goes to `r`, written only
-/// in the blocks of [`LANES`] cells that have a change (the caller keeps r zero between
-/// passes, so r holds the changes and zeros). Marks in `with_p` the rows (of `width`
-/// cells) where the new p is positive. Returns the total pressure, the number of changed
-/// cells and the sum of t over the new set.
+/// `-step g`, `w -= tau K t`; each non-zero change against `p - tau t` is appended to
+/// `changes` as (cell index + `first`, change), in cell order (a list, not a grid-sized
+/// array: few cells change once the contact set has formed). Marks in `with_p` the rows
+/// (of `width` cells) where the new p is positive. Returns the total pressure, the number
+/// of changed cells and the sum of t over the new set.
 #[inline(never)]
 pub(super) fn update(
     p: &mut [f64],
     t: &[f32],
-    r: &mut [f64],
+    (changes, first): (&mut Vec<(usize, f64)>, usize),
     (w, kt): (&mut [f64], &[f64]),
     mask: &[u8],
     (with_p, width): (&mut [bool], usize),
@@ -398,43 +398,32 @@ pub(super) fn update(
     let n = p.len();
     let (pb, pt) = p.as_chunks_mut::<LANES>();
     let (tb, tt) = t[..n].as_chunks::<LANES>();
-    let (rb, rt) = r[..n].as_chunks_mut::<LANES>();
     let (wb, wt) = w[..n].as_chunks_mut::<LANES>();
     let (mb, mt) = mask[..n].as_chunks::<LANES>();
     let (kb, kt) = kt[..n].as_chunks::<LANES>();
     let mut sums = Sums::new();
-    let blocks = pb
-        .iter_mut()
-        .zip(tb)
-        .zip(rb.iter_mut())
-        .zip(wb.iter_mut())
-        .zip(mb)
-        .zip(kb);
-    for (((((p, t), r), w), m), k) in blocks {
+    let blocks = pb.iter_mut().zip(tb).zip(wb.iter_mut()).zip(mb).zip(kb);
+    for (b, ((((p, t), w), m), k)) in blocks.enumerate() {
         let mut change = [0.0; LANES];
         for l in 0..LANES {
             sums.lane(l, |s| {
                 change[l] = cell(&mut p[l], t[l], &mut w[l], m[l], k[l], s);
             });
         }
-        // r is written only in blocks with a change (one branch per block, rarely
-        // taken: r's other cells are neither read nor written; they hold zero).
+        // One branch per block, rarely taken.
         if change != [0.0; LANES] {
-            *r = change;
+            let at = first + b * LANES;
+            let cells = change.iter().enumerate().filter(|(_, &c)| c != 0.0);
+            changes.extend(cells.map(|(l, &c)| (at + l, c)));
         }
     }
-    let last = pt
-        .iter_mut()
-        .zip(tt)
-        .zip(rt.iter_mut())
-        .zip(wt.iter_mut())
-        .zip(mt)
-        .zip(kt);
-    for (((((p, t), r), w), m), k) in last {
+    let at = first + pb.len() * LANES;
+    let last = pt.iter_mut().zip(tt).zip(wt.iter_mut()).zip(mt).zip(kt);
+    for (i, ((((p, t), w), m), k)) in last.enumerate() {
         sums.lane(0, |s| {
             let change = cell(p, *t, w, *m, *k, s);
             if change != 0.0 {
-                *r = change;
+                changes.push((at + i, change));
             }
         });
     }
@@ -823,10 +812,18 @@ mod tests {
                 approach,
                 step: 2.0,
             };
-            // r starts at zero, as the solver keeps it.
-            let (mut p, mut w, mut r, mut with_p) = (p0.clone(), w0.clone(), vec![0.0; n], [false]);
+            let (mut p, mut w, mut changes, mut with_p) = (p0.clone(), w0.clone(), vec![], [false]);
             let flag = (&mut with_p[..], n.max(1));
-            let got = update(&mut p, &t0, &mut r, (&mut w, &kt), &mask, flag, u);
+            let got = update(
+                &mut p,
+                &t0,
+                (&mut changes, 7),
+                (&mut w, &kt),
+                &mask,
+                flag,
+                u,
+            );
+            let mut listed = vec![];
             let mut cells = vec![];
             for i in 0..n {
                 let g = w0[i] - approach;
@@ -838,7 +835,10 @@ mod tests {
                 } else {
                     0.0
                 };
-                assert_eq!((p[i], r[i]), (pi, pi - raw));
+                assert_eq!(p[i], pi);
+                if pi - raw != 0.0 {
+                    listed.push((7 + i, pi - raw));
+                }
                 assert_eq!(w[i], w0[i] - u.tau * kt[i]);
                 let changed = if pi != raw { 1.0 } else { 0.0 };
                 cells.push([pi, changed, if pi > 0.0 { t0[i] as f64 } else { 0.0 }]);
@@ -848,6 +848,7 @@ mod tests {
                 bits(in_lane_order(&cells, None)),
                 "update, n = {n}"
             );
+            assert_eq!(changes, listed, "update's changes, n = {n}");
             assert_eq!(
                 with_p[0],
                 p.iter().any(|&v| v > 0.0),

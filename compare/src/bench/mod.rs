@@ -1,9 +1,11 @@
 //! `mrdw bench`: run time against error for the MRD solvers (not a test: figures go to
 //! the README's performance section with the command that produced them).
 
+mod large;
 pub mod report;
 mod rough_ladder;
 mod viscoelastic;
+pub use large::{run_large, run_large_case};
 pub use viscoelastic::run_viscoelastic;
 
 use mrd::discrete::DiscreteAxisymmetric;
