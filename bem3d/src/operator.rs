@@ -30,11 +30,17 @@ pub struct HalfSpace {
 pub const SCALE_RANGE: (f64, f64) = (1e-100, 1e100);
 
 /// Estimated peak bytes per grid cell of a contact solve, operator, solver, the caller's
-/// heights and the solution together, with a margin (measured peaks of whole processes,
-/// `mrdw bench large` and `bench-case`: periodic 64-71 B per cell at 4096^2-8192^2
-/// with the heights dropped after set-up, 79 with them kept; non-periodic 183 at 2048^2).
-pub const BYTES_PER_CELL_PERIODIC: f64 = 84.0;
+/// heights and the solution together, with a margin; a process adds about
+/// [`PROCESS_BYTES`]. Measured peaks of whole processes (`mrdw bench large`,
+/// `bench-case`): periodic 64.3 B per cell at 8192^2 with the heights dropped after
+/// set-up (about 71 with them kept), 78.7 at 4096^2 with them (fixed costs weigh more
+/// there); non-periodic 183 at 2048^2 without them.
+pub const BYTES_PER_CELL_PERIODIC: f64 = 74.0;
 pub const BYTES_PER_CELL_NON_PERIODIC: f64 = 200.0;
+
+/// A process's memory besides its grids (code, thread stacks, allocator), about: added
+/// once to a solve's estimate.
+pub const PROCESS_BYTES: f64 = 160.0 * 1024.0 * 1024.0;
 
 /// Refuses a size `lx x ly` or a modulus E* outside [`SCALE_RANGE`] (before the grid is
 /// known, e.g. while a scene is checked).
@@ -79,7 +85,7 @@ impl HalfSpace {
         };
         let what = format!("a {} x {} contact", self.ny, self.nx);
         let cells = sysmem::bytes(&[self.nx, self.ny], 1, &what)?;
-        sysmem::check_estimate(cells as f64 * per_cell, &what)?;
+        sysmem::check_estimate(cells as f64 * per_cell + PROCESS_BYTES, &what)?;
         Ok(())
     }
 }

@@ -63,7 +63,7 @@ pub enum MemoryError {
     #[error("{what}: the size overflows the address space ({detail})")]
     Overflow { what: String, detail: String },
     /// The size exceeds the budget.
-    #[error("{what} needs about {} of memory; this process can use {} ({})", gb(*needed), gb(budget.bytes), budget.limit)]
+    #[error("{what} needs about {} of memory; this process can use {} ({}), of which one request may take {:.0} % ({})", gb(*needed), gb(budget.bytes), budget.limit, 100.0 * USABLE_FRACTION, gb((USABLE_FRACTION * budget.bytes as f64) as u64))]
     OverBudget {
         what: String,
         needed: u64,
