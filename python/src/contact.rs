@@ -56,7 +56,11 @@ impl ContactResult {
     }
 }
 
-fn grid_array<'py>(py: Python<'py>, v: &[f64], shape: (usize, usize)) -> Bound<'py, PyArray2<f64>> {
+pub(crate) fn grid_array<'py>(
+    py: Python<'py>,
+    v: &[f64],
+    shape: (usize, usize),
+) -> Bound<'py, PyArray2<f64>> {
     // The shape always matches: the solver returns ny * nx values.
     let a = Array2::from_shape_vec(shape, v.to_vec()).expect("grid shape");
     PyArray2::from_owned_array(py, a)
@@ -236,6 +240,11 @@ impl<'py> HeightMap<'py> {
         })
     }
 
+    /// Whether the map came from a topography object (heights indexed (x, y)).
+    pub fn by_x(&self) -> bool {
+        self.by_x
+    }
+
     fn view(&self) -> numpy::ndarray::ArrayView2<'_, f64> {
         let v = self.array.as_array();
         if self.by_x {
@@ -289,9 +298,9 @@ pub struct Contact {
     interrupt: Interrupt,
 }
 
-struct Request {
-    load: Load,
-    opts: SolverOptions,
+pub(crate) struct Request {
+    pub load: Load,
+    pub opts: SolverOptions,
     stiffness: bool,
 }
 
@@ -328,7 +337,7 @@ fn parse_paths(given: Option<&std::collections::HashMap<String, String>>) -> PyR
     Ok(paths)
 }
 
-fn request(
+pub(crate) fn request(
     mean_pressure: Option<f64>,
     force: Option<f64>,
     approach: Option<f64>,
@@ -357,6 +366,22 @@ fn request(
         opts,
         stiffness,
     })
+}
+
+/// A mask array as the solver takes it, checked against the heights' shape (ny, nx).
+pub(crate) fn grid_mask(
+    mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
+    (ny, nx): (usize, usize),
+) -> PyResult<Option<Vec<bool>>> {
+    let Some(m) = mask else { return Ok(None) };
+    let m = m.as_array();
+    if m.dim() != (ny, nx) {
+        return Err(value_error(format!(
+            "mask has shape {:?} but heights have ({ny}, {nx})",
+            m.dim()
+        )));
+    }
+    Ok(Some(m.iter().copied().collect()))
 }
 
 /// Runs `work` on a thread of its own while this thread, holding the GIL only briefly,
@@ -473,19 +498,7 @@ impl Contact {
         .check(periodic)
         .map_err(|e| bem_err(py, e, (ny, nx), lx * ly))?;
         let h = map.copy();
-        let mask = match mask {
-            None => None,
-            Some(m) => {
-                let m = m.as_array();
-                if m.dim() != (ny, nx) {
-                    return Err(value_error(format!(
-                        "mask has shape {:?} but heights have ({ny}, {nx})",
-                        m.dim()
-                    )));
-                }
-                Some(m.iter().copied().collect::<Vec<bool>>())
-            }
-        };
+        let mask = grid_mask(mask, (ny, nx))?;
         let built = py.detach(|| -> bem3d::Result<Solver> {
             Ok(if periodic {
                 Solver::Periodic(ContactSolver::new(

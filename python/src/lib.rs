@@ -8,6 +8,7 @@ mod contact;
 mod errors;
 mod rough;
 mod scene;
+mod transient;
 
 use pyo3::prelude::*;
 
@@ -22,6 +23,8 @@ fn _mrdw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // 3D
     m.add_class::<contact::Contact>()?;
     m.add_class::<contact::ContactResult>()?;
+    m.add_class::<transient::TransientContact>()?;
+    m.add_class::<transient::TransientStep>()?;
     // roughness
     m.add_function(wrap_pyfunction!(rough::spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(rough::line_spectrum, m)?)?;

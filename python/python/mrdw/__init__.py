@@ -11,6 +11,12 @@ of reduction of dimensionality in contact and friction mechanics, Friction 1 (20
     r = c.solve(mean_pressure=0.01 * E)      # or force=..., approach=...
     r.pressure, r.gap, r.contact_fraction, r.mean_gap, r.iterations, r.residual
 
+Viscoelastic contact in time (E*(t) = relaxed + sum E_k exp(-t / tau_k))::
+
+    v = mrdw.TransientContact(heights, relaxed=E, terms=[(2 * E, tau)], size=(lx, ly))
+    s = v.step(0.1 * tau, force=F)           # or mean_pressure=..., approach=...
+    s.time, s.approach, s.force, s.contact_area, s.pressure
+
 Roughness: spectrum, line_spectrum, calibrated_lambda (lambda(H) of Eq. 76; the
 table with its provenance: calibrated_lambda_table), surface, line, psd, moments,
 read_topography.
@@ -29,6 +35,8 @@ from ._mrdw import (
     ConvergenceError,
     Contact,
     ContactResult,
+    TransientContact,
+    TransientStep,
     spectrum,
     line_spectrum,
     calibrated_lambda,
@@ -57,6 +65,8 @@ __all__ = [
     "ConvergenceError",
     "Contact",
     "ContactResult",
+    "TransientContact",
+    "TransientStep",
     "spectrum",
     "line_spectrum",
     "calibrated_lambda",

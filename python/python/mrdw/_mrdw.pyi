@@ -136,6 +136,76 @@ class Contact:
     @property
     def periodic(self) -> bool: ...
 
+class TransientStep:
+    """The state after a step of TransientContact.step."""
+
+    @property
+    def time(self) -> float:
+        """Time at the step's end [time]."""
+    @property
+    def approach(self) -> float:
+        """Rigid-body position from the first contact of the undeformed surface [length]."""
+    @property
+    def force(self) -> float:
+        """Total normal force [stress x length^2]."""
+    @property
+    def contact_area(self) -> float:
+        """Contact cells times cell area [length^2]."""
+    @property
+    def contact_cells(self) -> int: ...
+    @property
+    def pressure(self) -> F64:
+        """Cell pressures, shape (ny, nx) [stress]."""
+    @property
+    def effective_modulus(self) -> float:
+        """The step's effective modulus E_eff [stress]."""
+    @property
+    def iterations(self) -> int:
+        """Iterations of the step's elastic solve (0 without a solve)."""
+    @property
+    def residual(self) -> float: ...
+    @property
+    def certificate(self) -> float: ...
+
+class TransientContact:
+    """A rigid rough surface on a linear viscoelastic half-space, stepped in time
+    (E*(t) = relaxed + sum_k E_k exp(-t / tau_k))."""
+
+    def __init__(
+        self,
+        heights: Union[ArrayLike, Any],
+        relaxed: float,
+        terms: Sequence[Tuple[float, float]],
+        size: Optional[Tuple[float, float]] = None,
+        periodic: Optional[bool] = None,
+        mask: Optional[ArrayLike] = None,
+    ) -> None:
+        """terms: (E_k [stress], tau_k [time]) pairs; heights, size, periodic, mask as
+        for Contact. Starts undeformed at t = 0."""
+    def step(
+        self,
+        dt: float,
+        mean_pressure: Optional[float] = None,
+        force: Optional[float] = None,
+        approach: Optional[float] = None,
+        *,
+        tolerance: float = 1e-10,
+        max_iterations: int = 10000,
+    ) -> TransientStep:
+        """Advance by dt [time] to exactly one load at the step's end (linear over the
+        step). Releases the GIL."""
+    @property
+    def time(self) -> float: ...
+    @property
+    def displacement(self) -> F64:
+        """Surface displacement into the half-space, shape (ny, nx) [length]."""
+    @property
+    def shape(self) -> Tuple[int, int]: ...
+    @property
+    def size(self) -> Tuple[float, float]: ...
+    @property
+    def periodic(self) -> bool: ...
+
 def spectrum(
     q: ArrayLike,
     hurst: float,

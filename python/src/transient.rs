@@ -1,0 +1,271 @@
+//! Transient viscoelastic contact in 3D (`bem3d::viscoelastic`) on numpy height maps.
+
+use crate::contact::{grid_array, interruptible, request, HeightMap};
+use crate::errors::{bem_err, value_error};
+use bem3d::viscoelastic::{Relaxation, Step, TransientContact as Transient};
+use bem3d::{Interrupt, Load, NonPeriodicHalfSpace, Paths, PeriodicHalfSpace, SolverOptions};
+use numpy::{AllowTypeChange, PyArray2, PyArrayLike2};
+use pyo3::prelude::*;
+
+/// The history on one of the two operators.
+enum History {
+    Periodic(Transient<PeriodicHalfSpace>),
+    NonPeriodic(Transient<NonPeriodicHalfSpace>),
+}
+
+impl History {
+    fn step(&mut self, dt: f64, load: Load, opts: &SolverOptions) -> bem3d::Result<Step> {
+        match self {
+            History::Periodic(h) => h.step(dt, load, opts),
+            History::NonPeriodic(h) => h.step(dt, load, opts),
+        }
+    }
+    fn time(&self) -> f64 {
+        match self {
+            History::Periodic(h) => h.time(),
+            History::NonPeriodic(h) => h.time(),
+        }
+    }
+    fn displacement(&self) -> &[f64] {
+        match self {
+            History::Periodic(h) => h.displacement(),
+            History::NonPeriodic(h) => h.displacement(),
+        }
+    }
+}
+
+/// The state after a step of `TransientContact.step`.
+#[pyclass(module = "mrdw._mrdw", frozen)]
+pub struct TransientStep {
+    step: Step,
+    shape: (usize, usize),
+}
+
+#[pymethods]
+impl TransientStep {
+    /// Time at the step's end [time].
+    #[getter]
+    fn time(&self) -> f64 {
+        self.step.time
+    }
+    /// Rigid-body position from the first contact of the undeformed surface [length].
+    #[getter]
+    fn approach(&self) -> f64 {
+        self.step.approach
+    }
+    /// Total normal force [stress x length^2].
+    #[getter]
+    fn force(&self) -> f64 {
+        self.step.force
+    }
+    /// Real contact area, contact cells times cell area [length^2].
+    #[getter]
+    fn contact_area(&self) -> f64 {
+        self.step.contact_area
+    }
+    /// Number of cells carrying pressure.
+    #[getter]
+    fn contact_cells(&self) -> usize {
+        self.step.contact_cells
+    }
+    /// Cell pressures, shape (ny, nx) [stress].
+    #[getter]
+    fn pressure<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        grid_array(py, &self.step.pressure, self.shape)
+    }
+    /// The step's effective modulus E_eff [stress] (bem3d::viscoelastic docs).
+    #[getter]
+    fn effective_modulus(&self) -> f64 {
+        self.step.effective_modulus
+    }
+    /// Iterations of the step's elastic solve (0 when the surface is out of contact and
+    /// no solve ran).
+    #[getter]
+    fn iterations(&self) -> usize {
+        self.step.solve.as_ref().map_or(0, |s| s.iterations)
+    }
+    /// Criterion reached by the step's elastic solve (0 without a solve).
+    #[getter]
+    fn residual(&self) -> f64 {
+        self.step.solve.as_ref().map_or(0.0, |s| s.residual)
+    }
+    /// Certificate of the step's elastic solve (0 without a solve; see Contact).
+    #[getter]
+    fn certificate(&self) -> f64 {
+        self.step.solve.as_ref().map_or(0.0, |s| s.certificate)
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "TransientStep(time={:.6e}, force={:.6e}, approach={:.6e}, contact_cells={}, iterations={})",
+            self.step.time,
+            self.step.force,
+            self.step.approach,
+            self.step.contact_cells,
+            self.iterations()
+        )
+    }
+}
+
+/// A rigid rough surface on a linear viscoelastic half-space, stepped in time (3D FFT
+/// boundary elements; Section 8 of the MRD review in 3D).
+///
+/// TransientContact(heights, relaxed, terms, size=None, periodic=None, mask=None)
+///
+/// The contact modulus relaxes as E*(t) = relaxed + sum_k E_k exp(-t / tau_k), `terms` a
+/// list of (E_k, tau_k) [stress, time] (E* = 4 G for an incompressible medium). heights,
+/// size, periodic and mask as for Contact. The medium starts undeformed at t = 0; each
+/// step() advances the time, the load varying linearly over the step (exact time
+/// integration for piecewise-linear displacement: bem3d/src/viscoelastic.rs).
+#[pyclass(module = "mrdw._mrdw")]
+pub struct TransientContact {
+    history: History,
+    shape: (usize, usize),
+    size: (f64, f64),
+    periodic: bool,
+    interrupt: Interrupt,
+}
+
+#[pymethods]
+impl TransientContact {
+    #[new]
+    #[pyo3(signature = (heights, relaxed, terms, size = None, periodic = None, mask = None))]
+    fn new(
+        py: Python<'_>,
+        heights: &Bound<'_, PyAny>,
+        relaxed: f64,
+        terms: Vec<(f64, f64)>,
+        size: Option<(f64, f64)>,
+        periodic: Option<bool>,
+        mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
+    ) -> PyResult<Self> {
+        let modulus = Relaxation::new(relaxed, terms).map_err(|e| value_error(e.to_string()))?;
+        let map = HeightMap::extract(heights)?;
+        if map.by_x() && size.is_none() && map.size.is_none() {
+            return Err(value_error(
+                "the topography has no physical_sizes: give size=(lx, ly)",
+            ));
+        }
+        let size = size.or(map.size).unwrap_or((1.0, 1.0));
+        let periodic = periodic.or(map.periodic).unwrap_or(true);
+        let (ny, nx) = map.shape();
+        if nx < 2 || ny < 2 {
+            return Err(value_error(format!(
+                "heights must be a 2D array of at least 2 x 2 cells, got {ny} x {nx}"
+            )));
+        }
+        let (lx, ly) = size;
+        // The elastic solve's checks, then the history's arrays: heights, displacement,
+        // the raised heights and their lift, one hereditary integral per term.
+        let e_ref = modulus.glassy();
+        bem3d::operator::HalfSpace {
+            nx,
+            ny,
+            lx,
+            ly,
+            e_star: e_ref,
+        }
+        .check(periodic)
+        .map_err(|e| bem_err(py, e, (ny, nx), lx * ly))?;
+        let per_cell = 8.0 * (4 + modulus.terms.len()) as f64;
+        sysmem::check_estimate(
+            per_cell * (nx * ny) as f64,
+            &format!("the history of a {ny} x {nx} contact"),
+        )
+        .map_err(|e| pyo3::exceptions::PyMemoryError::new_err(e.to_string()))?;
+        let h = map.copy();
+        let mask = crate::contact::grid_mask(mask, (ny, nx))?;
+        let built = py.detach(|| -> bem3d::Result<History> {
+            Ok(if periodic {
+                let op = PeriodicHalfSpace::try_new(nx, ny, lx, ly, e_ref)?;
+                History::Periodic(Transient::new(op, &h, mask, modulus)?)
+            } else {
+                let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_ref)?;
+                History::NonPeriodic(Transient::new(op, &h, mask, modulus)?)
+            })
+        });
+        let history = built.map_err(|e| bem_err(py, e, (ny, nx), lx * ly))?;
+        Ok(Self {
+            history,
+            shape: (ny, nx),
+            size,
+            periodic,
+            interrupt: Interrupt::default(),
+        })
+    }
+
+    /// step(dt, mean_pressure=None, force=None, approach=None, *, tolerance=1e-10,
+    ///      max_iterations=10000) -> TransientStep
+    ///
+    /// Advances by dt [time] to exactly one of: mean pressure over lx * ly [stress], total
+    /// force [stress x length^2] or approach [length] at the step's end. A step that
+    /// leaves the surface out of contact (approach control) runs no solve and the medium
+    /// recovers freely. Raises ValueError for bad input, ConvergenceError if a solve
+    /// reaches its iteration cap. The GIL is released while solving.
+    #[pyo3(signature = (dt, mean_pressure = None, force = None, approach = None, *, tolerance = 1e-10, max_iterations = 10_000))]
+    #[allow(clippy::too_many_arguments)]
+    fn step(
+        &mut self,
+        py: Python<'_>,
+        dt: f64,
+        mean_pressure: Option<f64>,
+        force: Option<f64>,
+        approach: Option<f64>,
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> PyResult<TransientStep> {
+        let req = request(
+            mean_pressure,
+            force,
+            approach,
+            (tolerance, max_iterations),
+            false,
+            Paths::default(),
+        )?;
+        let opts = SolverOptions {
+            interrupt: Some(self.interrupt.clone()),
+            ..req.opts.clone()
+        };
+        let history = &mut self.history;
+        let out = interruptible(py, &self.interrupt, || history.step(dt, req.load, &opts))?;
+        let (ny, nx) = self.shape;
+        let step = out.map_err(|e| bem_err(py, e, (ny, nx), self.size.0 * self.size.1))?;
+        Ok(TransientStep {
+            step,
+            shape: self.shape,
+        })
+    }
+
+    /// Time reached [time].
+    #[getter]
+    fn time(&self) -> f64 {
+        self.history.time()
+    }
+    /// Surface displacement into the half-space, shape (ny, nx) [length].
+    #[getter]
+    fn displacement<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        grid_array(py, self.history.displacement(), self.shape)
+    }
+    /// (ny, nx)
+    #[getter]
+    fn shape(&self) -> (usize, usize) {
+        self.shape
+    }
+    /// (lx, ly) [length]
+    #[getter]
+    fn size(&self) -> (f64, f64) {
+        self.size
+    }
+    #[getter]
+    fn periodic(&self) -> bool {
+        self.periodic
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "TransientContact(shape={:?}, size={:?}, periodic={}, time={})",
+            self.shape,
+            self.size,
+            self.periodic,
+            self.history.time()
+        )
+    }
+}
