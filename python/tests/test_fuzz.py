@@ -100,6 +100,22 @@ def test_contact(n, lx, ly, e_star, scale, load, kind, tolerance, max_iterations
 
 
 @FUZZ
+@given(n=st.sampled_from([0, 1, 2, 3, 8]), relaxed=reals, e1=reals, tau=positive, dt=reals,
+       load=reals, kind=st.sampled_from(["mean_pressure", "force", "approach"]),
+       periodic=st.booleans(), scale=reals)
+def test_transient_contact(n, relaxed, e1, tau, dt, load, kind, periodic, scale):
+    h = scale * np.cos(np.arange(n * n, dtype=float)).reshape(n, n)
+    try:
+        v = mrdw.TransientContact(h, relaxed=relaxed, terms=[(e1, tau)], periodic=periodic)
+        steps = [v.step(dt, **{kind: load}), v.step(dt, **{kind: 0.5 * load})]
+    except REFUSALS:
+        return
+    for s in steps:
+        finite(s.pressure, s.force, s.approach, s.time, s.effective_modulus, s.residual)
+    finite(v.displacement)
+
+
+@FUZZ
 @given(length=positive, e_star=positive, scale=reals, force=reals, depth=reals)
 def test_rough_line(length, e_star, scale, force, depth):
     try:
