@@ -132,6 +132,32 @@ fn solver_options_and_sizes_share_the_python_checks() {
     );
 }
 
+/// Every 3D comparison kind refuses a solver tolerance with the solver's own range and
+/// message (the one `bem_contact` and the Python package give), before computing.
+#[test]
+fn comparison_kinds_share_the_solver_tolerance_check() {
+    let tmp = tempfile::tempdir().unwrap();
+    for scene in [
+        "contact-area-ci",
+        "rough-sphere-ci",
+        "static-friction-3d-ci",
+        "viscoelastic-rough-ci",
+        "fig6-ci",
+    ] {
+        let text = String::from_utf8_lossy(&mrdw_in(tmp.path(), &["show", scene]).stdout).replacen(
+            "\nkind = \"",
+            "\ntolerance = 0.5\nkind = \"",
+            1,
+        );
+        std::fs::write(tmp.path().join("t.toml"), text).unwrap();
+        refused(
+            &mrdw_in(tmp.path(), &["run", "t.toml", "--out", "r"]),
+            "tolerance = 5e-1 must lie in (0, 1e-2]",
+        );
+        assert!(!tmp.path().join("r").exists(), "{scene}");
+    }
+}
+
 /// fig7-ci with a line of `waves` waves on 256 springs.
 fn coarse_fig7(dir: &Path, waves: f64) -> Output {
     let text = String::from_utf8_lossy(&mrdw_in(dir, &["show", "fig7-ci"]).stdout)

@@ -238,9 +238,7 @@ impl Output for ContactArea {
         super::check_ensembles(self.realisations_3d, self.realisations_1d)?;
         super::count_in("loads", self.loads as u64, 4..=super::MAX_LOADS)?;
         super::count_in("points_1d_factor", self.points_1d_factor as u64, 2..=64)?;
-        if !(self.tolerance > 0.0 && self.tolerance < 1e-2) {
-            return bad("tolerance must lie in (0, 1e-2)");
-        }
+        crate::outputs::check_tolerance(self.tolerance)?;
         for &h in &self.hurst {
             self.lambda
                 .build(ctx)?

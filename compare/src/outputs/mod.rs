@@ -241,6 +241,14 @@ pub(crate) fn count_in(key: &str, value: u64, range: std::ops::RangeInclusive<u6
     }
 }
 
+/// A 3D solver tolerance from a scene: the solver's own range and message
+/// ([`bem3d::SolverOptions::validate`]).
+pub(crate) fn check_tolerance(tolerance: f64) -> Result<()> {
+    bem3d::SolverOptions::new(tolerance, 1)
+        .validate()
+        .or_else(|e| bad(e.to_string()))
+}
+
 /// The 3D and MRD ensemble sizes of a comparison: at least 2 each, for intervals.
 pub(crate) fn check_ensembles(realisations_3d: u64, realisations_1d: u64) -> Result<()> {
     count_in("realisations_3d", realisations_3d, 2..=MAX_REALISATIONS)?;

@@ -130,9 +130,7 @@ impl Output for HurstSweep {
         super::check_ensembles(self.realisations_3d, self.realisations_1d)?;
         super::count_in("loads", self.loads as u64, 6..=super::MAX_LOADS)?;
         super::count_in("points_1d_factor", self.points_1d_factor as u64, 2..=64)?;
-        if !(self.tolerance > 0.0 && self.tolerance < 1e-2) {
-            return bad("tolerance must lie in (0, 1e-2)".into());
-        }
+        crate::outputs::check_tolerance(self.tolerance)?;
         // One 3D task per worker thread at a time.
         super::check_memory(
             (self.grid * self.grid) as f64

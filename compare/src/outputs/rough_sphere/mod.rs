@@ -128,9 +128,7 @@ impl Output for RoughSphere {
         super::check_ensembles(self.realisations_3d, self.realisations_1d)?;
         count_in("points_1d_factor", self.points_1d_factor as u64, 1..=64)?;
         count_in("loads", self.loads as u64, 3..=super::MAX_LOADS)?;
-        if !(self.tolerance > 0.0 && self.tolerance < 1e-2) {
-            return bad("tolerance must lie in (0, 1e-2)");
-        }
+        crate::outputs::check_tolerance(self.tolerance)?;
         LambdaSpec::check_all(&self.lambda, ctx, &[self.hurst])?;
         let n = self.grid as f64;
         check_memory(

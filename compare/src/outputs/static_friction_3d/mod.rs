@@ -170,9 +170,7 @@ impl Output for StaticFriction3d {
         if !(self.fit_max_area > 0.0 && self.fit_max_area <= 1.0) {
             return bad("fit_max_area must lie in (0, 1]");
         }
-        if !(self.tolerance > 0.0 && self.tolerance < 1e-2) {
-            return bad("tolerance must lie in (0, 1e-2)");
-        }
+        crate::outputs::check_tolerance(self.tolerance)?;
         LambdaSpec::check_all(&self.lambda, ctx, &self.hurst)?;
         if let Some(r) = &self.refine {
             if !self.hurst.contains(&r.hurst) || !self.geometry.contains(&r.geometry) {

@@ -172,9 +172,7 @@ impl Output for ViscoelasticRough {
         if self.hold / self.dt() + 3.0 * self.steps as f64 > 1e6 {
             return bad("the history has more than 1e6 steps (hold / (ramp / steps))");
         }
-        if !(self.tolerance > 0.0 && self.tolerance < 1e-2) {
-            return bad("tolerance must lie in (0, 1e-2)");
-        }
+        crate::outputs::check_tolerance(self.tolerance)?;
         LambdaSpec::check_all(&self.lambda, ctx, &[self.hurst])?;
         let g = self.grid() as f64;
         // Two solvers (viscoelastic, elastic) per realisation, one realisation per thread.
