@@ -232,7 +232,8 @@ fn plot_err(file: &Path, e: impl std::fmt::Display) -> CompareError {
 }
 
 macro_rules! draw_with {
-    ($root:expr, $fig:expr, $path:expr, $xs:expr, $ys:expr, $corner:expr) => {{
+    ($root:expr, $fig:expr, $path:expr, $xs:expr, $ys:expr, $corner:expr, $zero:expr) => {{
+        let (x_zero, y_zero): (f64, f64) = $zero;
         let mut chart = ChartBuilder::on(&$root)
             .caption(&$fig.title, ("sans-serif", 24))
             .margin(18)
@@ -248,8 +249,8 @@ macro_rules! draw_with {
             .y_labels(8)
             .label_style(("sans-serif", 15))
             .axis_desc_style(("sans-serif", 18))
-            .x_label_formatter(&|v| fmt_tick(*v))
-            .y_label_formatter(&|v| fmt_tick(*v))
+            .x_label_formatter(&|v| fmt_tick(*v, x_zero))
+            .y_label_formatter(&|v| fmt_tick(*v, y_zero))
             .light_line_style(RGBColor(235, 235, 235))
             .draw()
             .map_err(|e| plot_err($path, e))?;
@@ -341,8 +342,11 @@ macro_rules! draw_with {
     }};
 }
 
-fn fmt_tick(v: f64) -> String {
-    if v == 0.0 {
+/// A tick label; `zero` is the magnitude below which a value is the axis' zero (a
+/// linear axis' key points are sums of steps: a key meant to be 0 may come out as
+/// 1e-17 of the range).
+fn fmt_tick(v: f64, zero: f64) -> String {
+    if v.abs() <= zero {
         "0".into()
     } else if v.abs() >= 1e4 || v.abs() < 1e-3 {
         format!("{v:.1e}")
@@ -400,15 +404,19 @@ pub fn render(fig: &Figure, path: &Path) -> Result<()> {
             .collect(),
         None => log_keys(x0, x1),
     };
+    // Below 1e-9 of a linear axis' range a tick is its zero; log axes have none.
+    let zero = |lo: f64, hi: f64, log: bool| if log { 0.0 } else { 1e-9 * (hi - lo).abs() };
+    let zeros = (zero(x0, x1, fig.log_x), zero(y0, y1, fig.log_y));
     match (fig.log_x, fig.log_y) {
-        (false, false) => draw_with!(root, fig, path, x0..x1, y0..y1, corner),
+        (false, false) => draw_with!(root, fig, path, x0..x1, y0..y1, corner, zeros),
         (true, false) => draw_with!(
             root,
             fig,
             path,
             (x0..x1).log_scale().with_key_points(x_keys),
             y0..y1,
-            corner
+            corner,
+            zeros
         ),
         (false, true) => draw_with!(
             root,
@@ -416,7 +424,8 @@ pub fn render(fig: &Figure, path: &Path) -> Result<()> {
             path,
             x0..x1,
             (y0..y1).log_scale().with_key_points(log_keys(y0, y1)),
-            corner
+            corner,
+            zeros
         ),
         (true, true) => draw_with!(
             root,
@@ -424,7 +433,8 @@ pub fn render(fig: &Figure, path: &Path) -> Result<()> {
             path,
             (x0..x1).log_scale().with_key_points(x_keys),
             (y0..y1).log_scale().with_key_points(log_keys(y0, y1)),
-            corner
+            corner,
+            zeros
         ),
     }
     canvas.present().map_err(|e| plot_err(path, e))?;
@@ -433,7 +443,18 @@ pub fn render(fig: &Figure, path: &Path) -> Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::{layout, log_keys, render};
+    use super::{fmt_tick, layout, log_keys, render};
+
+    /// A linear axis' key meant as 0 but off by rounding is labelled 0; small values on
+    /// a log axis (no zero) and real values keep their labels.
+    #[test]
+    fn tick_labels_show_the_axis_zero_not_its_rounding() {
+        assert_eq!(fmt_tick(6.9e-18, 1e-9 * 0.5), "0");
+        assert_eq!(fmt_tick(-2.0e-17, 1e-9 * 3.0), "0");
+        assert_eq!(fmt_tick(6.9e-18, 0.0), "6.9e-18");
+        assert_eq!(fmt_tick(0.25, 1e-9), "0.25");
+        assert_eq!(fmt_tick(2.0e-4, 1e-9 * 1e-3), "2.0e-4");
+    }
     use crate::report::figure::{Figure, Series, Style};
 
     /// Eighteen lines across the whole plot: every corner covers data and headroom for
