@@ -22,8 +22,11 @@ use std::fmt;
 use std::path::Path;
 
 /// Share of the budget one request may take: the rest is headroom for what the estimate
-/// leaves out (FFT plans, thread stacks, the caller's own arrays).
-pub const USABLE_FRACTION: f64 = 0.8;
+/// leaves out (the caller's own arrays, the page cache the kernel must give back). The
+/// estimates it is used with include their process's fixed costs and a margin of their
+/// own over measured peaks (e.g. `bem3d::operator::BYTES_PER_CELL_PERIODIC`), so a tenth
+/// is enough: a 16384^2 periodic solve (about 16 GiB measured) runs on a 24 GiB machine.
+pub const USABLE_FRACTION: f64 = 0.9;
 
 /// Which limit sets the budget.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
