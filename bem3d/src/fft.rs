@@ -551,9 +551,9 @@ impl<T: FftFloat> Fft2<T> {
 
     /// The spectrum (`nc x ny`, as [`Self::forward`] gives it) of a grid even in y
     /// (row `j` equal to row `ny - j`) whose row `j <= ny / 2` is `fill(j, row)` (all
-    /// `nx` values): an operator's symbol without a grid-sized input array. Only rows `0..=ny/2` are filled and
-    /// transformed, the others take their mirror's spectrum. The same values as
-    /// [`Self::forward`] of that grid, bit for bit.
+    /// `nx` values): an operator's symbol without a grid-sized input array. Only rows
+    /// `0..=ny/2` are filled and transformed, the others take their mirror's spectrum.
+    /// The same values as [`Self::forward`] of that grid, bit for bit.
     pub fn spectrum_of_even(&mut self, fill: impl Fn(usize, &mut [f64]) + Sync) -> Vec<Complex<T>> {
         let (nx, ny, nc) = (self.nx, self.ny, self.nc);
         let half = ny / 2 + 1;

@@ -481,9 +481,9 @@ impl<K: SolverOperator> ContactSolver<K> {
     }
 
     /// Step 7 along K t: w moves by `-tau K t` (K t's rows, fused with the update), and
-    /// the changes `p_new - (p - tau t)` go to the per-chunk lists `changes`, then to the point loads of the next
-    /// pass A, or, when more than the operator's point-load limit, into a fresh `K p`
-    /// (in `kp_op`'s precision). Returns the per-chunk sums of the update.
+    /// the changes `p_new - (p - tau t)` go to the per-chunk lists `changes`, then to the
+    /// point loads of the next pass A, or, when more than the operator's point-load
+    /// limit, into a fresh `K p` (in `kp_op`'s precision). Returns the per-chunk sums of the update.
     fn update_along_kt(
         &mut self,
         p: &mut [f64],
@@ -492,6 +492,9 @@ impl<K: SolverOperator> ContactSolver<K> {
         st: &mut State,
     ) -> Vec<[f64; 3]> {
         let (nx, fc) = (self.op.nx(), ROWS_PER_CHUNK * self.op.nx());
+        // A chunk's list stops at the limit: more changes than that in all go to a
+        // fresh K p, not to point loads.
+        let cap = self.op.point_load_limit() + 1;
         let parts = store_fused(
             &mut self.op,
             st.kt_op,
@@ -505,13 +508,13 @@ impl<K: SolverOperator> ContactSolver<K> {
                 self.rows_p.par_chunks_mut(ROWS_PER_CHUNK),
             ),
             |(p, t, (b, changes), w, m, with_p), kt| {
-                sweeps::update(p, t, (changes, b * fc), (w, kt), m, (with_p, nx), upd)
+                sweeps::update(p, t, (changes, b * fc, cap), (w, kt), m, (with_p, nx), upd)
             },
             None,
         );
         let changed = sum_parts(&parts, None)[1];
         let too_many = changed > self.op.point_load_limit() as f64;
-        // The changes as point loads (unless too many), and r zero again.
+        // The changes as point loads (unless too many), and the lists emptied.
         self.take_changes((!too_many).then_some(&mut st.loads));
         if too_many {
             // A fresh K p (in K's precision).

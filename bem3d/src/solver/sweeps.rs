@@ -376,15 +376,17 @@ pub(super) struct Update {
 /// Pass D: the projected update `p = max(p - tau t, 0)` on the contact set, cells of
 /// the domain (`mask`) without pressure and with negative gap re-admitted at
 /// `-step g`, `w -= tau K t`; each non-zero change against `p - tau t` is appended to
-/// `changes` as (cell index + `first`, change), in cell order (a list, not a grid-sized
-/// array: few cells change once the contact set has formed). Marks in `with_p` the rows
+/// `changes` as (cell index + `first`, change), in cell order, while the list holds
+/// fewer than `cap` (a list, not a grid-sized array: few cells change once the contact
+/// set has formed, and a caller uses the changes only when they are at most `cap` in
+/// all; the count returned is always complete). Marks in `with_p` the rows
 /// (of `width` cells) where the new p is positive. Returns the total pressure, the number
 /// of changed cells and the sum of t over the new set.
 #[inline(never)]
 pub(super) fn update(
     p: &mut [f64],
     t: &[f32],
-    (changes, first): (&mut Vec<(usize, f64)>, usize),
+    (changes, first, cap): (&mut Vec<(usize, f64)>, usize, usize),
     (w, kt): (&mut [f64], &[f64]),
     mask: &[u8],
     (with_p, width): (&mut [bool], usize),
@@ -411,7 +413,7 @@ pub(super) fn update(
             });
         }
         // One branch per block, rarely taken.
-        if change != [0.0; LANES] {
+        if change != [0.0; LANES] && changes.len() < cap {
             let at = first + b * LANES;
             let cells = change.iter().enumerate().filter(|(_, &c)| c != 0.0);
             changes.extend(cells.map(|(l, &c)| (at + l, c)));
@@ -422,7 +424,7 @@ pub(super) fn update(
     for (i, ((((p, t), w), m), k)) in last.enumerate() {
         sums.lane(0, |s| {
             let change = cell(p, *t, w, *m, *k, s);
-            if change != 0.0 {
+            if change != 0.0 && changes.len() < cap {
                 changes.push((at + i, change));
             }
         });
@@ -817,7 +819,7 @@ mod tests {
             let got = update(
                 &mut p,
                 &t0,
-                (&mut changes, 7),
+                (&mut changes, 7, n + 1),
                 (&mut w, &kt),
                 &mask,
                 flag,
@@ -849,6 +851,29 @@ mod tests {
                 "update, n = {n}"
             );
             assert_eq!(changes, listed, "update's changes, n = {n}");
+            // Capped: the first changes only (a block's at most past the cap), the same
+            // pressures and sums.
+            let (mut q, mut w2, mut capped, mut flag2) = (p0.clone(), w0.clone(), vec![], [false]);
+            let flag = (&mut flag2[..], n.max(1));
+            let again = update(
+                &mut q,
+                &t0,
+                (&mut capped, 7, 2),
+                (&mut w2, &kt),
+                &mask,
+                flag,
+                u,
+            );
+            assert_eq!(
+                (bits(again), &q, &w2),
+                (bits(got), &p, &w),
+                "capped update, n = {n}"
+            );
+            assert!(
+                capped.len() <= 2 + LANES && listed.starts_with(&capped),
+                "n = {n}"
+            );
+            assert!(capped.len() >= listed.len().min(2), "n = {n}");
             assert_eq!(
                 with_p[0],
                 p.iter().any(|&v| v > 0.0),
