@@ -241,6 +241,14 @@ impl<T> SharedRows<T> {
     }
 }
 
+/// What a column pass does to each block after the forward transform: with a symbol,
+/// weigh (`<x, s * x>`) and, with `back`, multiply and transform back.
+struct ColumnWork<'a, S, W> {
+    symbol: Option<&'a [S]>,
+    weigh: Option<&'a W>,
+    back: bool,
+}
+
 /// Target size of a column block in complex values (256 KiB: in a core's L2 cache).
 const COLUMN_BLOCK: usize = 16_384;
 
@@ -619,58 +627,26 @@ impl<T: FftFloat> Fft2<T> {
         W: Fn(S) -> f64 + Sync,
         Complex<T>: MulAssign<S>,
     {
-        let (nx, ny, nc) = (self.nx, self.ny, self.nc);
-        // Columns 0 and nx/2 (even nx) are their own conjugates; the others stand for
-        // two.
-        let twice = |c: usize| c > 0 && !(nx % 2 == 0 && c == nc - 1);
-        let per = self.columns_per_block();
-        let (fwd, inv, src) = (&self.fwd_y, &self.inv_y, &self.rows);
-        let (zero_rows, zero_row) = (&self.zero_rows, &self.zero_row);
-        let scratch_len = fwd
-            .get_inplace_scratch_len()
-            .max(inv.get_inplace_scratch_len());
+        let (ny, nc, per) = (self.ny, self.nc, self.columns_per_block());
+        let src = &self.rows;
         let parts: Vec<f64> = spec
             .par_chunks_mut(ny * per)
             .enumerate()
             .map_init(
-                || vec![Complex::default(); scratch_len],
+                || vec![Complex::default(); self.scratch_len()],
                 |scratch, (b, block)| {
-                    let c0 = b * per;
-                    let width = block.len() / ny;
-                    // Row r's stretch of this block's columns becomes entry r of each.
-                    transpose(block, ny, filled, |r| {
-                        if zero_rows[r] {
-                            &zero_row[c0..c0 + width]
-                        } else {
-                            &src[r * nc + c0..r * nc + c0 + width]
-                        }
-                    });
-                    for col in block.chunks_mut(ny) {
-                        col[filled..]
-                            .iter_mut()
-                            .for_each(|v| *v = Complex::default());
-                    }
-                    fwd.process_with_scratch(block, scratch);
-                    let mut energy = 0.0;
-                    if let Some(s) = symbol {
-                        if let Some(weigh) = &weigh {
-                            for (c, col) in block.chunks(ny).enumerate() {
-                                let e = weighed_energy(col, &s[(c0 + c) * ny..], weigh);
-                                energy += if twice(c0 + c) { 2.0 * e } else { e };
-                            }
-                        }
-                        if back {
-                            for (v, k) in block.iter_mut().zip(&s[c0 * ny..]) {
-                                *v *= *k;
-                            }
-                            inv.process_with_scratch(block, scratch);
-                        }
-                    }
-                    energy
+                    let (c0, width) = (b * per, block.len() / ny);
+                    let read = |r: usize| &src[r * nc + c0..r * nc + c0 + width];
+                    let to = ColumnWork {
+                        symbol,
+                        weigh: weigh.as_ref(),
+                        back,
+                    };
+                    self.block_pass(block, scratch, (c0, filled), read, to)
                 },
             )
             .collect();
-        parts.iter().sum::<f64>() / (nx * ny) as f64
+        self.total_energy(&parts)
     }
 
     /// The column pass of a convolution in place in the row buffer (its first `filled`
@@ -692,56 +668,29 @@ impl<T: FftFloat> Fft2<T> {
         W: Fn(S) -> f64 + Sync,
         Complex<T>: MulAssign<S>,
     {
-        let (nx, ny, nc) = (self.nx, self.ny, self.nc);
-        let twice = |c: usize| c > 0 && !(nx % 2 == 0 && c == nc - 1);
-        let per = self.columns_per_block();
-        let (fwd, inv) = (&self.fwd_y, &self.inv_y);
-        let (zero_rows, zero_row) = (&self.zero_rows, &self.zero_row);
-        let scratch_len = fwd
-            .get_inplace_scratch_len()
-            .max(inv.get_inplace_scratch_len());
+        let (ny, nc, per) = (self.ny, self.nc, self.columns_per_block());
         let rows = SharedRows(self.rows.as_mut_ptr(), self.rows.len());
+        let this = &*self;
         let parts: Vec<f64> = (0..nc.div_ceil(per))
             .into_par_iter()
             .map_init(
                 || {
-                    (
-                        vec![Complex::default(); scratch_len],
-                        vec![Complex::default(); per * ny],
-                    )
+                    let block = vec![Complex::default(); per * ny];
+                    (vec![Complex::default(); this.scratch_len()], block)
                 },
                 |(scratch, block), b| {
-                    let c0 = b * per;
-                    let width = per.min(nc - c0);
+                    let (c0, width) = (b * per, per.min(nc - b * per));
                     let block = &mut block[..width * ny];
-                    // Row r's stretch of this block's columns becomes entry r of each.
                     // SAFETY: blocks hold disjoint columns; each task reads and writes
                     // only its own columns' stretches.
-                    transpose(block, ny, filled, |r| {
-                        if zero_rows[r] {
-                            &zero_row[c0..c0 + width]
-                        } else {
-                            unsafe { rows.stretch(r * nc + c0, width) }
-                        }
-                    });
-                    for col in block.chunks_mut(ny) {
-                        col[filled..]
-                            .iter_mut()
-                            .for_each(|v| *v = Complex::default());
-                    }
-                    fwd.process_with_scratch(block, scratch);
-                    let mut energy = 0.0;
-                    if let Some(weigh) = &weigh {
-                        for (c, col) in block.chunks(ny).enumerate() {
-                            let e = weighed_energy(col, &symbol[(c0 + c) * ny..], weigh);
-                            energy += if twice(c0 + c) { 2.0 * e } else { e };
-                        }
-                    }
+                    let read = |r: usize| unsafe { rows.stretch(r * nc + c0, width) };
+                    let to = ColumnWork {
+                        symbol: Some(symbol),
+                        weigh: weigh.as_ref(),
+                        back,
+                    };
+                    let energy = this.block_pass(block, scratch, (c0, filled), read, to);
                     if back {
-                        for (v, k) in block.iter_mut().zip(&symbol[c0 * ny..]) {
-                            *v *= *k;
-                        }
-                        inv.process_with_scratch(block, scratch);
                         for r in 0..ny {
                             // SAFETY: as above.
                             let dst = unsafe { rows.stretch_mut(r * nc + c0, width) };
@@ -757,7 +706,76 @@ impl<T: FftFloat> Fft2<T> {
         if back {
             self.zero_rows.fill(false);
         }
-        parts.iter().sum::<f64>() / (nx * ny) as f64
+        self.total_energy(&parts)
+    }
+
+    /// Scratch length of the column transforms.
+    fn scratch_len(&self) -> usize {
+        self.fwd_y
+            .get_inplace_scratch_len()
+            .max(self.inv_y.get_inplace_scratch_len())
+    }
+
+    /// `<x, s * x>` from the column blocks' parts, added in block order.
+    fn total_energy(&self, parts: &[f64]) -> f64 {
+        parts.iter().sum::<f64>() / (self.nx * self.ny) as f64
+    }
+
+    /// One block of columns `c0..` of a column pass, `block` column-major (`ny` per
+    /// column): row r's stretch `read(r)` of the row spectra (r < `filled`; a row marked
+    /// zero reads zeros, the rows from `filled` on are zero) gathered in, transformed;
+    /// with a symbol, `<x, s * x>` summed over the block's columns (with `weigh`) and,
+    /// with `back`, the product transformed back. Returns the block's energy (else 0).
+    fn block_pass<'r, S, W>(
+        &self,
+        block: &mut [Complex<T>],
+        scratch: &mut [Complex<T>],
+        (c0, filled): (usize, usize),
+        read: impl Fn(usize) -> &'r [Complex<T>],
+        to: ColumnWork<'_, S, W>,
+    ) -> f64
+    where
+        T: 'r,
+        S: Copy,
+        W: Fn(S) -> f64,
+        Complex<T>: MulAssign<S>,
+    {
+        let (nx, ny, nc) = (self.nx, self.ny, self.nc);
+        // Columns 0 and nx/2 (even nx) are their own conjugates; the others stand for
+        // two.
+        let twice = |c: usize| c > 0 && !(nx % 2 == 0 && c == nc - 1);
+        let width = block.len() / ny;
+        let (zero_rows, zero_row) = (&self.zero_rows, &self.zero_row);
+        // Row r's stretch of this block's columns becomes entry r of each.
+        transpose(block, ny, filled, |r| {
+            if zero_rows[r] {
+                &zero_row[c0..c0 + width]
+            } else {
+                read(r)
+            }
+        });
+        for col in block.chunks_mut(ny) {
+            col[filled..]
+                .iter_mut()
+                .for_each(|v| *v = Complex::default());
+        }
+        self.fwd_y.process_with_scratch(block, scratch);
+        let mut energy = 0.0;
+        if let Some(s) = to.symbol {
+            if let Some(weigh) = to.weigh {
+                for (c, col) in block.chunks(ny).enumerate() {
+                    let e = weighed_energy(col, &s[(c0 + c) * ny..], weigh);
+                    energy += if twice(c0 + c) { 2.0 * e } else { e };
+                }
+            }
+            if to.back {
+                for (v, k) in block.iter_mut().zip(&s[c0 * ny..]) {
+                    *v *= *k;
+                }
+                self.inv_y.process_with_scratch(block, scratch);
+            }
+        }
+        energy
     }
 
     /// Complex-to-real transforms of the first `rows` rows of `spec` (transformed along

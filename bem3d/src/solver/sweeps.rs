@@ -708,6 +708,49 @@ mod tests {
         assert_eq!(bits(got), bits(in_lane_order(&cells, None)));
     }
 
+    /// Pass D's list of changes stops at its cap (past it by at most a block's
+    /// changes): the first changes in cell order, with the same pressures, gaps and sums
+    /// (the count of changes complete) as without a cap.
+    #[test]
+    fn update_lists_changes_up_to_its_cap() {
+        for n in [13, 64, 67] {
+            // Large directions: most cells of the set leave it (clipped at zero).
+            let p0: Vec<f64> = field(n, 1).iter().map(|v| v.max(0.0)).collect();
+            let t0: Vec<f32> = p0
+                .iter()
+                .zip(field(n, 2))
+                .map(|(&p, v)| if p > 0.0 { 10.0 * v.abs() as f32 } else { 0.0 })
+                .collect();
+            let (w0, kt) = (field(n, 3), field(n, 6));
+            let mask = vec![1u8; n];
+            let u = Update {
+                tau: 0.4,
+                approach: 0.1,
+                step: 2.0,
+            };
+            let run = |cap: usize| {
+                let (mut p, mut w, mut list, mut flag) = (p0.clone(), w0.clone(), vec![], [false]);
+                let rows = (&mut flag[..], n);
+                let sums = update(
+                    &mut p,
+                    &t0,
+                    (&mut list, 7, cap),
+                    (&mut w, &kt),
+                    &mask,
+                    rows,
+                    u,
+                );
+                (bits(sums), p, w, list)
+            };
+            let (sums, p, w, all) = run(n + 1);
+            assert!(all.len() > 2, "n = {n}: too few changes to cap");
+            let (capped_sums, q, v, capped) = run(2);
+            assert_eq!((capped_sums, &q, &v), (sums, &p, &w), "n = {n}");
+            assert!(capped.len() >= 2 && capped.len() <= 1 + LANES, "n = {n}");
+            assert!(all.starts_with(&capped), "n = {n}");
+        }
+    }
+
     /// Every pass against a plain cell-by-cell form of its formulas, summed in the
     /// documented lane order: outputs and sums bit for bit, on lengths with and without
     /// a partial last block.
@@ -815,18 +858,9 @@ mod tests {
                 step: 2.0,
             };
             let (mut p, mut w, mut changes, mut with_p) = (p0.clone(), w0.clone(), vec![], [false]);
-            let flag = (&mut with_p[..], n.max(1));
-            let got = update(
-                &mut p,
-                &t0,
-                (&mut changes, 7, n + 1),
-                (&mut w, &kt),
-                &mask,
-                flag,
-                u,
-            );
-            let mut listed = vec![];
-            let mut cells = vec![];
+            let (flag, list) = ((&mut with_p[..], n.max(1)), (&mut changes, 7, n + 1));
+            let got = update(&mut p, &t0, list, (&mut w, &kt), &mask, flag, u);
+            let (mut listed, mut cells) = (vec![], vec![]);
             for i in 0..n {
                 let g = w0[i] - approach;
                 let raw = p0[i] - u.tau * t0[i] as f64;
@@ -838,9 +872,7 @@ mod tests {
                     0.0
                 };
                 assert_eq!(p[i], pi);
-                if pi - raw != 0.0 {
-                    listed.push((7 + i, pi - raw));
-                }
+                listed.extend((pi != raw).then_some((7 + i, pi - raw)));
                 assert_eq!(w[i], w0[i] - u.tau * kt[i]);
                 let changed = if pi != raw { 1.0 } else { 0.0 };
                 cells.push([pi, changed, if pi > 0.0 { t0[i] as f64 } else { 0.0 }]);
@@ -851,29 +883,6 @@ mod tests {
                 "update, n = {n}"
             );
             assert_eq!(changes, listed, "update's changes, n = {n}");
-            // Capped: the first changes only (a block's at most past the cap), the same
-            // pressures and sums.
-            let (mut q, mut w2, mut capped, mut flag2) = (p0.clone(), w0.clone(), vec![], [false]);
-            let flag = (&mut flag2[..], n.max(1));
-            let again = update(
-                &mut q,
-                &t0,
-                (&mut capped, 7, 2),
-                (&mut w2, &kt),
-                &mask,
-                flag,
-                u,
-            );
-            assert_eq!(
-                (bits(again), &q, &w2),
-                (bits(got), &p, &w),
-                "capped update, n = {n}"
-            );
-            assert!(
-                capped.len() <= 2 + LANES && listed.starts_with(&capped),
-                "n = {n}"
-            );
-            assert!(capped.len() >= listed.len().min(2), "n = {n}");
             assert_eq!(
                 with_p[0],
                 p.iter().any(|&v| v > 0.0),
