@@ -11,7 +11,7 @@
 //! the time of the largest cases): the accuracy statement is the criterion and the
 //! certificate the solve reports.
 
-use super::peak_memory_mib;
+use super::{field, peak_memory_mib};
 use std::io::Write;
 use std::time::Instant;
 
@@ -108,12 +108,7 @@ pub fn run_large(w: &mut dyn Write, max_n: usize) -> Result<(), String> {
             match stdout.lines().find(|l| l.starts_with("RESULT")) {
                 Some(l) if out.status.success() => lines.push(l.to_string()),
                 _ => {
-                    let stderr = String::from_utf8_lossy(&out.stderr);
-                    let reason = stderr
-                        .lines()
-                        .rev()
-                        .find(|l| l.starts_with("error: "))
-                        .map_or(stderr.trim(), |l| l.trim_start_matches("error: "));
+                    let reason = super::child_error(&out.stderr);
                     lines.push(format!("FAILED n={n} mean_pressure={p:e} {reason}"));
                 }
             }
@@ -124,14 +119,6 @@ pub fn run_large(w: &mut dyn Write, max_n: usize) -> Result<(), String> {
 }
 
 fn print_large_table(w: &mut dyn Write, lines: &[String]) -> std::io::Result<()> {
-    let field = |l: &str, k: &str| -> f64 {
-        l.split_whitespace()
-            .find_map(|kv| {
-                kv.strip_prefix(&format!("{k}="))
-                    .and_then(|v| v.parse().ok())
-            })
-            .unwrap_or(f64::NAN)
-    };
     writeln!(
         w,
         "{:>8} | {:>9} | {:>9} | {:>9} | {:>9} | {:>6} | {:>9} | {:>10} | {:>10} | {:>11} | {:>10}",

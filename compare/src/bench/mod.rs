@@ -298,13 +298,7 @@ pub fn run_bem(
             }
             let out = cmd.output().map_err(|e| e.to_string())?;
             if !out.status.success() {
-                // The child's own one-line error, without its progress lines.
-                let stderr = String::from_utf8_lossy(&out.stderr);
-                let reason = stderr
-                    .lines()
-                    .rev()
-                    .find(|l| l.starts_with("error: "))
-                    .map_or(stderr.trim(), |l| l.trim_start_matches("error: "));
+                let reason = child_error(&out.stderr);
                 return Err(format!("benchmark case {kind} {n} failed: {reason}"));
             }
             lines.extend(
@@ -319,16 +313,27 @@ pub fn run_bem(
     print_bem_table(w, &lines).map_err(|e| format!("writing to standard output: {e}"))
 }
 
+/// A benchmark child's own one-line error (its last `error: ` line, without its
+/// progress lines), or its whole standard error.
+fn child_error(stderr: &[u8]) -> String {
+    let stderr = String::from_utf8_lossy(stderr);
+    let line = stderr.lines().rev().find(|l| l.starts_with("error: "));
+    line.map_or(stderr.trim(), |l| l.trim_start_matches("error: "))
+        .to_string()
+}
+
+/// The number `k=value` of a child's RESULT line (NaN if absent).
+fn field(l: &str, k: &str) -> f64 {
+    l.split_whitespace()
+        .find_map(|kv| {
+            kv.strip_prefix(&format!("{k}="))
+                .and_then(|v| v.parse().ok())
+        })
+        .unwrap_or(f64::NAN)
+}
+
 /// Parses the RESULT lines of child runs and prints the table.
 fn print_bem_table(w: &mut dyn Write, lines: &[String]) -> std::io::Result<()> {
-    let field = |l: &str, k: &str| -> f64 {
-        l.split_whitespace()
-            .find_map(|kv| {
-                kv.strip_prefix(&format!("{k}="))
-                    .and_then(|v| v.parse().ok())
-            })
-            .unwrap_or(f64::NAN)
-    };
     writeln!(
         w,
         "{:>9} | {:>6} | {:>9} | {:>6} | {:>6} | {:>10} | {:>11} | {:>10} | {:>8} | {:>8} | {:>9} | {:>9} | {:>10} | {:>10}",
