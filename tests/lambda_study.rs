@@ -99,6 +99,13 @@ fn the_study_machinery_runs_pairs_and_reproduces() {
     // the largest grid's resolution and tolerance, each against its own bandwidth.
     let pairs = rows(&p("a/lambda_study_pairs.csv"));
     assert_eq!(pairs.len(), 8, "{pairs:?}");
+    // Each ratio inside its interval: the resamples keep the full sample's points.
+    for r in &pairs {
+        assert!(
+            r[9] <= r[8] && r[8] <= r[10],
+            "ratio in its interval: {r:?}"
+        );
+    }
     for tol in pairs.iter().filter(|r| r[3] == 1e-10) {
         assert_eq!((tol[4], tol[5], tol[6]), (tol[1], tol[2], 1e-8), "{tol:?}");
         // Paired on the same surfaces and control faces: the interval is as narrow.

@@ -6,7 +6,9 @@
 //! in a fixed order (per H: each grid's 3D resamples, then, on the main grid, the 1D
 //! ones and the paired lambda ones), so results are reproducible bit for bit.
 
-use super::fit::{calibrate_lambda, fit_window, interp_loglog, interval, mean_curve};
+use super::fit::{
+    calibrate_lambda_at, fit_points, fit_window, interp_loglog, interval, mean_curve, window_points,
+};
 use super::tasks::{load, BemCurve, MrdEnsemble, SolveRecord, Task};
 use super::HurstSweep;
 use crate::error::Result;
@@ -94,6 +96,13 @@ fn resample(rng: &mut rand_chacha::ChaCha8Rng, n: usize) -> Vec<usize> {
 }
 
 /// The 3D curves of one H and grid, interpolated onto the f grid.
+/// One component of each bootstrap fit, NaN where the fit failed (counted by `interval`).
+fn component(boot: &[Option<(f64, f64)>], pick: fn(&(f64, f64)) -> f64) -> Vec<f64> {
+    boot.iter()
+        .map(|x| x.as_ref().map_or(f64::NAN, pick))
+        .collect()
+}
+
 fn curves_3d(
     spec: &HurstSweep,
     work: &Path,
@@ -147,14 +156,16 @@ pub fn aggregate(spec: &HurstSweep, work: &Path) -> Result<Results> {
             let all3: Vec<usize> = (0..k3.len()).collect();
             let m3 = mean_curve(&k3, &all3, nf);
             let (glo, ghi) = spec.window(g);
-            let fit3 = fit_window(&fs, &m3, glo, ghi);
+            // The resamples keep the full-sample means' points (see `window_points`).
+            let p3 = window_points(&m3, glo, ghi);
+            let fit3 = fit_points(&fs, &m3, &p3);
             let boot3: Vec<Option<(f64, f64)>> = (0..RESAMPLES)
                 .map(|_| {
                     let idx = resample(&mut rng, k3.len());
-                    fit_window(&fs, &mean_curve(&k3, &idx, nf), glo, ghi)
+                    fit_points(&fs, &mean_curve(&k3, &idx, nf), &p3)
                 })
                 .collect();
-            let ci_a3 = interval(boot3.iter().flatten().map(|x| x.0).collect());
+            let ci_a3 = interval(component(&boot3, |x| x.0));
             if g != spec.grid {
                 res.convergence.push(Convergence {
                     hurst,
@@ -169,29 +180,25 @@ pub fn aggregate(spec: &HurstSweep, work: &Path) -> Result<Results> {
             }
             res.seconds_3d += bem.iter().map(|c| c.seconds).sum::<f64>();
             res.realisations_3d += bem.len();
+            let p1 = window_points(&m1, glo, ghi);
             let boot1: Vec<Option<(f64, f64)>> = (0..RESAMPLES)
                 .map(|_| {
                     let idx = resample(&mut rng, k1.len());
-                    fit_window(&fs, &mean_curve(&k1, &idx, nf), glo, ghi)
+                    fit_points(&fs, &mean_curve(&k1, &idx, nf), &p1)
                 })
                 .collect();
             let boot_lam: Vec<f64> = (0..RESAMPLES)
-                .filter_map(|_| {
+                .map(|_| {
                     let i3 = resample(&mut rng, k3.len());
                     let i1 = resample(&mut rng, k1.len());
-                    calibrate_lambda(
-                        &fs,
-                        &mean_curve(&k3, &i3, nf),
-                        &mean_curve(&k1, &i1, nf),
-                        glo,
-                        ghi,
-                    )
+                    let (m3, m1) = (mean_curve(&k3, &i3, nf), mean_curve(&k1, &i1, nf));
+                    calibrate_lambda_at(&fs, &m3, &m1, &p3).unwrap_or(f64::NAN)
                 })
                 .collect();
-            let lam = calibrate_lambda(&fs, &m3, &m1, glo, ghi);
-            let ci_z3 = interval(boot3.iter().flatten().map(|x| x.1).collect());
-            let ci_a1 = interval(boot1.iter().flatten().map(|x| x.0).collect());
-            let ci_z1 = interval(boot1.iter().flatten().map(|x| x.1).collect());
+            let lam = calibrate_lambda_at(&fs, &m3, &m1, &p3);
+            let ci_z3 = interval(component(&boot3, |x| x.1));
+            let ci_a1 = interval(component(&boot1, |x| x.0));
+            let ci_z1 = interval(component(&boot1, |x| x.1));
             let ci_l = interval(boot_lam);
             let est = |v: Option<f64>, ci: (f64, f64)| Estimate {
                 value: v.unwrap_or(f64::NAN),

@@ -32,23 +32,54 @@ pub fn mean_curve(curves: &[Vec<Option<f64>>], idx: &[usize], nf: usize) -> Vec<
         .collect()
 }
 
+/// The grid points where `k` has a value inside the window [lo, hi].
+///
+/// A bootstrap keeps the points of the full sample's curve fixed: a resampled mean
+/// leaves out realisations, so it reaches further along f and crosses the window's
+/// edges elsewhere; letting each resample pick its own points would make its statistic
+/// a different quantity from the estimate, and the interval would not be about it.
+pub fn window_points(k: &[Option<f64>], lo: f64, hi: f64) -> Vec<bool> {
+    k.iter()
+        .map(|v| v.is_some_and(|v| v >= lo && v <= hi))
+        .collect()
+}
+
 /// alpha, zeta by least squares over the window; None if fewer than 3 points.
 pub fn fit_window(fs: &[f64], k: &[Option<f64>], lo: f64, hi: f64) -> Option<(f64, f64)> {
+    fit_points(fs, k, &window_points(k, lo, hi))
+}
+
+/// alpha, zeta by least squares over the chosen points (those where `k` has a value);
+/// None if fewer than 3.
+pub fn fit_points(fs: &[f64], k: &[Option<f64>], points: &[bool]) -> Option<(f64, f64)> {
     let (x, y): (Vec<f64>, Vec<f64>) = fs
         .iter()
         .zip(k)
-        .filter_map(|(&f, &v)| v.filter(|&v| v >= lo && v <= hi).map(|v| (f.ln(), v.ln())))
+        .zip(points)
+        .filter_map(|((&f, &v), &p)| v.filter(|_| p).map(|v| (f.ln(), v.ln())))
         .unzip();
     fit_line(&x, &y).ok().map(|l| (l.b, l.a.exp()))
 }
 
-/// lambda minimising the log-space misfit of K1(f sqrt(pi/lambda)) to K3(f).
+/// lambda minimising the log-space misfit of K1(f sqrt(pi/lambda)) to K3(f) over the
+/// points where K3 lies in the window [lo, hi].
 pub fn calibrate_lambda(
     fs: &[f64],
     k3: &[Option<f64>],
     k1: &[Option<f64>],
     lo: f64,
     hi: f64,
+) -> Option<f64> {
+    calibrate_lambda_at(fs, k3, k1, &window_points(k3, lo, hi))
+}
+
+/// lambda minimising the log-space misfit of K1(f sqrt(pi/lambda)) to K3(f) over the
+/// chosen points (those where K3 has a value); None if fewer than 3.
+pub fn calibrate_lambda_at(
+    fs: &[f64],
+    k3: &[Option<f64>],
+    k1: &[Option<f64>],
+    points: &[bool],
 ) -> Option<f64> {
     let (f1, v1): (Vec<f64>, Vec<f64>) = fs
         .iter()
@@ -58,7 +89,8 @@ pub fn calibrate_lambda(
     let pts: Vec<(f64, f64)> = fs
         .iter()
         .zip(k3)
-        .filter_map(|(&f, &v)| v.filter(|&v| v >= lo && v <= hi).map(|v| (f, v)))
+        .zip(points)
+        .filter_map(|((&f, &v), &p)| v.filter(|_| p).map(|v| (f, v)))
         .collect();
     if pts.len() < 3 {
         return None;
@@ -98,15 +130,23 @@ pub fn calibrate_lambda(
     Some((0.5 * (a + b)).exp())
 }
 
-/// Percentile interval of finite values.
-pub fn interval(mut v: Vec<f64>) -> (f64, f64) {
-    v.retain(|x| x.is_finite());
-    if v.is_empty() {
+/// 95 % percentile interval of bootstrap draws (nearest rank). A draw that is not
+/// finite (its statistic failed) counts against the interval on both sides, as if it
+/// lay beyond either end: a bound that such draws could reach is undefined (NaN)
+/// rather than taken from the successful draws alone.
+pub fn interval(v: Vec<f64>) -> (f64, f64) {
+    let n = v.len();
+    let mut ok: Vec<f64> = v.into_iter().filter(|x| x.is_finite()).collect();
+    let failed = n - ok.len();
+    if ok.is_empty() {
         return (f64::NAN, f64::NAN);
     }
-    v.sort_by(f64::total_cmp);
-    let q = |p: f64| v[((p * (v.len() - 1) as f64).round() as usize).min(v.len() - 1)];
-    (q(0.025), q(0.975))
+    ok.sort_by(f64::total_cmp);
+    let rank = |p: f64| ((p * (n - 1) as f64).round() as usize).min(n - 1);
+    // Failed draws below the successes for the lower bound, above them for the upper.
+    let lo = rank(0.025).checked_sub(failed).map_or(f64::NAN, |i| ok[i]);
+    let hi = ok.get(rank(0.975)).copied().unwrap_or(f64::NAN);
+    (lo, hi)
 }
 
 #[cfg(test)]
@@ -176,8 +216,45 @@ mod tests {
         // 0..=1000: 2.5 % and 97.5 % points at 25 and 975 (nearest rank).
         let v: Vec<f64> = (0..=1000).rev().map(f64::from).collect();
         assert_eq!(interval(v), (25.0, 975.0));
-        let (lo, hi) = interval(vec![f64::NAN, 1.0]);
-        assert_eq!((lo, hi), (1.0, 1.0));
         assert!(interval(vec![f64::NAN]).0.is_nan());
+    }
+
+    #[test]
+    fn failed_draws_widen_the_interval_and_can_leave_it_undefined() {
+        // 200 draws 1..=200 and one failure, 201 draws in all: the failure takes the
+        // lowest rank for the lower bound (rank 5 -> the 5th success, 5) and the
+        // highest for the upper (rank 195 -> the 196th success, 196).
+        let mut v: Vec<f64> = (1..=200).map(f64::from).collect();
+        v.push(f64::NAN);
+        assert_eq!(interval(v), (5.0, 196.0));
+        // With more than 2.5 % failed the bounds are not known.
+        let mut v: Vec<f64> = (1..=190).map(f64::from).collect();
+        v.extend([f64::NAN; 10]);
+        let (lo, hi) = interval(v);
+        assert!(lo.is_nan() && hi.is_nan(), "{lo} {hi}");
+    }
+
+    #[test]
+    fn fixed_points_make_calibration_and_fit_ignore_the_window() {
+        let fs: Vec<f64> = (0..40).map(|i| 10f64.powf(-4.0 + 0.1 * i as f64)).collect();
+        let k1: Vec<Option<f64>> = fs.iter().map(|&f| Some(0.5 * f.powf(0.7))).collect();
+        let points = window_points(&k1, 1e-3, 0.05);
+        let n = points.iter().filter(|&&p| p).count();
+        assert!(n >= 3 && n < fs.len(), "{n}");
+        assert_eq!(
+            calibrate_lambda_at(&fs, &k1, &k1, &points),
+            calibrate_lambda(&fs, &k1, &k1, 1e-3, 0.05)
+        );
+        assert_eq!(
+            fit_points(&fs, &k1, &points),
+            fit_window(&fs, &k1, 1e-3, 0.05)
+        );
+        // A curve moved out of the window keeps the chosen points (and still fits them).
+        let k3: Vec<Option<f64>> = k1.iter().map(|v| v.map(|v| 3.0 * v)).collect();
+        let (a, z) = fit_points(&fs, &k3, &points).unwrap();
+        assert!(close(a, 0.7, 1e-12) && close(z, 1.5, 1e-12), "{a} {z}");
+        let lam = calibrate_lambda_at(&fs, &k3, &k1, &points).unwrap();
+        // K1(f s) = 3 K1(f): s = 3^(1/0.7), lambda = pi / s^2.
+        assert!(close(lam, PI / 3f64.powf(2.0 / 0.7), 1e-6), "{lam}");
     }
 }

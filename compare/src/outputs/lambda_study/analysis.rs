@@ -11,7 +11,7 @@ use super::tasks::{
 use super::LambdaStudy;
 use crate::error::Result;
 use crate::outputs::hurst_sweep::fit::{
-    calibrate_lambda, fit_window, interp_loglog, interval, mean_curve,
+    calibrate_lambda_at, fit_points, fit_window, interp_loglog, interval, mean_curve, window_points,
 };
 use crate::outputs::hurst_sweep::tasks::{BemCurve, MrdEnsemble};
 use rand::{RngExt, SeedableRng};
@@ -288,11 +288,13 @@ fn lambda_of(s: &LambdaStudy, data: &Sample, m1: &[Option<f64>], rng: &mut ChaCh
         return Estimate::NONE;
     }
     let all: Vec<usize> = (0..data.len()).collect();
-    let value = calibrate_lambda(&fs, &data.mean(&all, &data.all_controls()), m1, lo, hi);
+    let full = data.mean(&all, &data.all_controls());
+    let points = window_points(&full, lo, hi);
+    let value = calibrate_lambda_at(&fs, &full, m1, &points);
     let boot = (0..RESAMPLES)
-        .filter_map(|_| {
+        .map(|_| {
             let (idx, ctl) = draw(rng, data);
-            calibrate_lambda(&fs, &data.mean(&idx, &ctl), m1, lo, hi)
+            calibrate_lambda_at(&fs, &data.mean(&idx, &ctl), m1, &points).unwrap_or(f64::NAN)
         })
         .collect();
     Estimate::of(value, boot)
@@ -359,14 +361,13 @@ fn analyse_case(s: &LambdaStudy, work: &Path, case: &Case) -> Result<Option<(Cas
     let lambda = lambda_of(s, &data, &m1, &mut rng);
     let all: Vec<usize> = (0..data.len()).collect();
     let m3 = data.mean(&all, &data.all_controls());
+    let points = window_points(&m3, lo, hi);
     let mut boot_alpha = Vec::new();
     let mut boot_slope: Vec<Vec<f64>> = vec![Vec::new(); nf];
     for _ in 0..RESAMPLES {
         let (idx, ctl) = draw(&mut rng, &data);
         let m = data.mean(&idx, &ctl);
-        if let Some((a, _)) = fit_window(&fs, &m, lo, hi) {
-            boot_alpha.push(a);
-        }
+        boot_alpha.push(fit_points(&fs, &m, &points).map_or(f64::NAN, |x| x.0));
         for (j, v) in local_exponent(&fs, &m).into_iter().enumerate() {
             if let Some(v) = v {
                 boot_slope[j].push(v);
@@ -389,7 +390,7 @@ fn analyse_case(s: &LambdaStudy, work: &Path, case: &Case) -> Result<Option<(Cas
         case: *case,
         realisations: data.len(),
         lambda,
-        alpha_3d: Estimate::of(fit_window(&fs, &m3, lo, hi).map(|x| x.0), boot_alpha),
+        alpha_3d: Estimate::of(fit_points(&fs, &m3, &points).map(|x| x.0), boot_alpha),
         alpha_mrd,
         misfit_max,
         misfit_rms,
@@ -446,15 +447,20 @@ fn pair(s: &LambdaStudy, work: &Path, case: &Case, refc: &Case) -> Result<Option
     // Plain means over the shared realisations: the pairing already cancels the noise of
     // the shared modes, which is what the control variates remove from a single case;
     // their regressions and independent control ensembles would only add noise here.
+    // Each side's points are those of its full-sample mean, in every resample too.
+    let all: Vec<usize> = (0..a.len()).collect();
+    let (pa, pb) = (
+        window_points(&a.mean(&all, &[]), lo, hi),
+        window_points(&b.mean(&all, &[]), lo, hi),
+    );
     let ratio = |idx: &[usize]| -> Option<f64> {
-        let la = calibrate_lambda(&fs, &a.mean(idx, &[]), &m1a, lo, hi)?;
-        let lb = calibrate_lambda(&fs, &b.mean(idx, &[]), &m1b, lo, hi)?;
+        let la = calibrate_lambda_at(&fs, &a.mean(idx, &[]), &m1a, &pa)?;
+        let lb = calibrate_lambda_at(&fs, &b.mean(idx, &[]), &m1b, &pb)?;
         Some(la / lb)
     };
-    let all: Vec<usize> = (0..a.len()).collect();
     let mut rng = rng_for(s, case, n, 1);
     let boot = (0..RESAMPLES)
-        .filter_map(|_| ratio(&resample(&mut rng, a.len())))
+        .map(|_| ratio(&resample(&mut rng, a.len())).unwrap_or(f64::NAN))
         .collect();
     let value = ratio(&all);
     Ok(Some(Pair {

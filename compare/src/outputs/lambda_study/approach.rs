@@ -120,8 +120,17 @@ pub fn of_case(
         let f1: Vec<f64> = ens.force.iter().map(|c| c[j]).collect();
         let m3 = f3.iter().sum::<f64>() / f3.len() as f64;
         let m1 = f1.iter().sum::<f64>() / f1.len() as f64;
-        // No CV where one side has no force at all (below every first contact).
+        // No CV where one side has no force at all (below every first contact), nor
+        // where so few realisations touch that resamples without any contact (CV
+        // undefined) leave its interval unknown.
         if m3 <= 0.0 || m1 <= 0.0 {
+            continue;
+        }
+        let (cv3, cv1) = (cv_estimate(&f3, &mut rng), cv_estimate(&f1, &mut rng));
+        if [cv3, cv1]
+            .iter()
+            .any(|e| !(e.lo.is_finite() && e.hi.is_finite()))
+        {
             continue;
         }
         out.approach.push(u);
@@ -129,8 +138,8 @@ pub fn of_case(
         out.mean_mrd.push(m1);
         out.in_window
             .push((f_window[0]..=f_window[1]).contains(&m3));
-        out.cv_3d.push(cv_estimate(&f3, &mut rng));
-        out.cv_mrd.push(cv_estimate(&f1, &mut rng));
+        out.cv_3d.push(cv3);
+        out.cv_mrd.push(cv1);
     }
     Ok((!out.approach.is_empty()).then_some(out))
 }
