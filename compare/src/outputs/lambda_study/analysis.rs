@@ -433,7 +433,23 @@ fn reference(s: &LambdaStudy, case: &Case) -> Option<Case> {
 
 /// lambda(case) / lambda(reference) over their shared realisations, paired.
 fn pair(s: &LambdaStudy, work: &Path, case: &Case, refc: &Case) -> Result<Option<Pair>> {
-    let n = done(work, case).min(done(work, refc));
+    pair_at(s, work, case, refc, done(work, case).min(done(work, refc)))
+}
+
+/// The paired ratio of a bandwidth above `calibrate_at` to it over the first `n`
+/// realisations (the adaptive plan's test of such a case); None without the data.
+pub fn above_ratio(s: &LambdaStudy, work: &Path, case: &Case, n: u64) -> Result<Option<Estimate>> {
+    let Some(refc) = reference(s, case) else {
+        return Ok(None);
+    };
+    if done(work, &refc) < n {
+        return Ok(None);
+    }
+    Ok(pair_at(s, work, case, &refc, n)?.map(|p| p.ratio))
+}
+
+/// The paired ratio over realisations 0..n of both cases.
+fn pair_at(s: &LambdaStudy, work: &Path, case: &Case, refc: &Case, n: u64) -> Result<Option<Pair>> {
     let (Some((m1a, _)), Some((m1b, _))) = (mean_1d(s, work, case)?, mean_1d(s, work, refc)?)
     else {
         return Ok(None);

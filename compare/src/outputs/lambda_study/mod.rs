@@ -25,8 +25,11 @@
 //! Realisations: every case computes `realisations.min`; a case of the main ladder at or
 //! below `calibrate_at` adds batches of `realisations.batch` (up to `realisations.max`)
 //! while its lambda interval is wider than the target of its H (`target`: pairs
-//! [H_max, relative half-width]). Decisions use complete batches only, so results do
-//! not depend on the order of work, threads or interruptions.
+//! [H_max, relative half-width]). A bandwidth above `calibrate_at` asks only whether
+//! lambda moves from there: it starts with 8 realisations and adds 4 at a time (up to
+//! `realisations.min`) until the paired ratio's interval lies inside 1 +/- target or
+//! wholly outside it. Decisions use complete batches only, so results do not depend on
+//! the order of work, threads or interruptions.
 //!
 //! Files: [`tasks`] (cases, the adaptive plan, the checkpointed work), [`analysis`]
 //! (curves, fits, lambda, pairs), [`scatter`] (the scatter between realisations, 3D

@@ -23,8 +23,8 @@ use std::time::Instant;
 pub enum Role {
     /// The main ladder at or below `calibrate_at`: realisations added to the target.
     Ladder,
-    /// A bandwidth above `calibrate_at` (main ladder or extra): `min` realisations,
-    /// paired with `calibrate_at`.
+    /// A bandwidth above `calibrate_at` (main ladder or extra), paired with
+    /// `calibrate_at`: realisations until the paired ratio settles (see `above`).
     Above,
     /// Other cells per wavelength at the resolution check's bandwidth.
     Resolution,
@@ -208,11 +208,18 @@ impl Task {
 
     /// Which round a task belongs to: MRD ensembles first, then the cases the shipped
     /// table and the checks need (adaptive) with their control ensembles, then
-    /// bandwidths above `calibrate_at` (their checks included).
+    /// bandwidths above `calibrate_at` (their checks included) one grid size at a time,
+    /// smallest first, so that a grid's adaptive batches settle before a larger grid
+    /// takes the machine.
     fn priority(&self, s: &LambdaStudy) -> u8 {
         match self {
             Task::Mrd { .. } | Task::MrdApproach { .. } => 0,
-            Task::Bem { case, .. } | Task::Control { case, .. } if case.band > s.calibrate_at => 2,
+            Task::Bem { case, .. } | Task::Control { case, .. } if case.band > s.calibrate_at => {
+                let doublings = (case.grid() / (s.calibrate_at * s.cells).max(1))
+                    .checked_ilog2()
+                    .unwrap_or(0);
+                2u8.saturating_add(doublings.min(200) as u8)
+            }
             Task::Bem { .. } | Task::Control { .. } => 1,
         }
     }
@@ -251,6 +258,9 @@ fn needed(s: &LambdaStudy, work: &Path, case: &Case, n: u64) -> Result<u64> {
 /// batches decide).
 fn adaptive(s: &LambdaStudy, work: &Path, case: &Case, n: u64) -> Result<u64> {
     let r = s.realisations;
+    if case.role == Role::Above {
+        return above(s, work, case, n);
+    }
     if case.role != Role::Ladder || n < r.min {
         return Ok(r.min);
     }
@@ -268,6 +278,45 @@ fn adaptive(s: &LambdaStudy, work: &Path, case: &Case, n: u64) -> Result<u64> {
     let met =
         e.value.is_finite() && e.lo >= (1.0 - target) * e.value && e.hi <= (1.0 + target) * e.value;
     Ok(if met { n } else { (n + r.batch).min(r.max) })
+}
+
+/// Realisations a bandwidth above `calibrate_at` starts with, and adds at a time.
+const ABOVE_FIRST: u64 = 8;
+const ABOVE_BATCH: u64 = 4;
+
+/// The rule for a bandwidth above `calibrate_at`, whose question is whether lambda
+/// moves from `calibrate_at` to it: realisations in batches of [`ABOVE_BATCH`] (from
+/// [`ABOVE_FIRST`], at most `realisations.min`) until the paired ratio's 95 % interval
+/// answers it, lying inside [1 - target, 1 + target] (the change is within the shipped
+/// row's target) or wholly outside it (lambda moves by more). Complete batches decide.
+fn above(s: &LambdaStudy, work: &Path, case: &Case, n: u64) -> Result<u64> {
+    let cap = s.realisations.min;
+    let first = ABOVE_FIRST.min(cap);
+    if n < first {
+        return Ok(first);
+    }
+    if n >= cap {
+        return Ok(cap);
+    }
+    if !n.is_multiple_of(ABOVE_BATCH) {
+        return Ok((n.div_ceil(ABOVE_BATCH) * ABOVE_BATCH).min(cap));
+    }
+    let Some(e) = super::analysis::above_ratio(s, work, case, n)? else {
+        return Ok(n);
+    };
+    Ok(if settled(&e, s.target_at(case.hurst)) {
+        n
+    } else {
+        (n + ABOVE_BATCH).min(cap)
+    })
+}
+
+/// Whether a ratio's interval answers "does it differ from 1 by more than t?": inside
+/// [1 - t, 1 + t] or wholly outside it (an undefined bound answers nothing).
+fn settled(e: &super::analysis::Estimate, t: f64) -> bool {
+    let inside = e.lo >= 1.0 - t && e.hi <= 1.0 + t;
+    let outside = e.hi < 1.0 - t || e.lo > 1.0 + t;
+    inside || outside
 }
 
 /// The tasks still to compute: MRD ensembles first, then 3D realisations, cheapest
@@ -543,6 +592,12 @@ pub fn compute(s: &LambdaStudy, work: &Path, control: &RunControl) -> Result<()>
             .filter(|(i, _)| control.shard.is_none_or(|(k, n)| i % n == k))
             .map(|(_, t)| t)
             .collect();
+        if control.report_only && control.progress {
+            let _ = std::io::Write::write_fmt(
+                &mut std::io::stderr(),
+                format_args!("lambda study: report only; {}\n", summary(&todo)),
+            );
+        }
         if todo.is_empty() || control.report_only {
             return Ok(());
         }
@@ -592,6 +647,41 @@ pub fn compute(s: &LambdaStudy, work: &Path, control: &RunControl) -> Result<()>
     }
 }
 
+/// What a round of the plan still holds, e.g. "the next round holds 45 tasks: 45 3D
+/// realisations on 2048^2 grids" (MRD ensembles and control ensembles counted apart).
+fn summary(todo: &[Task]) -> String {
+    if todo.is_empty() {
+        return "the plan is complete".into();
+    }
+    let mut grids: Vec<(usize, usize)> = Vec::new();
+    let (mut mrd, mut control) = (0, 0);
+    for t in todo {
+        match t {
+            Task::Bem { case, .. } => match grids.iter_mut().find(|g| g.0 == case.grid()) {
+                Some(g) => g.1 += 1,
+                None => grids.push((case.grid(), 1)),
+            },
+            Task::Mrd { .. } | Task::MrdApproach { .. } => mrd += 1,
+            Task::Control { .. } => control += 1,
+        }
+    }
+    let mut parts: Vec<String> = grids
+        .iter()
+        .map(|(g, k)| format!("{k} 3D realisations on {g}^2 grids"))
+        .collect();
+    if mrd > 0 {
+        parts.push(format!("{mrd} MRD ensembles"));
+    }
+    if control > 0 {
+        parts.push(format!("{control} control ensembles"));
+    }
+    format!(
+        "the next round holds {} tasks: {} (later rounds follow from its results)",
+        todo.len(),
+        parts.join(", ")
+    )
+}
+
 /// Reads one checkpoint, if present.
 pub fn load<T: for<'de> Deserialize<'de>>(work: &Path, file: &str) -> Result<Option<T>> {
     let p = work.join(file);
@@ -607,6 +697,17 @@ pub fn load<T: for<'de> Deserialize<'de>>(work: &Path, file: &str) -> Result<Opt
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_ratio_is_settled_inside_or_wholly_outside_the_target_only() {
+        let e = |value: f64, lo: f64, hi: f64| super::super::analysis::Estimate { value, lo, hi };
+        assert!(settled(&e(1.0, 0.95, 1.08), 0.1));
+        assert!(settled(&e(0.8, 0.75, 0.85), 0.1));
+        assert!(settled(&e(1.3, 1.15, 1.4), 0.1));
+        assert!(!settled(&e(1.0, 0.85, 1.05), 0.1));
+        assert!(!settled(&e(0.88, 0.85, 0.95), 0.1));
+        assert!(!settled(&e(1.0, f64::NAN, 1.05), 0.1));
+    }
 
     #[test]
     fn mrd_force_at_fixed_approach_is_exact_in_complete_contact() {
