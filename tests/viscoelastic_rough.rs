@@ -1,7 +1,9 @@
 //! `viscoelastic-rough-ci`: the rough punch on a viscoelastic half-space through ramp,
 //! hold, unload and reload, 3D against MRD springs, at CI scale. Physics checked here:
 //! Radok (the contact set is the elastic one at the same approach while it does not
-//! recede) on both sides, creep under the held force, and the viscous lag on unloading.
+//! recede) on both sides, creep under the held force, and the viscous lag on unloading;
+//! Radok's force (the hereditary integral of the elastic force at the same approach)
+//! under force and under approach control, with relaxation under a held approach.
 
 use std::process::Command;
 
@@ -15,8 +17,8 @@ fn rows(path: &std::path::Path) -> Vec<Vec<f64>> {
         .collect()
 }
 
-#[test]
-fn radok_holds_while_loading_and_fails_on_unloading_in_both_methods() {
+/// The CI scene's report folder (both outputs: force control, approach control).
+fn run() -> (tempfile::TempDir, std::path::PathBuf) {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("r");
     let o = Command::new(env!("CARGO_BIN_EXE_mrdw"))
@@ -29,6 +31,12 @@ fn radok_holds_while_loading_and_fails_on_unloading_in_both_methods() {
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    (tmp, out)
+}
+
+#[test]
+fn radok_holds_while_loading_and_fails_on_unloading_in_both_methods() {
+    let (_tmp, out) = run();
     // time, phase, f, approach_3d, ci, area_3d, area_el_3d, then per lambda
     // (approach_mrd, area_mrd, area_el_mrd).
     let t = rows(&out.join("viscoelastic_rough_history.csv"));
@@ -57,4 +65,48 @@ fn radok_holds_while_loading_and_fails_on_unloading_in_both_methods() {
     // Unloading: the material lags behind the punch, the contact is smaller than the
     // elastic one at the same approach (Ting), on both sides.
     assert!(lag_3d < 0.9 && lag_mrd < 0.9, "{lag_3d} {lag_mrd}");
+}
+
+#[test]
+fn the_force_is_radoks_hereditary_integral_until_the_contact_recedes() {
+    let (_tmp, out) = run();
+    // time, phase, f_3d, ci, f_radok_3d, f_el_3d, then per lambda (f, f_radok, f_el).
+    for (file, by_approach) in [
+        ("viscoelastic_rough_force.csv", false),
+        ("viscoelastic_rough_2_force.csv", true),
+    ] {
+        let t = rows(&out.join(file));
+        assert_eq!(t.len(), 40, "{file}");
+        let mut off = (0.0f64, 0.0f64);
+        for (j, r) in t.iter().enumerate() {
+            assert!(r.iter().all(|v| v.is_finite()), "{file} {r:?}");
+            let (phase, held) = (r[1], j > 0 && t[j - 1][1] == 1.0 && r[1] == 1.0);
+            for (f, radok) in [(2, 4), (6, 7), (9, 10)] {
+                let dev = (r[f] / r[radok] - 1.0).abs();
+                if phase <= 1.0 {
+                    // Ramp and hold: equal to the 3D solver's tolerance (1e-8), MRD's
+                    // springs to rounding.
+                    let tol = if f == 2 { 1e-7 } else { 1e-12 };
+                    assert!(dev < tol, "{file} step {j} column {f}: {dev:e}");
+                } else if phase == 2.0 && r[radok] > 0.0 {
+                    off = if f == 2 {
+                        (off.0.max(dev), off.1)
+                    } else {
+                        (off.0, off.1.max(dev))
+                    };
+                }
+                if by_approach && held {
+                    // A held approach: the force relaxes on both sides, towards the
+                    // elastic force at the relaxed modulus, never below it.
+                    let prev = t[j - 1][f];
+                    assert!(
+                        r[f] < prev && r[f] >= r[radok + 1] * (1.0 - 1e-7),
+                        "{file} step {j}"
+                    );
+                }
+            }
+        }
+        // Unloading: the contact recedes and the force leaves Radok's on both sides.
+        assert!(off.0 > 0.05 && off.1 > 0.05, "{file}: {off:?}");
+    }
 }

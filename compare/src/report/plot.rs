@@ -256,16 +256,20 @@ macro_rules! draw_with {
             .map_err(|e| plot_err($path, e))?;
         for (i, s) in $fig.series.iter().enumerate() {
             let color = series_color(i, s);
-            let pts: Vec<(f64, f64)> = s
+            let drawable = |&(x, y): &(f64, f64)| {
+                x.is_finite()
+                    && y.is_finite()
+                    && (!$fig.log_x || x > 0.0)
+                    && (!$fig.log_y || y > 0.0)
+            };
+            let pts: Vec<(f64, f64)> = s.points.iter().copied().filter(drawable).collect();
+            // A point that cannot be drawn (e.g. NaN where a quantity is undefined)
+            // breaks a line instead of being bridged.
+            let runs: Vec<Vec<(f64, f64)>> = s
                 .points
-                .iter()
-                .copied()
-                .filter(|(x, y)| {
-                    x.is_finite()
-                        && y.is_finite()
-                        && (!$fig.log_x || *x > 0.0)
-                        && (!$fig.log_y || *y > 0.0)
-                })
+                .split(|p| !drawable(p))
+                .filter(|r| !r.is_empty())
+                .map(<[(f64, f64)]>::to_vec)
                 .collect();
             let label = s.label.as_str();
             let show = !label.is_empty();
@@ -282,23 +286,27 @@ macro_rules! draw_with {
             let err = |e| plot_err($path, e);
             match s.style {
                 Style::Line => {
-                    let anno = chart
-                        .draw_series(LineSeries::new(pts, color.stroke_width(2)))
-                        .map_err(err)?;
-                    if show {
-                        anno.label(label).legend(move |(x, y)| {
-                            PathElement::new(vec![(x, y), (x + 22, y)], color.stroke_width(2))
-                        });
+                    for (k, run) in runs.into_iter().enumerate() {
+                        let anno = chart
+                            .draw_series(LineSeries::new(run, color.stroke_width(2)))
+                            .map_err(err)?;
+                        if show && k == 0 {
+                            anno.label(label).legend(move |(x, y)| {
+                                PathElement::new(vec![(x, y), (x + 22, y)], color.stroke_width(2))
+                            });
+                        }
                     }
                 }
                 Style::Dashed => {
-                    let anno = chart
-                        .draw_series(DashedLineSeries::new(pts, 8, 6, color.stroke_width(2)))
-                        .map_err(err)?;
-                    if show {
-                        anno.label(label).legend(move |(x, y)| {
-                            PathElement::new(vec![(x, y), (x + 8, y)], color.stroke_width(2))
-                        });
+                    for (k, run) in runs.into_iter().enumerate() {
+                        let anno = chart
+                            .draw_series(DashedLineSeries::new(run, 8, 6, color.stroke_width(2)))
+                            .map_err(err)?;
+                        if show && k == 0 {
+                            anno.label(label).legend(move |(x, y)| {
+                                PathElement::new(vec![(x, y), (x + 8, y)], color.stroke_width(2))
+                            });
+                        }
                     }
                 }
                 Style::Markers => {

@@ -6,7 +6,8 @@
 //! face, modes |k| <= `bandwidth` in units of 2 pi / L, on the free half-space) pressed
 //! into a generalised-Maxwell half-space, E*(t) = E_inf + sum_k E_k exp(-t / tau_k),
 //! under a force history: a ramp to f = F / (E_inf h L) over `ramp`, a hold, an unload
-//! to `unload` of that force over `ramp`, a reload over `ramp`. Against it MRD lines of
+//! to `unload` of that force over `ramp`, a reload over `ramp` (or the same history of
+//! the approach d / h, `approach` instead of `force`). Against it MRD lines of
 //! length L (C1D = lambda q C2D, Eq. 76) on springs E*(t) dx that separate at zero force
 //! (Eq. 63; Ting's problem in 1D).
 //!
@@ -19,7 +20,14 @@
 //! face; MRD: springs), mean over realisations with a 95 % interval (3D), and the ratio
 //! to the elastic contact fraction; per phase the largest deviation from Radok on each
 //! side and the MRD / 3D approach ratio.
+//!
+//! Radok's correspondence also fixes the force: while the contact does not recede the
+//! displacement field is the elastic one at the current approach, so the force is the
+//! hereditary integral of the elastic force at the same approach,
+//! F(t) = Int E*(t - t') / E_inf dF_el(t') (Eq. 63 for one spring; [`radok`]). Each side
+//! is checked against it at every step, under either control.
 
+mod radok;
 mod report;
 mod runs;
 
@@ -57,8 +65,10 @@ pub struct ViscoelasticRough {
     #[serde(default = "super::default_lambdas")]
     lambda: Vec<LambdaSpec>,
     modulus: ModulusSpec,
-    /// f = F / (E_inf h L) at the end of the ramp.
-    force: f64,
+    /// f = F / (E_inf h L) at the end of the ramp (force control).
+    force: Option<f64>,
+    /// d / h at the end of the ramp (approach control; d from the first contact).
+    approach: Option<f64>,
     /// Duration of the ramp, of the unload and of the reload.
     ramp: f64,
     /// Duration of the hold.
@@ -88,6 +98,16 @@ impl ViscoelasticRough {
         self.bandwidth * self.cells
     }
 
+    /// Whether the history prescribes the approach (else the force).
+    fn by_approach(&self) -> bool {
+        self.approach.is_some()
+    }
+
+    /// The prescribed value at the end of the ramp: f, or d / h.
+    fn target(&self) -> f64 {
+        self.approach.or(self.force).unwrap_or(f64::NAN)
+    }
+
     fn dt(&self) -> f64 {
         self.ramp / self.steps as f64
     }
@@ -96,9 +116,9 @@ impl ViscoelasticRough {
         (self.hold / self.dt()).round().max(1.0) as usize
     }
 
-    /// (dt, f at the step's end) for every step, and the phase of each.
+    /// (dt, the prescribed f or d / h at the step's end) for every step.
     fn history(&self) -> Vec<(f64, f64)> {
-        let (dt, n, f) = (self.dt(), self.steps, self.force);
+        let (dt, n, f) = (self.dt(), self.steps, self.target());
         let lerp = |a: f64, b: f64, k: usize| a + (b - a) * k as f64 / n as f64;
         let mut out: Vec<(f64, f64)> = (1..=n).map(|k| (dt, lerp(0.0, f, k))).collect();
         out.extend((0..self.hold_steps()).map(|_| (dt, f)));
@@ -142,15 +162,19 @@ impl Output for ViscoelasticRough {
         if self.modulus.relaxed <= 0.0 {
             return bad("modulus.relaxed must be > 0 (the forces are in its units)");
         }
-        if !(self.force.is_finite() && self.force > 0.0) {
-            return bad("force must be finite and > 0");
+        match (self.force, self.approach) {
+            (Some(v), None) | (None, Some(v)) if v.is_finite() && v > 0.0 => {}
+            (Some(_), Some(_)) | (None, None) => {
+                return bad("give either force (f = F/(E_relaxed h L)) or approach (d/h), not both")
+            }
+            _ => return bad("force or approach must be finite and > 0"),
         }
         if !(self.ramp.is_finite() && self.ramp > 0.0 && self.hold.is_finite() && self.hold >= 0.0)
         {
             return bad("ramp must be > 0 and hold >= 0, both finite");
         }
         if !(self.unload.is_finite() && (0.0..1.0).contains(&self.unload)) {
-            return bad("unload must lie in [0, 1) (a fraction of the force)");
+            return bad("unload must lie in [0, 1) (a fraction of the force or approach)");
         }
         count_in("steps", self.steps as u64, 2..=100_000)?;
         // The integration is exact for piecewise-linear displacement at any step, but a
@@ -221,6 +245,7 @@ impl Output for ViscoelasticRough {
                 .collect::<Result<Vec<_>>>()
         })?;
         report::report(self, &lambdas, &runs_3d, &runs_1d, out);
+        radok::report(self, &lambdas, &runs_3d, &runs_1d, out);
         Ok(())
     }
 }

@@ -35,16 +35,25 @@ fn range(v: &[f64]) -> serde_json::Value {
     serde_json::json!([lo, hi])
 }
 
-pub fn report(
+/// The phases' time spans, for figure titles.
+pub(super) fn phases_title(spec: &ViscoelasticRough) -> String {
+    let (r, h) = (spec.ramp, spec.hold_steps() as f64 * spec.dt());
+    format!(
+        "ramp 0-{r}, hold -{}, unload -{}, reload -{}",
+        r + h,
+        2.0 * r + h,
+        3.0 * r + h
+    )
+}
+
+/// The history table's columns and notes (rows added by [`report`]).
+fn history_table(
     spec: &ViscoelasticRough,
     lambdas: &[f64],
-    runs_3d: &[Run],
+    n3: usize,
     runs_1d: &[Vec<Run>],
-    out: &mut Section,
-) {
-    let label = out.label.clone();
-    let history = spec.history();
-    let phases = spec.phases();
+    label: &str,
+) -> Table {
     let mut cols: Vec<String> = [
         "time [time]",
         "phase [0 ramp/1 hold/2 unload/3 reload]",
@@ -56,6 +65,9 @@ pub fn report(
     ]
     .map(String::from)
     .to_vec();
+    if spec.by_approach() {
+        cols[2] = "prescribed approach d/h [1]".into();
+    }
     for l in lambdas {
         cols.push(format!("approach_mrd/h lambda={l:.4} [1]"));
         cols.push(format!("area_mrd lambda={l:.4} [1]"));
@@ -63,22 +75,31 @@ pub fn report(
     }
     let mut t = Table::new(&format!("{label}_history"), &cols);
     t.notes.push(format!(
-        "Section 8: rough punch (H = {}, bandwidth {}, {}^2 cells, {} realisations) on a generalised-Maxwell half-space against MRD lines on viscoelastic springs (Eq. 63; {} lines per lambda); force history ramp/hold/unload to {}/reload; approach from the first contact of the undeformed face over the surface's rms height h; area = contact fraction of the face (3D cells; MRD springs); area_elastic = the elastic contact fraction at the same approach (Radok: equal while the contact does not recede); ci95 = 1.96 s / sqrt(n) over 3D realisations",
+        "Section 8: rough punch (H = {}, bandwidth {}, {}^2 cells, {} realisations) on a generalised-Maxwell half-space against MRD lines on viscoelastic springs (Eq. 63; {} lines per lambda); {} history ramp/hold/unload to {}/reload; approach from the first contact of the undeformed face over the surface's rms height h; area = contact fraction of the face (3D cells; MRD springs); area_elastic = the elastic contact fraction at the same approach (Radok: equal while the contact does not recede); ci95 = 1.96 s / sqrt(n) over 3D realisations",
         spec.hurst,
         spec.bandwidth,
         spec.grid(),
-        runs_3d.len(),
+        n3,
         runs_1d.first().map_or(0, Vec::len),
+        if spec.by_approach() { "approach" } else { "force" },
         spec.unload
     ));
+    t
+}
+
+pub fn report(
+    spec: &ViscoelasticRough,
+    lambdas: &[f64],
+    runs_3d: &[Run],
+    runs_1d: &[Vec<Run>],
+    out: &mut Section,
+) {
+    let label = out.label.clone();
+    let history = spec.history();
+    let phases = spec.phases();
+    let mut t = history_table(spec, lambdas, runs_3d.len(), runs_1d, &label);
     let mut time = 0.0f64;
-    let (r, h) = (spec.ramp, spec.hold_steps() as f64 * spec.dt());
-    let phases_title = format!(
-        "ramp 0-{r}, hold -{}, unload -{}, reload -{}",
-        r + h,
-        2.0 * r + h,
-        3.0 * r + h
-    );
+    let phases_title = phases_title(spec);
     let mut approach = Figure::new(
         &format!("{label}_approach"),
         &format!("Viscoelastic rough punch, approach; {phases_title}"),

@@ -23,6 +23,10 @@ pub struct Point {
     pub area: f64,
     /// The elastic contact fraction at the same approach.
     pub area_elastic: f64,
+    /// f = F / (E_inf h L).
+    pub force: f64,
+    /// The same of the elastic contact at the same approach, modulus E_inf.
+    pub force_elastic: f64,
 }
 
 /// A realisation's history; `unconverged` steps are recorded as failures of the run.
@@ -57,8 +61,9 @@ fn face(spec: &ViscoelasticRough, r: u64) -> Result<(Vec<f64>, Vec<bool>, f64)> 
     Ok((z, mask, rms))
 }
 
-/// Realisation `r` in 3D: force-controlled steps through the history, each beside the
-/// elastic solve at the same approach (its contact set does not depend on the modulus).
+/// Realisation `r` in 3D: steps through the history (force or approach controlled),
+/// each beside the elastic solve at the same approach (its contact set does not depend
+/// on the modulus).
 pub fn run_3d(spec: &ViscoelasticRough, modulus: &Relaxation, r: u64) -> Result<Run> {
     let g = spec.grid();
     let (z, mask, h) = face(spec, r)?;
@@ -73,35 +78,41 @@ pub fn run_3d(spec: &ViscoelasticRough, modulus: &Relaxation, r: u64) -> Result<
         iterations: 0,
     };
     let mut warm: Option<bem3d::Solution> = None;
-    for (dt, f) in spec.history() {
-        let force = f * h * modulus.relaxed;
-        let s = ve
-            .step(dt, Load::Force(force), &opts)
-            .ctx("3D viscoelastic step")?;
-        let area_elastic = if s.approach > 0.0 {
+    for (dt, v) in spec.history() {
+        let load = if spec.by_approach() {
+            Load::Approach(v * h)
+        } else {
+            Load::Force(v * h * modulus.relaxed)
+        };
+        let s = ve.step(dt, load, &opts).ctx("3D viscoelastic step")?;
+        // The elastic solver has unit modulus: its force over h is f at E_inf.
+        let (area_elastic, force_elastic) = if s.approach > 0.0 {
             let e = el
                 .solve(Load::Approach(s.approach), &opts, warm.as_ref())
                 .ctx("3D elastic solve")?;
             run.iterations += e.iterations;
-            let a = e.contact_cells as f64 / domain;
+            let a = (e.contact_cells as f64 / domain, e.force / h);
             warm = Some(e);
             a
         } else {
-            0.0
+            (0.0, 0.0)
         };
         run.iterations += s.solve.as_ref().map_or(0, |x| x.iterations);
         run.points.push(Point {
             approach: s.approach / h,
             area: s.contact_cells as f64 / domain,
             area_elastic,
+            force: s.force / (h * modulus.relaxed),
+            force_elastic,
         });
     }
     Ok(run)
 }
 
 /// MRD line `r` (C1D = lambda q C2D, Eq. 76; length L = 1) through the same history:
-/// the force F = f E_inf h3 L with h3 the surface's rms height, which the line carries
-/// as sqrt(pi / lambda) of its own (approach reported over h3).
+/// the force F = f E_inf h3 L (or the approach d = (d/h) h3) with h3 the surface's rms
+/// height, which the line carries as sqrt(pi / lambda) of its own (approach and force
+/// reported over h3).
 pub fn run_1d(spec: &ViscoelasticRough, modulus: &Prony, lambda: f64, r: u64) -> Result<Run> {
     let n1 = spec.points_1d_per_cell * spec.cells * spec.bandwidth;
     let line = spectrum(spec)?.to_line(lambda);
@@ -116,14 +127,21 @@ pub fn run_1d(spec: &ViscoelasticRough, modulus: &Prony, lambda: f64, r: u64) ->
     let mut row = SpringRow::new(&gaps, dx, modulus).ctx("MRD springs")?;
     let elastic = Foundation::new(&gaps, dx, modulus.relaxed).ctx("MRD springs")?;
     let mut points = Vec::new();
-    for (dt, f) in spec.history() {
-        let force = f * h3 * modulus.relaxed;
-        let s = row.step(dt, RowLoad::Force(force)).ctx("MRD step")?;
+    let unit = h3 * modulus.relaxed;
+    for (dt, v) in spec.history() {
+        let load = if spec.by_approach() {
+            RowLoad::Depth(v * h3)
+        } else {
+            RowLoad::Force(v * unit)
+        };
+        let s = row.step(dt, load).ctx("MRD step")?;
         let e = elastic.at_depth(s.depth.max(0.0)).ctx("MRD elastic")?;
         points.push(Point {
             approach: s.depth / h3,
             area: s.contacts as f64 / n,
             area_elastic: e.contacts as f64 / n,
+            force: s.force / unit,
+            force_elastic: e.force / unit,
         });
     }
     Ok(Run {
