@@ -463,15 +463,18 @@ fn pair_at(s: &LambdaStudy, work: &Path, case: &Case, refc: &Case, n: u64) -> Re
     // Plain means over the shared realisations: the pairing already cancels the noise of
     // the shared modes, which is what the control variates remove from a single case;
     // their regressions and independent control ensembles would only add noise here.
-    // Each side's points are those of its full-sample mean, in every resample too.
+    // Both sides fitted on the same points, those where both full-sample means lie in the
+    // window (so the ratio compares one force range), in every resample too.
     let all: Vec<usize> = (0..a.len()).collect();
-    let (pa, pb) = (
-        window_points(&a.mean(&all, &[]), lo, hi),
-        window_points(&b.mean(&all, &[]), lo, hi),
-    );
+    let pa: Vec<bool> = window_points(&a.mean(&all, &[]), lo, hi)
+        .into_iter()
+        .zip(window_points(&b.mean(&all, &[]), lo, hi))
+        .map(|(x, y)| x && y)
+        .collect();
+    let pb = &pa;
     let ratio = |idx: &[usize]| -> Option<f64> {
         let la = calibrate_lambda_at(&fs, &a.mean(idx, &[]), &m1a, &pa)?;
-        let lb = calibrate_lambda_at(&fs, &b.mean(idx, &[]), &m1b, &pb)?;
+        let lb = calibrate_lambda_at(&fs, &b.mean(idx, &[]), &m1b, pb)?;
         Some(la / lb)
     };
     let mut rng = rng_for(s, case, n, 1);

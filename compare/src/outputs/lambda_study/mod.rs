@@ -20,7 +20,10 @@
 //! point). The residual misfit max and rms |Delta ln k| over that range is what MRD with
 //! the calibrated lambda gets wrong. Intervals: 95 % bootstrap over realisations (200
 //! resamples; paired comparisons resample the realisations the two cases share and use
-//! their plain means, the pairing taking the place of the control variates).
+//! their plain means, the pairing taking the place of the control variates, and fit both
+//! cases on the same f points, where both means lie in the window). A resample is fitted
+//! on the points of the full sample's mean: a resampled mean leaves realisations out and
+//! so reaches further along f, and points chosen afresh would change the quantity.
 //!
 //! Realisations: every case computes `realisations.min`; a case of the main ladder at or
 //! below `calibrate_at` adds batches of `realisations.batch` (up to `realisations.max`)
