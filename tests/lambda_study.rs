@@ -94,6 +94,8 @@ fn the_study_machinery_runs_pairs_and_reproduces() {
             c[6] > 0.0 && c[7] <= c[6] && c[6] <= c[8],
             "lambda in its interval: {c:?}"
         );
+        // lambda on each half of the calibration range's forces.
+        assert!(c[20] > 0.0 && c[21] > 0.0, "lambda on the halves: {c:?}");
     }
     // Pairs: two ladder bandwidths, the extra one, two resolutions, the tolerance, and
     // the largest grid's resolution and tolerance, each against its own bandwidth.

@@ -64,6 +64,9 @@ pub struct CaseResult {
     pub misfit_rms: f64,
     /// The calibration range in f (where the 3D mean lies in the window).
     pub f_range: (f64, f64),
+    /// lambda calibrated on the lower and on the upper half of that range's points: how
+    /// much the calibration depends on the forces it is fitted over.
+    pub lambda_halves: (f64, f64),
     pub mean_3d: Vec<Option<f64>>,
     pub mean_mrd: Vec<Option<f64>>,
     /// Local exponent of the 3D mean with its band, of the MRD mean.
@@ -381,6 +384,11 @@ fn analyse_case(s: &LambdaStudy, work: &Path, case: &Case) -> Result<Option<(Cas
         .map(|(v, b)| v.map(|v| Estimate::of(Some(v), b)))
         .collect();
     let (misfit_max, misfit_rms, f_range) = misfit(s, &m3, &m1, lambda.value);
+    let lambda_halves = halves(&points);
+    let lambda_halves = (
+        calibrate_lambda_at(&fs, &m3, &m1, &lambda_halves.0).unwrap_or(f64::NAN),
+        calibrate_lambda_at(&fs, &m3, &m1, &lambda_halves.1).unwrap_or(f64::NAN),
+    );
     let alpha_mrd = Estimate {
         value: fit_window(&fs, &m1, lo, hi).map_or(f64::NAN, |x| x.0),
         lo: f64::NAN,
@@ -395,6 +403,7 @@ fn analyse_case(s: &LambdaStudy, work: &Path, case: &Case) -> Result<Option<(Cas
         misfit_max,
         misfit_rms,
         f_range,
+        lambda_halves,
         slope_mrd: local_exponent(&fs, &m1),
         mean_mrd: m1,
         slope_3d,
@@ -404,6 +413,25 @@ fn analyse_case(s: &LambdaStudy, work: &Path, case: &Case) -> Result<Option<(Cas
         seconds_3d: data.bem.iter().map(|c| c.seconds).sum(),
     };
     Ok(Some((result, seconds_1d)))
+}
+
+/// The chosen points split in two: the lower half (by f) and the upper half.
+fn halves(points: &[bool]) -> (Vec<bool>, Vec<bool>) {
+    let n = points.iter().filter(|&&p| p).count();
+    let mut seen = 0;
+    let mut lower = vec![false; points.len()];
+    let mut upper = vec![false; points.len()];
+    for (j, &p) in points.iter().enumerate() {
+        if p {
+            if seen < n / 2 {
+                lower[j] = true;
+            } else {
+                upper[j] = true;
+            }
+            seen += 1;
+        }
+    }
+    (lower, upper)
 }
 
 /// The case a paired comparison of `case` refers to, if any.
@@ -514,4 +542,17 @@ pub fn analyse(s: &LambdaStudy, work: &Path) -> Result<Results> {
     }
     res.scatter = super::scatter::scatter(s, work)?;
     Ok(res)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::halves;
+
+    #[test]
+    fn halves_split_the_chosen_points_by_f() {
+        let p = [false, true, true, false, true, true, true, false];
+        let (lo, hi) = halves(&p);
+        assert_eq!(lo, [false, true, true, false, false, false, false, false]);
+        assert_eq!(hi, [false, false, false, false, true, true, true, false]);
+    }
 }

@@ -93,6 +93,8 @@ fn cases_table(s: &LambdaStudy, r: &Results, label: &str) -> Table {
         "f_min [1]",
         "f_max [1]",
         "unconverged_3d_solves [count]",
+        "lambda_lower_half [1]",
+        "lambda_upper_half [1]",
     ]
     .iter()
     .map(|c| c.to_string())
@@ -100,7 +102,7 @@ fn cases_table(s: &LambdaStudy, r: &Results, label: &str) -> Table {
     let mut t = Table::new(&format!("{label}_cases"), &cols);
     t.missing_ok = true;
     t.notes.push(format!(
-        "lambda of Eq. (76) calibrated on 3D circular rough punches (E* = 1, L = 1, nested self-affine surfaces C2D ~ q^(-2H-2), |k| <= bandwidth in units of 2 pi/L, on cells x bandwidth cells a side) against {} MRD lines per H and bandwidth (lambda = pi, {} points per cell); calibration and fits over k/(E* L) in [{}, {}] (f_min..f_max: that range in f = F/(E* h L)); misfit = |ln k3 - ln k1(lambda)| over it; 95 % bootstrap intervals over 3D realisations (200 resamples); role 0 = main ladder (realisations added until the interval meets the target), 1 = bandwidth above calibrate_at = {} (paired check), 2 = resolution check, 3 = tolerance check",
+        "lambda of Eq. (76) calibrated on 3D circular rough punches (E* = 1, L = 1, nested self-affine surfaces C2D ~ q^(-2H-2), |k| <= bandwidth in units of 2 pi/L, on cells x bandwidth cells a side) against {} MRD lines per H and bandwidth (lambda = pi, {} points per cell); calibration and fits over k/(E* L) in [{}, {}] (f_min..f_max: that range in f = F/(E* h L)); misfit = |ln k3 - ln k1(lambda)| over it; 95 % bootstrap intervals over 3D realisations (200 resamples); role 0 = main ladder (realisations added until the interval meets the target), 1 = bandwidth above calibrate_at = {} (paired check), 2 = resolution check, 3 = tolerance check; lambda_lower_half, lambda_upper_half: lambda calibrated on the lower and upper half of the range's points (its dependence on the forces fitted)",
         s.realisations_1d, s.points_1d_per_cell, s.window[0], s.window[1], s.calibrate_at
     ));
     for c in &r.cases {
@@ -123,6 +125,8 @@ fn cases_table(s: &LambdaStudy, r: &Results, label: &str) -> Table {
             c.f_range.0,
             c.f_range.1,
             c.unconverged as f64,
+            c.lambda_halves.0,
+            c.lambda_halves.1,
         ]);
         t.push(row.into_iter().map(finite_or_nan).collect());
     }
@@ -234,6 +238,27 @@ fn calibrated_csv(s: &LambdaStudy, r: &Results) -> String {
         r.seconds_3d / 3600.0,
         r.seconds_mrd / 3600.0
     ));
+    // How lambda depends on the forces it is fitted over.
+    for h in &s.hurst {
+        if let Some(c) = main_case(s, r, *h) {
+            text.push_str(&format!(
+                "# H = {h}: lambda fitted on the lower / upper half of the range's forces = {:.3} / {:.3}\n",
+                c.lambda_halves.0, c.lambda_halves.1
+            ));
+        }
+    }
+    // How lambda moves above calibrate_at: the paired ratios of the main ladder.
+    for p in r.pairs.iter().filter(|p| {
+        p.reference.band == s.calibrate_at
+            && p.case.band > s.calibrate_at
+            && p.case.cells == s.cells
+            && p.case.tolerance == s.tolerance
+    }) {
+        text.push_str(&format!(
+            "# H = {}: lambda at bandwidth {} / lambda here = {:.3} [{:.3}, {:.3}] (95 %, {} paired realisations)\n",
+            p.case.hurst, p.case.band, p.ratio.value, p.ratio.lo, p.ratio.hi, p.realisations
+        ));
+    }
     text.push_str("hurst,lambda,lambda_lo95,lambda_hi95,misfit_max,misfit_rms,bandwidth,realisations_3d,cells_per_min_wavelength\n");
     for h in &s.hurst {
         if let Some(c) = main_case(s, r, *h) {
