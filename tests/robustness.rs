@@ -544,6 +544,21 @@ fn viscoelastic_rough_refuses_bad_values() {
                 .replace("f64::NAN", "nan"),
             "modulus",
         ),
+        // Force and approach both, neither, or a bad approach.
+        (
+            format!("{vr}approach = 1.0\nsteps = 10\nmodulus = {{ relaxed = 1.0, terms = [[4.0, 0.5]] }}\n"),
+            "give either force",
+        ),
+        (
+            format!("{vr}steps = 10\nmodulus = {{ relaxed = 1.0, terms = [[4.0, 0.5]] }}\n")
+                .replace("force = 0.05\n", ""),
+            "give either force",
+        ),
+        (
+            format!("{vr}steps = 10\nmodulus = {{ relaxed = 1.0, terms = [[4.0, 0.5]] }}\n")
+                .replace("force = 0.05", "approach = -1.0"),
+            "force or approach must be finite and > 0",
+        ),
     ] {
         let scene = tmp.path().join("b.toml");
         std::fs::write(&scene, format!("{head}{body}")).unwrap();
