@@ -285,7 +285,7 @@ fn calibrated_csv(s: &LambdaStudy, r: &Results) -> String {
 fn against_bandwidth(s: &LambdaStudy, r: &Results, label: &str, what: &str) -> Figure {
     let (title, y) = if what == "lambda" {
         (
-            "lambda(H) of Eq. (76) against bandwidth (95 % bootstrap intervals)",
+            "lambda (Eq. 76) vs bandwidth, each fitted on its own force range (95 %)",
             "lambda [1]",
         )
     } else {
@@ -363,7 +363,7 @@ fn against_bandwidth(s: &LambdaStudy, r: &Results, label: &str, what: &str) -> F
         let with_data: Vec<f64> = r
             .cases
             .iter()
-            .filter(|c| c.case.role == Role::Ladder)
+            .filter(|c| matches!(c.case.role, Role::Ladder | Role::Above))
             .map(|c| c.case.band as f64)
             .collect();
         let bands: Vec<f64> = if with_data.is_empty() {
