@@ -384,10 +384,10 @@ fn analyse_case(s: &LambdaStudy, work: &Path, case: &Case) -> Result<Option<(Cas
         .map(|(v, b)| v.map(|v| Estimate::of(Some(v), b)))
         .collect();
     let (misfit_max, misfit_rms, f_range) = misfit(s, &m3, &m1, lambda.value);
-    let lambda_halves = halves(&points);
+    let (lower, upper) = halves(&points);
     let lambda_halves = (
-        calibrate_lambda_at(&fs, &m3, &m1, &lambda_halves.0).unwrap_or(f64::NAN),
-        calibrate_lambda_at(&fs, &m3, &m1, &lambda_halves.1).unwrap_or(f64::NAN),
+        calibrate_lambda_at(&fs, &m3, &m1, &lower).unwrap_or(f64::NAN),
+        calibrate_lambda_at(&fs, &m3, &m1, &upper).unwrap_or(f64::NAN),
     );
     let alpha_mrd = Estimate {
         value: fit_window(&fs, &m1, lo, hi).map_or(f64::NAN, |x| x.0),
@@ -494,15 +494,14 @@ fn pair_at(s: &LambdaStudy, work: &Path, case: &Case, refc: &Case, n: u64) -> Re
     // Both sides fitted on the same points, those where both full-sample means lie in the
     // window (so the ratio compares one force range), in every resample too.
     let all: Vec<usize> = (0..a.len()).collect();
-    let pa: Vec<bool> = window_points(&a.mean(&all, &[]), lo, hi)
+    let points: Vec<bool> = window_points(&a.mean(&all, &[]), lo, hi)
         .into_iter()
         .zip(window_points(&b.mean(&all, &[]), lo, hi))
         .map(|(x, y)| x && y)
         .collect();
-    let pb = &pa;
     let ratio = |idx: &[usize]| -> Option<f64> {
-        let la = calibrate_lambda_at(&fs, &a.mean(idx, &[]), &m1a, &pa)?;
-        let lb = calibrate_lambda_at(&fs, &b.mean(idx, &[]), &m1b, pb)?;
+        let la = calibrate_lambda_at(&fs, &a.mean(idx, &[]), &m1a, &points)?;
+        let lb = calibrate_lambda_at(&fs, &b.mean(idx, &[]), &m1b, &points)?;
         Some(la / lb)
     };
     let mut rng = rng_for(s, case, n, 1);
