@@ -169,12 +169,14 @@ pub fn report(
         .push(Series::new("3D", r3, Style::Crosses).colored(0));
     for (li, &l) in lambdas.iter().enumerate() {
         let name = format!("MRD, lambda = {l:.3}");
+        // Later lambdas dashed, so that a curve lying on the first stays visible.
+        let style = if li == 0 { Style::Line } else { Style::Dashed };
         approach
             .series
-            .push(Series::new(name.clone(), a1[li].clone(), Style::Line).colored(li + 1));
+            .push(Series::new(name.clone(), a1[li].clone(), style).colored(li + 1));
         radok
             .series
-            .push(Series::new(name, r1[li].clone(), Style::Line).colored(li + 1));
+            .push(Series::new(name, r1[li].clone(), style).colored(li + 1));
     }
     let t_end = time;
     radok.series.push(
