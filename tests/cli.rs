@@ -776,6 +776,46 @@ fn bench_large_reports_converged_cases_and_their_memory() {
     }
 }
 
+/// `mrdw bench viscoelastic --max-n 128`: the equal-error table has its three rows, and
+/// with the calibrated lambda MRD's mean approach after the hold lies inside the 3D
+/// interval (deterministic numbers; the times are not checked).
+#[test]
+fn bench_viscoelastic_states_the_speed_up_at_equal_error() {
+    let o = mrdw(&["bench", "viscoelastic", "--max-n", "128"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout);
+    let row = |name: &str| -> Vec<String> {
+        text.lines()
+            .find(|l| l.trim_start().starts_with(name))
+            .unwrap_or_else(|| panic!("no row {name}: {text}"))
+            .split('|')
+            .map(|c| c.trim().to_string())
+            .collect()
+    };
+    let (d3, pi, cal) = (
+        row("3D"),
+        row("MRD, lambda = 3.142"),
+        row("MRD, lambda = 4.7"),
+    );
+    let mean: f64 = d3[1].parse().unwrap();
+    assert!(mean > 0.0 && mean.is_finite(), "{text}");
+    // "0 (+/- 9.9 %)": the 3D mean's 95 % half-width in per cent.
+    let ci: f64 = d3[4]
+        .trim_start_matches("0 (+/- ")
+        .trim_end_matches(" %)")
+        .parse()
+        .unwrap();
+    let offset = |r: &[String]| -> f64 { r[4].trim_end_matches(" %").parse().unwrap() };
+    assert!(offset(&cal).abs() < ci, "{text}");
+    assert!(
+        offset(&pi) < offset(&cal),
+        "lambda = pi gives a shorter approach: {text}"
+    );
+    for r in [&pi, &cal] {
+        assert!(r[5].parse::<f64>().unwrap() > 0.0, "{text}");
+    }
+}
+
 /// `mrdw bench report --quick`: the report folder is complete and the orders of
 /// convergence it fits from its ladders are the known ones (never timings).
 #[test]
