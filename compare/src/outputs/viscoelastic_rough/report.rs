@@ -102,7 +102,14 @@ pub fn report(
     let phases_title = phases_title(spec);
     let mut approach = Figure::new(
         &format!("{label}_approach"),
-        &format!("Viscoelastic rough punch, approach; {phases_title}"),
+        &format!(
+            "Viscoelastic rough punch, approach{}; {phases_title}",
+            if spec.by_approach() {
+                " (prescribed)"
+            } else {
+                ""
+            }
+        ),
         "time [time]",
         "approach / rms height [1]",
     );
