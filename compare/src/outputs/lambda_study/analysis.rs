@@ -67,6 +67,9 @@ pub struct CaseResult {
     /// lambda calibrated on the lower and on the upper half of that range's points: how
     /// much the calibration depends on the forces it is fitted over.
     pub lambda_halves: (f64, f64),
+    /// alpha_3D and alpha_MRD fitted on the same two halves (3D lower, 3D upper, MRD
+    /// lower, MRD upper): the window-dependence of Eq. (77)'s exponent.
+    pub alpha_halves: [f64; 4],
     pub mean_3d: Vec<Option<f64>>,
     pub mean_mrd: Vec<Option<f64>>,
     /// Local exponent of the 3D mean with its band, of the MRD mean.
@@ -389,6 +392,13 @@ fn analyse_case(s: &LambdaStudy, work: &Path, case: &Case) -> Result<Option<(Cas
         calibrate_lambda_at(&fs, &m3, &m1, &lower).unwrap_or(f64::NAN),
         calibrate_lambda_at(&fs, &m3, &m1, &upper).unwrap_or(f64::NAN),
     );
+    let alpha = |k: &[Option<f64>], p: &[bool]| fit_points(&fs, k, p).map_or(f64::NAN, |x| x.0);
+    let alpha_halves = [
+        alpha(&m3, &lower),
+        alpha(&m3, &upper),
+        alpha(&m1, &lower),
+        alpha(&m1, &upper),
+    ];
     let alpha_mrd = Estimate {
         value: fit_window(&fs, &m1, lo, hi).map_or(f64::NAN, |x| x.0),
         lo: f64::NAN,
@@ -404,6 +414,7 @@ fn analyse_case(s: &LambdaStudy, work: &Path, case: &Case) -> Result<Option<(Cas
         misfit_rms,
         f_range,
         lambda_halves,
+        alpha_halves,
         slope_mrd: local_exponent(&fs, &m1),
         mean_mrd: m1,
         slope_3d,

@@ -95,6 +95,10 @@ fn cases_table(s: &LambdaStudy, r: &Results, label: &str) -> Table {
         "unconverged_3d_solves [count]",
         "lambda_lower_half [1]",
         "lambda_upper_half [1]",
+        "alpha_3d_lower_half [1]",
+        "alpha_3d_upper_half [1]",
+        "alpha_mrd_lower_half [1]",
+        "alpha_mrd_upper_half [1]",
     ]
     .iter()
     .map(|c| c.to_string())
@@ -102,7 +106,7 @@ fn cases_table(s: &LambdaStudy, r: &Results, label: &str) -> Table {
     let mut t = Table::new(&format!("{label}_cases"), &cols);
     t.missing_ok = true;
     t.notes.push(format!(
-        "lambda of Eq. (76) calibrated on 3D circular rough punches (E* = 1, L = 1, nested self-affine surfaces C2D ~ q^(-2H-2), |k| <= bandwidth in units of 2 pi/L, on cells x bandwidth cells a side) against {} MRD lines per H and bandwidth (lambda = pi, {} points per cell); calibration and fits over k/(E* L) in [{}, {}] (f_min..f_max: that range in f = F/(E* h L)); misfit = |ln k3 - ln k1(lambda)| over it; 95 % bootstrap intervals over 3D realisations (200 resamples); role 0 = main ladder (realisations added until the interval meets the target), 1 = bandwidth above calibrate_at = {} (paired check), 2 = resolution check, 3 = tolerance check; lambda_lower_half, lambda_upper_half: lambda calibrated on the lower and upper half of the range's points (its dependence on the forces fitted)",
+        "lambda of Eq. (76) calibrated on 3D circular rough punches (E* = 1, L = 1, nested self-affine surfaces C2D ~ q^(-2H-2), |k| <= bandwidth in units of 2 pi/L, on cells x bandwidth cells a side) against {} MRD lines per H and bandwidth (lambda = pi, {} points per cell); calibration and fits over k/(E* L) in [{}, {}] (f_min..f_max: that range in f = F/(E* h L)); misfit = |ln k3 - ln k1(lambda)| over it; 95 % bootstrap intervals over 3D realisations (200 resamples); role 0 = main ladder (realisations added until the interval meets the target), 1 = bandwidth above calibrate_at = {} (paired check), 2 = resolution check, 3 = tolerance check; lambda_lower_half, lambda_upper_half: lambda calibrated on the lower and upper half of the range's points (its dependence on the forces fitted); alpha_*_half: Eq. (77)'s exponent fitted on the same halves (3D and MRD at the same f)",
         s.realisations_1d, s.points_1d_per_cell, s.window[0], s.window[1], s.calibrate_at
     ));
     for c in &r.cases {
@@ -128,6 +132,7 @@ fn cases_table(s: &LambdaStudy, r: &Results, label: &str) -> Table {
             c.lambda_halves.0,
             c.lambda_halves.1,
         ]);
+        row.extend(c.alpha_halves);
         t.push(row.into_iter().map(finite_or_nan).collect());
     }
     t
