@@ -97,7 +97,10 @@ fn the_study_machinery_runs_pairs_and_reproduces() {
         // lambda on each half of the calibration range's forces.
         assert!(c[20] > 0.0 && c[21] > 0.0, "lambda on the halves: {c:?}");
         // alpha (3D, MRD) on the same halves.
-        assert!(c[22..26].iter().all(|&a| a > 0.0 && a < 2.0), "alpha on the halves: {c:?}");
+        assert!(
+            c[22..26].iter().all(|&a| a > 0.0 && a < 2.0),
+            "alpha on the halves: {c:?}"
+        );
     }
     // Pairs: two ladder bandwidths, the extra one, two resolutions, the tolerance, and
     // the largest grid's resolution and tolerance, each against its own bandwidth.
