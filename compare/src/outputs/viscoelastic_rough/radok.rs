@@ -6,6 +6,7 @@
 //! F / F_Radok = 1 to the solver tolerance; on unloading the material lags behind the
 //! punch (Ting's problem) and the ratio leaves 1.
 
+use super::report::range;
 use super::runs::Run;
 use super::{ViscoelasticRough, PHASES};
 use crate::report::{Figure, Section, Series, Style, Table};
@@ -65,16 +66,6 @@ fn side(spec: &ViscoelasticRough, runs: &[Run]) -> Side {
         elastic,
         radok,
     }
-}
-
-/// [min, max] of `v`, or an empty list.
-fn range(v: &[f64]) -> serde_json::Value {
-    if v.is_empty() {
-        return serde_json::json!([]);
-    }
-    let lo = v.iter().cloned().fold(f64::INFINITY, f64::min);
-    let hi = v.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
-    serde_json::json!([lo, hi])
 }
 
 /// The force table, F / F_Radok per side (figure `_radok_force`), under approach

@@ -26,7 +26,7 @@ fn means(runs: &[Run], j: usize) -> (f64, f64, f64, f64) {
 }
 
 /// [min, max] of `v`, or an empty list.
-fn range(v: &[f64]) -> serde_json::Value {
+pub(super) fn range(v: &[f64]) -> serde_json::Value {
     if v.is_empty() {
         return serde_json::json!([]);
     }
