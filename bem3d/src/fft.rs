@@ -20,6 +20,11 @@
 //! The transform computes in double (`Fft2<f64>`, the default) or single precision
 //! (`Fft2<f32>`, for the solver's preconditioner); inputs and outputs are f64 either
 //! way, converted row by row while in cache.
+//!
+//! A symbol even in ky (every column's row r equal to row ny - r, bit for bit: any
+//! function of |k|) can be stored by its rows `0..=ny/2` per column ([`halve_if_even`]),
+//! half the memory; the column pass reads the other rows from their mirror, so the
+//! products and the results are the same bit for bit.
 
 use rayon::prelude::*;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
@@ -30,7 +35,7 @@ use std::ops::MulAssign;
 use std::sync::Arc;
 
 /// The precision a transform computes in (f64 or f32); rows arrive and leave as f64.
-pub trait FftFloat: FftNum + Default + NumAssign + bytemuck::Zeroable {
+pub trait FftFloat: FftNum + Default + NumAssign + bytemuck::Pod {
     fn of_f64(x: f64) -> Self;
     fn to_f64(self) -> f64;
     /// `src` as a row of this type: `src` itself for f64, converted into `buf` else.
@@ -100,8 +105,11 @@ pub struct Fft2<T: FftFloat = f64> {
     c2r: Arc<dyn ComplexToReal<T>>,
     fwd_y: Arc<dyn Fft<T>>,
     inv_y: Arc<dyn Fft<T>>,
-    /// Row spectra, `ny x nc`; rows marked in `zero_rows` are not written.
-    rows: Vec<Complex<T>>,
+    /// Row spectra, `ny x nc` values of `Complex<T>` ([`rows_of`]), in a buffer of f64
+    /// pairs (aligned for either precision; longer when lent by a bigger transform;
+    /// empty while lent out, [`Fft2::borrow_rows_from`]); rows marked in `zero_rows`
+    /// are not written.
+    rows: Vec<Complex<f64>>,
     /// Per row of `rows`: whether the loaded row was zero (its spectrum is `zero_row`).
     zero_rows: Vec<bool>,
     /// `nc` zeros: the spectrum of a zero row.
@@ -244,9 +252,106 @@ impl<T> SharedRows<T> {
 /// What a column pass does to each block after the forward transform: with a symbol,
 /// weigh (`<x, s * x>`) and, with `back`, multiply and transform back.
 struct ColumnWork<'a, S, W> {
-    symbol: Option<&'a [S]>,
+    symbol: Option<SymbolColumns<'a, S>>,
     weigh: Option<&'a W>,
     back: bool,
+}
+
+/// Rows stored per column of a symbol even in ky: `0..=ny/2`.
+pub fn even_rows(ny: usize) -> usize {
+    ny / 2 + 1
+}
+
+/// `symbol` (`nc` columns of `ny` values, the spectrum's layout) by its rows `0..=ny/2`
+/// per column if every column is even in ky bit for bit (row r equal to row ny - r),
+/// else unchanged: the form a column pass reads with the least memory.
+pub fn halve_if_even(symbol: Vec<f64>, ny: usize) -> Vec<f64> {
+    let half = even_rows(ny);
+    let even = |col: &[f64]| (1..ny).all(|r| col[r].to_bits() == col[ny - r].to_bits());
+    if half >= ny || !symbol.par_chunks(ny).all(even) {
+        return symbol;
+    }
+    symbol
+        .par_chunks(ny)
+        .flat_map_iter(|col| col[..half].iter().copied())
+        .collect()
+}
+
+/// A symbol of `nc` columns of `ny` rows in its full form (`nc x ny`), whether stored
+/// full or by its even half ([`halve_if_even`]).
+pub fn full_symbol(symbol: &[f64], nc: usize, ny: usize) -> Vec<f64> {
+    let columns = SymbolColumns::new(symbol, nc, ny);
+    let mut full = vec![0.0; nc * ny];
+    full.par_chunks_mut(ny)
+        .enumerate()
+        .for_each_init(Vec::new, |buf, (c, col)| {
+            col.copy_from_slice(columns.column(c, buf))
+        });
+    full
+}
+
+/// A symbol's columns as a column pass reads them: `ny` rows each, stored in full or
+/// by rows `0..=ny/2` of a symbol even in ky.
+#[derive(Clone, Copy)]
+struct SymbolColumns<'a, S> {
+    values: &'a [S],
+    ny: usize,
+    /// Rows stored per column: `ny`, or `ny/2 + 1`.
+    stored: usize,
+}
+
+impl<'a, S: Copy> SymbolColumns<'a, S> {
+    /// The `nc` columns of `values`, full or even-half by its length.
+    fn new(values: &'a [S], nc: usize, ny: usize) -> Self {
+        let half = even_rows(ny);
+        let stored = if values.len() == nc * ny {
+            ny
+        } else {
+            assert_eq!(
+                values.len(),
+                nc * half,
+                "symbol length against the spectrum's (nx/2 + 1) * ny or its even half"
+            );
+            half
+        };
+        Self { values, ny, stored }
+    }
+
+    /// Column `c`'s `ny` values: the stored column, or `buf` filled from the stored half
+    /// (rows past ny/2 from their mirror).
+    fn column<'b>(&self, c: usize, buf: &'b mut Vec<S>) -> &'b [S]
+    where
+        'a: 'b,
+    {
+        let col = &self.values[c * self.stored..(c + 1) * self.stored];
+        if self.stored == self.ny {
+            return col;
+        }
+        buf.clear();
+        buf.extend_from_slice(col);
+        buf.extend(col[1..=self.ny - self.stored].iter().rev());
+        buf
+    }
+}
+
+/// Length of a row buffer ([`Fft2`]'s `rows`, f64 pairs) that holds `values` complex
+/// values of precision `T`.
+fn buffer_len<T: FftFloat>(values: usize) -> usize {
+    (values * std::mem::size_of::<Complex<T>>()).div_ceil(std::mem::size_of::<Complex<f64>>())
+}
+
+/// The first `len` values of a row buffer as `Complex<T>`.
+fn rows_of<T: FftFloat>(buffer: &[Complex<f64>], len: usize) -> &[Complex<T>] {
+    let all: &[Complex<T>] = bytemuck::cast_slice(buffer);
+    assert!(all.len() >= len, "the transform's row buffer is lent out");
+    &all[..len]
+}
+
+/// [`rows_of`], mutable.
+fn rows_of_mut<T: FftFloat>(buffer: &mut [Complex<f64>], len: usize) -> &mut [Complex<T>] {
+    let all: &mut [Complex<T>] = bytemuck::cast_slice_mut(buffer);
+    assert!(all.len() >= len, "the transform's row buffer is lent out");
+    &mut all[..len]
 }
 
 /// Target size of a column block in complex values (256 KiB: in a core's L2 cache).
@@ -254,6 +359,11 @@ const COLUMN_BLOCK: usize = 16_384;
 
 impl<T: FftFloat> Fft2<T> {
     pub fn new(nx: usize, ny: usize) -> Self {
+        Self::new_sized(nx, ny, buffer_len::<T>(ny * (nx / 2 + 1)))
+    }
+
+    /// A transform with a zeroed row buffer of `buffer` f64 pairs.
+    fn new_sized(nx: usize, ny: usize, buffer: usize) -> Self {
         let mut rp = RealFftPlanner::<T>::new();
         let mut cp = FftPlanner::<T>::new();
         let nc = nx / 2 + 1;
@@ -265,13 +375,47 @@ impl<T: FftFloat> Fft2<T> {
             c2r: rp.plan_fft_inverse(nx),
             fwd_y: cp.plan_fft_forward(ny),
             inv_y: cp.plan_fft_inverse(ny),
-            rows: zeroed(ny * nc),
+            rows: zeroed(buffer),
             zero_rows: vec![false; ny],
             zero_row: vec![Complex::default(); nc],
             work: Vec::new(),
             loaded: None,
             convolved: None,
         }
+    }
+
+    /// [`Fft2::new`] without a row buffer of its own: it borrows one
+    /// ([`Fft2::borrow_rows_from`]) before each use.
+    pub fn without_rows(nx: usize, ny: usize) -> Self {
+        let mut f = Self::new_sized(nx, ny, 0);
+        f.rows = Vec::new();
+        f
+    }
+
+    /// Whether this transform holds a row buffer large enough for its grid.
+    fn holds_rows(&self) -> bool {
+        self.rows.len() >= buffer_len::<T>(self.ny * self.nc)
+    }
+
+    /// Takes `other`'s row buffer unless this transform holds one (or `other` none:
+    /// then nothing changes, and a transform without a buffer panics when used): for an
+    /// operator's transforms that never need a convolution of both at the same time
+    /// (K's and the preconditioner's, in either precision), one grid-sized buffer
+    /// instead of one each. Rows `other` had loaded or convolved are abandoned: finishing
+    /// them later panics ("without load_rows") instead of reading this transform's
+    /// values. Results are the same bit for bit: every value a pass reads was written by
+    /// the same convolution. Panics if `other`'s buffer is too small for this grid.
+    pub fn borrow_rows_from<U: FftFloat>(&mut self, other: &mut Fft2<U>) {
+        if self.holds_rows() || other.rows.is_empty() {
+            return;
+        }
+        assert!(
+            other.rows.len() >= buffer_len::<T>(self.ny * self.nc),
+            "a row buffer too small for the borrowing transform"
+        );
+        other.loaded = None;
+        other.convolved = None;
+        self.rows = std::mem::take(&mut other.rows);
     }
 
     /// Length of the transposed spectrum, `(nx/2 + 1) * ny`.
@@ -390,7 +534,7 @@ impl<T: FftFloat> Fft2<T> {
             "one item per row chunk"
         );
         let r2c = &self.r2c;
-        self.rows[..rows * nc]
+        rows_of_mut::<T>(&mut self.rows, rows * nc)
             .par_chunks_mut(nc * ROW_CHUNK)
             .zip(self.zero_rows[..rows].par_chunks_mut(ROW_CHUNK))
             .zip(items)
@@ -520,7 +664,7 @@ impl<T: FftFloat> Fft2<T> {
             .convolved
             .take()
             .expect("store_rows without convolve_columns");
-        let spec = Spectrum::Rows(&self.rows);
+        let spec = Spectrum::Rows(rows_of(&self.rows, self.ny * self.nc));
         self.row_pass_inverse(spec, width, rows, items, store, wanted)
     }
 
@@ -535,11 +679,7 @@ impl<T: FftFloat> Fft2<T> {
         Complex<T>: MulAssign<S>,
     {
         let (width, rows) = self.loaded.take().expect("column step without load_rows");
-        assert_eq!(
-            symbol.len(),
-            self.spectrum_len(),
-            "symbol length against the spectrum's (nx/2 + 1) * ny"
-        );
+        let symbol = SymbolColumns::new(symbol, self.nc, self.ny);
         let energy = self.column_pass_in_place(rows, symbol, weigh, back);
         if back {
             self.convolved = Some((width, rows));
@@ -573,7 +713,7 @@ impl<T: FftFloat> Fft2<T> {
             []
         });
         self.loaded = None;
-        let (low, high) = self.rows.split_at_mut(half * nc);
+        let (low, high) = rows_of_mut::<T>(&mut self.rows, ny * nc).split_at_mut(half * nc);
         let (low_zero, high_zero) = self.zero_rows.split_at_mut(half);
         high[..(ny - half) * nc]
             .par_chunks_mut(nc)
@@ -589,18 +729,18 @@ impl<T: FftFloat> Fft2<T> {
         work
     }
 
-    /// [`Self::inverse`] of the real spectrum `symbol` (`nc x ny` values, zero
-    /// imaginary parts) into `output`: a kernel's real-space table.
+    /// [`Self::inverse`] of the real spectrum `symbol` (`nc x ny` values or their even
+    /// half, zero imaginary parts) into `output`: a kernel's real-space table.
     pub fn inverse_of_real(&mut self, symbol: &[f64], output: &mut [f64]) {
-        assert_eq!(
-            symbol.len(),
-            self.spectrum_len(),
-            "one value per spectrum bin"
-        );
+        let columns = SymbolColumns::new(symbol, self.nc, self.ny);
         let mut work = self.take_work();
-        work.par_iter_mut()
-            .zip(symbol.par_iter())
-            .for_each(|(w, &s)| *w = Complex::new(T::of_f64(s), T::default()));
+        work.par_chunks_mut(self.ny)
+            .enumerate()
+            .for_each_init(Vec::new, |buf, (c, col)| {
+                for (w, &s) in col.iter_mut().zip(columns.column(c, buf)) {
+                    *w = Complex::new(T::of_f64(s), T::default());
+                }
+            });
         self.inverse(&mut work, output);
     }
 
@@ -618,7 +758,7 @@ impl<T: FftFloat> Fft2<T> {
         &self,
         spec: &mut [Complex<T>],
         filled: usize,
-        symbol: Option<&[S]>,
+        symbol: Option<SymbolColumns<'_, S>>,
         weigh: Option<W>,
         back: bool,
     ) -> f64
@@ -628,7 +768,7 @@ impl<T: FftFloat> Fft2<T> {
         Complex<T>: MulAssign<S>,
     {
         let (ny, nc, per) = (self.ny, self.nc, self.columns_per_block());
-        let src = &self.rows;
+        let src = rows_of::<T>(&self.rows, ny * nc);
         let parts: Vec<f64> = spec
             .par_chunks_mut(ny * per)
             .enumerate()
@@ -659,7 +799,7 @@ impl<T: FftFloat> Fft2<T> {
     fn column_pass_in_place<S, W>(
         &mut self,
         filled: usize,
-        symbol: &[S],
+        symbol: SymbolColumns<'_, S>,
         weigh: Option<W>,
         back: bool,
     ) -> f64
@@ -669,7 +809,8 @@ impl<T: FftFloat> Fft2<T> {
         Complex<T>: MulAssign<S>,
     {
         let (ny, nc, per) = (self.ny, self.nc, self.columns_per_block());
-        let rows = SharedRows(self.rows.as_mut_ptr(), self.rows.len());
+        let view = rows_of_mut::<T>(&mut self.rows, ny * nc);
+        let rows = SharedRows(view.as_mut_ptr(), view.len());
         let this = &*self;
         let parts: Vec<f64> = (0..nc.div_ceil(per))
             .into_par_iter()
@@ -762,16 +903,21 @@ impl<T: FftFloat> Fft2<T> {
         self.fwd_y.process_with_scratch(block, scratch);
         let mut energy = 0.0;
         if let Some(s) = to.symbol {
-            if let Some(weigh) = to.weigh {
-                for (c, col) in block.chunks(ny).enumerate() {
-                    let e = weighed_energy(col, &s[(c0 + c) * ny..], weigh);
+            // Each column's energy before its product (the same values either way).
+            let mut buf = Vec::new();
+            for (c, col) in block.chunks_mut(ny).enumerate() {
+                let k = s.column(c0 + c, &mut buf);
+                if let Some(weigh) = to.weigh {
+                    let e = weighed_energy(col, k, weigh);
                     energy += if twice(c0 + c) { 2.0 * e } else { e };
+                }
+                if to.back {
+                    for (v, k) in col.iter_mut().zip(k) {
+                        *v *= *k;
+                    }
                 }
             }
             if to.back {
-                for (v, k) in block.iter_mut().zip(&s[c0 * ny..]) {
-                    *v *= *k;
-                }
                 self.inv_y.process_with_scratch(block, scratch);
             }
         }
@@ -1081,6 +1227,55 @@ mod tests {
             );
             f.convolve(&x, (w, rows), &symbol, &mut got);
             assert_eq!(got, expected, "{nx}x{ny} after the energy alone");
+        }
+    }
+
+    #[test]
+    fn a_symbol_even_in_ky_stored_by_half_gives_the_same_bits() {
+        // A symbol of |ky| (and kx): even bit for bit, halved; one that is not even
+        // stays full. Convolutions, energies and the real-space table of the halved
+        // symbol equal the full symbol's bit for bit, in both precisions, odd and even
+        // sizes, padded and cropped.
+        for &(nx, ny, w, rows) in &[
+            (8usize, 6usize, 8usize, 6usize),
+            (7, 5, 7, 5),
+            (9, 12, 9, 12),
+            (64, 48, 40, 30),
+        ] {
+            let nc = nx / 2 + 1;
+            let full: Vec<f64> = (0..nc * ny)
+                .map(|b| {
+                    let (c, r) = (b / ny, (b % ny) as f64);
+                    1.0 + c as f64 / 3.0 + (r.min(ny as f64 - r)).sqrt()
+                })
+                .collect();
+            let half = halve_if_even(full.clone(), ny);
+            assert_eq!(half.len(), nc * even_rows(ny), "{nx}x{ny}");
+            assert_eq!(full_symbol(&half, nc, ny), full);
+            let mut odd = full.clone();
+            odd[1] += 1.0;
+            assert_eq!(halve_if_even(odd.clone(), ny), odd, "not even: kept");
+            let x = ramp(w * rows);
+            let chunk = w * ROWS_PER_CHUNK;
+            let mut f = Fft2::<f64>::new(nx, ny);
+            let (mut a, mut b) = (vec![0.0; w * rows], vec![0.0; w * rows]);
+            f.convolve(&x, (w, rows), &full, &mut a);
+            f.convolve(&x, (w, rows), &half, &mut b);
+            assert_eq!(a, b, "{nx}x{ny}");
+            f.load_rows((w, rows), x.par_chunks(chunk), copy_in);
+            let e_full = f.column_energy(&full);
+            f.load_rows((w, rows), x.par_chunks(chunk), copy_in);
+            assert_eq!(f.column_energy(&half).to_bits(), e_full.to_bits());
+            let mut single = Fft2::<f32>::new(nx, ny);
+            let full32: Vec<f32> = full.iter().map(|&v| v as f32).collect();
+            let half32: Vec<f32> = half.iter().map(|&v| v as f32).collect();
+            single.convolve(&x, (w, rows), &full32, &mut a);
+            single.convolve(&x, (w, rows), &half32, &mut b);
+            assert_eq!(a, b, "{nx}x{ny} f32");
+            let (mut ta, mut tb) = (vec![0.0; nx * ny], vec![0.0; nx * ny]);
+            f.inverse_of_real(&full, &mut ta);
+            f.inverse_of_real(&half, &mut tb);
+            assert_eq!(ta, tb, "{nx}x{ny} table");
         }
     }
 

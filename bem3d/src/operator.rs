@@ -6,7 +6,7 @@
 //! `hy = ly/ny`; pressures are cell averages, displacements are taken at cell centres.
 
 use crate::error::{BemError, Result};
-use crate::fft::Fft2;
+use crate::fft::{full_symbol, halve_if_even, Fft2};
 pub use crate::love::love_coefficient;
 use crate::love::FarField;
 use crate::stencil::Stencil;
@@ -142,6 +142,9 @@ pub enum Precision {
 
 /// A preconditioner M: a real symbol (a surface stiffness) with its own transform; in
 /// single precision also K's symbol on the same grid, if K lives there (else empty).
+/// Symbols even in ky are kept by their even half ([`halve_if_even`]). Its transform has
+/// no row buffer of its own: it borrows K's ([`Fft2::borrow_rows_from`]; the solver
+/// never holds a convolution of K and one of M at the same time).
 enum Stiffness {
     Single(Fft2<f32>, Vec<f32>, Vec<f32>),
     Double(Fft2<f64>, Vec<f64>),
@@ -151,13 +154,14 @@ impl Stiffness {
     /// `symbol` on an `nx x ny` transform in `precision`, with K's symbol `kernel` on
     /// the same grid (empty: K lives on another grid).
     fn new(nx: usize, ny: usize, symbol: Vec<f64>, kernel: &[f64], precision: Precision) -> Self {
+        let symbol = halve_if_even(symbol, ny);
         match precision {
             Precision::Single => Self::Single(
-                Fft2::new(nx, ny),
+                Fft2::without_rows(nx, ny),
                 symbol.par_iter().map(|&v| v as f32).collect(),
                 kernel.par_iter().map(|&v| v as f32).collect(),
             ),
-            Precision::Double => Self::Double(Fft2::new(nx, ny), symbol),
+            Precision::Double => Self::Double(Fft2::without_rows(nx, ny), symbol),
         }
     }
 
@@ -168,7 +172,7 @@ impl Stiffness {
         }
     }
 
-    /// The symbol in double precision (for a change of precision).
+    /// The symbol in double precision, as stored (for a change of precision).
     fn symbol(&self) -> Vec<f64> {
         match self {
             Self::Single(_, s, _) => s.iter().map(|&v| v as f64).collect(),
@@ -184,15 +188,31 @@ impl Stiffness {
         (nx, ny): (usize, usize),
     ) -> Option<&'a Stencil> {
         local
-            .get_or_init(|| Stencil::of_symbol(&self.symbol(), nx, ny))
+            .get_or_init(|| {
+                Stencil::of_symbol(&full_symbol(&self.symbol(), nx / 2 + 1, ny), nx, ny)
+            })
             .as_ref()
     }
 
-    /// `g <- M g` on rows of `dims`.
-    fn apply(&mut self, g: &mut [f64], dims: (usize, usize)) {
+    /// `g <- M g` on rows of `dims`, with the row buffer of K's transform `home`.
+    fn apply(&mut self, g: &mut [f64], dims: (usize, usize), home: &mut Fft2) {
         match self {
-            Self::Single(fft, s, _) => fft.convolve_in_place(g, dims, s),
-            Self::Double(fft, s) => fft.convolve_in_place(g, dims, s),
+            Self::Single(fft, s, _) => {
+                fft.borrow_rows_from(home);
+                fft.convolve_in_place(g, dims, s)
+            }
+            Self::Double(fft, s) => {
+                fft.borrow_rows_from(home);
+                fft.convolve_in_place(g, dims, s)
+            }
+        }
+    }
+
+    /// K's transform `home` takes its row buffer back if this one holds it.
+    fn return_rows(&mut self, home: &mut Fft2) {
+        match self {
+            Self::Single(fft, ..) => home.borrow_rows_from(fft),
+            Self::Double(fft, _) => home.borrow_rows_from(fft),
         }
     }
 
@@ -210,11 +230,24 @@ impl Stiffness {
             _ if which == Operand::ComplianceSingle => Operand::Compliance,
             _ => which,
         };
+        let home = fft;
         let transform = match (which, self) {
-            (Operand::ComplianceSingle, Self::Single(fft, _, k)) => Transform::Single(fft, k),
-            (Operand::Compliance | Operand::ComplianceSingle, _) => Transform::Double(fft, kernel),
-            (Operand::Preconditioner, Self::Single(fft, s, _)) => Transform::Single(fft, s),
-            (Operand::Preconditioner, Self::Double(fft, s)) => Transform::Double(fft, s),
+            (Operand::ComplianceSingle, Self::Single(fft, _, k)) => {
+                fft.borrow_rows_from(home);
+                Transform::Single(fft, k)
+            }
+            (Operand::Compliance | Operand::ComplianceSingle, this) => {
+                this.return_rows(home);
+                Transform::Double(home, kernel)
+            }
+            (Operand::Preconditioner, Self::Single(fft, s, _)) => {
+                fft.borrow_rows_from(home);
+                Transform::Single(fft, s)
+            }
+            (Operand::Preconditioner, Self::Double(fft, s)) => {
+                fft.borrow_rows_from(home);
+                Transform::Double(fft, s)
+            }
         };
         Spectral { transform, dims }
     }
@@ -501,6 +534,7 @@ impl PeriodicHalfSpace {
         kernel: Vec<f64>,
         stiffness: Vec<f64>,
     ) -> Self {
+        let kernel = halve_if_even(kernel, ny);
         let mut fft = Fft2::new(nx, ny);
         let mut green = vec![0.0; nx * ny];
         fft.inverse_of_real(&kernel, &mut green);
@@ -530,6 +564,7 @@ impl PeriodicHalfSpace {
     /// [`Operand::ComplianceSingle`]).
     pub fn with_preconditioner(mut self, precision: Precision) -> Self {
         let (nx, ny) = (self.hs.nx, self.hs.ny);
+        self.stiffness.return_rows(&mut self.fft);
         self.stiffness = Stiffness::new(nx, ny, self.stiffness.symbol(), &self.kernel, precision);
         self.local = OnceLock::new();
         self
@@ -545,6 +580,7 @@ impl Compliance for PeriodicHalfSpace {
     }
     fn apply(&mut self, p: &[f64], u: &mut [f64]) {
         let dims = (self.hs.nx, self.hs.ny);
+        self.stiffness.return_rows(&mut self.fft);
         self.fft.convolve(p, dims, &self.kernel, u);
     }
     fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
@@ -561,7 +597,7 @@ impl Preconditioner for PeriodicHalfSpace {
     /// an FFT-based approximate inverse, restricted by the solver to the contact set).
     fn precondition(&mut self, g: &mut [f64]) {
         let dims = (self.hs.nx, self.hs.ny);
-        self.stiffness.apply(g, dims);
+        self.stiffness.apply(g, dims, &mut self.fft);
     }
     fn local_stiffness(&mut self) -> Option<&Stencil> {
         self.stiffness
@@ -827,7 +863,7 @@ impl NonPeriodicHalfSpace {
             row[nx + 1..].copy_from_slice(&offsets[..nx - 1]);
         });
         // The kernel is even in x and y, so its spectrum is real.
-        let kernel = spec.par_iter().map(|c| c.re).collect();
+        let kernel = halve_if_even(spec.par_iter().map(|c| c.re).collect(), 2 * ny);
         drop(spec);
         Self {
             hs,
@@ -847,9 +883,20 @@ impl NonPeriodicHalfSpace {
         }
     }
 
+    /// K's padded transform takes its row buffer back from whichever of the
+    /// preconditioner's or K's single-precision transform holds it (the three share one,
+    /// [`Fft2::borrow_rows_from`]).
+    fn rows_home(&mut self) {
+        self.stiffness.return_rows(&mut self.fft);
+        if let Some(single) = self.single.as_mut() {
+            self.fft.borrow_rows_from(&mut single.0);
+        }
+    }
+
     /// The preconditioner's transforms in `precision` (default single).
     pub fn with_preconditioner(mut self, precision: Precision) -> Self {
         let (nx, ny) = (self.hs.nx, self.hs.ny);
+        self.rows_home();
         self.stiffness = Stiffness::new(nx, ny, self.stiffness.symbol(), &[], precision);
         self.local = OnceLock::new();
         self.single = None;
@@ -869,23 +916,31 @@ impl Compliance for NonPeriodicHalfSpace {
         // forward; only the first ny rows and nx columns of the result are computed
         // back (the rest carries wrap-around values).
         let (nx, ny) = (self.hs.nx, self.hs.ny);
+        self.rows_home();
         self.fft.convolve(p, (nx, ny), &self.kernel, u);
     }
     fn spectral(&mut self, which: Operand) -> Option<Spectral<'_>> {
         let dims = (self.hs.nx, self.hs.ny);
+        // The buffer goes to the transform asked for, through K's (a transform that
+        // holds it keeps it, with any rows it has loaded).
         if which == Operand::ComplianceSingle && self.stiffness.precision() == Precision::Single {
+            self.stiffness.return_rows(&mut self.fft);
             let (px, py) = (2 * dims.0, 2 * dims.1);
             let kernel = &self.kernel;
             let (fft, k) = &mut **self.single.get_or_insert_with(|| {
                 Box::new((
-                    Fft2::new(px, py),
+                    Fft2::without_rows(px, py),
                     kernel.iter().map(|&v| v as f32).collect(),
                 ))
             });
+            fft.borrow_rows_from(&mut self.fft);
             return Some(Spectral {
                 transform: Transform::Single(fft, k),
                 dims,
             });
+        }
+        if let Some(single) = self.single.as_mut() {
+            self.fft.borrow_rows_from(&mut single.0);
         }
         Some(
             self.stiffness
@@ -900,7 +955,8 @@ impl Preconditioner for NonPeriodicHalfSpace {
     /// quarter of the cost of an application of K).
     fn precondition(&mut self, g: &mut [f64]) {
         let dims = (self.hs.nx, self.hs.ny);
-        self.stiffness.apply(g, dims);
+        self.rows_home();
+        self.stiffness.apply(g, dims, &mut self.fft);
     }
     fn local_stiffness(&mut self) -> Option<&Stencil> {
         self.stiffness
