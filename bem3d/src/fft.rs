@@ -293,7 +293,7 @@ pub fn full_symbol(symbol: &[f64], nc: usize, ny: usize) -> Vec<f64> {
 /// A symbol's columns as a column pass reads them: `ny` rows each, stored in full or
 /// by rows `0..=ny/2` of a symbol even in ky.
 #[derive(Clone, Copy)]
-struct SymbolColumns<'a, S> {
+pub(crate) struct SymbolColumns<'a, S> {
     values: &'a [S],
     ny: usize,
     /// Rows stored per column: `ny`, or `ny/2 + 1`.
@@ -302,7 +302,7 @@ struct SymbolColumns<'a, S> {
 
 impl<'a, S: Copy> SymbolColumns<'a, S> {
     /// The `nc` columns of `values`, full or even-half by its length.
-    fn new(values: &'a [S], nc: usize, ny: usize) -> Self {
+    pub(crate) fn new(values: &'a [S], nc: usize, ny: usize) -> Self {
         let half = even_rows(ny);
         let stored = if values.len() == nc * ny {
             ny
@@ -317,9 +317,14 @@ impl<'a, S: Copy> SymbolColumns<'a, S> {
         Self { values, ny, stored }
     }
 
+    /// Whether every row is stored (else the even half).
+    pub(crate) fn is_full(&self) -> bool {
+        self.stored == self.ny
+    }
+
     /// Column `c`'s `ny` values: the stored column, or `buf` filled from the stored half
     /// (rows past ny/2 from their mirror).
-    fn column<'b>(&self, c: usize, buf: &'b mut Vec<S>) -> &'b [S]
+    pub(crate) fn column<'b>(&self, c: usize, buf: &'b mut Vec<S>) -> &'b [S]
     where
         'a: 'b,
     {

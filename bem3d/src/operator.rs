@@ -6,7 +6,7 @@
 //! `hy = ly/ny`; pressures are cell averages, displacements are taken at cell centres.
 
 use crate::error::{BemError, Result};
-use crate::fft::{full_symbol, halve_if_even, Fft2};
+use crate::fft::{halve_if_even, Fft2};
 pub use crate::love::love_coefficient;
 use crate::love::FarField;
 use crate::stencil::Stencil;
@@ -188,8 +188,9 @@ impl Stiffness {
         (nx, ny): (usize, usize),
     ) -> Option<&'a Stencil> {
         local
-            .get_or_init(|| {
-                Stencil::of_symbol(&full_symbol(&self.symbol(), nx / 2 + 1, ny), nx, ny)
+            .get_or_init(|| match self {
+                Self::Single(_, s, _) => Stencil::of_symbol(s, nx, ny),
+                Self::Double(_, s) => Stencil::of_symbol(s, nx, ny),
             })
             .as_ref()
     }
@@ -1215,6 +1216,76 @@ mod tests {
         let scale = u2.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for (a, b) in u1.iter().zip(&u2) {
             assert!((a - b).abs() <= 1e-12 * scale, "{a} vs {b}");
+        }
+    }
+
+    /// K (double and single) and M of one operator share one row buffer: applied in
+    /// any order, each gives what a fresh operator gives, bit for bit; rows loaded for
+    /// one and abandoned when another takes the buffer cannot be finished (a panic,
+    /// never the other's values).
+    #[test]
+    fn shared_row_buffer_changes_no_bit_and_refuses_abandoned_rows() {
+        use crate::fft::copy_in;
+        // K by its single-precision transform (what the solver's early iterations use).
+        fn k_single(op: &mut dyn SolverOperator, p: &[f64]) -> Vec<f64> {
+            let mut u = vec![0.0; p.len()];
+            let s = op.spectral(Operand::ComplianceSingle).unwrap();
+            match s.transform {
+                Transform::Single(f, k) => f.convolve(p, s.dims, k, &mut u),
+                Transform::Double(..) => panic!("no single-precision K"),
+            }
+            u
+        }
+        // Each from an operator of its own.
+        fn each(
+            make: fn(usize, usize) -> Box<dyn SolverOperator>,
+            nx: usize,
+            ny: usize,
+            p: &[f64],
+        ) -> [Vec<f64>; 3] {
+            let (mut k, mut m) = (vec![0.0; p.len()], p.to_vec());
+            make(nx, ny).apply(p, &mut k);
+            let ks = k_single(&mut *make(nx, ny), p);
+            make(nx, ny).precondition(&mut m);
+            [k, ks, m]
+        }
+        for (nx, ny) in [(16usize, 12usize), (9, 14)] {
+            let p: Vec<f64> = (0..nx * ny).map(|k| ((k * 37) % 11) as f64 - 5.0).collect();
+            let ops: [fn(usize, usize) -> Box<dyn SolverOperator>; 2] = [
+                |nx, ny| Box::new(PeriodicHalfSpace::new(nx, ny, 1.0, 0.8, 2.0)),
+                |nx, ny| Box::new(NonPeriodicHalfSpace::new(nx, ny, 1.0, 0.8, 2.0)),
+            ];
+            for make in ops {
+                let want = each(make, nx, ny, &p);
+                assert_ne!(want[0], want[1], "K in single precision differs from K");
+                let mut shared = make(nx, ny);
+                for _ in 0..2 {
+                    // M first, then K in single and double precision, and back.
+                    let mut m = p.clone();
+                    shared.precondition(&mut m);
+                    let ks = k_single(&mut *shared, &p);
+                    let mut k = vec![0.0; nx * ny];
+                    shared.apply(&p, &mut k);
+                    assert_eq!([k, ks, m], want, "{nx}x{ny}");
+                }
+                // Rows loaded for M, the buffer then taken by K: finishing them panics.
+                let chunk = nx * crate::fft::ROWS_PER_CHUNK;
+                let dims = (nx, ny);
+                match shared.spectral(Operand::Preconditioner).unwrap().transform {
+                    Transform::Single(f, _) => f.load_rows(dims, p.par_chunks(chunk), copy_in),
+                    Transform::Double(f, _) => f.load_rows(dims, p.par_chunks(chunk), copy_in),
+                };
+                let mut k = vec![0.0; nx * ny];
+                shared.apply(&p, &mut k);
+                let finish =
+                    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                        match shared.spectral(Operand::Preconditioner).unwrap().transform {
+                            Transform::Single(f, s) => f.convolve_columns(s),
+                            Transform::Double(f, s) => f.convolve_columns(s),
+                        }
+                    }));
+                assert!(finish.is_err(), "abandoned rows finished");
+            }
         }
     }
 

@@ -18,6 +18,7 @@
 //! 512^2, 33 at 1024^2, 29 and 37 on the free half-space against 27 and 34. At 4 %
 //! contact 1-6 more iterations than with the transforms (the solver's limit is 2 %).
 
+use crate::fft::SymbolColumns;
 use rayon::prelude::*;
 use std::f64::consts::PI;
 
@@ -48,11 +49,20 @@ impl Stencil {
     /// itself), if the symbol is not even in ky (as a function of |k| is; the kernel is
     /// then even in x and y, and cosine sums give it), or if the stencil's circulant is
     /// not positive definite on the grid (its symbol at some wavenumber not positive).
-    pub fn of_symbol(symbol: &[f64], nx: usize, ny: usize) -> Option<Self> {
+    ///
+    /// The symbol may be stored by its even half ([`crate::fft::halve_if_even`]) and in
+    /// single precision (read as f64): the same stencil as from its full f64 form, bit
+    /// for bit, without a grid-sized copy.
+    pub fn of_symbol<S>(symbol: &[S], nx: usize, ny: usize) -> Option<Self>
+    where
+        S: Copy + Into<f64> + Sync,
+    {
         let nc = nx / 2 + 1;
-        assert_eq!(symbol.len(), nc * ny, "one value per spectrum bin");
-        let even = |col: &[f64]| (1..ny).all(|r| col[r].to_bits() == col[ny - r].to_bits());
-        if nx < SIDE || ny < SIDE || !symbol.par_chunks(ny).all(even) {
+        let columns = SymbolColumns::new(symbol, nc, ny);
+        let bits = |v: S| Into::<f64>::into(v).to_bits();
+        let even = |col: &[S]| (1..ny).all(|r| bits(col[r]) == bits(col[ny - r]));
+        let full = columns.is_full();
+        if nx < SIDE || ny < SIDE || full && !symbol.par_chunks(ny).all(even) {
             return None;
         }
         let cosines = |n: usize| {
@@ -64,11 +74,12 @@ impl Stencil {
         // Per column c of the spectrum and offset dy = 0..=RADIUS: sum over ky of
         // s cos(ky dy) (columns in parallel, each sum in row order; the angle's index
         // advanced by dy modulo ny).
-        let per_column: Vec<[f64; RADIUS + 1]> = symbol
-            .par_chunks(ny)
-            .map(|col| {
+        let per_column: Vec<[f64; RADIUS + 1]> = (0..nc)
+            .into_par_iter()
+            .map_init(Vec::new, |buf, c| {
                 let (mut v, mut j) = ([0.0; RADIUS + 1], [0; RADIUS + 1]);
-                for &s in col {
+                for &s in columns.column(c, buf) {
+                    let s: f64 = s.into();
                     for dy in 0..=RADIUS {
                         v[dy] += s * cy[j[dy]];
                         j[dy] += dy;
@@ -104,7 +115,7 @@ impl Stencil {
         // The whole kernel sums to the symbol at k = 0; the part beyond the stencil is
         // that minus the stencil's sum.
         let kept: f64 = values.iter().sum();
-        let tail = symbol[0] - kept;
+        let tail = Into::<f64>::into(symbol[0]) - kept;
         values[RADIUS * SIDE + RADIUS] += TAIL_SHARE * tail;
         let stencil = Self { values, nx, ny };
         // Positive definite on any set of cells (the search directions descend), else
@@ -272,6 +283,22 @@ mod tests {
             assert!((st.value(0, 0) - centre).abs() <= 1e-13 * peak);
         }
         assert!(Stencil::of_symbol(&stiffness(8, 16), 8, 16).is_none());
+        // The symbol stored by its even half, and in single precision: the same
+        // stencil as from its full form, bit for bit.
+        for (nx, ny) in [(16, 16), (30, 18), (12, 41)] {
+            let s = stiffness(nx, ny);
+            let half = crate::fft::halve_if_even(s.clone(), ny);
+            assert!(half.len() < s.len());
+            let bits = |st: Stencil| st.values.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+            let full = bits(Stencil::of_symbol(&s, nx, ny).unwrap());
+            assert_eq!(bits(Stencil::of_symbol(&half, nx, ny).unwrap()), full);
+            let (s32, h32): (Vec<f32>, Vec<f32>) = (
+                s.iter().map(|&v| v as f32).collect(),
+                half.iter().map(|&v| v as f32).collect(),
+            );
+            let single = bits(Stencil::of_symbol(&s32, nx, ny).unwrap());
+            assert_eq!(bits(Stencil::of_symbol(&h32, nx, ny).unwrap()), single);
+        }
         // A kernel whose stencil is indefinite (1 at the centre and at (+-2, 0): symbol
         // 1 + 2 cos(2 kx h), -1 at its least): none.
         let n = 32;
