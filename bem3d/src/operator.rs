@@ -1236,13 +1236,9 @@ mod tests {
             }
             u
         }
+        type Make = fn(usize, usize) -> Box<dyn SolverOperator>;
         // Each from an operator of its own.
-        fn each(
-            make: fn(usize, usize) -> Box<dyn SolverOperator>,
-            nx: usize,
-            ny: usize,
-            p: &[f64],
-        ) -> [Vec<f64>; 3] {
+        fn each(make: Make, nx: usize, ny: usize, p: &[f64]) -> [Vec<f64>; 3] {
             let (mut k, mut m) = (vec![0.0; p.len()], p.to_vec());
             make(nx, ny).apply(p, &mut k);
             let ks = k_single(&mut *make(nx, ny), p);
@@ -1251,7 +1247,7 @@ mod tests {
         }
         for (nx, ny) in [(16usize, 12usize), (9, 14)] {
             let p: Vec<f64> = (0..nx * ny).map(|k| ((k * 37) % 11) as f64 - 5.0).collect();
-            let ops: [fn(usize, usize) -> Box<dyn SolverOperator>; 2] = [
+            let ops: [Make; 2] = [
                 |nx, ny| Box::new(PeriodicHalfSpace::new(nx, ny, 1.0, 0.8, 2.0)),
                 |nx, ny| Box::new(NonPeriodicHalfSpace::new(nx, ny, 1.0, 0.8, 2.0)),
             ];
