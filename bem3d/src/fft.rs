@@ -329,7 +329,7 @@ impl<'a, S: Copy> SymbolColumns<'a, S> {
         'a: 'b,
     {
         let col = &self.values[c * self.stored..(c + 1) * self.stored];
-        if self.stored == self.ny {
+        if self.is_full() {
             return col;
         }
         buf.clear();
@@ -392,9 +392,7 @@ impl<T: FftFloat> Fft2<T> {
     /// [`Fft2::new`] without a row buffer of its own: it borrows one
     /// ([`Fft2::borrow_rows_from`]) before each use.
     pub fn without_rows(nx: usize, ny: usize) -> Self {
-        let mut f = Self::new_sized(nx, ny, 0);
-        f.rows = Vec::new();
-        f
+        Self::new_sized(nx, ny, 0)
     }
 
     /// Whether this transform holds a row buffer large enough for its grid.
