@@ -267,14 +267,22 @@ pub fn even_rows(ny: usize) -> usize {
 /// else unchanged: the form a column pass reads with the least memory.
 pub fn halve_if_even(symbol: Vec<f64>, ny: usize) -> Vec<f64> {
     let half = even_rows(ny);
-    let even = |col: &[f64]| (1..ny).all(|r| col[r].to_bits() == col[ny - r].to_bits());
-    if half >= ny || !symbol.par_chunks(ny).all(even) {
+    if half >= ny || !is_even_in_ky(&symbol, ny) {
         return symbol;
     }
     symbol
         .par_chunks(ny)
         .flat_map_iter(|col| col[..half].iter().copied())
         .collect()
+}
+
+/// Whether every column of `symbol` (stored in full, `ny` values per column) is even in
+/// ky bit for bit as f64: row r equal to row ny - r.
+pub(crate) fn is_even_in_ky<S: Copy + Into<f64> + Sync>(symbol: &[S], ny: usize) -> bool {
+    let bits = |v: S| Into::<f64>::into(v).to_bits();
+    symbol
+        .par_chunks(ny)
+        .all(|col| (1..ny).all(|r| bits(col[r]) == bits(col[ny - r])))
 }
 
 /// A symbol of `nc` columns of `ny` rows in its full form (`nc x ny`), whether stored

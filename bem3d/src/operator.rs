@@ -32,11 +32,11 @@ pub const SCALE_RANGE: (f64, f64) = (1e-100, 1e100);
 /// Estimated peak bytes per grid cell of a contact solve, operator, solver, the caller's
 /// heights and the solution together, with a margin; a process adds about
 /// [`PROCESS_BYTES`]. Measured peaks of whole processes (`mrdw bench large`,
-/// `bench-case`): periodic 64.3 B per cell at 8192^2 with the heights dropped after
-/// set-up (about 71 with them kept), 78.7 at 4096^2 with them (fixed costs weigh more
-/// there); non-periodic 183 at 2048^2 without them.
-pub const BYTES_PER_CELL_PERIODIC: f64 = 74.0;
-pub const BYTES_PER_CELL_NON_PERIODIC: f64 = 200.0;
+/// `bench-case`, docs/performance.md): periodic 56.1-58.0 B per cell at 8192^2 with the
+/// heights dropped after set-up (8 more with them kept), 59.9-62.9 at 4096^2 (fixed
+/// costs weigh more there); non-periodic 154.3 at 2048^2 with them.
+pub const BYTES_PER_CELL_PERIODIC: f64 = 68.0;
+pub const BYTES_PER_CELL_NON_PERIODIC: f64 = 170.0;
 
 /// A process's memory besides its grids (code, thread stacks, allocator), about: added
 /// once to a solve's estimate.

@@ -59,10 +59,8 @@ impl Stencil {
     {
         let nc = nx / 2 + 1;
         let columns = SymbolColumns::new(symbol, nc, ny);
-        let bits = |v: S| Into::<f64>::into(v).to_bits();
-        let even = |col: &[S]| (1..ny).all(|r| bits(col[r]) == bits(col[ny - r]));
         let full = columns.is_full();
-        if nx < SIDE || ny < SIDE || full && !symbol.par_chunks(ny).all(even) {
+        if nx < SIDE || ny < SIDE || full && !crate::fft::is_even_in_ky(symbol, ny) {
             return None;
         }
         let cosines = |n: usize| {

@@ -46,7 +46,7 @@ def run_python(code, limit_bytes=None, timeout=120):
 
 
 def test_a_process_memory_limit_gives_memory_error_not_an_abort():
-    # 4096^2 needs about 1.4 GB for the solver: under a 700 MB address-space limit
+    # 4096^2 needs about 1.3 GB for the solver: under a 700 MB address-space limit
     # (the interpreter and numpy take about 300 MB of it) it does not fit.
     out = run_python(
         """

@@ -310,8 +310,13 @@ fn against_bandwidth(s: &LambdaStudy, r: &Results, label: &str, what: &str) -> F
     );
     fig.log_x = true;
     fig.log_y = what == "lambda";
-    // Labelled at the study's bandwidths (powers of 2), where the data are.
-    fig.x_keys = Some(s.bandwidths.iter().map(|&b| b as f64).collect());
+    // Labelled at the study's bandwidths (powers of 2), the extra ones included: where
+    // the data are.
+    let mut keys: Vec<usize> = s.bandwidths.clone();
+    keys.extend(s.extra.iter().map(|e| e.bandwidth));
+    keys.sort_unstable();
+    keys.dedup();
+    fig.x_keys = Some(keys.into_iter().map(|b| b as f64).collect());
     // Each H's points sit a little apart in x so that no interval hides another's.
     let nh = s.hurst.len() as f64;
     for (i, h) in s.hurst.iter().enumerate() {
