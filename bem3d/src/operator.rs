@@ -536,6 +536,8 @@ impl PeriodicHalfSpace {
         stiffness: Vec<f64>,
     ) -> Self {
         let kernel = halve_if_even(kernel, ny);
+        // A symbol even in ky makes the table even in y (stored by half its rows).
+        let even = kernel.len() < (nx / 2 + 1) * ny;
         let mut fft = Fft2::new(nx, ny);
         let mut green = vec![0.0; nx * ny];
         fft.inverse_of_real(&kernel, &mut green);
@@ -552,11 +554,7 @@ impl PeriodicHalfSpace {
             kernel,
             stiffness,
             local: OnceLock::new(),
-            table: Circulant {
-                px: nx,
-                py: ny,
-                values: green,
-            },
+            table: Circulant::new(nx, ny, green, even),
         }
     }
 
@@ -698,20 +696,48 @@ trait Table: Sync {
 }
 
 /// A periodic operator's table on its `py x px` torus: the response at (i, j) to a
-/// unit load at (ic, jc) is `values[((j - jc) mod py) * px + (i - ic) mod px]`.
+/// unit load at (ic, jc) is `values[r * px + (i - ic) mod px]` with the row offset
+/// `r = (j - jc) mod py`. A table even in y (K's symbol even in ky, as every periodic
+/// half-space's) keeps rows `0..=py/2` only and reads row `min(r, py - r)`.
 struct Circulant {
     px: usize,
     py: usize,
+    even: bool,
     values: Vec<f64>,
+}
+
+impl Circulant {
+    /// The table of the full `py x px` responses `values`; `even` keeps half its rows.
+    fn new(px: usize, py: usize, mut values: Vec<f64>, even: bool) -> Self {
+        if even {
+            values.truncate(crate::fft::even_rows(py).min(py) * px);
+            values.shrink_to_fit();
+        }
+        Self {
+            px,
+            py,
+            even,
+            values,
+        }
+    }
+
+    /// The stored row of row offset `r` (in `0..py`).
+    fn stored(&self, r: usize) -> usize {
+        if self.even {
+            r.min(self.py - r)
+        } else {
+            r
+        }
+    }
 }
 
 impl Table for Circulant {
     fn value(&self, (i, j): (usize, usize), (ic, jc): (usize, usize)) -> f64 {
-        self.values[wrap(j, jc, self.py) * self.px + wrap(i, ic, self.px)]
+        self.values[self.stored(wrap(j, jc, self.py)) * self.px + wrap(i, ic, self.px)]
     }
     fn row(&self, nx: usize, j: usize, (ic, jc): (usize, usize)) -> (&[f64], &[f64]) {
-        let (px, py) = (self.px, self.py);
-        let gr = (j + py - jc) % py;
+        let px = self.px;
+        let gr = self.stored(wrap(j, jc, self.py));
         let grow = &self.values[gr * px..(gr + 1) * px];
         // Columns i >= ic see offsets 0.., columns i < ic wrap around.
         (&grow[px - ic..], &grow[..nx - ic])
@@ -1351,6 +1377,39 @@ mod tests {
         assert!(NonPeriodicHalfSpace::new(4, 4, 1.0, 1.0, 1.0)
             .displacements_at(&at, &loads)
             .is_some());
+    }
+
+    #[test]
+    fn a_table_even_in_y_keeps_half_its_rows_and_reads_the_full_ones_to_rounding() {
+        // Every periodic half-space's symbol is even in ky: its table keeps rows
+        // 0..=ny/2 and reads row ny - r for r (odd and even ny). Against the full
+        // inverse transform of the symbol: the same responses to rounding (1e-15 of the
+        // largest), the stored rows bit for bit.
+        for &(nx, ny) in &[(8usize, 8usize), (7, 5), (12, 9), (6, 10)] {
+            let op = PeriodicHalfSpace::new(nx, ny, 1.0, 0.8, 2.0);
+            assert!(op.table.even);
+            assert_eq!(op.table.values.len(), (ny / 2 + 1) * nx);
+            let full_kernel = crate::fft::full_symbol(&op.kernel, nx / 2 + 1, ny);
+            let mut full = vec![0.0; nx * ny];
+            Fft2::<f64>::new(nx, ny).inverse_of_real(&full_kernel, &mut full);
+            let scale = full.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for j in 0..ny {
+                for i in 0..nx {
+                    let (got, want) = (op.table.value((i, j), (0, 0)), full[j * nx + i]);
+                    if j <= ny / 2 {
+                        assert_eq!(got.to_bits(), want.to_bits(), "{nx}x{ny} ({i}, {j})");
+                    } else {
+                        assert!((got - want).abs() <= 1e-15 * scale, "{nx}x{ny} ({i}, {j})");
+                    }
+                }
+            }
+        }
+        // A compliance odd in ky (kx ky terms) keeps its whole table.
+        let odd = PeriodicHalfSpace::with_compliance(8, 6, 1.0, 1.0, 1.0, |kx, ky| {
+            1.0 / (kx * kx + ky * ky).sqrt() * (1.0 + 0.3 * (kx * ky).tanh())
+        });
+        assert!(!odd.table.even);
+        assert_eq!(odd.table.values.len(), 8 * 6);
     }
 
     #[test]
