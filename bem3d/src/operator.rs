@@ -6,7 +6,7 @@
 //! `hy = ly/ny`; pressures are cell averages, displacements are taken at cell centres.
 
 use crate::error::{BemError, Result};
-use crate::fft::{halve_if_even, Fft2};
+use crate::fft::{halve_if_even, Fft2, SymbolColumns};
 pub use crate::love::love_coefficient;
 use crate::love::FarField;
 use crate::stencil::Stencil;
@@ -537,7 +537,7 @@ impl PeriodicHalfSpace {
     ) -> Self {
         let kernel = halve_if_even(kernel, ny);
         // A symbol even in ky makes the table even in y (stored by half its rows).
-        let even = kernel.len() < (nx / 2 + 1) * ny;
+        let even = !SymbolColumns::new(&kernel, nx / 2 + 1, ny).is_full();
         let mut fft = Fft2::new(nx, ny);
         let mut green = vec![0.0; nx * ny];
         fft.inverse_of_real(&kernel, &mut green);
