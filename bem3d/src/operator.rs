@@ -641,9 +641,9 @@ trait Table: Sync {
     /// The response at `(i, j)` to a load at `(ic, jc)`.
     fn value(&self, cell: (usize, usize), load: (usize, usize)) -> f64;
 
-    /// The responses along row `j` to a load at `(ic, jc)`: the columns `..ic` and
-    /// `ic..nx`, in order.
-    fn row(&self, nx: usize, j: usize, load: (usize, usize)) -> (&[f64], &[f64]);
+    /// `row += v` times the responses along row `j` (of length `nx`) to a unit load at
+    /// `(ic, jc)`: one product and one sum per cell.
+    fn add_to_row(&self, row: &mut [f64], j: usize, load: (usize, usize), v: f64);
 
     /// The table between the listed cells of a grid of row length `nx`: a dense
     /// row-major matrix (see [`RealSpace::restricted`]), in `m`'s storage. Every entry
@@ -685,10 +685,7 @@ trait Table: Sync {
             for (jj, row) in block.chunks_mut(nx).enumerate() {
                 let j = 8 * b + jj;
                 for &(c, v) in loads {
-                    let ic = c % nx;
-                    let (before, after) = self.row(nx, j, (ic, c / nx));
-                    crate::wide::add_scaled(&mut row[ic..], v, after);
-                    crate::wide::add_scaled(&mut row[..ic], v, before);
+                    self.add_to_row(row, j, (c % nx, c / nx), v);
                 }
             }
         });
@@ -696,51 +693,87 @@ trait Table: Sync {
 }
 
 /// A periodic operator's table on its `py x px` torus: the response at (i, j) to a
-/// unit load at (ic, jc) is `values[r * px + (i - ic) mod px]` with the row offset
+/// unit load at (ic, jc) is the value at the offsets `d = (i - ic) mod px` and
 /// `r = (j - jc) mod py`. A table even in y (K's symbol even in ky, as every periodic
-/// half-space's) keeps rows `0..=py/2` only and reads row `min(r, py - r)`.
+/// half-space's) is even in x too (a real symbol even in ky is even in kx): it keeps the
+/// quarter `r <= py/2`, `d <= px/2` and reads `(min(d, px - d), min(r, py - r))`. The
+/// mirrored values differ from the inverse transform's own by rounding only.
 struct Circulant {
     px: usize,
     py: usize,
+    /// Stored columns per row: `px / 2 + 1` for an even table, else `px`.
+    cols: usize,
     even: bool,
     values: Vec<f64>,
 }
 
 impl Circulant {
-    /// The table of the full `py x px` responses `values`; `even` keeps half its rows.
-    fn new(px: usize, py: usize, mut values: Vec<f64>, even: bool) -> Self {
-        if even {
-            values.truncate(crate::fft::even_rows(py).min(py) * px);
-            values.shrink_to_fit();
+    /// The table of the full `py x px` responses `values` (row offset major); `even`
+    /// keeps its quarter.
+    fn new(px: usize, py: usize, values: Vec<f64>, even: bool) -> Self {
+        if !even {
+            return Self {
+                px,
+                py,
+                cols: px,
+                even,
+                values,
+            };
         }
+        let cols = (px / 2 + 1).min(px);
+        let rows = crate::fft::even_rows(py).min(py);
+        let values = values
+            .chunks(px)
+            .take(rows)
+            .flat_map(|row| row[..cols].iter().copied())
+            .collect();
         Self {
             px,
             py,
+            cols,
             even,
             values,
         }
     }
 
     /// The stored row of row offset `r` (in `0..py`).
-    fn stored(&self, r: usize) -> usize {
-        if self.even {
-            r.min(self.py - r)
-        } else {
-            r
+    fn stored_row(&self, r: usize) -> &[f64] {
+        let r = if self.even { r.min(self.py - r) } else { r };
+        &self.values[r * self.cols..(r + 1) * self.cols]
+    }
+
+    /// `out[k] += v g(d0 + k)`, `g` the full row of offsets `0..px` that `q` stores
+    /// (`d0 + out.len() <= px`): the stored columns forwards, the mirrored ones
+    /// (`g(d) = q[px - d]`, `d > px / 2`) backwards.
+    fn add_offsets(&self, q: &[f64], d0: usize, v: f64, out: &mut [f64]) {
+        if out.is_empty() {
+            return;
+        }
+        let end = d0 + out.len();
+        let direct = if self.even { self.cols.clamp(d0, end) } else { end };
+        let (fwd, mirrored) = out.split_at_mut(direct - d0);
+        if !fwd.is_empty() {
+            crate::wide::add_scaled(fwd, v, &q[d0..direct]);
+        }
+        if !mirrored.is_empty() {
+            let (a, b) = (direct, end);
+            crate::wide::add_scaled_reversed(mirrored, v, &q[self.px + 1 - b..=self.px - a]);
         }
     }
 }
 
 impl Table for Circulant {
     fn value(&self, (i, j): (usize, usize), (ic, jc): (usize, usize)) -> f64 {
-        self.values[self.stored(wrap(j, jc, self.py)) * self.px + wrap(i, ic, self.px)]
+        let d = wrap(i, ic, self.px);
+        let d = if self.even { d.min(self.px - d) } else { d };
+        self.stored_row(wrap(j, jc, self.py))[d]
     }
-    fn row(&self, nx: usize, j: usize, (ic, jc): (usize, usize)) -> (&[f64], &[f64]) {
-        let px = self.px;
-        let gr = self.stored(wrap(j, jc, self.py));
-        let grow = &self.values[gr * px..(gr + 1) * px];
-        // Columns i >= ic see offsets 0.., columns i < ic wrap around.
-        (&grow[px - ic..], &grow[..nx - ic])
+    fn add_to_row(&self, row: &mut [f64], j: usize, (ic, jc): (usize, usize), v: f64) {
+        let q = self.stored_row(wrap(j, jc, self.py));
+        // Columns i >= ic see offsets 0.., columns i < ic wrap around to px - ic...
+        let (before, after) = row.split_at_mut(ic);
+        self.add_offsets(q, 0, v, after);
+        self.add_offsets(q, self.px - ic, v, before);
     }
 }
 
@@ -784,9 +817,12 @@ impl Table for Mirrored {
     fn value(&self, (i, j): (usize, usize), (ic, jc): (usize, usize)) -> f64 {
         self.offsets(j.abs_diff(jc))[self.nx - 1 + i - ic]
     }
-    fn row(&self, nx: usize, j: usize, (ic, jc): (usize, usize)) -> (&[f64], &[f64]) {
+    fn add_to_row(&self, row: &mut [f64], j: usize, (ic, jc): (usize, usize), v: f64) {
+        let nx = row.len();
         let r = &self.offsets(j.abs_diff(jc))[nx - 1 - ic..2 * nx - 1 - ic];
-        r.split_at(ic)
+        let (before, after) = r.split_at(ic);
+        crate::wide::add_scaled(&mut row[ic..], v, after);
+        crate::wide::add_scaled(&mut row[..ic], v, before);
     }
 }
 
@@ -1380,15 +1416,16 @@ mod tests {
     }
 
     #[test]
-    fn a_table_even_in_y_keeps_half_its_rows_and_reads_the_full_ones_to_rounding() {
-        // Every periodic half-space's symbol is even in ky: its table keeps rows
-        // 0..=ny/2 and reads row ny - r for r (odd and even ny). Against the full
-        // inverse transform of the symbol: the same responses to rounding (1e-15 of the
-        // largest), the stored rows bit for bit.
-        for &(nx, ny) in &[(8usize, 8usize), (7, 5), (12, 9), (6, 10)] {
-            let op = PeriodicHalfSpace::new(nx, ny, 1.0, 0.8, 2.0);
+    fn a_table_even_in_y_keeps_a_quarter_and_reads_the_full_one_to_rounding() {
+        // Every periodic half-space's symbol is even in ky (and, being real, in kx): its
+        // table keeps offsets r <= ny/2, d <= nx/2 and reads the mirrors (odd and even
+        // sizes). Against the full inverse transform of the symbol: the same responses
+        // to rounding (1e-15 of the largest), the stored quarter bit for bit; a single
+        // load at every cell against K's transform (the mirrored stretches of each row).
+        for &(nx, ny) in &[(8usize, 8usize), (7, 5), (12, 9), (6, 10), (5, 3), (2, 4)] {
+            let mut op = PeriodicHalfSpace::new(nx, ny, 1.0, 0.8, 2.0);
             assert!(op.table.even);
-            assert_eq!(op.table.values.len(), (ny / 2 + 1) * nx);
+            assert_eq!(op.table.values.len(), (ny / 2 + 1).min(ny) * (nx / 2 + 1).min(nx));
             let full_kernel = crate::fft::full_symbol(&op.kernel, nx / 2 + 1, ny);
             let mut full = vec![0.0; nx * ny];
             Fft2::<f64>::new(nx, ny).inverse_of_real(&full_kernel, &mut full);
@@ -1396,11 +1433,25 @@ mod tests {
             for j in 0..ny {
                 for i in 0..nx {
                     let (got, want) = (op.table.value((i, j), (0, 0)), full[j * nx + i]);
-                    if j <= ny / 2 {
+                    if j <= ny / 2 && i <= nx / 2 {
                         assert_eq!(got.to_bits(), want.to_bits(), "{nx}x{ny} ({i}, {j})");
                     } else {
                         assert!((got - want).abs() <= 1e-15 * scale, "{nx}x{ny} ({i}, {j})");
                     }
+                }
+            }
+            let n = nx * ny;
+            for c in 0..n {
+                let mut unit = vec![0.0; n];
+                unit[c] = -1.5;
+                let mut want = vec![0.0; n];
+                op.apply(&unit, &mut want);
+                let mut got = vec![0.0; n];
+                op.add_point_loads(&[(c, -1.5)], &mut got);
+                for (k, (a, b)) in got.iter().zip(&want).enumerate() {
+                    assert!((a - b).abs() <= 1e-14 * scale, "{nx}x{ny} load {c} at {k}");
+                    let v = op.table.value((k % nx, k / nx), (c % nx, c / nx));
+                    assert!(-1.5 * v == *a, "{nx}x{ny} {c} {k}");
                 }
             }
         }

@@ -90,6 +90,33 @@ pub fn add_scaled_with(w: Width, u: &mut [f64], v: f64, g: &[f64]) {
     add_scaled_plain(u, v, g)
 }
 
+/// `u[k] += v g[len - 1 - k]`: a mirrored stretch of a point load's row.
+pub fn add_scaled_reversed(u: &mut [f64], v: f64, g: &[f64]) {
+    add_scaled_reversed_with(width(), u, v, g)
+}
+
+/// [`add_scaled_reversed`] by the variant `w` (as [`dot_with`]).
+pub fn add_scaled_reversed_with(w: Width, u: &mut [f64], v: f64, g: &[f64]) {
+    #[cfg(target_arch = "x86_64")]
+    if available(w) {
+        // SAFETY: as in dot_with.
+        match w {
+            Width::Avx512 => return unsafe { x86::add_scaled_reversed_avx512(u, v, g) },
+            Width::Avx2 => return unsafe { x86::add_scaled_reversed_avx2(u, v, g) },
+            Width::Baseline => {}
+        }
+    }
+    let _ = w;
+    add_scaled_reversed_plain(u, v, g)
+}
+
+#[inline(always)]
+fn add_scaled_reversed_plain(u: &mut [f64], v: f64, g: &[f64]) {
+    for (a, g) in u.iter_mut().zip(g.iter().rev()) {
+        *a += v * g;
+    }
+}
+
 #[inline(always)]
 fn dot_plain<T: Copy + Into<f64>>(a: &[T], b: &[f64]) -> f64 {
     let mut acc = [0.0; 8];
@@ -133,5 +160,13 @@ mod x86 {
     #[target_feature(enable = "avx512f")]
     pub(super) fn add_scaled_avx512(u: &mut [f64], v: f64, g: &[f64]) {
         super::add_scaled_plain(u, v, g)
+    }
+    #[target_feature(enable = "avx2")]
+    pub(super) fn add_scaled_reversed_avx2(u: &mut [f64], v: f64, g: &[f64]) {
+        super::add_scaled_reversed_plain(u, v, g)
+    }
+    #[target_feature(enable = "avx512f")]
+    pub(super) fn add_scaled_reversed_avx512(u: &mut [f64], v: f64, g: &[f64]) {
+        super::add_scaled_reversed_plain(u, v, g)
     }
 }

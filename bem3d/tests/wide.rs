@@ -1,7 +1,7 @@
 //! The wide variants of `bem3d::wide` give the baseline variant's results bit for bit,
 //! on every variant this processor has (the others are skipped and named).
 
-use bem3d::wide::{add_scaled_with, available, dot_with, Width};
+use bem3d::wide::{add_scaled_reversed_with, add_scaled_with, available, dot_with, Width};
 
 fn values(n: usize, seed: u64) -> Vec<f64> {
     // A fixed pseudo-random sequence with magnitudes over several decades, so that
@@ -49,6 +49,13 @@ fn every_variant_gives_the_baseline_bit_for_bit() {
             assert!(
                 u0.iter().zip(&u1).all(|(x, y)| x.to_bits() == y.to_bits()),
                 "{w:?} add_scaled, n = {n}"
+            );
+            let (mut u0, mut u1) = (values(n, 4), values(n, 4));
+            add_scaled_reversed_with(Width::Baseline, &mut u0, -1.3, &b);
+            add_scaled_reversed_with(w, &mut u1, -1.3, &b);
+            assert!(
+                u0.iter().zip(&u1).all(|(x, y)| x.to_bits() == y.to_bits()),
+                "{w:?} add_scaled_reversed, n = {n}"
             );
         }
     }
