@@ -750,7 +750,11 @@ impl Circulant {
             return;
         }
         let end = d0 + out.len();
-        let direct = if self.even { self.cols.clamp(d0, end) } else { end };
+        let direct = if self.even {
+            self.cols.clamp(d0, end)
+        } else {
+            end
+        };
         let (fwd, mirrored) = out.split_at_mut(direct - d0);
         if !fwd.is_empty() {
             crate::wide::add_scaled(fwd, v, &q[d0..direct]);
@@ -1425,7 +1429,10 @@ mod tests {
         for &(nx, ny) in &[(8usize, 8usize), (7, 5), (12, 9), (6, 10), (5, 3), (2, 4)] {
             let mut op = PeriodicHalfSpace::new(nx, ny, 1.0, 0.8, 2.0);
             assert!(op.table.even);
-            assert_eq!(op.table.values.len(), (ny / 2 + 1).min(ny) * (nx / 2 + 1).min(nx));
+            assert_eq!(
+                op.table.values.len(),
+                (ny / 2 + 1).min(ny) * (nx / 2 + 1).min(nx)
+            );
             let full_kernel = crate::fft::full_symbol(&op.kernel, nx / 2 + 1, ny);
             let mut full = vec![0.0; nx * ny];
             Fft2::<f64>::new(nx, ny).inverse_of_real(&full_kernel, &mut full);

@@ -160,6 +160,7 @@ use crate::operator::SolverOperator;
 use rayon::prelude::*;
 
 mod convergence;
+mod domain;
 mod fused;
 mod iteration;
 mod options;
@@ -177,8 +178,8 @@ pub use options::{Choice, Interrupt, Load, Paths, SolverOptions, MAX_LOAD, MAX_T
 pub struct ContactSolver<K: SolverOperator> {
     op: K,
     z: Vec<f64>,
-    /// 1 on cells that may touch, 0 elsewhere (numbers: the sweeps are branch-free).
-    mask: Vec<u8>,
+    /// The cells that may touch, read as 1 or 0 (numbers: the sweeps are branch-free).
+    mask: domain::Domain,
     h_rms: f64,
     /// Number of domain cells and the mean of z over them (complete-contact approach of
     /// an unmasked periodic surface).
@@ -244,6 +245,11 @@ const LARGE_GRID_CELLS: usize = 1 << 22;
 /// results) do not depend on the thread count.
 const CHUNK: usize = 16_384;
 
+/// Sweep chunk of a grid of row length `nx`: [`CHUNK`] cells rounded to whole rows.
+fn chunk_cells(nx: usize) -> usize {
+    (CHUNK / nx).max(1) * nx
+}
+
 /// Whether starting from `warm` pays for `load` (module docs: small load steps only).
 /// The error of a forced path that cannot run.
 fn unavailable(path: &'static str, reason: String) -> BemError {
@@ -273,9 +279,11 @@ impl<K: SolverOperator> ContactSolver<K> {
     fn new_on_pool(op: K, heights: &[f64], mask: Option<Vec<bool>>) -> Result<Self> {
         let n = op.cells();
         op.half_space().validate()?;
-        let mask: Vec<u8> = match mask {
-            None => vec![1; n],
-            Some(m) if m.len() == n && m.iter().any(|&m| m) => m.iter().map(|&m| m as u8).collect(),
+        let mask: Option<Vec<u8>> = match mask {
+            None => None,
+            Some(m) if m.len() == n && m.iter().any(|&m| m) => {
+                Some(m.iter().map(|&m| m as u8).collect())
+            }
             Some(_) => {
                 return Err(BemError::InvalidInput(
                     "mask must match the grid and contain a cell".into(),
@@ -290,16 +298,22 @@ impl<K: SolverOperator> ContactSolver<K> {
         Ok(solver)
     }
 
-    /// A solver with zeroed buffers for `op`'s cells and no heights yet.
-    fn with_buffers(op: K, mask: Vec<u8>, overlap_stiffness: f64) -> Self {
-        let (n, ny) = (op.cells(), op.ny());
+    /// A solver with zeroed buffers for `op`'s cells and no heights yet; `mask`: the
+    /// cells that may touch (None: all).
+    fn with_buffers(op: K, mask: Option<Vec<u8>>, overlap_stiffness: f64) -> Self {
+        let (n, nx, ny) = (op.cells(), op.nx(), op.ny());
+        let mask = match mask {
+            Some(m) => domain::Domain::given(m),
+            // The sweeps' chunks: CHUNK cells or ROWS_PER_CHUNK rows (whole rows).
+            None => domain::Domain::all(n, chunk_cells(nx).max(crate::fft::ROWS_PER_CHUNK * nx)),
+        };
         Self {
             overlap_stiffness,
             op,
             w: vec![0.0; n],
             z: vec![0.0; n],
             h_rms: 0.0,
-            domain_cells: mask.iter().filter(|&&m| m > 0).count(),
+            domain_cells: mask.count(),
             z_mean: 0.0,
             slope_rms: 0.0,
             t: vec![0.0; n],
@@ -342,7 +356,7 @@ impl<K: SolverOperator> ContactSolver<K> {
                 i % nx
             )));
         }
-        let on = || heights.iter().zip(&self.mask).filter(|(_, &m)| m > 0);
+        let on = || heights.iter().zip(self.mask.iter()).filter(|(_, &m)| m > 0);
         let hmax = on().map(|(&h, _)| h).fold(f64::NEG_INFINITY, f64::max);
         let nm = self.domain_cells as f64;
         let mean = on().map(|(&h, _)| h).sum::<f64>() / nm;
@@ -377,7 +391,7 @@ impl<K: SolverOperator> ContactSolver<K> {
         let mask = &self.mask;
         // Sum of squared slopes and count over the pairs (a, b) of domain cells.
         let add = |(sum, pairs): &mut (f64, usize), a: usize, b: usize, step: f64| {
-            if mask[a] > 0 && mask[b] > 0 {
+            if mask.holds(a) && mask.holds(b) {
                 *sum += ((h[b] - h[a]) / step).powi(2);
                 *pairs += 1;
             }
@@ -427,8 +441,7 @@ impl<K: SolverOperator> ContactSolver<K> {
 
     /// Cells per sweep chunk: whole rows, about [`CHUNK`] cells.
     fn chunk(&self) -> usize {
-        let nx = self.op.nx();
-        (CHUNK / nx).max(1) * nx
+        chunk_cells(self.op.nx())
     }
 
     /// Solves for `load`, starting from a previous solution `warm` where that pays (see
@@ -502,7 +515,7 @@ impl<K: SolverOperator> ContactSolver<K> {
         match (warm, load) {
             (Some(w), _) => p
                 .par_iter_mut()
-                .zip(&self.mask)
+                .zip(self.mask.par_iter())
                 .zip(&w.pressure)
                 .for_each(|((p, &m), w)| *p = m as f64 * w.max(0.0)),
             (None, Load::Approach(_)) if paths.nested_start.forced() => {
@@ -685,7 +698,7 @@ mod tests {
                 let op = PeriodicHalfSpace::new(nx, ny, 1.0, 1.0, 1.0);
                 let s = ContactSolver::new(op, &h, mask).unwrap();
                 let mut zs: Vec<f64> = (0..nx * ny)
-                    .filter(|&i| s.mask[i] > 0)
+                    .filter(|&i| s.mask.holds(i))
                     .map(|i| s.z[i])
                     .collect();
                 zs.sort_by(f64::total_cmp);

@@ -78,11 +78,11 @@ impl<K: SolverOperator> ContactSolver<K> {
             // them: the same values without a third grid alive.
             let mut gap = std::mem::replace(&mut self.w, vec![0.0; p.len()]);
             gap.par_iter_mut()
-                .zip(&self.mask)
+                .zip(self.mask.par_iter())
                 .for_each(|(w, &m)| *w = gap_of(*w, m));
             gap
         } else {
-            let w = self.w.par_iter().zip(&self.mask);
+            let w = self.w.par_iter().zip(self.mask.par_iter());
             w.map(|(&w, &m)| gap_of(w, m)).collect()
         };
         Solution {

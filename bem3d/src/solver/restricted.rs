@@ -135,8 +135,7 @@ impl<K: SolverOperator> ContactSolver<K> {
                     DenseCompliance::from_matrix(cells.len(), (hx, hy), e_star, matrix, single);
                 let z = cells.iter().map(|&i| self.z[i]).collect();
                 let (h_rms, stiffness) = (self.h_rms, self.overlap_stiffness);
-                let mask = vec![1; cells.len()];
-                inner = Some(ContactSolver::on_part(dense, mask, z, h_rms, stiffness));
+                inner = Some(ContactSolver::on_part(dense, None, z, h_rms, stiffness));
             }
             let Some(solver) = inner.as_mut() else {
                 return Err("no candidate set was built".into());
@@ -173,7 +172,7 @@ impl<K: SolverOperator> ContactSolver<K> {
             let (w, mask) = (&self.w, &self.mask);
             let mut entering: Vec<(f64, usize)> = (0..n)
                 .into_par_iter()
-                .filter(|&i| mask[i] > 0 && !member[i] && w[i] - approach < 0.0)
+                .filter(|&i| mask.holds(i) && !member[i] && w[i] - approach < 0.0)
                 .map(|i| (w[i] - approach, i))
                 .collect();
             // A set much too small carries the load on too few cells: the approach
@@ -240,7 +239,7 @@ impl<K: SolverOperator> ContactSolver<K> {
                 let (mask, z) = (&self.mask, &self.z);
                 (0..n)
                     .into_par_iter()
-                    .filter(|&i| mask[i] > 0 && z[i] < fixed_approach)
+                    .filter(|&i| mask.holds(i) && z[i] < fixed_approach)
                     .count()
             }
         };
@@ -274,11 +273,11 @@ impl<K: SolverOperator> ContactSolver<K> {
     }
 
     /// A solver for the problem restricted to part of the grid: `op` between its cells,
-    /// their mask and `z`, and the criterion's and the re-admission's scales of the
-    /// whole domain.
+    /// their mask (None: all) and `z`, and the criterion's and the re-admission's scales
+    /// of the whole domain.
     pub(super) fn on_part(
         op: K,
-        mask: Vec<u8>,
+        mask: Option<Vec<u8>>,
         z: Vec<f64>,
         h_rms: f64,
         overlap_stiffness: f64,

@@ -42,7 +42,7 @@ impl<K: SolverOperator> ContactSolver<K> {
             let k = ((fraction * nm as f64).ceil() as usize).clamp(1, nm - 1);
             let d = self.kth_height(k);
             p.par_iter_mut()
-                .zip(&self.mask)
+                .zip(self.mask.par_iter())
                 .zip(&self.z)
                 .for_each(|((v, &m), z)| *v = m as f64 * (d - z).max(0.0));
         }
@@ -103,7 +103,7 @@ impl<K: SolverOperator> ContactSolver<K> {
     /// Uniform pressure (one per domain cell; the load's rescale follows).
     pub(super) fn uniform_start(&self, p: &mut [f64]) {
         p.par_iter_mut()
-            .zip(&self.mask)
+            .zip(self.mask.par_iter())
             .for_each(|(v, &m)| *v = m as f64);
     }
 
@@ -205,7 +205,7 @@ impl<K: SolverOperator> ContactSolver<K> {
     pub(super) fn overlap_start(&self, p: &mut [f64], d: f64) {
         let scale = self.op.e_star() / (self.op.lx() * self.op.ly()).sqrt();
         p.par_iter_mut()
-            .zip(&self.mask)
+            .zip(self.mask.par_iter())
             .zip(&self.z)
             .for_each(|((v, &m), z)| *v = m as f64 * (d - z).max(0.0) * scale);
     }

@@ -187,7 +187,7 @@ impl<K: SolverOperator> ContactSolver<K> {
                     };
                     let (w, mask) = (&self.w, &self.mask);
                     let outside = bounding_box_where(nx, n, |i| {
-                        mask[i] > 0 && w[i] - approach < 0.0 && !win.holds(i % nx, i / nx)
+                        mask.holds(i) && w[i] - approach < 0.0 && !win.holds(i % nx, i / nx)
                     });
                     (outside, residual)
                 }
@@ -232,7 +232,7 @@ impl<K: SolverOperator> ContactSolver<K> {
             .flat_map_iter(|y| {
                 let below = move |&x: &usize| {
                     let i = y * nx + x;
-                    mask[i] > 0 && z[i] < approach && !win.holds(x, y)
+                    mask.holds(i) && z[i] < approach && !win.holds(x, y)
                 };
                 (0..nx).filter(below).map(move |x| y * nx + x)
             })
@@ -266,7 +266,10 @@ impl<K: SolverOperator> ContactSolver<K> {
         win: Window,
     ) -> ContactSolver<NonPeriodicHalfSpace> {
         let nx = self.op.nx();
-        let mask = gather(&self.mask, nx, win);
+        let mask = self
+            .mask
+            .is_masked()
+            .then(|| self.mask.gather(nx, (win.x0, win.y0), (win.wx, win.wy)));
         let z = gather(&self.z, nx, win);
         ContactSolver::on_part(op, mask, z, self.h_rms, self.overlap_stiffness)
     }
