@@ -32,10 +32,11 @@ pub const SCALE_RANGE: (f64, f64) = (1e-100, 1e100);
 /// Estimated peak bytes per grid cell of a contact solve, operator, solver, the caller's
 /// heights and the solution together, with a margin; a process adds about
 /// [`PROCESS_BYTES`]. Measured peaks of whole processes (`mrdw bench large`,
-/// `bench-case`, docs/performance.md): periodic 53.4-58.0 B per cell at 8192^2 and 51.0
-/// at 16384^2 with the heights dropped after set-up (8 more with them kept), 58.3-63.0
-/// at 4096^2 (fixed costs weigh more there); non-periodic 154.3 at 2048^2 with them.
-pub const BYTES_PER_CELL_PERIODIC: f64 = 68.0;
+/// `bench-case`, docs/performance.md): periodic 50.3 B per cell at 8192^2 (20 % contact)
+/// and 47.7 at 16384^2 with the heights dropped after set-up (8 more with them kept),
+/// 57.1-57.3 at 4096^2 (fixed costs weigh more there); non-periodic 154.3 at 2048^2 with
+/// them.
+pub const BYTES_PER_CELL_PERIODIC: f64 = 62.0;
 pub const BYTES_PER_CELL_NON_PERIODIC: f64 = 170.0;
 
 /// A process's memory besides its grids (code, thread stacks, allocator), about: added
