@@ -761,8 +761,9 @@ impl Circulant {
             crate::wide::add_scaled(fwd, v, &q[d0..direct]);
         }
         if !mirrored.is_empty() {
-            let (a, b) = (direct, end);
-            crate::wide::add_scaled_reversed(mirrored, v, &q[self.px + 1 - b..=self.px - a]);
+            // Offsets direct..end read q[px - d], from px - direct down to px + 1 - end.
+            let px = self.px;
+            crate::wide::add_scaled_reversed(mirrored, v, &q[px + 1 - end..=px - direct]);
         }
     }
 }

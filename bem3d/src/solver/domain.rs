@@ -45,9 +45,9 @@ impl Domain {
             .map_or(self.len, |m| m.iter().filter(|&&m| m > 0).count())
     }
 
-    /// Whether a caller's mask restricts the grid.
-    pub(super) fn is_masked(&self) -> bool {
-        self.cells.is_some()
+    /// A caller's mask (1 or 0 per cell), if one restricts the grid.
+    pub(super) fn cells(&self) -> Option<&[u8]> {
+        self.cells.as_deref()
     }
 
     /// The values (1 or 0) cell by cell.
@@ -84,19 +84,6 @@ impl Domain {
             }
         }
     }
-
-    /// The values of the `wx x wy` window at `(x0, y0)` of a grid of row length `nx`,
-    /// row by row.
-    pub(super) fn gather(
-        &self,
-        nx: usize,
-        (x0, y0): (usize, usize),
-        (wx, wy): (usize, usize),
-    ) -> Vec<u8> {
-        (y0..y0 + wy)
-            .flat_map(|y| (y * nx + x0..y * nx + x0 + wx).map(|i| u8::from(self.holds(i))))
-            .collect()
-    }
 }
 
 #[cfg(test)]
@@ -116,11 +103,10 @@ mod tests {
             assert_eq!(all.par_iter().count(), len);
             assert_eq!(all.count(), ones.count());
             assert!((0..len).all(|i| all.holds(i)));
-            assert!(!all.is_masked() && ones.is_masked());
+            assert!(all.cells().is_none() && ones.cells() == Some(&vec![1; len][..]));
         }
         let some = Domain::given(vec![1, 0, 1, 1, 0, 0]);
         assert_eq!(some.count(), 3);
-        assert_eq!(some.gather(3, (1, 0), (2, 2)), vec![0, 1, 0, 0]);
-        assert_eq!(Domain::all(6, 6).gather(3, (1, 0), (2, 2)), vec![1; 4]);
+        assert!(some.holds(2) && !some.holds(4));
     }
 }

@@ -266,10 +266,7 @@ impl<K: SolverOperator> ContactSolver<K> {
         win: Window,
     ) -> ContactSolver<NonPeriodicHalfSpace> {
         let nx = self.op.nx();
-        let mask = self
-            .mask
-            .is_masked()
-            .then(|| self.mask.gather(nx, (win.x0, win.y0), (win.wx, win.wy)));
+        let mask = self.mask.cells().map(|m| gather(m, nx, win));
         let z = gather(&self.z, nx, win);
         ContactSolver::on_part(op, mask, z, self.h_rms, self.overlap_stiffness)
     }
