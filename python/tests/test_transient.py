@@ -58,3 +58,40 @@ def test_bad_input_is_refused():
     with pytest.raises(ValueError, match="mask"):
         mrdw.TransientContact(h, relaxed=1.0, terms=[], mask=np.ones((4, 4), bool))
     assert v.time == 0.0
+
+
+def test_a_rough_contact_in_time_matches_tamaas_to_its_first_order_error():
+    # Tamaas 2.9's MaxwellViscoelastic (backward Euler, first order in dt) is a
+    # generalised Maxwell medium when its elastic shear modulus E / (2 (1 + nu)) is 1
+    # (bench/tamaas_viscoelastic.py; docs/verification.md): E = 3, nu = 0.5 gives
+    # E*_inf = 4 and branches 4 G_k. A rough 32^2 contact through a ramp and a hold of
+    # the mean pressure: the two solvers' pressures differ by Tamaas' time-stepping error,
+    # which halves with dt, and Richardson's 2 T(dt/2) - T(dt) comes closer.
+    tm = pytest.importorskip("tamaas")
+    tm.set_log_level(tm.LogLevel.error)
+    h = rough(32)
+    shear, times = [2.0, 1.0], [0.3, 2.0]
+
+    def load(t):  # from a quarter (a first contact of one cell stops Tamaas)
+        return 0.005 + 0.015 * min(t, 1.0)
+
+    def tamaas(dt):
+        model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], [32, 32])
+        model.E, model.nu = 3.0, 0.5
+        solver = tm.MaxwellViscoelastic(model, h.copy(), 1e-12, dt, shear, times)
+        for k in range(1, int(round(2.0 / dt)) + 1):
+            solver.solve(load(k * dt))
+        return np.array(model.traction).reshape(h.shape)
+
+    v = mrdw.TransientContact(h, relaxed=4.0, terms=[(4 * g, t) for g, t in zip(shear, times)])
+    for k in range(1, 401):
+        s = v.step(0.005, mean_pressure=load(k * 0.005), tolerance=1e-11)
+    ours = s.pressure
+
+    def diff(p):
+        return np.linalg.norm(p - ours) / np.linalg.norm(ours)
+
+    coarse, fine = tamaas(0.04), tamaas(0.02)
+    assert 1e-4 < diff(fine) < 3e-3  # measured 6.0e-4
+    assert 1.7 < diff(coarse) / diff(fine) < 2.6  # first order; measured 2.23
+    assert diff(2 * fine - coarse) < 0.5 * diff(fine)  # measured 0.27
