@@ -48,66 +48,65 @@ pub fn available(w: Width) -> bool {
     )
 }
 
-/// `sum_k a[k] b[k]` in eight interleaved partial sums (k mod 8), added in order, then
-/// the tail: the dense products' row sums.
-pub fn dot<T: Copy + Into<f64>>(a: &[T], b: &[f64]) -> f64 {
-    dot_with(width(), a, b)
-}
-
-/// [`dot`] by the variant `w` (which the processor must have: [`available`]; the
-/// baseline otherwise).
-pub fn dot_with<T: Copy + Into<f64>>(w: Width, a: &[T], b: &[f64]) -> f64 {
-    #[cfg(target_arch = "x86_64")]
-    if available(w) {
-        // SAFETY: the processor has the variant's features (checked just above).
-        match w {
-            Width::Avx512 => return unsafe { x86::dot_avx512(a, b) },
-            Width::Avx2 => return unsafe { x86::dot_avx2(a, b) },
-            Width::Baseline => {}
+/// A loop `plain` as two public functions, `name` by the variant of this processor
+/// ([`width`]) and `with` by a given variant (which the processor must have:
+/// [`available`]; the baseline otherwise), and the variants `name::avx2` and
+/// `name::avx512` (the same body compiled with wider instructions, inlined into each).
+macro_rules! by_width {
+    ($(#[$doc:meta])* $name:ident, $with:ident => $plain:ident
+     [$($gen:tt)*] ($($arg:ident: $ty:ty),*) $(-> $ret:ty)?) => {
+        $(#[$doc])*
+        pub fn $name<$($gen)*>($($arg: $ty),*) $(-> $ret)? {
+            $with(width(), $($arg),*)
         }
-    }
-    let _ = w;
-    dot_plain(a, b)
-}
 
-/// `u[k] += v g[k]`: a point load's row of displacements added.
-pub fn add_scaled(u: &mut [f64], v: f64, g: &[f64]) {
-    add_scaled_with(width(), u, v, g)
-}
-
-/// [`add_scaled`] by the variant `w` (as [`dot_with`]).
-pub fn add_scaled_with(w: Width, u: &mut [f64], v: f64, g: &[f64]) {
-    #[cfg(target_arch = "x86_64")]
-    if available(w) {
-        // SAFETY: as in dot_with.
-        match w {
-            Width::Avx512 => return unsafe { x86::add_scaled_avx512(u, v, g) },
-            Width::Avx2 => return unsafe { x86::add_scaled_avx2(u, v, g) },
-            Width::Baseline => {}
+        #[doc = concat!("[`", stringify!($name), "`] by the variant `w`.")]
+        pub fn $with<$($gen)*>(w: Width, $($arg: $ty),*) $(-> $ret)? {
+            #[cfg(target_arch = "x86_64")]
+            if available(w) {
+                // SAFETY: the processor has the variant's features (checked just above).
+                match w {
+                    Width::Avx512 => return unsafe { $name::avx512($($arg),*) },
+                    Width::Avx2 => return unsafe { $name::avx2($($arg),*) },
+                    Width::Baseline => {}
+                }
+            }
+            let _ = w;
+            $plain($($arg),*)
         }
-    }
-    let _ = w;
-    add_scaled_plain(u, v, g)
-}
 
-/// `u[k] += v g[len - 1 - k]`: a mirrored stretch of a point load's row.
-pub fn add_scaled_reversed(u: &mut [f64], v: f64, g: &[f64]) {
-    add_scaled_reversed_with(width(), u, v, g)
-}
-
-/// [`add_scaled_reversed`] by the variant `w` (as [`dot_with`]).
-pub fn add_scaled_reversed_with(w: Width, u: &mut [f64], v: f64, g: &[f64]) {
-    #[cfg(target_arch = "x86_64")]
-    if available(w) {
-        // SAFETY: as in dot_with.
-        match w {
-            Width::Avx512 => return unsafe { x86::add_scaled_reversed_avx512(u, v, g) },
-            Width::Avx2 => return unsafe { x86::add_scaled_reversed_avx2(u, v, g) },
-            Width::Baseline => {}
+        #[cfg(target_arch = "x86_64")]
+        mod $name {
+            use super::*;
+            #[target_feature(enable = "avx2")]
+            pub(super) fn avx2<$($gen)*>($($arg: $ty),*) $(-> $ret)? {
+                $plain($($arg),*)
+            }
+            #[target_feature(enable = "avx512f")]
+            pub(super) fn avx512<$($gen)*>($($arg: $ty),*) $(-> $ret)? {
+                $plain($($arg),*)
+            }
         }
-    }
-    let _ = w;
-    add_scaled_reversed_plain(u, v, g)
+    };
+}
+
+by_width! {
+    /// `sum_k a[k] b[k]` in eight interleaved partial sums (k mod 8), added in order, then
+    /// the tail: the dense products' row sums.
+    dot, dot_with => dot_plain
+    [T: Copy + Into<f64>] (a: &[T], b: &[f64]) -> f64
+}
+
+by_width! {
+    /// `u[k] += v g[k]`: a point load's row of displacements added.
+    add_scaled, add_scaled_with => add_scaled_plain
+    [] (u: &mut [f64], v: f64, g: &[f64])
+}
+
+by_width! {
+    /// `u[k] += v g[len - 1 - k]`: a mirrored stretch of a point load's row.
+    add_scaled_reversed, add_scaled_reversed_with => add_scaled_reversed_plain
+    [] (u: &mut [f64], v: f64, g: &[f64])
 }
 
 #[inline(always)]
@@ -139,34 +138,5 @@ fn dot_plain<T: Copy + Into<f64>>(a: &[T], b: &[f64]) -> f64 {
 fn add_scaled_plain(u: &mut [f64], v: f64, g: &[f64]) {
     for (a, g) in u.iter_mut().zip(g) {
         *a += v * g;
-    }
-}
-
-/// The same bodies compiled with wider instructions (inlined into each).
-#[cfg(target_arch = "x86_64")]
-mod x86 {
-    #[target_feature(enable = "avx2")]
-    pub(super) fn dot_avx2<T: Copy + Into<f64>>(a: &[T], b: &[f64]) -> f64 {
-        super::dot_plain(a, b)
-    }
-    #[target_feature(enable = "avx512f")]
-    pub(super) fn dot_avx512<T: Copy + Into<f64>>(a: &[T], b: &[f64]) -> f64 {
-        super::dot_plain(a, b)
-    }
-    #[target_feature(enable = "avx2")]
-    pub(super) fn add_scaled_avx2(u: &mut [f64], v: f64, g: &[f64]) {
-        super::add_scaled_plain(u, v, g)
-    }
-    #[target_feature(enable = "avx512f")]
-    pub(super) fn add_scaled_avx512(u: &mut [f64], v: f64, g: &[f64]) {
-        super::add_scaled_plain(u, v, g)
-    }
-    #[target_feature(enable = "avx2")]
-    pub(super) fn add_scaled_reversed_avx2(u: &mut [f64], v: f64, g: &[f64]) {
-        super::add_scaled_reversed_plain(u, v, g)
-    }
-    #[target_feature(enable = "avx512f")]
-    pub(super) fn add_scaled_reversed_avx512(u: &mut [f64], v: f64, g: &[f64]) {
-        super::add_scaled_reversed_plain(u, v, g)
     }
 }
