@@ -34,9 +34,11 @@ use rustfft::{Fft, FftNum, FftPlanner};
 use std::ops::MulAssign;
 use std::sync::Arc;
 
-/// The precision a transform computes in (f64 or f32); rows arrive and leave as f64.
-pub trait FftFloat: FftNum + Default + NumAssign + bytemuck::Pod {
-    fn of_f64(x: f64) -> Self;
+use crate::symbol::{ColumnBuf, SymbolColumns, SymbolValue, Symbolic};
+
+/// The precision a transform computes in (f64 or f32); rows arrive and leave as f64
+/// (converted by [`SymbolValue::of_f64`] and [`Self::to_f64`]).
+pub trait FftFloat: FftNum + Default + NumAssign + bytemuck::Pod + SymbolValue {
     fn to_f64(self) -> f64;
     /// `src` as a row of this type: `src` itself for f64, converted into `buf` else.
     fn row<'a>(src: &'a mut [f64], buf: &'a mut [Self]) -> &'a mut [Self];
@@ -49,9 +51,6 @@ pub trait FftFloat: FftNum + Default + NumAssign + bytemuck::Pod {
 }
 
 impl FftFloat for f64 {
-    fn of_f64(x: f64) -> Self {
-        x
-    }
     fn to_f64(self) -> f64 {
         self
     }
@@ -72,9 +71,6 @@ impl FftFloat for f64 {
 }
 
 impl FftFloat for f32 {
-    fn of_f64(x: f64) -> Self {
-        x as f32
-    }
     fn to_f64(self) -> f64 {
         self as f64
     }
@@ -252,99 +248,9 @@ impl<T> SharedRows<T> {
 /// What a column pass does to each block after the forward transform: with a symbol,
 /// weigh (`<x, s * x>`) and, with `back`, multiply and transform back.
 struct ColumnWork<'a, S, W> {
-    symbol: Option<SymbolColumns<'a, S>>,
+    symbol: Option<&'a SymbolColumns<'a, S>>,
     weigh: Option<&'a W>,
     back: bool,
-}
-
-/// Rows stored per column of a symbol even in ky: `0..=ny/2`.
-pub fn even_rows(ny: usize) -> usize {
-    ny / 2 + 1
-}
-
-/// `symbol` (`nc` columns of `ny` values, the spectrum's layout) by its rows `0..=ny/2`
-/// per column if every column is even in ky bit for bit (row r equal to row ny - r),
-/// else unchanged: the form a column pass reads with the least memory.
-pub fn halve_if_even(symbol: Vec<f64>, ny: usize) -> Vec<f64> {
-    let half = even_rows(ny);
-    if half >= ny || !is_even_in_ky(&symbol, ny) {
-        return symbol;
-    }
-    symbol
-        .par_chunks(ny)
-        .flat_map_iter(|col| col[..half].iter().copied())
-        .collect()
-}
-
-/// Whether every column of `symbol` (stored in full, `ny` values per column) is even in
-/// ky bit for bit as f64: row r equal to row ny - r.
-pub(crate) fn is_even_in_ky<S: Copy + Into<f64> + Sync>(symbol: &[S], ny: usize) -> bool {
-    let bits = |v: S| Into::<f64>::into(v).to_bits();
-    symbol
-        .par_chunks(ny)
-        .all(|col| (1..ny).all(|r| bits(col[r]) == bits(col[ny - r])))
-}
-
-/// A symbol of `nc` columns of `ny` rows in its full form (`nc x ny`), whether stored
-/// full or by its even half ([`halve_if_even`]).
-pub fn full_symbol(symbol: &[f64], nc: usize, ny: usize) -> Vec<f64> {
-    let columns = SymbolColumns::new(symbol, nc, ny);
-    let mut full = vec![0.0; nc * ny];
-    full.par_chunks_mut(ny)
-        .enumerate()
-        .for_each_init(Vec::new, |buf, (c, col)| {
-            col.copy_from_slice(columns.column(c, buf))
-        });
-    full
-}
-
-/// A symbol's columns as a column pass reads them: `ny` rows each, stored in full or
-/// by rows `0..=ny/2` of a symbol even in ky.
-#[derive(Clone, Copy)]
-pub(crate) struct SymbolColumns<'a, S> {
-    values: &'a [S],
-    ny: usize,
-    /// Rows stored per column: `ny`, or `ny/2 + 1`.
-    stored: usize,
-}
-
-impl<'a, S: Copy> SymbolColumns<'a, S> {
-    /// The `nc` columns of `values`, full or even-half by its length.
-    pub(crate) fn new(values: &'a [S], nc: usize, ny: usize) -> Self {
-        let half = even_rows(ny);
-        let stored = if values.len() == nc * ny {
-            ny
-        } else {
-            assert_eq!(
-                values.len(),
-                nc * half,
-                "symbol length against the spectrum's (nx/2 + 1) * ny or its even half"
-            );
-            half
-        };
-        Self { values, ny, stored }
-    }
-
-    /// Whether every row is stored (else the even half).
-    pub(crate) fn is_full(&self) -> bool {
-        self.stored == self.ny
-    }
-
-    /// Column `c`'s `ny` values: the stored column, or `buf` filled from the stored half
-    /// (rows past ny/2 from their mirror).
-    pub(crate) fn column<'b>(&self, c: usize, buf: &'b mut Vec<S>) -> &'b [S]
-    where
-        'a: 'b,
-    {
-        let col = &self.values[c * self.stored..(c + 1) * self.stored];
-        if self.is_full() {
-            return col;
-        }
-        buf.clear();
-        buf.extend_from_slice(col);
-        buf.extend(col[1..=self.ny - self.stored].iter().rev());
-        buf
-    }
 }
 
 /// Length of a row buffer ([`Fft2`]'s `rows`, f64 pairs) that holds `values` complex
@@ -494,10 +400,10 @@ impl<T: FftFloat> Fft2<T> {
         &mut self,
         input: &[f64],
         (width, rows): (usize, usize),
-        symbol: &[S],
+        symbol: &(impl Symbolic<S> + ?Sized),
         output: &mut [f64],
     ) where
-        S: Copy + Sync,
+        S: SymbolValue,
         Complex<T>: MulAssign<S>,
     {
         let chunk = width * ROW_CHUNK;
@@ -506,9 +412,13 @@ impl<T: FftFloat> Fft2<T> {
     }
 
     /// [`Self::convolve`] with the output in place of the input.
-    pub fn convolve_in_place<S>(&mut self, data: &mut [f64], dims: (usize, usize), symbol: &[S])
-    where
-        S: Copy + Sync,
+    pub fn convolve_in_place<S>(
+        &mut self,
+        data: &mut [f64],
+        dims: (usize, usize),
+        symbol: &(impl Symbolic<S> + ?Sized),
+    ) where
+        S: SymbolValue,
         Complex<T>: MulAssign<S>,
     {
         let chunk = dims.0 * ROW_CHUNK;
@@ -594,12 +504,12 @@ impl<T: FftFloat> Fft2<T> {
     /// chunk and returns partial sums, collected in chunk order.
     pub fn finish_rows<S, I, F, const B: usize>(
         &mut self,
-        symbol: &[S],
+        symbol: &(impl Symbolic<S> + ?Sized),
         items: I,
         store: F,
     ) -> Vec<[f64; B]>
     where
-        S: Copy + Sync,
+        S: SymbolValue,
         Complex<T>: MulAssign<S>,
         I: IntoParallelIterator,
         I::Iter: IndexedParallelIterator,
@@ -612,9 +522,9 @@ impl<T: FftFloat> Fft2<T> {
     /// [`Self::finish_rows`] in two steps: this one transforms the loaded rows along
     /// columns, multiplies by `symbol` and transforms back; [`Self::store_rows`] then
     /// hands the rows out.
-    pub fn convolve_columns<S>(&mut self, symbol: &[S])
+    pub fn convolve_columns<S>(&mut self, symbol: &(impl Symbolic<S> + ?Sized))
     where
-        S: Copy + Sync,
+        S: SymbolValue,
         Complex<T>: MulAssign<S>,
     {
         self.column_step(symbol, None::<fn(S) -> f64>, true);
@@ -626,9 +536,9 @@ impl<T: FftFloat> Fft2<T> {
     /// `sum |x_hat|^2 s / (nx ny)` over the spectrum, the conjugate half's columns
     /// counted by doubling), summed in a fixed order; [`Self::store_rows`] then
     /// finishes. The result is the same as [`Self::finish_rows`]'s, bit for bit.
-    pub fn transform_columns<S>(&mut self, symbol: &[S]) -> f64
+    pub fn transform_columns<S>(&mut self, symbol: &(impl Symbolic<S> + ?Sized)) -> f64
     where
-        S: Copy + Sync + Into<f64>,
+        S: SymbolValue + Into<f64>,
         Complex<T>: MulAssign<S>,
     {
         self.column_step(symbol, Some(|s: S| s.into()), true)
@@ -637,9 +547,9 @@ impl<T: FftFloat> Fft2<T> {
     /// `<x, s * x>` of the loaded rows as [`Self::transform_columns`] returns it (bit
     /// for bit), without the convolution: the column pass stops after the forward
     /// transform, and no rows follow (the loaded rows are consumed).
-    pub fn column_energy<S>(&mut self, symbol: &[S]) -> f64
+    pub fn column_energy<S>(&mut self, symbol: &(impl Symbolic<S> + ?Sized)) -> f64
     where
-        S: Copy + Sync + Into<f64>,
+        S: SymbolValue + Into<f64>,
         Complex<T>: MulAssign<S>,
     {
         self.column_step(symbol, Some(|s: S| s.into()), false)
@@ -683,15 +593,20 @@ impl<T: FftFloat> Fft2<T> {
     /// `weigh` (a real symbol's value), also `<x, s * x>` (see
     /// [`Self::transform_columns`]); without `back`, only that number (the pass stops
     /// after the forward transform).
-    fn column_step<S, W>(&mut self, symbol: &[S], weigh: Option<W>, back: bool) -> f64
+    fn column_step<S, W>(
+        &mut self,
+        symbol: &(impl Symbolic<S> + ?Sized),
+        weigh: Option<W>,
+        back: bool,
+    ) -> f64
     where
-        S: Copy + Sync,
+        S: SymbolValue,
         W: Fn(S) -> f64 + Sync,
         Complex<T>: MulAssign<S>,
     {
         let (width, rows) = self.loaded.take().expect("column step without load_rows");
-        let symbol = SymbolColumns::new(symbol, self.nc, self.ny);
-        let energy = self.column_pass_in_place(rows, symbol, weigh, back);
+        let symbol = symbol.columns(self.nc, self.ny);
+        let energy = self.column_pass_in_place(rows, &symbol, weigh, back);
         if back {
             self.convolved = Some((width, rows));
         }
@@ -742,16 +657,17 @@ impl<T: FftFloat> Fft2<T> {
 
     /// [`Self::inverse`] of the real spectrum `symbol` (`nc x ny` values or their even
     /// half, zero imaginary parts) into `output`: a kernel's real-space table.
-    pub fn inverse_of_real(&mut self, symbol: &[f64], output: &mut [f64]) {
-        let columns = SymbolColumns::new(symbol, self.nc, self.ny);
+    pub fn inverse_of_real(&mut self, symbol: &(impl Symbolic<f64> + ?Sized), output: &mut [f64]) {
+        let columns = symbol.columns(self.nc, self.ny);
         let mut work = self.take_work();
-        work.par_chunks_mut(self.ny)
-            .enumerate()
-            .for_each_init(Vec::new, |buf, (c, col)| {
+        work.par_chunks_mut(self.ny).enumerate().for_each_init(
+            ColumnBuf::default,
+            |buf, (c, col)| {
                 for (w, &s) in col.iter_mut().zip(columns.column(c, buf)) {
                     *w = Complex::new(T::of_f64(s), T::default());
                 }
-            });
+            },
+        );
         self.inverse(&mut work, output);
     }
 
@@ -769,12 +685,12 @@ impl<T: FftFloat> Fft2<T> {
         &self,
         spec: &mut [Complex<T>],
         filled: usize,
-        symbol: Option<SymbolColumns<'_, S>>,
+        symbol: Option<&SymbolColumns<'_, S>>,
         weigh: Option<W>,
         back: bool,
     ) -> f64
     where
-        S: Copy + Sync,
+        S: SymbolValue,
         W: Fn(S) -> f64 + Sync,
         Complex<T>: MulAssign<S>,
     {
@@ -810,12 +726,12 @@ impl<T: FftFloat> Fft2<T> {
     fn column_pass_in_place<S, W>(
         &mut self,
         filled: usize,
-        symbol: SymbolColumns<'_, S>,
+        symbol: &SymbolColumns<'_, S>,
         weigh: Option<W>,
         back: bool,
     ) -> f64
     where
-        S: Copy + Sync,
+        S: SymbolValue,
         W: Fn(S) -> f64 + Sync,
         Complex<T>: MulAssign<S>,
     {
@@ -888,7 +804,7 @@ impl<T: FftFloat> Fft2<T> {
     ) -> f64
     where
         T: 'r,
-        S: Copy,
+        S: SymbolValue,
         W: Fn(S) -> f64,
         Complex<T>: MulAssign<S>,
     {
@@ -915,7 +831,7 @@ impl<T: FftFloat> Fft2<T> {
         let mut energy = 0.0;
         if let Some(s) = to.symbol {
             // Each column's energy before its product (the same values either way).
-            let mut buf = Vec::new();
+            let mut buf = ColumnBuf::default();
             for (c, col) in block.chunks_mut(ny).enumerate() {
                 let k = s.column(c0 + c, &mut buf);
                 if let Some(weigh) = to.weigh {
@@ -1020,6 +936,7 @@ impl<T: FftFloat> Fft2<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::symbol::{even_rows, full_symbol, halve_if_even};
     use rustfft::num_complex::Complex64;
 
     /// Test input: `len` values in [-0.3, 0.7) without a pattern a transform favours.

@@ -20,6 +20,7 @@ pub mod sliding;
 pub mod solution;
 pub mod solver;
 pub mod stencil;
+pub mod symbol;
 pub mod viscoelastic;
 pub mod wide;
 pub use operator::{

@@ -6,10 +6,11 @@
 //! `hy = ly/ny`; pressures are cell averages, displacements are taken at cell centres.
 
 use crate::error::{BemError, Result};
-use crate::fft::{halve_if_even, Fft2, SymbolColumns};
+use crate::fft::Fft2;
 pub use crate::love::love_coefficient;
 use crate::love::FarField;
 use crate::stencil::Stencil;
+use crate::symbol::{halve_if_even, Radial, Symbol, Symbolic};
 use rayon::prelude::*;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
@@ -122,10 +123,10 @@ pub struct Spectral<'a> {
     pub dims: (usize, usize),
 }
 
-/// A transform and its symbol, in double or single precision.
+/// A transform and its symbol (stored or computed), in double or single precision.
 pub enum Transform<'a> {
-    Double(&'a mut Fft2<f64>, &'a [f64]),
-    Single(&'a mut Fft2<f32>, &'a [f32]),
+    Double(&'a mut Fft2<f64>, &'a dyn Symbolic<f64>),
+    Single(&'a mut Fft2<f32>, &'a dyn Symbolic<f32>),
 }
 
 /// The precision of a preconditioner's transform.
@@ -147,20 +148,35 @@ pub enum Precision {
 /// no row buffer of its own: it borrows K's ([`Fft2::borrow_rows_from`]; the solver
 /// never holds a convolution of K and one of M at the same time).
 enum Stiffness {
-    Single(Fft2<f32>, Vec<f32>, Vec<f32>),
-    Double(Fft2<f64>, Vec<f64>),
+    Single(Fft2<f32>, Symbol<f32>, Option<Symbol<f32>>),
+    Double(Fft2<f64>, Symbol<f64>),
+}
+
+/// A stored symbol by its even half if it is even in ky ([`halve_if_even`]); a
+/// computed one as it is.
+fn halved_symbol(symbol: Symbol<f64>, ny: usize) -> Symbol<f64> {
+    match symbol {
+        Symbol::Stored(v) => Symbol::Stored(halve_if_even(v, ny)),
+        radial => radial,
+    }
 }
 
 impl Stiffness {
     /// `symbol` on an `nx x ny` transform in `precision`, with K's symbol `kernel` on
-    /// the same grid (empty: K lives on another grid).
-    fn new(nx: usize, ny: usize, symbol: Vec<f64>, kernel: &[f64], precision: Precision) -> Self {
-        let symbol = halve_if_even(symbol, ny);
+    /// the same grid (None: K lives on another grid).
+    fn new(
+        nx: usize,
+        ny: usize,
+        symbol: Symbol<f64>,
+        kernel: Option<&Symbol<f64>>,
+        precision: Precision,
+    ) -> Self {
+        let symbol = halved_symbol(symbol, ny);
         match precision {
             Precision::Single => Self::Single(
                 Fft2::without_rows(nx, ny),
-                symbol.par_iter().map(|&v| v as f32).collect(),
-                kernel.par_iter().map(|&v| v as f32).collect(),
+                symbol.map(|v| v as f32),
+                kernel.map(|k| k.map(|v| v as f32)),
             ),
             Precision::Double => Self::Double(Fft2::without_rows(nx, ny), symbol),
         }
@@ -174,9 +190,9 @@ impl Stiffness {
     }
 
     /// The symbol in double precision, as stored (for a change of precision).
-    fn symbol(&self) -> Vec<f64> {
+    fn symbol(&self) -> Symbol<f64> {
         match self {
-            Self::Single(_, s, _) => s.iter().map(|&v| v as f64).collect(),
+            Self::Single(_, s, _) => s.map(|v| v as f64),
             Self::Double(_, s) => s.clone(),
         }
     }
@@ -223,18 +239,18 @@ impl Stiffness {
     fn pair<'a>(
         &'a mut self,
         which: Operand,
-        (fft, kernel): (&'a mut Fft2, &'a [f64]),
+        (fft, kernel): (&'a mut Fft2, &'a dyn Symbolic<f64>),
         dims: (usize, usize),
     ) -> Spectral<'a> {
         // K in single precision only where the transform carries its symbol.
         let which = match self {
-            Self::Single(_, _, k) if !k.is_empty() => which,
+            Self::Single(_, _, Some(_)) => which,
             _ if which == Operand::ComplianceSingle => Operand::Compliance,
             _ => which,
         };
         let home = fft;
         let transform = match (which, self) {
-            (Operand::ComplianceSingle, Self::Single(fft, _, k)) => {
+            (Operand::ComplianceSingle, Self::Single(fft, _, Some(k))) => {
                 fft.borrow_rows_from(home);
                 Transform::Single(fft, k)
             }
@@ -400,7 +416,9 @@ impl<T: Compliance + Preconditioner + RealSpace + GridForms> SolverOperator for 
 pub struct PeriodicHalfSpace {
     hs: HalfSpace,
     fft: Fft2,
-    kernel: Vec<f64>,
+    /// K's symbol: computed as the transforms read it ([`compliance_law`]), or stored
+    /// ([`Self::with_compliance`]).
+    kernel: Symbol<f64>,
     /// Its inverse, the preconditioner (see [`stiffness_kernel`]).
     stiffness: Stiffness,
     /// M's kernel near its centre, made on first use.
@@ -413,15 +431,25 @@ pub struct PeriodicHalfSpace {
 /// `lx x ly` (transposed layout of [`Fft2`]), normalised like `Fft2` pairs. K's mean
 /// mode is undefined; the stiffness takes its value at the lowest wavenumber there, so
 /// that a uniform residual still moves the pressure.
-fn stiffness_kernel(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Vec<f64> {
+/// Computed as the transforms read it ([`Radial`]: no memory).
+fn stiffness_kernel(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Symbol<f64> {
     let k_min = (2.0 * PI / lx).min(2.0 * PI / ly);
-    spectral(nx, ny, lx, ly, |k| {
-        0.5 * e_star * if k > 0.0 { k } else { k_min }
-    })
+    let law = move |k: f64| 0.5 * e_star * if k > 0.0 { k } else { k_min };
+    Symbol::Radial(Radial::new((nx, ny), (lx, ly), move |ks| {
+        ks.iter_mut().for_each(|k| *k = law(*k))
+    }))
+}
+
+/// The periodic half-space's compliance `2 / (E* |k|)` at |k| (0 for the mean mode,
+/// which the load or approach constraint fixes).
+fn compliance_law(e_star: f64) -> impl Fn(f64) -> f64 + Copy + Send + Sync + 'static {
+    move |k| if k > 0.0 { 2.0 / (e_star * k) } else { 0.0 }
 }
 
 /// `f(|k|)` at every bin of a real 2D FFT of a periodic `ny x nx` grid of size
-/// `lx x ly`, in the transposed layout of [`Fft2`] (`(nx/2 + 1) x ny`).
+/// `lx x ly`, in the transposed layout of [`Fft2`] (`(nx/2 + 1) x ny`): the stored form
+/// of a [`Radial`] symbol, which the tests compare it with.
+#[cfg(test)]
 fn spectral(nx: usize, ny: usize, lx: f64, ly: f64, f: impl Fn(f64) -> f64 + Sync) -> Vec<f64> {
     spectral_grid(nx, ny, lx, ly, |kx, ky| f((kx * kx + ky * ky).sqrt()))
 }
@@ -475,13 +503,10 @@ impl PeriodicHalfSpace {
     pub fn new(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Self {
         // On the pool, as a solve (its parallel loops start in place).
         crate::pool::on_pool(|| {
-            let kernel = spectral(nx, ny, lx, ly, |k| {
-                if k > 0.0 {
-                    2.0 / (e_star * k)
-                } else {
-                    0.0
-                }
-            });
+            let law = compliance_law(e_star);
+            let kernel = Symbol::Radial(Radial::new((nx, ny), (lx, ly), move |ks| {
+                ks.iter_mut().for_each(|k| *k = law(*k))
+            }));
             let stiffness = stiffness_kernel(nx, ny, lx, ly, e_star);
             Self::from_kernels(nx, ny, lx, ly, e_star, kernel, stiffness)
         })
@@ -518,6 +543,7 @@ impl PeriodicHalfSpace {
                 }
             })
             .collect();
+        let (kernel, stiffness) = (Symbol::Stored(kernel), Symbol::Stored(stiffness));
         let mut op = Self::from_kernels(nx, ny, lx, ly, e_scale, kernel, stiffness);
         // Its M need not be a stiffness like |k| (anisotropic, of any sign pattern in
         // real space): no truncated stencil, M by transforms only.
@@ -533,16 +559,16 @@ impl PeriodicHalfSpace {
         lx: f64,
         ly: f64,
         e_star: f64,
-        kernel: Vec<f64>,
-        stiffness: Vec<f64>,
+        kernel: Symbol<f64>,
+        stiffness: Symbol<f64>,
     ) -> Self {
-        let kernel = halve_if_even(kernel, ny);
+        let kernel = halved_symbol(kernel, ny);
         // A symbol even in ky makes the table even in y (stored by half its rows).
-        let even = !SymbolColumns::new(&kernel, nx / 2 + 1, ny).is_full();
+        let even = !kernel.columns(nx / 2 + 1, ny).is_full();
         let mut fft = Fft2::new(nx, ny);
         let mut green = vec![0.0; nx * ny];
         fft.inverse_of_real(&kernel, &mut green);
-        let stiffness = Stiffness::new(nx, ny, stiffness, &kernel, Precision::default());
+        let stiffness = Stiffness::new(nx, ny, stiffness, Some(&kernel), Precision::default());
         Self {
             hs: HalfSpace {
                 nx,
@@ -565,7 +591,8 @@ impl PeriodicHalfSpace {
     pub fn with_preconditioner(mut self, precision: Precision) -> Self {
         let (nx, ny) = (self.hs.nx, self.hs.ny);
         self.stiffness.return_rows(&mut self.fft);
-        self.stiffness = Stiffness::new(nx, ny, self.stiffness.symbol(), &self.kernel, precision);
+        let symbol = self.stiffness.symbol();
+        self.stiffness = Stiffness::new(nx, ny, symbol, Some(&self.kernel), precision);
         self.local = OnceLock::new();
         self
     }
@@ -722,7 +749,7 @@ impl Circulant {
             };
         }
         let cols = (px / 2 + 1).min(px);
-        let rows = crate::fft::even_rows(py).min(py);
+        let rows = crate::symbol::even_rows(py).min(py);
         let values = values
             .chunks(px)
             .take(rows)
@@ -944,7 +971,7 @@ impl NonPeriodicHalfSpace {
                 nx,
                 ny,
                 stiffness_kernel(nx, ny, hs.lx, hs.ly, hs.e_star),
-                &[],
+                None,
                 precision,
             ),
             local: OnceLock::new(),
@@ -966,7 +993,7 @@ impl NonPeriodicHalfSpace {
     pub fn with_preconditioner(mut self, precision: Precision) -> Self {
         let (nx, ny) = (self.hs.nx, self.hs.ny);
         self.rows_home();
-        self.stiffness = Stiffness::new(nx, ny, self.stiffness.symbol(), &[], precision);
+        self.stiffness = Stiffness::new(nx, ny, self.stiffness.symbol(), None, precision);
         self.local = OnceLock::new();
         self.single = None;
         self
@@ -1269,6 +1296,47 @@ impl GridForms for DenseCompliance {}
 
 #[cfg(test)]
 mod tests {
+    /// The periodic half-space's symbols, computed as the transforms read them, are the
+    /// stored ones bit for bit (K in double and single precision, M in single): the same
+    /// operations on the same values, so every product and result is the same.
+    #[test]
+    fn computed_symbols_are_the_stored_ones_bit_for_bit() {
+        use crate::symbol::full_symbol;
+        let grids = [
+            (8, 8, 1.0, 1.0),
+            (7, 5, 1.0, 0.8),
+            (12, 9, 2.0, 0.7),
+            (6, 10, 0.3, 1.0),
+        ];
+        for (nx, ny, lx, ly) in grids {
+            let e_star = 2.5;
+            let nc = nx / 2 + 1;
+            let op = PeriodicHalfSpace::new(nx, ny, lx, ly, e_star);
+            let k_min = (2.0 * PI / lx).min(2.0 * PI / ly);
+            let stiffness = spectral(nx, ny, lx, ly, |k| {
+                0.5 * e_star * if k > 0.0 { k } else { k_min }
+            });
+            let kernel = spectral(nx, ny, lx, ly, compliance_law(e_star));
+            let bits64 = |v: Vec<f64>| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            let bits32 = |v: Vec<f32>| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            let to32 = |v: &[f64]| v.iter().map(|&x| x as f32).collect::<Vec<_>>();
+            assert!(matches!(op.kernel, Symbol::Radial(_)));
+            assert_eq!(
+                bits64(full_symbol(&op.kernel, nc, ny)),
+                bits64(kernel.clone())
+            );
+            let Stiffness::Single(_, m, Some(k32)) = &op.stiffness else {
+                panic!("single-precision M with K")
+            };
+            assert_eq!(bits32(full_symbol(m, nc, ny)), bits32(to32(&stiffness)));
+            assert_eq!(bits32(full_symbol(k32, nc, ny)), bits32(to32(&kernel)));
+            let Symbol::Radial(r) = stiffness_kernel(nx, ny, lx, ly, e_star) else {
+                panic!("computed M")
+            };
+            assert_eq!(bits64(r.tabulate()), bits64(stiffness));
+        }
+    }
+
     use super::*;
 
     /// `fft` and `reference` applied to the same pressures agree within 1e-12 of the
@@ -1435,7 +1503,7 @@ mod tests {
                 op.table.values.len(),
                 (ny / 2 + 1).min(ny) * (nx / 2 + 1).min(nx)
             );
-            let full_kernel = crate::fft::full_symbol(&op.kernel, nx / 2 + 1, ny);
+            let full_kernel = crate::symbol::full_symbol(&op.kernel, nx / 2 + 1, ny);
             let mut full = vec![0.0; nx * ny];
             Fft2::<f64>::new(nx, ny).inverse_of_real(&full_kernel, &mut full);
             let scale = full.iter().fold(0.0f64, |m, v| m.max(v.abs()));

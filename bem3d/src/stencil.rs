@@ -18,7 +18,7 @@
 //! 512^2, 33 at 1024^2, 29 and 37 on the free half-space against 27 and 34. At 4 %
 //! contact 1-6 more iterations than with the transforms (the solver's limit is 2 %).
 
-use crate::fft::SymbolColumns;
+use crate::symbol::{ColumnBuf, SymbolValue, Symbolic};
 use rayon::prelude::*;
 use std::f64::consts::PI;
 
@@ -50,17 +50,19 @@ impl Stencil {
     /// then even in x and y, and cosine sums give it), or if the stencil's circulant is
     /// not positive definite on the grid (its symbol at some wavenumber not positive).
     ///
-    /// The symbol may be stored by its even half ([`crate::fft::halve_if_even`]) and in
+    /// The symbol may be stored by its even half ([`crate::symbol::halve_if_even`]) and in
     /// single precision (read as f64): the same stencil as from its full f64 form, bit
     /// for bit, without a grid-sized copy.
-    pub fn of_symbol<S>(symbol: &[S], nx: usize, ny: usize) -> Option<Self>
+    pub fn of_symbol<S>(symbol: &(impl Symbolic<S> + ?Sized), nx: usize, ny: usize) -> Option<Self>
     where
-        S: Copy + Into<f64> + Sync,
+        S: SymbolValue + Into<f64>,
     {
         let nc = nx / 2 + 1;
-        let columns = SymbolColumns::new(symbol, nc, ny);
-        let full = columns.is_full();
-        if nx < SIDE || ny < SIDE || full && !crate::fft::is_even_in_ky(symbol, ny) {
+        let columns = symbol.columns(nc, ny);
+        let odd = columns
+            .full_values()
+            .is_some_and(|v| !crate::symbol::is_even_in_ky(v, ny));
+        if nx < SIDE || ny < SIDE || odd {
             return None;
         }
         let cosines = |n: usize| {
@@ -74,7 +76,7 @@ impl Stencil {
         // advanced by dy modulo ny).
         let per_column: Vec<[f64; RADIUS + 1]> = (0..nc)
             .into_par_iter()
-            .map_init(Vec::new, |buf, c| {
+            .map_init(ColumnBuf::default, |buf, c| {
                 let (mut v, mut j) = ([0.0; RADIUS + 1], [0; RADIUS + 1]);
                 for &s in columns.column(c, buf) {
                     let s: f64 = s.into();
@@ -113,7 +115,7 @@ impl Stencil {
         // The whole kernel sums to the symbol at k = 0; the part beyond the stencil is
         // that minus the stencil's sum.
         let kept: f64 = values.iter().sum();
-        let tail = Into::<f64>::into(symbol[0]) - kept;
+        let tail = Into::<f64>::into(columns.column(0, &mut ColumnBuf::default())[0]) - kept;
         values[RADIUS * SIDE + RADIUS] += TAIL_SHARE * tail;
         let stencil = Self { values, nx, ny };
         // Positive definite on any set of cells (the search directions descend), else
@@ -285,7 +287,7 @@ mod tests {
         // stencil as from its full form, bit for bit.
         for (nx, ny) in [(16, 16), (30, 18), (12, 41)] {
             let s = stiffness(nx, ny);
-            let half = crate::fft::halve_if_even(s.clone(), ny);
+            let half = crate::symbol::halve_if_even(s.clone(), ny);
             assert!(half.len() < s.len());
             let bits = |st: Stencil| st.values.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
             let full = bits(Stencil::of_symbol(&s, nx, ny).unwrap());
