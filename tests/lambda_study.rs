@@ -122,6 +122,11 @@ fn the_study_machinery_runs_pairs_and_reproduces() {
         );
     }
     assert_eq!(pairs.iter().filter(|r| r[3] == 1e-10).count(), 2);
+    // The bandwidth ladder's ratios are drawn, beside lambda and alpha themselves.
+    for what in ["lambda", "lambda_ratio", "alpha"] {
+        let png = p(&format!("a/lambda_study_{what}_vs_bandwidth.png"));
+        assert!(png.is_file(), "{png:?}");
+    }
     let top = pairs
         .iter()
         .find(|r| r[1] == 32.0 && r[2] == 8.0)

@@ -33,11 +33,11 @@ pub const SCALE_RANGE: (f64, f64) = (1e-100, 1e100);
 /// Estimated peak bytes per grid cell of a contact solve, operator, solver, the caller's
 /// heights and the solution together, with a margin; a process adds about
 /// [`PROCESS_BYTES`]. Measured peaks of whole processes (`mrdw bench large`,
-/// `bench-case`, docs/performance.md): periodic 50.3 B per cell at 8192^2 (20 % contact)
-/// and 47.7 at 16384^2 with the heights dropped after set-up (8 more with them kept),
-/// 57.1-57.3 at 4096^2 (fixed costs weigh more there); non-periodic 154.3 at 2048^2 with
+/// `bench-case`, docs/performance.md): periodic 43.4 B per cell at 8192^2 (20 % contact)
+/// and 43.3 at 16384^2 with the heights dropped after set-up (8 more with them kept),
+/// 44.5-47.4 at 4096^2 (fixed costs weigh more there); non-periodic 154.3 at 2048^2 with
 /// them.
-pub const BYTES_PER_CELL_PERIODIC: f64 = 62.0;
+pub const BYTES_PER_CELL_PERIODIC: f64 = 56.0;
 pub const BYTES_PER_CELL_NON_PERIODIC: f64 = 170.0;
 
 /// A process's memory besides its grids (code, thread stacks, allocator), about: added
@@ -431,18 +431,44 @@ pub struct PeriodicHalfSpace {
 /// `lx x ly` (transposed layout of [`Fft2`]), normalised like `Fft2` pairs. K's mean
 /// mode is undefined; the stiffness takes its value at the lowest wavenumber there, so
 /// that a uniform residual still moves the pressure.
-/// Computed as the transforms read it ([`Radial`]: no memory).
 fn stiffness_kernel(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Symbol<f64> {
+    let computed = nx * ny > COMPUTED_SYMBOLS_ABOVE;
+    radial_symbol((nx, ny), (lx, ly), computed, stiffness_law(lx, ly, e_star))
+}
+
+/// The surface stiffness `E* |k| / 2` at |k|, at the lowest wavenumber for the mean mode.
+fn stiffness_law(lx: f64, ly: f64, e_star: f64) -> impl Fn(f64) -> f64 + Copy + Send + Sync {
     let k_min = (2.0 * PI / lx).min(2.0 * PI / ly);
-    let law = move |k: f64| 0.5 * e_star * if k > 0.0 { k } else { k_min };
-    Symbol::Radial(Radial::new((nx, ny), (lx, ly), move |ks| {
+    move |k| 0.5 * e_star * if k > 0.0 { k } else { k_min }
+}
+
+/// Periodic grids with more cells than this compute their half-space symbols as the
+/// transforms read them ([`Radial`]: 4 or more bytes per cell less at a solve's peak, its
+/// transforms a few per cent slower: docs/performance.md); smaller grids store them by
+/// their even half. The values are the same either way, bit for bit.
+pub const COMPUTED_SYMBOLS_ABOVE: usize = 1 << 22;
+
+/// `law(|k|)` on a periodic grid, `computed` as the transforms read it or stored in full
+/// (the operator keeps its even half; the same values).
+fn radial_symbol(
+    dims: (usize, usize),
+    sizes: (f64, f64),
+    computed: bool,
+    law: impl Fn(f64) -> f64 + Copy + Send + Sync + 'static,
+) -> Symbol<f64> {
+    let radial = Radial::new(dims, sizes, move |ks| {
         ks.iter_mut().for_each(|k| *k = law(*k))
-    }))
+    });
+    if computed {
+        Symbol::Radial(radial)
+    } else {
+        Symbol::Stored(radial.tabulate())
+    }
 }
 
 /// The periodic half-space's compliance `2 / (E* |k|)` at |k| (0 for the mean mode,
 /// which the load or approach constraint fixes).
-fn compliance_law(e_star: f64) -> impl Fn(f64) -> f64 + Copy + Send + Sync + 'static {
+fn compliance_law(e_star: f64) -> impl Fn(f64) -> f64 + Copy + Send + Sync {
     move |k| if k > 0.0 { 2.0 / (e_star * k) } else { 0.0 }
 }
 
@@ -501,13 +527,22 @@ impl PeriodicHalfSpace {
     }
 
     pub fn new(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Self {
+        Self::with_symbols(nx, ny, (lx, ly), e_star, nx * ny > COMPUTED_SYMBOLS_ABOVE)
+    }
+
+    /// [`Self::new`] with its symbols `computed` or stored ([`COMPUTED_SYMBOLS_ABOVE`]).
+    fn with_symbols(
+        nx: usize,
+        ny: usize,
+        (lx, ly): (f64, f64),
+        e_star: f64,
+        computed: bool,
+    ) -> Self {
         // On the pool, as a solve (its parallel loops start in place).
         crate::pool::on_pool(|| {
-            let law = compliance_law(e_star);
-            let kernel = Symbol::Radial(Radial::new((nx, ny), (lx, ly), move |ks| {
-                ks.iter_mut().for_each(|k| *k = law(*k))
-            }));
-            let stiffness = stiffness_kernel(nx, ny, lx, ly, e_star);
+            let dims = (nx, ny);
+            let kernel = radial_symbol(dims, (lx, ly), computed, compliance_law(e_star));
+            let stiffness = radial_symbol(dims, (lx, ly), computed, stiffness_law(lx, ly, e_star));
             Self::from_kernels(nx, ny, lx, ly, e_star, kernel, stiffness)
         })
     }
@@ -1296,9 +1331,12 @@ impl GridForms for DenseCompliance {}
 
 #[cfg(test)]
 mod tests {
-    /// The periodic half-space's symbols, computed as the transforms read them, are the
-    /// stored ones bit for bit (K in double and single precision, M in single): the same
-    /// operations on the same values, so every product and result is the same.
+    use super::*;
+
+    /// The periodic half-space's symbols, computed as the transforms read them (grids
+    /// above [`COMPUTED_SYMBOLS_ABOVE`]) or stored, are those of `spectral` bit for bit (K
+    /// in double and single precision, M in single): the same operations on the same
+    /// values, so every product and result is the same.
     #[test]
     fn computed_symbols_are_the_stored_ones_bit_for_bit() {
         use crate::symbol::full_symbol;
@@ -1311,33 +1349,24 @@ mod tests {
         for (nx, ny, lx, ly) in grids {
             let e_star = 2.5;
             let nc = nx / 2 + 1;
-            let op = PeriodicHalfSpace::new(nx, ny, lx, ly, e_star);
-            let k_min = (2.0 * PI / lx).min(2.0 * PI / ly);
-            let stiffness = spectral(nx, ny, lx, ly, |k| {
-                0.5 * e_star * if k > 0.0 { k } else { k_min }
-            });
+            let stiffness = spectral(nx, ny, lx, ly, stiffness_law(lx, ly, e_star));
             let kernel = spectral(nx, ny, lx, ly, compliance_law(e_star));
             let bits64 = |v: Vec<f64>| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             let bits32 = |v: Vec<f32>| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             let to32 = |v: &[f64]| v.iter().map(|&x| x as f32).collect::<Vec<_>>();
-            assert!(matches!(op.kernel, Symbol::Radial(_)));
-            assert_eq!(
-                bits64(full_symbol(&op.kernel, nc, ny)),
-                bits64(kernel.clone())
-            );
-            let Stiffness::Single(_, m, Some(k32)) = &op.stiffness else {
-                panic!("single-precision M with K")
-            };
-            assert_eq!(bits32(full_symbol(m, nc, ny)), bits32(to32(&stiffness)));
-            assert_eq!(bits32(full_symbol(k32, nc, ny)), bits32(to32(&kernel)));
-            let Symbol::Radial(r) = stiffness_kernel(nx, ny, lx, ly, e_star) else {
-                panic!("computed M")
-            };
-            assert_eq!(bits64(r.tabulate()), bits64(stiffness));
+            for computed in [true, false] {
+                let op = PeriodicHalfSpace::with_symbols(nx, ny, (lx, ly), e_star, computed);
+                assert_eq!(matches!(op.kernel, Symbol::Radial(_)), computed);
+                let got = full_symbol(&op.kernel, nc, ny);
+                assert_eq!(bits64(got), bits64(kernel.clone()), "{nx}x{ny}");
+                let Stiffness::Single(_, m, Some(k32)) = &op.stiffness else {
+                    panic!("single-precision M with K")
+                };
+                assert_eq!(bits32(full_symbol(m, nc, ny)), bits32(to32(&stiffness)));
+                assert_eq!(bits32(full_symbol(k32, nc, ny)), bits32(to32(&kernel)));
+            }
         }
     }
-
-    use super::*;
 
     /// `fft` and `reference` applied to the same pressures agree within 1e-12 of the
     /// largest displacement.

@@ -22,6 +22,7 @@ pub fn report(s: &LambdaStudy, r: &Results, out: &mut Section) {
         calibrated_csv(s, r).into_bytes(),
     ));
     out.figures.push(against_bandwidth(s, r, &label, "lambda"));
+    out.figures.push(ratio_against_bandwidth(s, r, &label));
     out.figures.push(against_bandwidth(s, r, &label, "alpha"));
     for h in &s.hurst {
         if let Some(c) = main_case(s, r, *h) {
@@ -310,17 +311,9 @@ fn against_bandwidth(s: &LambdaStudy, r: &Results, label: &str, what: &str) -> F
     );
     fig.log_x = true;
     fig.log_y = what == "lambda";
-    // Labelled at the study's bandwidths (powers of 2), the extra ones included: where
-    // the data are.
-    let mut keys: Vec<usize> = s.bandwidths.clone();
-    keys.extend(s.extra.iter().map(|e| e.bandwidth));
-    keys.sort_unstable();
-    keys.dedup();
-    fig.x_keys = Some(keys.into_iter().map(|b| b as f64).collect());
-    // Each H's points sit a little apart in x so that no interval hides another's.
-    let nh = s.hurst.len() as f64;
+    fig.x_keys = Some(bandwidth_keys(s));
     for (i, h) in s.hurst.iter().enumerate() {
-        let dodge = 1.0 + 0.025 * (i as f64 - 0.5 * (nh - 1.0));
+        let dodge = dodge(s, i);
         let mut cs: Vec<&CaseResult> = r
             .cases
             .iter()
@@ -390,6 +383,87 @@ fn against_bandwidth(s: &LambdaStudy, r: &Results, label: &str, what: &str) -> F
             vec![(b0, PI), (b1, PI)],
             Style::Dashed,
         ));
+    }
+    fig
+}
+
+/// The study's bandwidths (powers of 2), the extra ones included: where the data are.
+fn bandwidth_keys(s: &LambdaStudy) -> Vec<f64> {
+    let mut keys: Vec<usize> = s.bandwidths.clone();
+    keys.extend(s.extra.iter().map(|e| e.bandwidth));
+    keys.sort_unstable();
+    keys.dedup();
+    keys.into_iter().map(|b| b as f64).collect()
+}
+
+/// The factor on the bandwidth that sets H number `i`'s points a little apart from the
+/// others', so that no interval hides another's.
+fn dodge(s: &LambdaStudy, i: usize) -> f64 {
+    1.0 + 0.025 * (i as f64 - 0.5 * (s.hurst.len() as f64 - 1.0))
+}
+
+/// lambda(B) / lambda(calibrate_at) on the same nested realisations against B, per H
+/// (the paired ratios of `pairs_table`: how lambda moves with bandwidth without the
+/// scatter the cases share, and fitted on common forces), with the first interval target
+/// drawn around 1.
+fn ratio_against_bandwidth(s: &LambdaStudy, r: &Results, label: &str) -> Figure {
+    let b0 = s.calibrate_at;
+    let mut fig = Figure::new(
+        &format!("{label}_lambda_ratio_vs_bandwidth"),
+        &format!("lambda(B) / lambda({b0}) on the same realisations and forces (paired, 95 %)"),
+        &format!(
+            "bandwidth L / lambda_min [1] ({} cells per shortest wavelength; each H offset a little)",
+            s.cells
+        ),
+        "lambda ratio [1]",
+    );
+    fig.log_x = true;
+    fig.x_keys = Some(bandwidth_keys(s));
+    let main = |c: &super::tasks::Case| c.cells == s.cells && c.tolerance == s.tolerance;
+    for (i, h) in s.hurst.iter().enumerate() {
+        let mut ps: Vec<_> = r
+            .pairs
+            .iter()
+            .filter(|p| p.case.hurst == *h && main(&p.case) && main(&p.reference))
+            .filter(|p| p.reference.band == b0 && p.case.band != b0)
+            .filter(|p| p.ratio.value.is_finite())
+            .collect();
+        if ps.is_empty() {
+            continue;
+        }
+        ps.sort_by_key(|p| p.case.band);
+        let x = |band: usize| band as f64 * dodge(s, i);
+        let mut pts: Vec<(f64, f64)> = ps.iter().map(|p| (x(p.case.band), p.ratio.value)).collect();
+        pts.push((x(b0), 1.0));
+        pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let bars = ps
+            .iter()
+            .map(|p| (x(p.case.band), p.ratio.lo, p.ratio.hi))
+            .filter(|b| b.1.is_finite() && b.2.is_finite())
+            .collect();
+        let n = ps.iter().map(|p| p.realisations).min().unwrap_or(0);
+        fig = fig.with(
+            Series::new(
+                format!("H = {h} (>= {n} paired realisations)"),
+                pts,
+                Style::Markers,
+            )
+            .with_bars(bars)
+            .colored(i),
+        );
+    }
+    if let Some(&[h_max, t]) = s.target.first() {
+        let keys = bandwidth_keys(s);
+        let (lo, hi) = (keys[0], keys[keys.len() - 1]);
+        let line = |v: f64| vec![(lo, v), (hi, v)];
+        let name = format!(
+            "1 +/- {:.0} % (the interval target for H <= {h_max})",
+            100.0 * t
+        );
+        let k = s.hurst.len();
+        fig = fig
+            .with(Series::new(name, line(1.0 + t), Style::Dashed).colored(k))
+            .with(Series::new("", line(1.0 - t), Style::Dashed).colored(k));
     }
     fig
 }
