@@ -416,8 +416,9 @@ impl<T: Compliance + Preconditioner + RealSpace + GridForms> SolverOperator for 
 pub struct PeriodicHalfSpace {
     hs: HalfSpace,
     fft: Fft2,
-    /// K's symbol: computed as the transforms read it ([`compliance_law`]), or stored
-    /// ([`Self::with_compliance`]).
+    /// K's symbol ([`compliance_law`]): computed as the transforms read it on grids above
+    /// [`COMPUTED_SYMBOLS_ABOVE`], else stored; any compliance of
+    /// [`Self::with_compliance`] stored.
     kernel: Symbol<f64>,
     /// Its inverse, the preconditioner (see [`stiffness_kernel`]).
     stiffness: Stiffness,
