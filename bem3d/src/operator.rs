@@ -10,7 +10,7 @@ use crate::fft::Fft2;
 pub use crate::love::love_coefficient;
 use crate::love::FarField;
 use crate::stencil::Stencil;
-use crate::symbol::{halve_if_even, Radial, Symbol, Symbolic};
+use crate::symbol::{halve_if_even, wavenumber, Radial, Symbol, Symbolic};
 use rayon::prelude::*;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
@@ -494,9 +494,9 @@ pub fn spectral_grid(
     let mut s = vec![0.0; nc * ny];
     // Column by column in parallel (each value on its own: the same for any threads).
     s.par_chunks_mut(ny).enumerate().for_each(|(c, col)| {
-        let kx = 2.0 * PI * c as f64 / lx;
+        let kx = wavenumber(c as f64, lx);
         for (r, v) in col.iter_mut().enumerate() {
-            let ky = 2.0 * PI * signed(r, ny) / ly;
+            let ky = wavenumber(signed(r, ny), ly);
             *v = f(kx, ky);
         }
     });

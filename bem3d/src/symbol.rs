@@ -15,6 +15,12 @@ use rustfft::num_traits::Zero;
 use std::f64::consts::PI;
 use std::sync::Arc;
 
+/// The wavenumber `2 pi index / length` of a DFT bin of signed `index` on a periodic
+/// side of `length` (the one formula every periodic symbol's bins are computed by).
+pub fn wavenumber(index: f64, length: f64) -> f64 {
+    2.0 * PI * index / length
+}
+
 /// Rows stored per column of a symbol even in ky: `0..=ny/2`.
 pub fn even_rows(ny: usize) -> usize {
     ny / 2 + 1
@@ -119,7 +125,7 @@ impl Radial {
     fn ky_squared(&self) -> Vec<f64> {
         (0..even_rows(self.ny))
             .map(|r| {
-                let ky = 2.0 * PI * r as f64 / self.ly;
+                let ky = wavenumber(r as f64, self.ly);
                 ky * ky
             })
             .collect()
@@ -127,7 +133,7 @@ impl Radial {
 
     /// Column `c`'s values on rows `0..=ny/2` into `out` (f64).
     fn half_column(&self, c: usize, ky2: &[f64], out: &mut Vec<f64>) {
-        let kx = 2.0 * PI * c as f64 / self.lx;
+        let kx = wavenumber(c as f64, self.lx);
         let kx2 = kx * kx;
         out.clear();
         out.extend(ky2.iter().map(|&y| (kx2 + y).sqrt()));
