@@ -22,9 +22,9 @@
 //! way, converted row by row while in cache.
 //!
 //! A symbol even in ky (every column's row r equal to row ny - r, bit for bit: any
-//! function of |k|) can be stored by its rows `0..=ny/2` per column ([`halve_if_even`]),
-//! half the memory; the column pass reads the other rows from their mirror, so the
-//! products and the results are the same bit for bit.
+//! function of |k|) can be stored by its rows `0..=ny/2` per column, half the memory,
+//! or computed as the column pass reads it ([`crate::symbol`]); the other rows are read
+//! from their mirror, so the products and the results are the same bit for bit.
 
 use rayon::prelude::*;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
