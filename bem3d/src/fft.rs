@@ -309,9 +309,33 @@ impl<T: FftFloat> Fft2<T> {
         Self::new_sized(nx, ny, 0)
     }
 
+    /// [`Fft2::new`] with a row buffer sized for spectra of precision `U` (smaller than
+    /// its own for a double-precision transform whose convolutions hold their spectra
+    /// in the output, [`Fft2::convolve_hosted`], and which lends its buffer to
+    /// single-precision transforms). A fused application in its own precision grows the
+    /// buffer first.
+    pub fn with_rows_for<U: FftFloat>(nx: usize, ny: usize) -> Self {
+        Self::new_sized(nx, ny, buffer_len::<U>(ny * (nx / 2 + 1)))
+    }
+
+    /// Bytes of the row buffer this transform holds (0 while lent out).
+    #[cfg(test)]
+    pub(crate) fn row_buffer_bytes(&self) -> usize {
+        std::mem::size_of_val(&self.rows[..])
+    }
+
     /// Whether this transform holds a row buffer large enough for its grid.
     fn holds_rows(&self) -> bool {
         self.rows.len() >= buffer_len::<T>(self.ny * self.nc)
+    }
+
+    /// A row buffer held but too small for this grid's spectra
+    /// ([`Fft2::with_rows_for`]) grown to size (zeros appended); a lent-out one is left.
+    fn grow_rows(&mut self) {
+        if !self.rows.is_empty() && !self.holds_rows() {
+            self.rows
+                .resize(buffer_len::<T>(self.ny * self.nc), Complex::default());
+        }
     }
 
     /// Takes `other`'s row buffer unless this transform holds one (or `other` none:
@@ -321,15 +345,12 @@ impl<T: FftFloat> Fft2<T> {
     /// instead of one each. Rows `other` had loaded or convolved are abandoned: finishing
     /// them later panics ("without load_rows") instead of reading this transform's
     /// values. Results are the same bit for bit: every value a pass reads was written by
-    /// the same convolution. Panics if `other`'s buffer is too small for this grid.
+    /// the same convolution. A buffer too small for this grid's spectra is grown when
+    /// this transform loads rows ([`Fft2::with_rows_for`]).
     pub fn borrow_rows_from<U: FftFloat>(&mut self, other: &mut Fft2<U>) {
         if self.holds_rows() || other.rows.is_empty() {
             return;
         }
-        assert!(
-            other.rows.len() >= buffer_len::<T>(self.ny * self.nc),
-            "a row buffer too small for the borrowing transform"
-        );
         other.loaded = None;
         other.convolved = None;
         self.rows = std::mem::take(&mut other.rows);
@@ -447,6 +468,7 @@ impl<T: FftFloat> Fft2<T> {
         let (nx, nc) = (self.nx, self.nc);
         let rows = rows.min(self.ny);
         assert!(width <= nx, "row width {width} exceeds the grid's {nx}");
+        self.grow_rows();
         self.loaded = Some((width, rows));
         let items = items.into_par_iter();
         assert_eq!(
@@ -709,7 +731,7 @@ impl<T: FftFloat> Fft2<T> {
                         weigh: weigh.as_ref(),
                         back,
                     };
-                    self.block_pass(block, scratch, (c0, filled), read, to)
+                    self.block_pass(block, scratch, (c0, filled), (read, None), to)
                 },
             )
             .collect();
@@ -757,7 +779,7 @@ impl<T: FftFloat> Fft2<T> {
                         weigh: weigh.as_ref(),
                         back,
                     };
-                    let energy = this.block_pass(block, scratch, (c0, filled), read, to);
+                    let energy = this.block_pass(block, scratch, (c0, filled), (read, None), to);
                     if back {
                         for r in 0..ny {
                             // SAFETY: as above.
@@ -791,15 +813,17 @@ impl<T: FftFloat> Fft2<T> {
 
     /// One block of columns `c0..` of a column pass, `block` column-major (`ny` per
     /// column): row r's stretch `read(r)` of the row spectra (r < `filled`; a row marked
-    /// zero reads zeros, the rows from `filled` on are zero) gathered in, transformed;
-    /// with a symbol, `<x, s * x>` summed over the block's columns (with `weigh`) and,
-    /// with `back`, the product transformed back. Returns the block's energy (else 0).
+    /// zero reads zeros, the rows from `filled` on are zero) gathered in, and with
+    /// `nyquist` the block's last column from there instead (the stretches one shorter:
+    /// spectra hosted in a real grid, [`Fft2::convolve_hosted`]); transformed; with a
+    /// symbol, `<x, s * x>` summed over the block's columns (with `weigh`) and, with
+    /// `back`, the product transformed back. Returns the block's energy (else 0).
     fn block_pass<'r, S, W>(
         &self,
         block: &mut [Complex<T>],
         scratch: &mut [Complex<T>],
         (c0, filled): (usize, usize),
-        read: impl Fn(usize) -> &'r [Complex<T>],
+        (read, nyquist): (impl Fn(usize) -> &'r [Complex<T>], Option<&'r [Complex<T>]>),
         to: ColumnWork<'_, S, W>,
     ) -> f64
     where
@@ -813,15 +837,22 @@ impl<T: FftFloat> Fft2<T> {
         // two.
         let twice = |c: usize| c > 0 && !(nx % 2 == 0 && c == nc - 1);
         let width = block.len() / ny;
+        let stretch = width - nyquist.is_some() as usize;
         let (zero_rows, zero_row) = (&self.zero_rows, &self.zero_row);
         // Row r's stretch of this block's columns becomes entry r of each.
         transpose(block, ny, filled, |r| {
             if zero_rows[r] {
-                &zero_row[c0..c0 + width]
+                &zero_row[c0..c0 + stretch]
             } else {
                 read(r)
             }
         });
+        if let Some(column) = nyquist {
+            let last = &mut block[stretch * ny..];
+            for (r, v) in last[..filled].iter_mut().enumerate() {
+                *v = if zero_rows[r] { zero_row[0] } else { column[r] };
+            }
+        }
         for col in block.chunks_mut(ny) {
             col[filled..]
                 .iter_mut()
@@ -930,6 +961,169 @@ impl<T: FftFloat> Fft2<T> {
                 },
             )
             .collect()
+    }
+}
+
+/// Convolutions whose row spectra live in the output grid's own memory: a
+/// double-precision convolution without a grid-sized buffer of the transform's own.
+///
+/// A real row of even length nx has `nx/2 + 1` spectral values; the first `nx/2` fill
+/// exactly the row's nx reals, and the last (the Nyquist column) goes to a column of
+/// `ny` values beside the grid. Each row pass reads and writes only its own rows of the
+/// grid, and the column pass each block of columns, so the output holds the spectrum
+/// from the forward row pass to the inverse one.
+impl Fft2<f64> {
+    /// [`Self::convolve`] of the whole grid (`ny x nx`, nx even), bit for bit, with the
+    /// row spectra held in `output` (module docs; the transform's row buffer is neither
+    /// read nor written, and may be lent out or sized for single precision only). A
+    /// fused application the transform had loaded is abandoned (finishing it panics).
+    pub fn convolve_hosted<S>(
+        &mut self,
+        input: &[f64],
+        symbol: &(impl Symbolic<S> + ?Sized),
+        output: &mut [f64],
+    ) where
+        S: SymbolValue,
+        Complex<f64>: MulAssign<S>,
+    {
+        let (nx, ny) = (self.nx, self.ny);
+        assert!(
+            nx.is_multiple_of(2),
+            "hosted spectra need an even row length"
+        );
+        assert_eq!(input.len(), nx * ny, "input of the grid's size");
+        assert_eq!(output.len(), nx * ny, "output of the grid's size");
+        self.loaded = None;
+        self.convolved = None;
+        let mut nyquist = vec![Complex::default(); ny];
+        self.hosted_rows_forward(input, output, &mut nyquist);
+        let symbol = symbol.columns(self.nc, ny);
+        self.hosted_columns(output, &mut nyquist, &symbol);
+        self.hosted_rows_inverse(output, &nyquist);
+    }
+
+    /// The forward row pass of [`Self::convolve_hosted`]: row r's spectrum into row r of
+    /// `host` and `nyquist[r]` (a zero row is marked, not transformed, as in
+    /// [`Self::load_rows`]).
+    fn hosted_rows_forward(
+        &mut self,
+        input: &[f64],
+        host: &mut [f64],
+        nyquist: &mut [Complex<f64>],
+    ) {
+        let (nx, half) = (self.nx, self.nx / 2);
+        let r2c = &self.r2c;
+        let chunk = nx * ROW_CHUNK;
+        host.par_chunks_mut(chunk)
+            .zip(input.par_chunks(chunk))
+            .zip(nyquist.par_chunks_mut(ROW_CHUNK))
+            .zip(self.zero_rows.par_chunks_mut(ROW_CHUNK))
+            .for_each_init(
+                || {
+                    let spectrum = vec![Complex::default(); half + 1];
+                    (r2c.make_scratch_vec(), vec![0.0; nx], spectrum)
+                },
+                |(scratch, row, spectrum), (((out, input), nyquist), zero)| {
+                    let rows = out.chunks_mut(nx).zip(input.chunks(nx));
+                    for (((out, input), nyquist), zero) in rows.zip(nyquist).zip(zero) {
+                        *zero = is_zero(input);
+                        if *zero {
+                            continue;
+                        }
+                        // realfft overwrites its input.
+                        row.copy_from_slice(input);
+                        r2c.process_with_scratch(row, spectrum, scratch)
+                            .expect("row fft");
+                        let out: &mut [Complex<f64>] = bytemuck::cast_slice_mut(out);
+                        out.copy_from_slice(&spectrum[..half]);
+                        *nyquist = spectrum[half];
+                    }
+                },
+            );
+    }
+
+    /// The column pass of [`Self::convolve_hosted`], as [`Self::column_pass_in_place`]
+    /// runs it (the same blocks), on the spectra in `host` and `nyquist`.
+    fn hosted_columns<S>(
+        &mut self,
+        host: &mut [f64],
+        nyquist: &mut [Complex<f64>],
+        symbol: &SymbolColumns<'_, S>,
+    ) where
+        S: SymbolValue,
+        Complex<f64>: MulAssign<S>,
+    {
+        let (ny, nc, per) = (self.ny, self.nc, self.columns_per_block());
+        let half = nc - 1;
+        let view: &mut [Complex<f64>] = bytemuck::cast_slice_mut(host);
+        let rows = SharedRows(view.as_mut_ptr(), view.len());
+        let side = SharedRows(nyquist.as_mut_ptr(), nyquist.len());
+        let this = &*self;
+        (0..nc.div_ceil(per)).into_par_iter().for_each_init(
+            || {
+                let block = vec![Complex::default(); per * ny];
+                (vec![Complex::default(); this.scratch_len()], block)
+            },
+            |(scratch, block), b| {
+                let (c0, width) = (b * per, per.min(nc - b * per));
+                let block = &mut block[..width * ny];
+                // The last block ends with the Nyquist column.
+                let with_nyquist = c0 + width == nc;
+                let stretch = width - with_nyquist as usize;
+                // SAFETY: blocks hold disjoint columns; each task reads and writes only
+                // its own columns' stretches, and the last block alone the Nyquist
+                // column.
+                let read = |r: usize| unsafe { rows.stretch(r * half + c0, stretch) };
+                let column = with_nyquist.then(|| unsafe { side.stretch(0, ny) });
+                let to = ColumnWork {
+                    symbol: Some(symbol),
+                    weigh: None::<&fn(S) -> f64>,
+                    back: true,
+                };
+                this.block_pass(block, scratch, (c0, ny), (read, column), to);
+                for r in 0..ny {
+                    // SAFETY: as above.
+                    let dst = unsafe { rows.stretch_mut(r * half + c0, stretch) };
+                    for (c, d) in dst.iter_mut().enumerate() {
+                        *d = block[c * ny + r];
+                    }
+                }
+                if with_nyquist {
+                    // SAFETY: as above.
+                    let dst = unsafe { side.stretch_mut(0, ny) };
+                    dst.copy_from_slice(&block[stretch * ny..]);
+                }
+            },
+        );
+        self.zero_rows.fill(false);
+    }
+
+    /// The inverse row pass of [`Self::convolve_hosted`]: each row's spectrum (row r of
+    /// `host` and `nyquist[r]`) transformed back into row r, normalised, as
+    /// [`Self::store_rows`] computes it.
+    fn hosted_rows_inverse(&self, host: &mut [f64], nyquist: &[Complex<f64>]) {
+        let (nx, nc) = (self.nx, self.nc);
+        let half = nc - 1;
+        let c2r = &self.c2r;
+        let norm = 1.0 / (nx * self.ny) as f64;
+        host.par_chunks_mut(nx * ROW_CHUNK)
+            .zip(nyquist.par_chunks(ROW_CHUNK))
+            .for_each_init(
+                || (c2r.make_scratch_vec(), vec![Complex::default(); nc]),
+                |(scratch, spectrum), (out, nyquist)| {
+                    for (row, nyquist) in out.chunks_mut(nx).zip(nyquist) {
+                        spectrum[..half].copy_from_slice(bytemuck::cast_slice(row));
+                        spectrum[half] = *nyquist;
+                        // The DC and Nyquist imaginary parts must vanish for c2r (as in
+                        // the owned row pass).
+                        spectrum[0].im = 0.0;
+                        spectrum[half].im = 0.0;
+                        c2r.process_with_scratch(spectrum, row, scratch)
+                            .expect("row ifft");
+                        row.iter_mut().for_each(|v| *v *= norm);
+                    }
+                },
+            );
     }
 }
 
@@ -1204,6 +1398,46 @@ mod tests {
             f.inverse_of_real(&full, &mut ta);
             f.inverse_of_real(&half, &mut tb);
             assert_eq!(ta, tb, "{nx}x{ny} table");
+        }
+    }
+
+    #[test]
+    fn hosted_spectra_give_the_convolution_bit_for_bit() {
+        // The output grid holding the row spectra against the transform's own buffer:
+        // even row lengths from 2 up, odd and even column lengths, zero rows, a last
+        // column block holding the Nyquist column alone (8 x 8192: two columns per
+        // block, five columns), complex, full and halved real symbols; the output's
+        // previous contents do not matter, and a lent-out row buffer is not needed.
+        for &(nx, ny) in &[(2usize, 3usize), (8, 6), (10, 7), (64, 48), (8, 8192)] {
+            let nc = nx / 2 + 1;
+            let real: Vec<f64> = (0..nc * ny)
+                .map(|b| {
+                    let (c, r) = (b / ny, (b % ny) as f64);
+                    1.0 + c as f64 / 3.0 + (r.min(ny as f64 - r)).sqrt()
+                })
+                .collect();
+            let halved = halve_if_even(real.clone(), ny);
+            let complex: Vec<Complex64> = (0..nc * ny)
+                .map(|b| Complex64::new(1.0 + (b % 5) as f64, (b % 3) as f64 - 1.0))
+                .collect();
+            let mut x = ramp(nx * ny);
+            // Rows 1 and the last but one zero: not transformed either way.
+            x[nx..2 * nx].fill(0.0);
+            let last = ny.saturating_sub(2) * nx;
+            x[last..last + nx].fill(0.0);
+            let mut own = Fft2::<f64>::new(nx, ny);
+            let mut hosting = Fft2::<f64>::without_rows(nx, ny);
+            let (mut a, mut b) = (vec![0.0; nx * ny], steps(nx * ny));
+            own.convolve(&x, (nx, ny), &real, &mut a);
+            hosting.convolve_hosted(&x, &real, &mut b);
+            assert_eq!(a, b, "{nx}x{ny} real");
+            own.convolve(&x, (nx, ny), &halved, &mut a);
+            hosting.convolve_hosted(&x, &halved, &mut b);
+            assert_eq!(a, b, "{nx}x{ny} halved");
+            own.convolve(&x, (nx, ny), &complex, &mut a);
+            hosting.convolve_hosted(&x, &complex, &mut b);
+            assert_eq!(a, b, "{nx}x{ny} complex");
+            assert!(a.iter().any(|&v| v != 0.0));
         }
     }
 

@@ -422,6 +422,9 @@ pub struct PeriodicHalfSpace {
     kernel: Symbol<f64>,
     /// Its inverse, the preconditioner (see [`stiffness_kernel`]).
     stiffness: Stiffness,
+    /// Whether [`Compliance::apply`] holds its spectra in the output
+    /// ([`PeriodicHalfSpace::hosting`]).
+    hosted: bool,
     /// M's kernel near its centre, made on first use.
     local: OnceLock<Option<Stencil>>,
     /// The same operator in real space: `u = table (*) p`, circular.
@@ -531,8 +534,10 @@ impl PeriodicHalfSpace {
         Self::with_symbols(nx, ny, (lx, ly), e_star, nx * ny > COMPUTED_SYMBOLS_ABOVE)
     }
 
-    /// [`Self::new`] with its symbols `computed` or stored ([`COMPUTED_SYMBOLS_ABOVE`]).
-    fn with_symbols(
+    /// [`Self::new`] with its symbols `computed` or stored ([`COMPUTED_SYMBOLS_ABOVE`]),
+    /// and with computed symbols its double-precision convolutions hosted (see
+    /// [`Self::hosting`]).
+    pub(crate) fn with_symbols(
         nx: usize,
         ny: usize,
         (lx, ly): (f64, f64),
@@ -544,7 +549,8 @@ impl PeriodicHalfSpace {
             let dims = (nx, ny);
             let kernel = radial_symbol(dims, (lx, ly), computed, compliance_law(e_star));
             let stiffness = radial_symbol(dims, (lx, ly), computed, stiffness_law(lx, ly, e_star));
-            Self::from_kernels(nx, ny, lx, ly, e_star, kernel, stiffness)
+            let op = Self::from_kernels(nx, ny, lx, ly, e_star, kernel, stiffness);
+            op.hosting(computed)
         })
     }
 
@@ -616,9 +622,32 @@ impl PeriodicHalfSpace {
             fft,
             kernel,
             stiffness,
+            hosted: false,
             local: OnceLock::new(),
             table: Circulant::new(nx, ny, green, even),
         }
+    }
+
+    /// With `hosted` and an even row length, K's double-precision convolutions hold
+    /// their spectra in the output ([`Fft2::convolve_hosted`], the same values bit for
+    /// bit) and its transform keeps a row buffer sized for the single-precision
+    /// transforms that borrow it: 4 bytes per cell less at a solve's peak, a few copies
+    /// of rows more per application (grids above [`COMPUTED_SYMBOLS_ABOVE`]).
+    fn hosting(mut self, hosted: bool) -> Self {
+        let (nx, ny) = (self.hs.nx, self.hs.ny);
+        self.hosted = hosted && nx.is_multiple_of(2);
+        if self.hosted {
+            self.stiffness.return_rows(&mut self.fft);
+            self.fft = Fft2::with_rows_for::<f32>(nx, ny);
+        }
+        self
+    }
+
+    /// Bytes of the row buffer K's transform holds and lends (taken back first).
+    #[cfg(test)]
+    pub(crate) fn row_buffer_bytes(&mut self) -> usize {
+        self.stiffness.return_rows(&mut self.fft);
+        self.fft.row_buffer_bytes()
     }
 
     /// The preconditioner's transforms in `precision` (default single; single also
@@ -642,6 +671,9 @@ impl Compliance for PeriodicHalfSpace {
         true
     }
     fn apply(&mut self, p: &[f64], u: &mut [f64]) {
+        if self.hosted {
+            return self.fft.convolve_hosted(p, &self.kernel, u);
+        }
         let dims = (self.hs.nx, self.hs.ny);
         self.stiffness.return_rows(&mut self.fft);
         self.fft.convolve(p, dims, &self.kernel, u);

@@ -748,8 +748,11 @@ mod tests {
     }
 
     /// The memory-lean handling of large grids (coarse solver released after a nested
-    /// start, the gap written over w) against the default on a grid where both run: the
-    /// same bits through cold, repeated and warm solves, under force and approach.
+    /// start, the gap written over w, the update apart from a fresh double-precision
+    /// K p, the operator's symbols computed and its double-precision spectra held in w)
+    /// against the default on a grid where both run: the same bits through cold,
+    /// repeated and warm solves, under force and approach, and K's row buffer stays
+    /// sized for single precision.
     #[test]
     fn lean_large_grid_handling_changes_no_bit() {
         let n = 512;
@@ -764,13 +767,26 @@ mod tests {
                     + 0.2 * phase(-11.0, 17.0, 2.0))
             })
             .collect();
+        // Without the single-precision phase, every fresh K p is in double precision
+        // (the early ones, while the contact set changes, too), and K t's double-precision
+        // transform grows K's row buffer to its own size.
+        for single_precision in [Choice::Allow, Choice::Forbid] {
+            lean_against_default(n, &h, single_precision);
+        }
+    }
+
+    fn lean_against_default(n: usize, h: &[f64], single_precision: Choice) {
         let opts = SolverOptions {
             tolerance: 1e-10,
+            paths: Paths {
+                single_precision,
+                ..Default::default()
+            },
             ..Default::default()
         };
         let run = |large: usize| {
-            let op = PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
-            let mut s = ContactSolver::new(op, &h, None).unwrap();
+            let op = PeriodicHalfSpace::with_symbols(n, n, (1.0, 1.0), 1.0, large == 0);
+            let mut s = ContactSolver::new(op, h, None).unwrap();
             s.large_grid_cells = large;
             let first = s.solve(Load::MeanPressure(2e-3), &opts, None).unwrap();
             let kept = s.coarse.is_some();
@@ -779,6 +795,10 @@ mod tests {
                 .solve(Load::MeanPressure(3e-3), &opts, Some(&again))
                 .unwrap();
             let approach = s.solve(Load::Approach(warm.approach), &opts, None).unwrap();
+            // Single-precision spectra: 8 bytes per complex value, n/2 + 1 per row.
+            let single = 8 * n * (n / 2 + 1);
+            let lean = large == 0 && single_precision == Choice::Allow;
+            assert_eq!(s.op.row_buffer_bytes() == single, lean, "row buffer");
             (kept, [first, again, warm, approach])
         };
         let (kept, default) = run(LARGE_GRID_CELLS);

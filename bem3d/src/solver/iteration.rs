@@ -463,6 +463,9 @@ impl<K: SolverOperator> ContactSolver<K> {
         kp_op: Operand,
     ) -> Vec<[f64; 3]> {
         let (nx, fc) = (self.op.nx(), ROWS_PER_CHUNK * self.op.nx());
+        if kp_op == Operand::Compliance && self.op.cells() > self.large_grid_cells {
+            return self.update_then_kp(p, upd);
+        }
         let parts = load_fused(
             &mut self.op,
             kp_op,
@@ -477,6 +480,33 @@ impl<K: SolverOperator> ContactSolver<K> {
             |(p, t, w, m, with_p), values| sweeps::advance(p, t, w, m, values, (with_p, nx), upd),
         );
         self.finish_into_w(kp_op);
+        parts
+    }
+
+    /// [`Self::update_with_fresh_kp`] in double precision on a memory-lean grid: the
+    /// update on its own (the same chunks, p, flags and sums), then `w = K p` by the
+    /// operator's plain application, which needs no double-precision row buffer where
+    /// the operator holds the spectra in `w` (the periodic half-space above
+    /// [`COMPUTED_SYMBOLS_ABOVE`](crate::operator::COMPUTED_SYMBOLS_ABOVE)); the same
+    /// `K p` bit for bit.
+    fn update_then_kp(&mut self, p: &mut [f64], upd: sweeps::Update) -> Vec<[f64; 3]> {
+        let (nx, fc) = (self.op.nx(), ROWS_PER_CHUNK * self.op.nx());
+        let parts = (
+            p.par_chunks_mut(fc),
+            self.t.par_chunks(fc),
+            self.w.par_chunks(fc),
+            self.mask.par_chunks(fc),
+            self.rows_p.par_chunks_mut(ROWS_PER_CHUNK),
+        )
+            .into_par_iter()
+            .map(|(p, t, w, m, with_p)| {
+                // The copy of p that the fused form loads goes to a scratch buffer.
+                with_scratch(p.len(), |values| {
+                    sweeps::advance(p, t, w, m, values, (with_p, nx), upd)
+                })
+            })
+            .collect();
+        self.op.apply(p, &mut self.w);
         parts
     }
 
