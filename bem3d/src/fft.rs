@@ -9,7 +9,9 @@
 //! holds one grid-sized buffer (the row spectra) and streams the grid six times (the
 //! input; the row buffer written, read and written by the column pass, read by the row
 //! pass; the output), without the separate passes of a forward transform, a product and
-//! an inverse transform.
+//! an inverse transform. [`Fft2::convolve_hosted`] holds the row spectra in the output
+//! grid's own memory instead (double precision, even row length): a convolution with
+//! no grid-sized buffer of the transform's own.
 //! A zero input row is not transformed (its spectrum is read as zeros), and an inverse
 //! pass can leave out rows its caller does not read ([`Fft2::store_some_rows`]): a
 //! solver's inputs and outputs restricted to a small contact set skip most rows.
@@ -1438,6 +1440,16 @@ mod tests {
             hosting.convolve_hosted(&x, &complex, &mut b);
             assert_eq!(a, b, "{nx}x{ny} complex");
             assert!(a.iter().any(|&v| v != 0.0));
+            // One thread and three: the same bits.
+            for threads in [1, 3] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                let mut c = steps(nx * ny);
+                pool.install(|| hosting.convolve_hosted(&x, &complex, &mut c));
+                assert_eq!(a, c, "{nx}x{ny} on {threads} threads");
+            }
         }
     }
 

@@ -236,9 +236,11 @@ pub struct ContactSolver<K: SolverOperator> {
 
 /// Grids with more cells than this (above 2048^2) trade the speed of repeated solves
 /// on one solver for memory: the coarse solver of a nested start is released after the
-/// start (its operator and buffers are about a fifth of the fine solve's memory), and the
-/// solution's gap is written over the solver's w (the next solve maps w's pages again).
-/// The results are the same either way.
+/// start (its operator and buffers are about a fifth of the fine solve's memory), the
+/// solution's gap is written over the solver's w (the next solve maps w's pages again),
+/// and a fresh double-precision `K p` after an update is the operator's plain
+/// application, not fused with the update (the periodic half-space then holds its
+/// spectra in w: no double-precision row buffer). The results are the same either way.
 const LARGE_GRID_CELLS: usize = 1 << 22;
 
 /// Sweep chunk, in cells (rounded to whole rows): fixed, so that partial sums (and
