@@ -1143,6 +1143,17 @@ mod tests {
     }
 
     /// Test symbol: `len` real values 1..=13.
+    /// A real symbol (`nc x ny`, the spectrum's layout) that is a function of the
+    /// column and |ky|: even in ky bit for bit.
+    fn even_in_ky(nc: usize, ny: usize) -> Vec<f64> {
+        (0..nc * ny)
+            .map(|b| {
+                let (c, r) = (b / ny, (b % ny) as f64);
+                1.0 + c as f64 / 3.0 + (r.min(ny as f64 - r)).sqrt()
+            })
+            .collect()
+    }
+
     fn steps(len: usize) -> Vec<f64> {
         (0..len).map(|k| 1.0 + (k % 13) as f64).collect()
     }
@@ -1367,12 +1378,7 @@ mod tests {
             (64, 48, 40, 30),
         ] {
             let nc = nx / 2 + 1;
-            let full: Vec<f64> = (0..nc * ny)
-                .map(|b| {
-                    let (c, r) = (b / ny, (b % ny) as f64);
-                    1.0 + c as f64 / 3.0 + (r.min(ny as f64 - r)).sqrt()
-                })
-                .collect();
+            let full = even_in_ky(nc, ny);
             let half = halve_if_even(full.clone(), ny);
             assert_eq!(half.len(), nc * even_rows(ny), "{nx}x{ny}");
             assert_eq!(full_symbol(&half, nc, ny), full);
@@ -1412,12 +1418,7 @@ mod tests {
         // previous contents do not matter, and a lent-out row buffer is not needed.
         for &(nx, ny) in &[(2usize, 3usize), (8, 6), (10, 7), (64, 48), (8, 8192)] {
             let nc = nx / 2 + 1;
-            let real: Vec<f64> = (0..nc * ny)
-                .map(|b| {
-                    let (c, r) = (b / ny, (b % ny) as f64);
-                    1.0 + c as f64 / 3.0 + (r.min(ny as f64 - r)).sqrt()
-                })
-                .collect();
+            let real = even_in_ky(nc, ny);
             let halved = halve_if_even(real.clone(), ny);
             let complex: Vec<Complex64> = (0..nc * ny)
                 .map(|b| Complex64::new(1.0 + (b % 5) as f64, (b % 3) as f64 - 1.0))
