@@ -759,46 +759,79 @@ impl<T: FftFloat> Fft2<T> {
         W: Fn(S) -> f64 + Sync,
         Complex<T>: MulAssign<S>,
     {
-        let (ny, nc, per) = (self.ny, self.nc, self.columns_per_block());
+        let (ny, nc) = (self.ny, self.nc);
         let view = rows_of_mut::<T>(&mut self.rows, ny * nc);
         let rows = SharedRows(view.as_mut_ptr(), view.len());
-        let this = &*self;
-        let parts: Vec<f64> = (0..nc.div_ceil(per))
+        let work = ColumnWork {
+            symbol: Some(symbol),
+            weigh: weigh.as_ref(),
+            back,
+        };
+        let parts = self.column_blocks((&rows, nc, None), filled, work);
+        if back {
+            self.zero_rows.fill(false);
+        }
+        self.total_energy(&parts)
+    }
+
+    /// The tasks of an in-place column pass: each block of columns of the row spectra
+    /// (`rows`, `stride` values per row; with `nyquist`, the last column in that column
+    /// of ny values instead) through [`Self::block_pass`] with `work`, and with
+    /// `work.back` written back to where it was read. Returns each block's energy.
+    fn column_blocks<S, W>(
+        &self,
+        (rows, stride, nyquist): (&SharedRows<T>, usize, Option<&SharedRows<T>>),
+        filled: usize,
+        work: ColumnWork<'_, S, W>,
+    ) -> Vec<f64>
+    where
+        S: SymbolValue,
+        W: Fn(S) -> f64 + Sync,
+        Complex<T>: MulAssign<S>,
+    {
+        let (ny, nc, per) = (self.ny, self.nc, self.columns_per_block());
+        (0..nc.div_ceil(per))
             .into_par_iter()
             .map_init(
                 || {
                     let block = vec![Complex::default(); per * ny];
-                    (vec![Complex::default(); this.scratch_len()], block)
+                    (vec![Complex::default(); self.scratch_len()], block)
                 },
                 |(scratch, block), b| {
                     let (c0, width) = (b * per, per.min(nc - b * per));
                     let block = &mut block[..width * ny];
+                    // The last block ends with the Nyquist column where it lies apart.
+                    let side = nyquist.filter(|_| c0 + width == nc);
+                    let stretch = width - side.is_some() as usize;
                     // SAFETY: blocks hold disjoint columns; each task reads and writes
-                    // only its own columns' stretches.
-                    let read = |r: usize| unsafe { rows.stretch(r * nc + c0, width) };
+                    // only its own columns' stretches, and the last block alone the
+                    // Nyquist column.
+                    let read = |r: usize| unsafe { rows.stretch(r * stride + c0, stretch) };
+                    let column = side.map(|c| unsafe { c.stretch(0, ny) });
                     let to = ColumnWork {
-                        symbol: Some(symbol),
-                        weigh: weigh.as_ref(),
-                        back,
+                        symbol: work.symbol,
+                        weigh: work.weigh,
+                        back: work.back,
                     };
-                    let energy = this.block_pass(block, scratch, (c0, filled), (read, None), to);
-                    if back {
+                    let energy = self.block_pass(block, scratch, (c0, filled), (read, column), to);
+                    if work.back {
                         for r in 0..ny {
                             // SAFETY: as above.
-                            let dst = unsafe { rows.stretch_mut(r * nc + c0, width) };
+                            let dst = unsafe { rows.stretch_mut(r * stride + c0, stretch) };
                             for (c, d) in dst.iter_mut().enumerate() {
                                 *d = block[c * ny + r];
                             }
+                        }
+                        if let Some(c) = side {
+                            // SAFETY: as above.
+                            let dst = unsafe { c.stretch_mut(0, ny) };
+                            dst.copy_from_slice(&block[stretch * ny..]);
                         }
                     }
                     energy
                 },
             )
-            .collect();
-        if back {
-            self.zero_rows.fill(false);
-        }
-        self.total_energy(&parts)
+            .collect()
     }
 
     /// Scratch length of the column transforms.
@@ -1055,48 +1088,15 @@ impl Fft2<f64> {
         S: SymbolValue,
         Complex<f64>: MulAssign<S>,
     {
-        let (ny, nc, per) = (self.ny, self.nc, self.columns_per_block());
-        let half = nc - 1;
         let view: &mut [Complex<f64>] = bytemuck::cast_slice_mut(host);
         let rows = SharedRows(view.as_mut_ptr(), view.len());
         let side = SharedRows(nyquist.as_mut_ptr(), nyquist.len());
-        let this = &*self;
-        (0..nc.div_ceil(per)).into_par_iter().for_each_init(
-            || {
-                let block = vec![Complex::default(); per * ny];
-                (vec![Complex::default(); this.scratch_len()], block)
-            },
-            |(scratch, block), b| {
-                let (c0, width) = (b * per, per.min(nc - b * per));
-                let block = &mut block[..width * ny];
-                // The last block ends with the Nyquist column.
-                let with_nyquist = c0 + width == nc;
-                let stretch = width - with_nyquist as usize;
-                // SAFETY: blocks hold disjoint columns; each task reads and writes only
-                // its own columns' stretches, and the last block alone the Nyquist
-                // column.
-                let read = |r: usize| unsafe { rows.stretch(r * half + c0, stretch) };
-                let column = with_nyquist.then(|| unsafe { side.stretch(0, ny) });
-                let to = ColumnWork {
-                    symbol: Some(symbol),
-                    weigh: None::<&fn(S) -> f64>,
-                    back: true,
-                };
-                this.block_pass(block, scratch, (c0, ny), (read, column), to);
-                for r in 0..ny {
-                    // SAFETY: as above.
-                    let dst = unsafe { rows.stretch_mut(r * half + c0, stretch) };
-                    for (c, d) in dst.iter_mut().enumerate() {
-                        *d = block[c * ny + r];
-                    }
-                }
-                if with_nyquist {
-                    // SAFETY: as above.
-                    let dst = unsafe { side.stretch_mut(0, ny) };
-                    dst.copy_from_slice(&block[stretch * ny..]);
-                }
-            },
-        );
+        let work = ColumnWork {
+            symbol: Some(symbol),
+            weigh: None::<&fn(S) -> f64>,
+            back: true,
+        };
+        self.column_blocks((&rows, self.nc - 1, Some(&side)), self.ny, work);
         self.zero_rows.fill(false);
     }
 
