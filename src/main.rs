@@ -128,6 +128,10 @@ enum Command {
         /// Mean pressure over E* (large).
         #[arg(long, default_value_t = 1e-2)]
         mean_pressure: f64,
+        /// The direction vectors scaled to 16 bits (large): forbid, allow (above 2048^2
+        /// cells) or force.
+        #[arg(long, default_value = "allow", value_parser = ["forbid", "allow", "force"])]
+        scaled_directions: String,
     },
 }
 
@@ -376,14 +380,26 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
             n,
             write_surfaces,
             mean_pressure,
+            scaled_directions,
         } => {
             if kind == "large" {
-                compare::bench::run_large_case(&mut out.0, n, mean_pressure)?;
+                let scaled = choice(&scaled_directions);
+                compare::bench::run_large_case(&mut out.0, n, mean_pressure, scaled)?;
             } else {
                 compare::bench::run_bem_case(&mut out.0, &kind, n, write_surfaces.as_deref())?;
             }
             Ok(())
         }
+    }
+}
+
+/// A solver strategy's choice from its name (`forbid`, `allow` or `force`, as clap
+/// checked).
+fn choice(name: &str) -> bem3d::Choice {
+    match name {
+        "forbid" => bem3d::Choice::Forbid,
+        "force" => bem3d::Choice::Force,
+        _ => bem3d::Choice::Allow,
     }
 }
 

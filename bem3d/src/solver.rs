@@ -167,6 +167,7 @@ mod options;
 pub mod reference;
 mod restricted;
 mod start;
+mod stored;
 mod sweeps;
 mod tangent;
 mod window;
@@ -191,17 +192,16 @@ pub struct ContactSolver<K: SolverOperator> {
     overlap_stiffness: f64,
     /// `K p + z`: the gap at zero approach, kept up to date incrementally.
     w: Vec<f64>,
-    /// Conjugate direction, stored in single precision (module docs); K's input and the
-    /// update read the stored values.
-    t: Vec<f32>,
+    /// The conjugate direction `t` and Polak-Ribiere+'s `y_prev` (the previous
+    /// iteration's projected preconditioned residual; between M's application and the
+    /// next direction, this iteration's raw `M q`), in single precision or scaled to 16
+    /// bits (module docs, "Scaled directions"); K's input, the update and the sums read
+    /// the stored values.
+    directions: stored::Directions,
     /// The cells whose projected step departs from `p - tau t` (pass D) and by how much,
     /// one list per row chunk of the sweeps, read for the point-load corrections of
     /// `K p`; empty between iterations.
     changes: Vec<Vec<(usize, f64)>>,
-    /// The previous iteration's projected preconditioned residual (Polak-Ribiere's beta);
-    /// between M's application and the next direction, this iteration's raw `M q`; in
-    /// single precision, as M computes.
-    y_prev: Vec<f32>,
     /// 1 where p > 0 (the contact set), written by pass A: the sweeps that need only
     /// the set read one byte per cell instead of p.
     active: Vec<u8>,
@@ -318,9 +318,12 @@ impl<K: SolverOperator> ContactSolver<K> {
             domain_cells: mask.count(),
             z_mean: 0.0,
             slope_rms: 0.0,
-            t: vec![0.0; n],
+            directions: stored::Directions::zeros(
+                n,
+                crate::fft::ROWS_PER_CHUNK * nx,
+                n > LARGE_GRID_CELLS,
+            ),
             changes: vec![Vec::new(); ny.div_ceil(crate::fft::ROWS_PER_CHUNK)],
-            y_prev: vec![0.0; n],
             active: vec![0; n],
             rows_on: vec![false; ny],
             rows_p: vec![true; ny],
@@ -780,8 +783,11 @@ mod tests {
     fn lean_against_default(n: usize, h: &[f64], single_precision: Choice) {
         let opts = SolverOptions {
             tolerance: 1e-10,
+            // The same iterates with and without the lean layout: directions in single
+            // precision on both (scaled ones: their own test).
             paths: Paths {
                 single_precision,
+                scaled_directions: Choice::Forbid,
                 ..Default::default()
             },
             ..Default::default()

@@ -1015,6 +1015,84 @@ fn paths_are_reported_and_forbidding_one_keeps_the_answer() {
     same_solution(&w, &g, "window forbidden");
 }
 
+/// Direction vectors scaled to 16 bits ([`Paths::scaled_directions`], the memory-lean
+/// storage of grids above 2048^2 cells) against single precision on small grids: the
+/// same solution (1e-9 of the peak pressure at tolerance 1e-12) within 10 % of the
+/// iterations, not the same iterates, reported in the [`Solution`]; bit-identical on
+/// one and three threads. A rough surface at about 0.6 % contact (M by its stencil) and
+/// 14 % (by transforms, with the single-precision phase) on the periodic half-space,
+/// 160 x 192 (12 chunks of 16 rows), and at 1e-2 on the free one, 150 x 128 (rows of
+/// no multiple of the sweeps' four lanes).
+#[test]
+fn scaled_directions_reach_the_same_solution() {
+    let o = |scaled: Choice| SolverOptions {
+        tolerance: 1e-12,
+        max_iterations: 10_000,
+        paths: Paths {
+            scaled_directions: scaled,
+            ..Paths::full_grid()
+        },
+        ..Default::default()
+    };
+    fn solve<K: SolverOperator>(op: K, h: &[f64], pm: f64, o: &SolverOptions) -> Solution {
+        let mut s = ContactSolver::new(op, h, None).unwrap();
+        s.solve(Load::MeanPressure(pm), o, None).unwrap()
+    }
+    let (nx, ny) = (160, 192);
+    let h = common::self_affine(nx.max(ny), 0.8, 11);
+    let h: Vec<f64> = h
+        .chunks(nx.max(ny))
+        .take(ny)
+        .flat_map(|r| &r[..nx])
+        .copied()
+        .collect();
+    let periodic = || PeriodicHalfSpace::new(nx, ny, 1.0, 1.2, 1.0);
+    for pm in [3e-4, 1e-2] {
+        let what = format!("periodic at {pm}");
+        let scaled = solve(periodic(), &h, pm, &o(Choice::Force));
+        let single = solve(periodic(), &h, pm, &o(Choice::Allow));
+        assert!(
+            scaled.scaled_directions && !single.scaled_directions,
+            "{what}"
+        );
+        assert!(!scaled.restricted() && scaled.residual <= 1e-12, "{what}");
+        let dp = same_solution(&scaled, &single, &what);
+        assert_ne!(
+            scaled.pressure, single.pressure,
+            "{what}: the same iterates"
+        );
+        let (a, b) = (scaled.iterations, single.iterations);
+        assert!(
+            a.abs_diff(b) * 10 <= b,
+            "{what}: {a} iterations against {b}"
+        );
+        eprintln!(
+            "{what}: {} contact cells ({} by the stencil), {a} iterations scaled, {b} in \
+             single precision; pressures within {dp:.1e} of the peak",
+            scaled.contact_cells, scaled.stencil_iterations
+        );
+    }
+    let (fx, fy) = (150, 128);
+    let hf: Vec<f64> = h
+        .chunks(nx)
+        .take(fy)
+        .flat_map(|r| &r[..fx])
+        .copied()
+        .collect();
+    let free = || NonPeriodicHalfSpace::new(fx, fy, 1.0, 1.0, 1.0);
+    let scaled = solve(free(), &hf, 1e-2, &o(Choice::Force));
+    let single = solve(free(), &hf, 1e-2, &o(Choice::Forbid));
+    assert!(scaled.scaled_directions && !single.scaled_directions);
+    same_solution(&scaled, &single, "free at 1e-2");
+    let run = |threads: usize| {
+        common::on_threads(threads, || {
+            let sol = solve(periodic(), &h, 1e-2, &o(Choice::Force));
+            (sol.pressure, sol.approach.to_bits(), sol.iterations)
+        })
+    };
+    assert_eq!(run(1), run(3));
+}
+
 /// Each strategy forced in [`SolverOptions::paths`] runs where the rules that judge
 /// whether it pays would skip it, and reaches the same answer (1e-9 of the peak pressure
 /// at tolerance 1e-12): a rough surface at 9 % contact on a candidate set (1410 cells

@@ -179,6 +179,12 @@ impl ContactResult {
     fn stencil_iterations(&self) -> usize {
         self.sol.stencil_iterations
     }
+    /// Whether the full-grid iteration stored its direction vectors as 16-bit integers
+    /// scaled per row chunk (grids above 2048^2 cells, unless forbidden).
+    #[getter]
+    fn scaled_directions(&self) -> bool {
+        self.sol.scaled_directions
+    }
     fn __repr__(&self) -> String {
         format!(
             "ContactResult(force={:.6e}, approach={:.6e}, contact_fraction={:.4e}, mean_gap={:.6e}, iterations={}, residual={:.2e}, certificate={:.2e})",
@@ -325,10 +331,11 @@ fn parse_paths(given: Option<&std::collections::HashMap<String, String>>) -> PyR
             "stencil" => &mut paths.stencil,
             "nested_start" => &mut paths.nested_start,
             "single_precision" => &mut paths.single_precision,
+            "scaled_directions" => &mut paths.scaled_directions,
             other => {
                 return Err(value_error(format!(
                     "paths: no strategy {other:?} (window, candidate_set, stencil, \
-                     nested_start, single_precision)"
+                     nested_start, single_precision, scaled_directions)"
                 )))
             }
         };
@@ -536,9 +543,10 @@ impl Contact {
     /// load, ConvergenceError (with `.last`) if the iteration cap is reached. The GIL is
     /// released while solving. `paths`: the solver's strategies, e.g.
     /// `{"stencil": "force", "window": "forbid"}` (names: window, candidate_set, stencil,
-    /// nested_start, single_precision; values: "forbid", "allow" (the default), "force";
-    /// ValueError if a forced one cannot run). The result's `path`, `nested_start`,
-    /// `single_precision_iterations` and `stencil_iterations` say what ran.
+    /// nested_start, single_precision, scaled_directions; values: "forbid", "allow" (the
+    /// default), "force"; ValueError if a forced one cannot run). The result's `path`,
+    /// `nested_start`, `single_precision_iterations`, `stencil_iterations` and
+    /// `scaled_directions` say what ran.
     #[pyo3(signature = (mean_pressure = None, force = None, approach = None, *, tolerance = 1e-10, max_iterations = 10_000, stiffness = false, warm = None, paths = None))]
     #[allow(clippy::too_many_arguments)]
     fn solve(

@@ -232,7 +232,10 @@ def test_paths_can_be_forced_or_forbidden():
     assert forced.stencil_iterations == forced.iterations and forced.nested_start
     plain = c.solve(mean_pressure=0.05, paths={"single_precision": "forbid"})
     assert plain.single_precision_iterations == 0
-    for r in (forced, plain):
+    assert not base.scaled_directions  # 64^2: below the 2048^2 cells where it is allowed
+    scaled = c.solve(mean_pressure=0.05, paths={"scaled_directions": "force"})
+    assert scaled.scaled_directions
+    for r in (forced, plain, scaled):
         assert np.abs(r.pressure - base.pressure).max() <= 1e-8 * base.pressure.max()
     # A forced path that cannot run, and bad names or values, are ValueErrors.
     with pytest.raises(ValueError, match="forced window"):

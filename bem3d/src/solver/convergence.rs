@@ -102,6 +102,7 @@ impl<K: SolverOperator> ContactSolver<K> {
             nested_start: false,
             single_iterations: 0,
             stencil_iterations: 0,
+            scaled_directions: false,
         }
     }
 

@@ -5,6 +5,7 @@ use super::fused::{
     apply_fused, energy_fused, finish_fused, load_fused, reduce, store_fused, sum_parts,
     with_scratch,
 };
+use super::stored::with_directions;
 use super::{sweeps, Choice, ContactSolver, Solution, SolverOptions};
 use crate::error::{BemError, Result};
 use crate::fft::{copy_in, copy_out, ROWS_PER_CHUNK};
@@ -132,13 +133,14 @@ impl<K: SolverOperator> ContactSolver<K> {
         // buffer gets its own frame now: a page of `vec![0.0; n]` first read maps the
         // shared zero page, and its first write then copies it and flushes the other
         // threads' TLBs (measured: ~4 % of a two-thread solve at 1024^2).
-        self.t
-            .par_iter_mut()
-            .zip(self.y_prev.par_iter_mut())
-            .for_each(|(t, y)| {
-                *t = 0.0;
-                *y = 0.0;
-            });
+        let n = self.op.cells();
+        let scaled = match opts.paths.scaled_directions {
+            Choice::Forbid => false,
+            Choice::Allow => n > self.large_grid_cells,
+            Choice::Force => true,
+        };
+        let chunk = ROWS_PER_CHUNK * self.op.nx();
+        self.directions.reset(n, chunk, scaled);
         self.rows_t.fill(false);
         self.rows_p.fill(true);
         self.op.apply(p, &mut self.w);
@@ -165,6 +167,7 @@ impl<K: SolverOperator> ContactSolver<K> {
             start,
             single_iterations: 0,
             stencil_iterations: 0,
+            scaled_directions: scaled,
         }
     }
 
@@ -285,47 +288,49 @@ impl<K: SolverOperator> ContactSolver<K> {
     /// y replaces y_prev once read. Returns (sum y, <q, y>, <q, y_prev>) over the set.
     fn preconditioned_residual(&mut self, approach: f64, local: bool) -> [f64; 3] {
         let (nx, fc) = (self.op.nx(), ROWS_PER_CHUNK * self.op.nx());
-        let chunks = (
-            self.active.par_chunks(fc),
-            self.w.par_chunks(fc),
-            self.y_prev.par_chunks_mut(fc),
-            self.rows_on.par_chunks(ROWS_PER_CHUNK),
-        );
-        let sums_of = |(act, w, y_prev, on), y: &[f64]| {
-            sweeps::preconditioned(act, w, y_prev, y, (on, nx), approach)
-        };
         // (The stencil is made only once a set is small.)
         let stencil = if local {
             self.op.local_stiffness()
         } else {
             None
         };
-        let parts: Vec<[f64; 3]> = match stencil {
-            Some(stencil) => {
-                // y = M q on the contact cells of each chunk's rows (in a scratch
-                // buffer), then its sums.
-                let grid = (&self.active[..], &self.w[..], approach);
-                chunks
-                    .into_par_iter()
-                    .enumerate()
-                    .map(|(b, item)| {
-                        let len = item.0.len();
-                        with_scratch(len, |y| {
-                            stencil.apply_rows(grid, y, item.3, b * ROWS_PER_CHUNK);
-                            sums_of(item, y)
+        let parts: Vec<[f64; 3]> = with_directions!(&mut self.directions, |_t, y_prev| {
+            let chunks = (
+                self.active.par_chunks(fc),
+                self.w.par_chunks(fc),
+                y_prev.chunks_mut(),
+                self.rows_on.par_chunks(ROWS_PER_CHUNK),
+            );
+            let sums_of = |(act, w, y_prev, on), y: &[f64]| {
+                sweeps::preconditioned(act, w, y_prev, y, (on, nx), approach)
+            };
+            match stencil {
+                Some(stencil) => {
+                    // y = M q on the contact cells of each chunk's rows (in a scratch
+                    // buffer), then its sums.
+                    let grid = (&self.active[..], &self.w[..], approach);
+                    chunks
+                        .into_par_iter()
+                        .enumerate()
+                        .map(|(b, item)| {
+                            let len = item.0.len();
+                            with_scratch(len, |y| {
+                                stencil.apply_rows(grid, y, item.3, b * ROWS_PER_CHUNK);
+                                sums_of(item, y)
+                            })
                         })
-                    })
-                    .collect()
+                        .collect()
+                }
+                _ => finish_fused(
+                    &mut self.op,
+                    Operand::Preconditioner,
+                    &mut self.fallback,
+                    chunks,
+                    sums_of,
+                    Some(&self.rows_on),
+                ),
             }
-            _ => finish_fused(
-                &mut self.op,
-                Operand::Preconditioner,
-                &mut self.fallback,
-                chunks,
-                sums_of,
-                Some(&self.rows_on),
-            ),
-        };
+        });
         sum_parts(&parts, None)
     }
 
@@ -368,22 +373,22 @@ impl<K: SolverOperator> ContactSolver<K> {
             approach,
         };
         let (nx, fc) = (self.op.nx(), ROWS_PER_CHUNK * self.op.nx());
-        let parts = load_fused(
+        let parts = with_directions!(&mut self.directions, |t, y_prev| load_fused(
             &mut self.op,
             st.kt_op,
             &mut self.fallback,
             (
                 self.active.par_chunks(fc),
                 self.w.par_chunks(fc),
-                self.t.par_chunks_mut(fc),
-                self.y_prev.par_chunks_mut(fc),
+                t.chunks_mut(),
+                y_prev.chunks_mut(),
                 self.rows_on.par_chunks(ROWS_PER_CHUNK),
                 self.rows_t.par_chunks(ROWS_PER_CHUNK),
             ),
             |(act, w, t, y_prev, on, was), out| {
                 sweeps::direction(act, w, t, y_prev, out, (on, was, nx), dir)
             },
-        );
+        ));
         self.rows_t.copy_from_slice(&self.rows_on);
         let [num] = sum_parts(&parts, None);
         num
@@ -466,19 +471,19 @@ impl<K: SolverOperator> ContactSolver<K> {
         if kp_op == Operand::Compliance && self.op.cells() > self.large_grid_cells {
             return self.update_then_kp(p, upd);
         }
-        let parts = load_fused(
+        let parts = with_directions!(&self.directions, |t, _y| load_fused(
             &mut self.op,
             kp_op,
             &mut self.fallback,
             (
                 p.par_chunks_mut(fc),
-                self.t.par_chunks(fc),
+                t.chunks(),
                 self.w.par_chunks(fc),
                 self.mask.par_chunks(fc),
                 self.rows_p.par_chunks_mut(ROWS_PER_CHUNK),
             ),
             |(p, t, w, m, with_p), values| sweeps::advance(p, t, w, m, values, (with_p, nx), upd),
-        );
+        ));
         self.finish_into_w(kp_op);
         parts
     }
@@ -491,9 +496,9 @@ impl<K: SolverOperator> ContactSolver<K> {
     /// `K p` bit for bit.
     fn update_then_kp(&mut self, p: &mut [f64], upd: sweeps::Update) -> Vec<[f64; 3]> {
         let (nx, fc) = (self.op.nx(), ROWS_PER_CHUNK * self.op.nx());
-        let parts = (
+        let parts = with_directions!(&self.directions, |t, _y| (
             p.par_chunks_mut(fc),
-            self.t.par_chunks(fc),
+            t.chunks(),
             self.w.par_chunks(fc),
             self.mask.par_chunks(fc),
             self.rows_p.par_chunks_mut(ROWS_PER_CHUNK),
@@ -505,7 +510,7 @@ impl<K: SolverOperator> ContactSolver<K> {
                     sweeps::advance(p, t, w, m, values, (with_p, nx), upd)
                 })
             })
-            .collect();
+            .collect());
         self.op.apply(p, &mut self.w);
         parts
     }
@@ -525,13 +530,13 @@ impl<K: SolverOperator> ContactSolver<K> {
         // A chunk's list stops at the limit: more changes than that in all go to a
         // fresh K p, not to point loads.
         let cap = self.op.point_load_limit() + 1;
-        let parts = store_fused(
+        let parts = with_directions!(&self.directions, |t, _y| store_fused(
             &mut self.op,
             st.kt_op,
             &mut self.fallback,
             (
                 p.par_chunks_mut(fc),
-                self.t.par_chunks(fc),
+                t.chunks(),
                 self.changes.par_iter_mut().enumerate(),
                 self.w.par_chunks_mut(fc),
                 self.mask.par_chunks(fc),
@@ -541,7 +546,7 @@ impl<K: SolverOperator> ContactSolver<K> {
                 sweeps::update(p, t, (changes, b * fc, cap), (w, kt), m, (with_p, nx), upd)
             },
             None,
-        );
+        ));
         let changed = sum_parts(&parts, None)[1];
         let too_many = changed > self.op.point_load_limit() as f64;
         // The changes as point loads (unless too many), and the lists emptied.
@@ -703,6 +708,8 @@ struct State {
     /// Iterations with `K p` carried in single precision, and with M by its stencil.
     single_iterations: usize,
     stencil_iterations: usize,
+    /// Whether t and y_prev are stored scaled to 16 bits.
+    scaled_directions: bool,
 }
 
 impl State {
@@ -713,6 +720,7 @@ impl State {
         sol.nested_start = self.start.nested;
         sol.single_iterations = self.single_iterations;
         sol.stencil_iterations = self.stencil_iterations;
+        sol.scaled_directions = self.scaled_directions;
         sol
     }
 }

@@ -85,6 +85,10 @@ pub struct Paths {
     /// K's single-precision form while the criterion is above 1e-4, and for the
     /// direction's `K t` throughout (else K in double precision everywhere).
     pub single_precision: Choice,
+    /// The direction vectors t and y_prev stored as 16-bit integers with a power-of-two
+    /// scale per row chunk instead of single precision (allowed: on grids above 2048^2
+    /// cells, where memory decides what fits).
+    pub scaled_directions: Choice,
 }
 
 impl Paths {
@@ -106,6 +110,7 @@ impl Paths {
             stencil: Choice::Forbid,
             nested_start: Choice::Forbid,
             single_precision: Choice::Forbid,
+            scaled_directions: Choice::Forbid,
         }
     }
 

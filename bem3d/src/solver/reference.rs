@@ -237,6 +237,7 @@ impl<'a> Problem<'a> {
             nested_start: false,
             single_iterations: 0,
             stencil_iterations: 0,
+            scaled_directions: false,
         }
     }
 }

@@ -11,6 +11,7 @@
 //! the development machine: a quarter of an iteration's time, about 1.7x the vector
 //! form's).
 
+use super::stored::{scale_for, Cell};
 use std::ops::Range;
 
 /// Lanes of the sums (four f64: one 256-bit vector).
@@ -250,33 +251,47 @@ pub(super) fn residual(
 }
 
 /// After M: with `y = M q` and q recomputed from `active` and `w`, the sums of y over
-/// the contact set, `<q, y>` and `<q, y_prev>`; y then replaces `y_prev` (rounded to
-/// single precision, as M computes it). Only the rows (of `width` cells) that `on`
-/// marks are read, each run of consecutive ones as one stretch: the others hold no
-/// contact cell, so they add nothing, and M was not computed there (their `y_prev`,
-/// zero off the set since the direction pass, stays).
+/// the contact set, `<q, y>` and `<q, y_prev>`; y then replaces `y_prev` (stored as
+/// [`Cell`] stores: single precision, as M computes it, or scaled, the chunk's scale
+/// then set from its largest y). Only the rows (of `width` cells) that `on` marks are
+/// read, each run of consecutive ones as one stretch: the others hold no contact cell,
+/// so they add nothing, and M was not computed there (their `y_prev`, zero off the set
+/// since the direction pass, stays).
 #[inline(never)]
-pub(super) fn preconditioned(
+pub(super) fn preconditioned<C: Cell>(
     active: &[u8],
     w: &[f64],
-    y_prev: &mut [f32],
+    (y_prev, scale): (&mut [C], &mut f64),
     y: &[f64],
     (on, width): (&[bool], usize),
     approach: f64,
 ) -> [f64; 3] {
-    let cell = |act: u8, w: f64, y_prev: &mut f32, y: f64, s: &mut [f64; 3]| {
+    let runs = || row_runs(on.len(), width, active.len(), |r| on[r]).filter(|(set, _)| *set);
+    let old = *scale;
+    if C::SCALED {
+        let mut m = Largest::new();
+        for (_, cells) in runs() {
+            let (yb, yt) = y[cells].as_chunks::<LANES>();
+            for y in yb {
+                for l in 0..LANES {
+                    m.add(l, [y[l]]);
+                }
+            }
+            yt.iter().for_each(|&y| m.add(0, [y]));
+        }
+        *scale = scale_for(m.total()[0]);
+    }
+    let inv = 1.0 / *scale;
+    let cell = |act: u8, w: f64, y_prev: &mut C, y: f64, s: &mut [f64; 3]| {
         let a = act as f64;
         let q = a * (w - approach);
         s[0] += a * y;
         s[1] += q * y;
-        s[2] += q * *y_prev as f64;
-        *y_prev = y as f32;
+        s[2] += q * y_prev.get(old);
+        *y_prev = C::put(y, inv);
     };
     let mut sums = Sums::new();
-    for (set, cells) in row_runs(on.len(), width, active.len(), |r| on[r]) {
-        if !set {
-            continue;
-        }
+    for (_, cells) in runs() {
         let (ab, at) = active[cells.clone()].as_chunks::<LANES>();
         let (wb, wt) = w[cells.clone()].as_chunks::<LANES>();
         let (pb, pt) = y_prev[cells.clone()].as_chunks_mut::<LANES>();
@@ -293,6 +308,38 @@ pub(super) fn preconditioned(
     sums.total(None)
 }
 
+/// Largest magnitudes of `N` quantities over [`LANES`] lanes, and whether any was NaN
+/// (max as a select, so the blocks vectorize; the flag keeps a NaN visible).
+struct Largest<const N: usize> {
+    lanes: [[f64; LANES]; N],
+    nan: bool,
+}
+
+impl<const N: usize> Largest<N> {
+    fn new() -> Self {
+        Largest {
+            lanes: [[0.0; LANES]; N],
+            nan: false,
+        }
+    }
+
+    #[inline(always)]
+    fn add(&mut self, l: usize, v: [f64; N]) {
+        for (lanes, v) in self.lanes.iter_mut().zip(v) {
+            lanes[l] = max(lanes[l], v.abs());
+            self.nan |= v.is_nan();
+        }
+    }
+
+    /// The largest of each quantity (NaN if any value was).
+    fn total(self) -> [f64; N] {
+        self.lanes.map(|lanes| match self.nan {
+            true => f64::NAN,
+            false => lanes.into_iter().fold(0.0, max),
+        })
+    }
+}
+
 /// Scalars of the direction pass: the contact means of y and of the old t removed
 /// (force control), the conjugation factor and the approach.
 #[derive(Clone, Copy)]
@@ -304,33 +351,62 @@ pub(super) struct Direction {
 }
 
 /// The direction pass: y projected (`[p > 0] (y - ybar)`, kept in `y_prev`), the new
-/// conjugate direction `t = y + beta [p > 0] (t - tbar)` rounded to single precision,
-/// also written to `out` (K's input); returns `<t, w - approach>` (of the rounded t).
+/// conjugate direction `t = y + beta [p > 0] (t - tbar)` as stored (single precision,
+/// or scaled: each chunk's new scales set from its largest new values first), also
+/// written to `out` (K's input); returns `<t, w - approach>` (of t as stored).
 /// Rows (of `width` cells) that neither `on` (the contact rows) nor `was` (those of the
 /// last direction pass) marks get `out = 0` only: their t and y_prev are already zero.
 #[inline(never)]
-pub(super) fn direction(
+pub(super) fn direction<C: Cell>(
     active: &[u8],
     w: &[f64],
-    t: &mut [f32],
-    y_prev: &mut [f32],
+    (t, t_scale): (&mut [C], &mut f64),
+    (y_prev, y_scale): (&mut [C], &mut f64),
     out: &mut [f64],
     (on, was, width): (&[bool], &[bool], usize),
     d: Direction,
 ) -> [f64; 1] {
-    let cell = |act: u8, w: f64, t: &mut f32, y_prev: &mut f32, out: &mut f64, s: &mut [f64; 1]| {
+    let n = active.len();
+    let live = |r: usize| on[r] || was[r];
+    let (t_old, y_old) = (*t_scale, *y_scale);
+    // The new values of a cell: projected y and t before storage.
+    let new = |act: u8, t: C, y_prev: C| {
         let a = act as f64;
-        let yi = a * (*y_prev as f64 - d.ybar);
-        *y_prev = yi as f32;
+        let yi = a * (y_prev.get(y_old) - d.ybar);
+        (yi, yi + a * d.beta * (t.get(t_old) - d.tbar))
+    };
+    if C::SCALED {
+        let mut m = Largest::new();
+        for (_, cells) in row_runs(on.len(), width, n, live).filter(|(l, _)| *l) {
+            let (ab, at) = active[cells.clone()].as_chunks::<LANES>();
+            let (tb, tt) = t[cells.clone()].as_chunks::<LANES>();
+            let (yb, yt) = y_prev[cells].as_chunks::<LANES>();
+            for ((a, t), y) in ab.iter().zip(tb).zip(yb) {
+                for l in 0..LANES {
+                    let (yi, ti) = new(a[l], t[l], y[l]);
+                    m.add(l, [yi, ti]);
+                }
+            }
+            for ((&a, &t), &y) in at.iter().zip(tt).zip(yt) {
+                let (yi, ti) = new(a, t, y);
+                m.add(0, [yi, ti]);
+            }
+        }
+        let [ym, tm] = m.total();
+        (*t_scale, *y_scale) = (scale_for(tm), scale_for(ym));
+    }
+    let (t_inv, y_inv, t_new) = (1.0 / *t_scale, 1.0 / *y_scale, *t_scale);
+    let cell = |act: u8, w: f64, t: &mut C, y_prev: &mut C, out: &mut f64, s: &mut [f64; 1]| {
+        let (yi, ti) = new(act, *t, *y_prev);
+        *y_prev = C::put(yi, y_inv);
         // t as stored: K's input, the update and <q, t> all see the same direction.
-        let ti = (yi + a * d.beta * (*t as f64 - d.tbar)) as f32 as f64;
-        *t = ti as f32;
+        *t = C::put(ti, t_inv);
+        let ti = t.get(t_new);
         *out = ti;
         s[0] += ti * (w - d.approach);
     };
-    let n = active.len();
     let mut sums = Sums::new();
-    for (live, cells) in row_runs(on.len(), width, n, |r| on[r] || was[r]) {
+    for (live, cells) in row_runs(on.len(), width, n, live) {
         if !live {
             out[cells].fill(0.0);
             continue;
@@ -383,17 +459,17 @@ pub(super) struct Update {
 /// (of `width` cells) where the new p is positive. Returns the total pressure, the number
 /// of changed cells and the sum of t over the new set.
 #[inline(never)]
-pub(super) fn update(
+pub(super) fn update<C: Cell>(
     p: &mut [f64],
-    t: &[f32],
+    (t, t_scale): (&[C], f64),
     (changes, first, cap): (&mut Vec<(usize, f64)>, usize, usize),
     (w, kt): (&mut [f64], &[f64]),
     mask: &[u8],
     (with_p, width): (&mut [bool], usize),
     u: Update,
 ) -> [f64; 3] {
-    let cell = |p: &mut f64, t: f32, w: &mut f64, m: u8, kt: f64, s: &mut [f64; 3]| {
-        let change = project(p, t as f64, *w, m, u, s);
+    let cell = |p: &mut f64, t: C, w: &mut f64, m: u8, kt: f64, s: &mut [f64; 3]| {
+        let change = project(p, t.get(t_scale), *w, m, u, s);
         *w -= u.tau * kt;
         change
     };
@@ -438,17 +514,17 @@ pub(super) fn update(
 /// written to `values` (the fresh `K p`'s input); w is read for the gap, neither w nor
 /// r written.
 #[inline(never)]
-pub(super) fn advance(
+pub(super) fn advance<C: Cell>(
     p: &mut [f64],
-    t: &[f32],
+    (t, t_scale): (&[C], f64),
     w: &[f64],
     mask: &[u8],
     values: &mut [f64],
     (with_p, width): (&mut [bool], usize),
     u: Update,
 ) -> [f64; 3] {
-    let cell = |p: &mut f64, t: f32, w: f64, m: u8, v: &mut f64, s: &mut [f64; 3]| {
-        project(p, t as f64, w, m, u, s);
+    let cell = |p: &mut f64, t: C, w: f64, m: u8, v: &mut f64, s: &mut [f64; 3]| {
+        project(p, t.get(t_scale), w, m, u, s);
         *v = *p;
     };
     let n = p.len();
@@ -571,6 +647,28 @@ mod tests {
             .collect()
     }
 
+    /// [`in_lane_order`] over several stretches in turn (each its blocks, then its
+    /// last cells to lane 0), into the same lanes.
+    fn in_stretches<const N: usize>(stretches: &[Vec<[f64; N]>]) -> [f64; N] {
+        let mut lanes = [[0.0f64; N]; LANES];
+        for cells in stretches {
+            let blocks = cells.len() / LANES * LANES;
+            for (i, c) in cells.iter().enumerate() {
+                let l = if i < blocks { i % LANES } else { 0 };
+                for k in 0..N {
+                    lanes[l][k] += c[k];
+                }
+            }
+        }
+        let mut out = lanes[0];
+        for lane in &lanes[1..] {
+            for k in 0..N {
+                out[k] += lane[k];
+            }
+        }
+        out
+    }
+
     fn bits<const N: usize>(v: [f64; N]) -> [u64; N] {
         v.map(f64::to_bits)
     }
@@ -592,7 +690,7 @@ mod tests {
         let (w0, y, approach) = (field(n, 3), field(n, 5), 0.1);
         let mut yp: Vec<f32> = field(n, 7).iter().map(|&v| v as f32).collect();
         let yp0 = yp.clone();
-        let got = preconditioned(&act, &w0, &mut yp, &y, (&on, width), approach);
+        let got = preconditioned(&act, &w0, (&mut yp, &mut 1.0), &y, (&on, width), approach);
         let cells: Vec<[f64; 3]> = (0..n)
             .filter(|&i| row_on(i))
             .map(|i| {
@@ -683,8 +781,8 @@ mod tests {
         let got = direction(
             &act,
             &w0,
-            &mut t,
-            &mut yp,
+            (&mut t, &mut 1.0),
+            (&mut yp, &mut 1.0),
             &mut out,
             (&flags, &was, width),
             d,
@@ -733,7 +831,7 @@ mod tests {
                 let rows = (&mut flag[..], n);
                 let sums = update(
                     &mut p,
-                    &t0,
+                    (&t0, 1.0),
                     (&mut list, 7, cap),
                     (&mut w, &kt),
                     &mask,
@@ -811,7 +909,8 @@ mod tests {
             // After M.
             let mut yp: Vec<f32> = field(n, 7).iter().map(|&v| v as f32).collect();
             let yp0 = yp.clone();
-            let got = preconditioned(&act, &w0, &mut yp, &y, (&[true], n.max(1)), approach);
+            let ys = &mut 1.0;
+            let got = preconditioned(&act, &w0, (&mut yp, ys), &y, (&[true], n.max(1)), approach);
             let cells: Vec<[f64; 3]> = (0..n)
                 .map(|i| {
                     let on = act[i] as f64;
@@ -836,7 +935,8 @@ mod tests {
             };
             let (mut t, mut yp, mut out) = (t0.clone(), yp0.clone(), vec![9.0; n]);
             let rows = (&[true][..], &[false][..], n.max(1));
-            let got = direction(&act, &w0, &mut t, &mut yp, &mut out, rows, d);
+            let (ts, ys) = (&mut 1.0, &mut 1.0);
+            let got = direction(&act, &w0, (&mut t, ts), (&mut yp, ys), &mut out, rows, d);
             let mut cells = vec![];
             for i in 0..n {
                 let on = act[i] as f64;
@@ -859,7 +959,7 @@ mod tests {
             };
             let (mut p, mut w, mut changes, mut with_p) = (p0.clone(), w0.clone(), vec![], [false]);
             let (flag, list) = ((&mut with_p[..], n.max(1)), (&mut changes, 7, n + 1));
-            let got = update(&mut p, &t0, list, (&mut w, &kt), &mask, flag, u);
+            let got = update(&mut p, (&t0, 1.0), list, (&mut w, &kt), &mask, flag, u);
             let (mut listed, mut cells) = (vec![], vec![]);
             for i in 0..n {
                 let g = w0[i] - approach;
@@ -893,10 +993,167 @@ mod tests {
             // (The flag starts wrong, but for n = 0: no row.)
             let (mut q, mut out, mut again_p) = (p0.clone(), vec![9.0; n], [with_p[0] ^ (n > 0)]);
             let flag = (&mut again_p[..], n.max(1));
-            let again = advance(&mut q, &t0, &w0, &mask, &mut out, flag, u);
+            let again = advance(&mut q, (&t0, 1.0), &w0, &mask, &mut out, flag, u);
             assert_eq!(again_p, with_p, "advance's flag, n = {n}");
             assert_eq!((&q, &out), (&p, &p), "advance, n = {n}");
             assert_eq!(bits(again), bits(got), "advance, n = {n}");
         }
+    }
+
+    /// The passes on scaled directions (16-bit cells, one scale per chunk) against
+    /// their cell-by-cell form: M's output stored at the scale of its largest value in
+    /// the marked rows, the new y and t at the scales of theirs, everything read back
+    /// as stored (K's input, the sums, the update); rows of 7 cells (blocks and tails
+    /// across rows), unmarked rows left alone.
+    #[test]
+    fn scaled_passes_match_their_cell_by_cell_form() {
+        let (width, on, was) = (
+            7,
+            [true, false, true, true, false],
+            [false, true, false, true, false],
+        );
+        let n = width * on.len();
+        let row = |i: usize| i / width;
+        let act: Vec<u8> = field(n, 1)
+            .iter()
+            .enumerate()
+            .map(|(i, &v)| (v > 0.0 && on[row(i)]) as u8)
+            .collect();
+        let (w0, approach) = (field(n, 3), 0.1);
+        // M's output, large in one unmarked row (which must not set the scale).
+        let y: Vec<f64> = (0..n)
+            .map(|i| field(n, 5)[i] * if on[row(i)] { 3.0 } else { 1e6 })
+            .collect();
+        let (y_old, t_old) = (0.125, 2.0f64.powi(-12));
+        let yp0: Vec<i16> = field(n, 7)
+            .iter()
+            .enumerate()
+            .map(|(i, &v)| {
+                if on[row(i)] || was[row(i)] {
+                    (v * 9000.0) as i16
+                } else {
+                    0
+                }
+            })
+            .collect();
+        let t0: Vec<i16> = field(n, 2)
+            .iter()
+            .enumerate()
+            .map(|(i, &v)| if was[row(i)] { (v * 12000.0) as i16 } else { 0 })
+            .collect();
+
+        // After M.
+        let (mut yp, mut ys) = (yp0.clone(), y_old);
+        let got = preconditioned(&act, &w0, (&mut yp, &mut ys), &y, (&on, width), approach);
+        let largest = (0..n)
+            .filter(|&i| on[row(i)])
+            .fold(0.0f64, |m, i| m.max(y[i].abs()));
+        assert_eq!(ys, scale_for(largest));
+        // The stretches of marked rows: row 0, rows 2-3.
+        let stretch = |i: usize| if row(i) == 0 { 0 } else { 1 };
+        let mut cells = vec![vec![], vec![]];
+        for i in (0..n).filter(|&i| on[row(i)]) {
+            let a = act[i] as f64;
+            let q = a * (w0[i] - approach);
+            cells[stretch(i)].push([a * y[i], q * y[i], q * yp0[i] as f64 * y_old]);
+            assert_eq!(yp[i], i16::put(y[i], 1.0 / ys), "cell {i}");
+            assert!((yp[i].get(ys) - y[i]).abs() <= 0.5 * ys, "cell {i}");
+        }
+        for i in (0..n).filter(|&i| !on[row(i)]) {
+            assert_eq!(yp[i], yp0[i], "cell {i}");
+        }
+        assert_eq!(bits(got), bits(in_stretches(&cells)), "after M");
+
+        // The direction: new scales from the new values, then the values as stored.
+        let d = Direction {
+            ybar: 0.05,
+            tbar: -0.03,
+            beta: 0.7,
+            approach,
+        };
+        let (mut t, mut ts, mut yq, mut ys2, mut out) =
+            (t0.clone(), t_old, yp.clone(), ys, vec![9.0; n]);
+        let got = direction(
+            &act,
+            &w0,
+            (&mut t, &mut ts),
+            (&mut yq, &mut ys2),
+            &mut out,
+            (&on, &was, width),
+            d,
+        );
+        let live = |i: usize| on[row(i)] || was[row(i)];
+        let new = |i: usize| {
+            let a = act[i] as f64;
+            let yi = a * (yp[i] as f64 * ys - d.ybar);
+            (yi, yi + a * d.beta * (t0[i] as f64 * t_old - d.tbar))
+        };
+        let (ym, tm) = (0..n)
+            .filter(|&i| live(i))
+            .fold((0.0f64, 0.0f64), |(a, b), i| {
+                let (yi, ti) = new(i);
+                (a.max(yi.abs()), b.max(ti.abs()))
+            });
+        assert_eq!((ys2, ts), (scale_for(ym), scale_for(tm)));
+        // The live rows: 0-3, one stretch.
+        let mut cells = vec![];
+        for i in 0..n {
+            if !live(i) {
+                assert_eq!((t[i], yq[i], out[i]), (t0[i], yp[i], 0.0), "cell {i}");
+                continue;
+            }
+            let (yi, ti) = new(i);
+            assert_eq!(
+                (yq[i], t[i]),
+                (i16::put(yi, 1.0 / ys2), i16::put(ti, 1.0 / ts)),
+                "cell {i}"
+            );
+            assert_eq!(out[i], t[i] as f64 * ts, "cell {i}");
+            assert!((out[i] - ti).abs() <= 0.5 * ts, "cell {i}");
+            cells.push([out[i] * (w0[i] - approach)]);
+        }
+        assert_eq!(bits(got), bits(in_stretches(&[cells])), "direction");
+    }
+
+    /// Pass D and its form without K t on scaled directions: the same as on the values
+    /// they stand for (exact in single precision: 15 bits times a power of two).
+    #[test]
+    fn scaled_updates_read_t_as_stored() {
+        type Out = ([u64; 3], Vec<f64>, Vec<f64>, Vec<(usize, f64)>, [bool; 2]);
+        fn run<C: Cell>(t: (&[C], f64), (p0, w0, kt): (&[f64], &[f64], &[f64]), u: Update) -> Out {
+            let (mut p, mut w, mut changes, mut with_p) =
+                (p0.to_vec(), w0.to_vec(), vec![], [false; 2]);
+            let (list, mask) = ((&mut changes, 0, p0.len() + 1), vec![1u8; p0.len()]);
+            let got = update(&mut p, t, list, (&mut w, kt), &mask, (&mut with_p, 19), u);
+            (bits(got), p, w, changes, with_p)
+        }
+        let n = 37;
+        let (w0, kt, ts) = (field(n, 3), field(n, 6), 2.0f64.powi(-9));
+        let p0: Vec<f64> = field(n, 8).iter().map(|v| v.max(0.0)).collect();
+        let t: Vec<i16> = field(n, 2).iter().map(|&v| (v * 12000.0) as i16).collect();
+        let t32: Vec<f32> = t.iter().map(|&v| (v as f64 * ts) as f32).collect();
+        let u = Update {
+            tau: 0.4,
+            approach: 0.1,
+            step: 2.0,
+        };
+        let got = run((&t, ts), (&p0, &w0, &kt), u);
+        assert_eq!(got, run((&t32, 1.0), (&p0, &w0, &kt), u));
+        assert!(got.3.len() > 2 && got.1.iter().any(|&v| v > 0.0));
+        let (mut q, mut vals, mut with_q, mask) =
+            (p0.clone(), vec![9.0; n], [false; 2], vec![1u8; n]);
+        let again = advance(
+            &mut q,
+            (&t, ts),
+            &w0,
+            &mask,
+            &mut vals,
+            (&mut with_q, 19),
+            u,
+        );
+        assert_eq!(
+            (bits(again), &q, &vals, with_q),
+            (got.0, &got.1, &got.1, got.4)
+        );
     }
 }

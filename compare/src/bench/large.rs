@@ -26,8 +26,14 @@ const HEIGHT_BYTES: f64 = 8.0;
 /// Smallest grid side of the ladder.
 const SMALLEST: usize = 4096;
 
-/// One large case: prints `RESULT key=value ...`.
-pub fn run_large_case(w: &mut dyn Write, n: usize, mean_pressure: f64) -> Result<(), String> {
+/// One large case: prints `RESULT key=value ...`. `scaled`: the solver's choice for
+/// its scaled direction vectors ([`bem3d::Paths::scaled_directions`]).
+pub fn run_large_case(
+    w: &mut dyn Write,
+    n: usize,
+    mean_pressure: f64,
+    scaled: bem3d::Choice,
+) -> Result<(), String> {
     use bem3d::*;
     if !(16..=16384).contains(&n) {
         return Err(format!("grid side n = {n} must lie in 16..=16384"));
@@ -63,6 +69,10 @@ pub fn run_large_case(w: &mut dyn Write, n: usize, mean_pressure: f64) -> Result
     let opts = SolverOptions {
         tolerance: 1e-10,
         max_iterations: 50_000,
+        paths: Paths {
+            scaled_directions: scaled,
+            ..Default::default()
+        },
         ..Default::default()
     };
     let t2 = Instant::now();
@@ -74,7 +84,7 @@ pub fn run_large_case(w: &mut dyn Write, n: usize, mean_pressure: f64) -> Result
     let cells = (n * n) as f64;
     writeln!(
         w,
-        "RESULT kind=large n={n} mean_pressure={mean_pressure:e} threads={} synthesis={synthesis:e} setup={setup:e} solve={solve:e} iterations={} contact={:e} residual={:e} certificate={:e} synthesis_mem={synthesis_mem:.1} mem={mem:.1} bytes_per_cell={:.1} path={}",
+        "RESULT kind=large n={n} mean_pressure={mean_pressure:e} threads={} synthesis={synthesis:e} setup={setup:e} solve={solve:e} iterations={} contact={:e} residual={:e} certificate={:e} synthesis_mem={synthesis_mem:.1} mem={mem:.1} bytes_per_cell={:.1} path={} scaled_directions={}",
         rayon::current_num_threads(),
         sol.iterations,
         sol.contact_cells as f64 / cells,
@@ -82,6 +92,7 @@ pub fn run_large_case(w: &mut dyn Write, n: usize, mean_pressure: f64) -> Result
         sol.certificate,
         mem * 1024.0 * 1024.0 / cells,
         if sol.restricted() { "restricted" } else { "full" },
+        sol.scaled_directions,
     )
     .map_err(|e| format!("writing to standard output: {e}"))
 }

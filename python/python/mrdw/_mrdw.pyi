@@ -83,6 +83,10 @@ class ContactResult:
     @property
     def stencil_iterations(self) -> int:
         """Of `iterations`, those with the preconditioner applied by its stencil."""
+    @property
+    def scaled_directions(self) -> bool:
+        """The direction vectors were stored as 16-bit integers scaled per row chunk
+        (grids above 2048^2 cells, unless forbidden)."""
 
 class Contact:
     """Frictionless normal contact of a rigid rough surface on an elastic half-space
@@ -114,7 +118,8 @@ class Contact:
     ) -> ContactResult:
         """Solve for exactly one of mean_pressure [stress], force [stress x length^2]
         or approach [length]. Releases the GIL. paths: {strategy: "forbid" | "allow" |
-        "force"} for window, candidate_set, stencil, nested_start, single_precision."""
+        "force"} for window, candidate_set, stencil, nested_start, single_precision,
+        scaled_directions."""
     def solve_many(
         self,
         mean_pressures: Optional[ArrayLike] = None,
