@@ -45,9 +45,9 @@ pub struct Solution {
     /// Of `iterations`, those that applied the preconditioner by its stencil on the
     /// contact cells instead of by transforms.
     pub stencil_iterations: usize,
-    /// Whether the full-grid iteration stored its direction vectors as 16-bit integers
-    /// scaled per row chunk instead of single precision (the solver's module docs,
-    /// "Scaled directions").
+    /// Whether the iteration (on the grid, or in a restricted path's rounds) stored its
+    /// direction vectors as 16-bit integers scaled per row chunk instead of single
+    /// precision (the solver's module docs, "Scaled directions").
     pub scaled_directions: bool,
 }
 

@@ -1022,7 +1022,7 @@ fn paths_are_reported_and_forbidding_one_keeps_the_answer() {
 /// one and three threads. A rough surface at about 0.6 % contact (M by its stencil) and
 /// 14 % (by transforms, with the single-precision phase) on the periodic half-space,
 /// 160 x 192 (12 chunks of 16 rows), and at 1e-2 on the free one, 150 x 128 (rows of
-/// no multiple of the sweeps' four lanes).
+/// no multiple of the sweeps' four lanes); a candidate set at 1e-4.
 #[test]
 fn scaled_directions_reach_the_same_solution() {
     let o = |scaled: Choice| SolverOptions {
@@ -1091,6 +1091,19 @@ fn scaled_directions_reach_the_same_solution() {
         })
     };
     assert_eq!(run(1), run(3));
+    // A candidate set's rounds scale only when forced, and the solution says so.
+    let low = |scaled: Choice| {
+        let paths = Paths {
+            scaled_directions: scaled,
+            ..Paths::default()
+        };
+        let o = SolverOptions { paths, ..o(scaled) };
+        solve(periodic(), &h, 1e-4, &o)
+    };
+    let (forced, allowed) = (low(Choice::Force), low(Choice::Allow));
+    assert_eq!(forced.path, Path::CandidateSet);
+    assert!(forced.scaled_directions && !allowed.scaled_directions);
+    same_solution(&forced, &allowed, "candidate set at 1e-4");
 }
 
 /// Each strategy forced in [`SolverOptions::paths`] runs where the rules that judge

@@ -179,7 +179,7 @@ impl ContactResult {
     fn stencil_iterations(&self) -> usize {
         self.sol.stencil_iterations
     }
-    /// Whether the full-grid iteration stored its direction vectors as 16-bit integers
+    /// Whether the iteration stored its direction vectors as 16-bit integers
     /// scaled per row chunk (grids above 2048^2 cells, unless forbidden).
     #[getter]
     fn scaled_directions(&self) -> bool {

@@ -69,6 +69,7 @@ impl Choice {
 ///   no mask and an operator with a coarse form, and overrides a warm start.
 /// - `single_precision`: as allowed (the single-precision phase runs whenever the
 ///   criterion is above 1e-4), and the operator must have a single-precision form.
+/// - `scaled_directions`: on every grid, whatever its size (any operator).
 ///
 /// At most one of `window`, `candidate_set` and `nested_start` can be forced: each is
 /// a different way to begin a cold solve.
@@ -102,7 +103,7 @@ impl Paths {
     }
 
     /// The plainest solve: the whole grid, M by transforms, a cold start, K in double
-    /// precision.
+    /// precision, the directions in single precision.
     pub fn plain() -> Self {
         Paths {
             window: Choice::Forbid,

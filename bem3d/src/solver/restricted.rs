@@ -76,6 +76,8 @@ pub(super) struct Tally {
     pub(super) iterations: usize,
     pub(super) single: usize,
     pub(super) stencil: usize,
+    /// Whether any round stored its directions scaled.
+    pub(super) scaled: bool,
 }
 
 impl Tally {
@@ -83,6 +85,7 @@ impl Tally {
         self.iterations += sol.iterations;
         self.single += sol.single_iterations;
         self.stencil += sol.stencil_iterations;
+        self.scaled |= sol.scaled_directions;
     }
 }
 
@@ -317,6 +320,7 @@ impl<K: SolverOperator> ContactSolver<K> {
         sol.path = path;
         sol.single_iterations = tally.single;
         sol.stencil_iterations = tally.stencil;
+        sol.scaled_directions = tally.scaled;
         Ok(sol)
     }
 }
