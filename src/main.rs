@@ -130,8 +130,8 @@ enum Command {
         mean_pressure: f64,
         /// The direction vectors scaled to 16 bits (large): forbid, allow (above 2048^2
         /// cells) or force.
-        #[arg(long, default_value = "allow", value_parser = ["forbid", "allow", "force"])]
-        scaled_directions: String,
+        #[arg(long, default_value = "allow", value_parser = |s: &str| s.parse::<bem3d::Choice>())]
+        scaled_directions: bem3d::Choice,
     },
 }
 
@@ -383,23 +383,12 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
             scaled_directions,
         } => {
             if kind == "large" {
-                let scaled = choice(&scaled_directions);
-                compare::bench::run_large_case(&mut out.0, n, mean_pressure, scaled)?;
+                compare::bench::run_large_case(&mut out.0, n, mean_pressure, scaled_directions)?;
             } else {
                 compare::bench::run_bem_case(&mut out.0, &kind, n, write_surfaces.as_deref())?;
             }
             Ok(())
         }
-    }
-}
-
-/// A solver strategy's choice from its name (`forbid`, `allow` or `force`, as clap
-/// checked).
-fn choice(name: &str) -> bem3d::Choice {
-    match name {
-        "forbid" => bem3d::Choice::Forbid,
-        "force" => bem3d::Choice::Force,
-        _ => bem3d::Choice::Allow,
     }
 }
 

@@ -315,31 +315,12 @@ pub(crate) struct Request {
 fn parse_paths(given: Option<&std::collections::HashMap<String, String>>) -> PyResult<Paths> {
     let mut paths = Paths::default();
     for (name, choice) in given.into_iter().flatten() {
-        let choice = match choice.as_str() {
-            "forbid" => Choice::Forbid,
-            "allow" => Choice::Allow,
-            "force" => Choice::Force,
-            other => {
-                return Err(value_error(format!(
-                    "paths[{name:?}] = {other:?}: give \"forbid\", \"allow\" or \"force\""
-                )))
-            }
-        };
-        let slot = match name.as_str() {
-            "window" => &mut paths.window,
-            "candidate_set" => &mut paths.candidate_set,
-            "stencil" => &mut paths.stencil,
-            "nested_start" => &mut paths.nested_start,
-            "single_precision" => &mut paths.single_precision,
-            "scaled_directions" => &mut paths.scaled_directions,
-            other => {
-                return Err(value_error(format!(
-                    "paths: no strategy {other:?} (window, candidate_set, stencil, \
-                     nested_start, single_precision, scaled_directions)"
-                )))
-            }
-        };
-        *slot = choice;
+        let choice: Choice = choice
+            .parse()
+            .map_err(|e| value_error(format!("paths[{name:?}] = {e}")))?;
+        paths
+            .set(name, choice)
+            .map_err(|e| value_error(format!("paths: {e}")))?;
     }
     Ok(paths)
 }

@@ -42,6 +42,23 @@ pub enum Choice {
     Force,
 }
 
+impl std::str::FromStr for Choice {
+    type Err = String;
+
+    /// `forbid`, `allow` or `force` (the command line's and the Python package's
+    /// spelling).
+    fn from_str(name: &str) -> std::result::Result<Self, String> {
+        match name {
+            "forbid" => Ok(Choice::Forbid),
+            "allow" => Ok(Choice::Allow),
+            "force" => Ok(Choice::Force),
+            other => Err(format!(
+                "{other:?}: give \"forbid\", \"allow\" or \"force\""
+            )),
+        }
+    }
+}
+
 impl Choice {
     pub fn allowed(self) -> bool {
         self != Choice::Forbid
@@ -113,6 +130,37 @@ impl Paths {
             single_precision: Choice::Forbid,
             scaled_directions: Choice::Forbid,
         }
+    }
+
+    /// The strategies' names, as [`Paths::set`] takes them.
+    pub const NAMES: [&'static str; 6] = [
+        "window",
+        "candidate_set",
+        "stencil",
+        "nested_start",
+        "single_precision",
+        "scaled_directions",
+    ];
+
+    /// Sets the strategy called `name` (one of [`Paths::NAMES`], the field's name) to
+    /// `choice`; an unknown name is an error that lists the known ones.
+    pub fn set(&mut self, name: &str, choice: Choice) -> std::result::Result<(), String> {
+        let slot = match name {
+            "window" => &mut self.window,
+            "candidate_set" => &mut self.candidate_set,
+            "stencil" => &mut self.stencil,
+            "nested_start" => &mut self.nested_start,
+            "single_precision" => &mut self.single_precision,
+            "scaled_directions" => &mut self.scaled_directions,
+            other => {
+                return Err(format!(
+                    "no strategy {other:?} ({})",
+                    Self::NAMES.join(", ")
+                ))
+            }
+        };
+        *slot = choice;
+        Ok(())
     }
 
     /// Refuses two forced paths that exclude each other.
@@ -198,5 +246,44 @@ impl Interrupt {
     }
     pub fn is_set(&self) -> bool {
         self.0.load(std::sync::atomic::Ordering::Relaxed)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn choices_and_strategies_by_name() {
+        for (name, choice) in [
+            ("forbid", Choice::Forbid),
+            ("allow", Choice::Allow),
+            ("force", Choice::Force),
+        ] {
+            assert_eq!(name.parse::<Choice>(), Ok(choice));
+        }
+        let e = "Force".parse::<Choice>().unwrap_err();
+        assert!(e.contains("\"forbid\", \"allow\" or \"force\""), "{e}");
+        // Each name sets its own field and no other.
+        for (k, name) in Paths::NAMES.iter().enumerate() {
+            let mut paths = Paths::default();
+            paths.set(name, Choice::Force).unwrap();
+            let fields = [
+                paths.window,
+                paths.candidate_set,
+                paths.stencil,
+                paths.nested_start,
+                paths.single_precision,
+                paths.scaled_directions,
+            ];
+            for (i, c) in fields.iter().enumerate() {
+                assert_eq!(c.forced(), i == k, "{name}");
+            }
+        }
+        let e = Paths::default().set("windows", Choice::Force).unwrap_err();
+        assert!(
+            e.contains("no strategy \"windows\"") && e.contains("scaled_directions"),
+            "{e}"
+        );
     }
 }
