@@ -819,11 +819,13 @@ impl Circulant {
         }
         let cols = (px / 2 + 1).min(px);
         let rows = crate::symbol::even_rows(py).min(py);
-        let values = values
-            .chunks(px)
-            .take(rows)
-            .flat_map(|row| row[..cols].iter().copied())
-            .collect();
+        // Sized exactly (a collected `flat_map` would grow by doubling: up to twice the
+        // address space).
+        let mut quarter = Vec::with_capacity(rows * cols);
+        for row in values.chunks(px).take(rows) {
+            quarter.extend_from_slice(&row[..cols]);
+        }
+        let values = quarter;
         Self {
             px,
             py,

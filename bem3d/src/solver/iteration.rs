@@ -141,6 +141,12 @@ impl<K: SolverOperator> ContactSolver<K> {
         };
         let chunk = ROWS_PER_CHUNK * self.op.nx();
         self.directions.reset(n, chunk, scaled);
+        if n > self.large_grid_cells {
+            // The buffers freed before (a nested start's coarse solver, directions of
+            // another format) would otherwise stay resident beside this solve's
+            // (measured: 2-3 bytes per cell at 8192^2, docs/performance.md).
+            sysmem::release_freed();
+        }
         self.rows_t.fill(false);
         self.rows_p.fill(true);
         self.op.apply(p, &mut self.w);
