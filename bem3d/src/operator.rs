@@ -33,11 +33,10 @@ pub const SCALE_RANGE: (f64, f64) = (1e-100, 1e100);
 /// Estimated peak bytes per grid cell of a contact solve, operator, solver, the caller's
 /// heights and the solution together, with a margin; a process adds about
 /// [`PROCESS_BYTES`]. Measured peaks of whole processes (`mrdw bench large`,
-/// `bench-case`, docs/performance.md): periodic 35.5-35.6 B per cell at 16384^2 (0.1-20 %
-/// contact) and, before the directions were scaled to 16 bits (4 bytes less), 40.9 at
-/// 8192^2 (20 %), with the heights dropped after set-up (8 more with them kept),
-/// 46.4-47.7 at 4096^2 (fixed costs weigh more there); non-periodic 154.3 at 2048^2 with
-/// them.
+/// `bench-case`, docs/performance.md), with the heights dropped after set-up (8 more
+/// with them kept): periodic 35.2 B per cell at 16384^2, 35.3-35.5 at 8192^2 (0.1-20 %
+/// contact), 45 at 4096^2 (the nested start's coarse solver sets the peak there) and
+/// 70.5 at 2048^2; non-periodic 154.3 at 2048^2 with them.
 pub const BYTES_PER_CELL_PERIODIC: f64 = 52.0;
 pub const BYTES_PER_CELL_NON_PERIODIC: f64 = 170.0;
 
