@@ -128,7 +128,7 @@ enum Command {
         /// Mean pressure over E* (large).
         #[arg(long, default_value_t = 1e-2)]
         mean_pressure: f64,
-        /// The direction vectors scaled to 16 bits (large): forbid, allow (above 4096^2
+        /// The direction vectors scaled to 16 bits (large): forbid, allow (above 2048^2
         /// cells) or force.
         #[arg(long, default_value = "allow", value_parser = |s: &str| s.parse::<bem3d::Choice>())]
         scaled_directions: bem3d::Choice,

@@ -34,8 +34,8 @@
 //! single precision; K's input, the update and `<q, t>` all read the stored t, so p and
 //! `K p` move consistently.
 //!
-//! Scaled directions: on grids above `SCALED_DIRECTIONS_ABOVE` (4096^2), where memory
-//! decides what fits, t and y_prev (M's output, then its projection) are stored as 16-bit
+//! Scaled directions: on grids above `LARGE_GRID_CELLS` (2048^2), where memory decides
+//! what fits, t and y_prev (M's output, then its projection) are stored as 16-bit
 //! integers times one power-of-two scale per row chunk of the sweeps (16 rows), chosen
 //! from the chunk's largest new value just before it is written (module `stored`): 13
 //! bits or more relative to that value instead of single precision's 24, 4 bytes per
@@ -256,13 +256,6 @@ pub struct ContactSolver<K: SolverOperator> {
 /// spectra in w: no double-precision row buffer). The results are the same either way.
 const LARGE_GRID_CELLS: usize = 1 << 22;
 
-/// Grids with more cells than this (above 4096^2) store the directions scaled to 16
-/// bits unless a solve forbids it (module docs, "Scaled directions"): there the
-/// iteration's arrays set a solve's peak memory. At 4096^2 the solver on the coarsened
-/// grid sets it during a nested start (45 bytes per cell whether scaled or not,
-/// measured), and the scaled form costs about 10 % of a solve.
-const SCALED_DIRECTIONS_ABOVE: usize = 1 << 24;
-
 /// Sweep chunk, in cells (rounded to whole rows): fixed, so that partial sums (and
 /// results) do not depend on the thread count.
 const CHUNK: usize = 16_384;
@@ -341,7 +334,7 @@ impl<K: SolverOperator> ContactSolver<K> {
             directions: stored::Directions::zeros(
                 n,
                 crate::fft::ROWS_PER_CHUNK * nx,
-                n > SCALED_DIRECTIONS_ABOVE,
+                n > LARGE_GRID_CELLS,
             ),
             changes: vec![Vec::new(); ny.div_ceil(crate::fft::ROWS_PER_CHUNK)],
             active: vec![0; n],

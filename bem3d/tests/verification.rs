@@ -1016,7 +1016,7 @@ fn paths_are_reported_and_forbidding_one_keeps_the_answer() {
 }
 
 /// Direction vectors scaled to 16 bits ([`Paths::scaled_directions`], the memory-lean
-/// storage of grids above 4096^2 cells) against single precision on small grids: the
+/// storage of grids above 2048^2 cells) against single precision on small grids: the
 /// same solution (1e-9 of the peak pressure at tolerance 1e-12) within 10 % of the
 /// iterations, not the same iterates, reported in the [`Solution`]; bit-identical on
 /// one and three threads. A rough surface at about 0.6 % contact (M by its stencil) and

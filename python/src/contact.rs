@@ -180,7 +180,7 @@ impl ContactResult {
         self.sol.stencil_iterations
     }
     /// Whether the iteration stored its direction vectors as 16-bit integers
-    /// scaled per row chunk (grids above 4096^2 cells, unless forbidden).
+    /// scaled per row chunk (grids above 2048^2 cells, unless forbidden).
     #[getter]
     fn scaled_directions(&self) -> bool {
         self.sol.scaled_directions

@@ -6,7 +6,7 @@ use super::fused::{
     with_scratch,
 };
 use super::stored::with_directions;
-use super::{sweeps, Choice, ContactSolver, Solution, SolverOptions, SCALED_DIRECTIONS_ABOVE};
+use super::{sweeps, Choice, ContactSolver, Solution, SolverOptions};
 use crate::error::{BemError, Result};
 use crate::fft::{copy_in, copy_out, ROWS_PER_CHUNK};
 use crate::operator::{Operand, SolverOperator};
@@ -136,7 +136,7 @@ impl<K: SolverOperator> ContactSolver<K> {
         let n = self.op.cells();
         let scaled = match opts.paths.scaled_directions {
             Choice::Forbid => false,
-            Choice::Allow => n > SCALED_DIRECTIONS_ABOVE,
+            Choice::Allow => n > self.large_grid_cells,
             Choice::Force => true,
         };
         let chunk = ROWS_PER_CHUNK * self.op.nx();
@@ -144,7 +144,7 @@ impl<K: SolverOperator> ContactSolver<K> {
         if n > self.large_grid_cells {
             // The buffers freed before (a nested start's coarse solver, directions of
             // another format) would otherwise stay resident beside this solve's
-            // (measured: 1.3-2.3 bytes per cell at 8192^2, docs/performance.md).
+            // (measured: 2-3 bytes per cell at 8192^2, docs/performance.md).
             sysmem::release_freed();
         }
         self.rows_t.fill(false);

@@ -104,7 +104,7 @@ pub struct Paths {
     /// direction's `K t` throughout (else K in double precision everywhere).
     pub single_precision: Choice,
     /// The direction vectors t and y_prev stored as 16-bit integers with a power-of-two
-    /// scale per row chunk instead of single precision (allowed: on grids above 4096^2
+    /// scale per row chunk instead of single precision (allowed: on grids above 2048^2
     /// cells, where memory decides what fits).
     pub scaled_directions: Choice,
 }

@@ -86,7 +86,7 @@ class ContactResult:
     @property
     def scaled_directions(self) -> bool:
         """The direction vectors were stored as 16-bit integers scaled per row chunk
-        (grids above 4096^2 cells, unless forbidden)."""
+        (grids above 2048^2 cells, unless forbidden)."""
 
 class Contact:
     """Frictionless normal contact of a rigid rough surface on an elastic half-space
