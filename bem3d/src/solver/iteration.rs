@@ -144,7 +144,7 @@ impl<K: SolverOperator> ContactSolver<K> {
         if n > self.large_grid_cells {
             // The buffers freed before (a nested start's coarse solver, directions of
             // another format) would otherwise stay resident beside this solve's
-            // (measured: 2-3 bytes per cell at 8192^2, docs/performance.md).
+            // (measured: 1.3-2.3 bytes per cell at 8192^2, docs/performance.md).
             sysmem::release_freed();
         }
         self.rows_t.fill(false);
