@@ -42,7 +42,9 @@
 //! cell instead of 8. Both only shape the directions, and everything reads t as stored,
 //! so the fixed point and the double-precision criterion are untouched; the
 //! iterations stayed within -6 to +2 of single precision's on the benchmark surfaces
-//! from 512^2 to 2048^2 at 0.1-20 % contact (`docs/solver.md`).
+//! from 512^2 to 2048^2 at 0.1-20 % contact (`docs/solver.md`). 4096^2 is scaled too
+//! although its own peak is set by its nested start: it is the coarse solve of 8192^2
+//! nested starts, whose peak rises by about 1 byte per cell without it (`docs/solver.md`).
 //! [`Paths::scaled_directions`] forbids or forces them.
 //!
 //! Each iteration applies K once (to the direction) and M once; `K p` is carried along
