@@ -97,14 +97,17 @@ enum Command {
         /// What to benchmark.
         #[arg(value_enum, default_value = "mrd")]
         target: BenchTarget,
-        /// Largest log10 of the number of springs (mrd, rough, sliding): 3..=8.
-        #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u32).range(3..=8))]
-        max_exp: u32,
-        /// Largest grid side (bem, sliding3d, large: 128..=16384). bem: periodic 128.. up
-        /// to this, the periodic surfaces at 0.1 % contact ("sparse") and Hertz 128.. up
-        /// to min(this, 1024); large: 4096.. up to this (default 16384).
-        #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u64).range(128..=16384))]
-        max_n: u64,
+        /// Largest log10 of the number of springs (mrd, rough, sliding): 3..=8; default 6
+        /// (rough: 7).
+        #[arg(long, value_parser = clap::value_parser!(u32).range(3..=8))]
+        max_exp: Option<u32>,
+        /// Largest grid side (bem, sliding3d, viscoelastic, large: 128..=16384). bem:
+        /// periodic 128.. up to this, the periodic surfaces at 0.1 % contact ("sparse")
+        /// and Hertz 128.. up to min(this, 1024) (default 1024); sliding3d and
+        /// viscoelastic: 128.. up to this (default 512); large: 4096.. up to this
+        /// (default 16384; a smaller value runs that one grid).
+        #[arg(long, value_parser = clap::value_parser!(u64).range(128..=16384))]
+        max_n: Option<u64>,
         /// Also write the periodic surfaces and our pressures as .npy here (bem), for
         /// bench/tamaas_compare.py.
         #[arg(long)]
@@ -163,6 +166,64 @@ enum BenchTarget {
     /// closed forms (MRD semi-analytic, springs, 3D), rough contacts (alpha against a
     /// reference, 3D and MRD), scaling with fitted exponents.
     Report,
+}
+
+impl BenchTarget {
+    /// `--max-exp` as given, else this target's default.
+    fn max_exp(self, given: Option<u32>) -> u32 {
+        given.unwrap_or(if matches!(self, BenchTarget::Rough) { 7 } else { 6 })
+    }
+
+    /// `--max-n` as given, else this target's default.
+    fn max_n(self, given: Option<u64>) -> usize {
+        let default = match self {
+            BenchTarget::Sliding3d | BenchTarget::Viscoelastic => 512,
+            BenchTarget::Large => 16384,
+            _ => 1024,
+        };
+        given.unwrap_or(default) as usize
+    }
+}
+
+/// Refuses a `bench` option that the chosen target would not use (an option is never
+/// silently ignored).
+fn bench_options_apply(
+    target: BenchTarget,
+    max_exp: Option<u32>,
+    max_n: Option<u64>,
+    write_surfaces: &Option<PathBuf>,
+    quick: bool,
+    out: &Option<PathBuf>,
+) -> Result<(), String> {
+    use BenchTarget::*;
+    let name = clap::ValueEnum::to_possible_value(&target)
+        .map(|v| v.get_name().to_string())
+        .unwrap_or_default();
+    let rules: [(&str, bool, &str); 5] = [
+        (
+            "--max-exp",
+            max_exp.is_some() && !matches!(target, Mrd | Rough | Sliding),
+            "mrd, rough and sliding",
+        ),
+        (
+            "--max-n",
+            max_n.is_some() && !matches!(target, Bem | Sliding3d | Viscoelastic | Large),
+            "bem, sliding3d, viscoelastic and large",
+        ),
+        (
+            "--write-surfaces",
+            write_surfaces.is_some() && !matches!(target, Bem),
+            "bem",
+        ),
+        ("--quick", quick && !matches!(target, Report), "report"),
+        ("--out", out.is_some() && !matches!(target, Report), "report"),
+    ];
+    match rules.iter().find(|r| r.1) {
+        Some((option, _, applies)) => Err(format!(
+            "{option} applies to `mrdw bench {applies}`, not to `mrdw bench {name}`"
+        )),
+        None => Ok(()),
+    }
 }
 
 fn parse_shard(s: &str) -> Result<(usize, usize), String> {
@@ -334,26 +395,17 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
             quick,
             out: folder,
         } => {
+            bench_options_apply(target, max_exp, max_n, &write_surfaces, quick, &folder)?;
+            let (exp, side) = (target.max_exp(max_exp), target.max_n(max_n));
             match target {
-                BenchTarget::Mrd => compare::bench::run_mrd(&mut out.0, max_exp)?,
-                BenchTarget::Rough => {
-                    compare::bench::run_rough(&mut out.0, if max_exp == 6 { 7 } else { max_exp })?
-                }
-                BenchTarget::Sliding => compare::bench::run_sliding(&mut out.0, max_exp)?,
-                BenchTarget::Sliding3d => {
-                    let n = if max_n == 1024 { 512 } else { max_n as usize };
-                    compare::bench::run_sliding_3d(&mut out.0, n)?
-                }
-                BenchTarget::Viscoelastic => {
-                    let n = if max_n == 1024 { 512 } else { max_n as usize };
-                    compare::bench::run_viscoelastic(&mut out.0, n)?
-                }
-                BenchTarget::Large => {
-                    let n = if max_n == 1024 { 16384 } else { max_n as usize };
-                    compare::bench::run_large(&mut out.0, n)?
-                }
+                BenchTarget::Mrd => compare::bench::run_mrd(&mut out.0, exp)?,
+                BenchTarget::Rough => compare::bench::run_rough(&mut out.0, exp)?,
+                BenchTarget::Sliding => compare::bench::run_sliding(&mut out.0, exp)?,
+                BenchTarget::Sliding3d => compare::bench::run_sliding_3d(&mut out.0, side)?,
+                BenchTarget::Viscoelastic => compare::bench::run_viscoelastic(&mut out.0, side)?,
+                BenchTarget::Large => compare::bench::run_large(&mut out.0, side)?,
                 BenchTarget::Bem => {
-                    compare::bench::run_bem(&mut out.0, max_n as usize, write_surfaces.as_deref())?
+                    compare::bench::run_bem(&mut out.0, side, write_surfaces.as_deref())?
                 }
                 BenchTarget::Report => {
                     let folder = folder.unwrap_or_else(|| {
@@ -421,5 +473,42 @@ fn main() -> ExitCode {
             note!("error: {}", e.replace('\n', " "));
             ExitCode::from(code)
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::ValueEnum;
+
+    /// A value given on the command line is the one used, for every target and every
+    /// value (the defaults among them); a default applies only where none was given.
+    #[test]
+    fn bench_sizes_given_are_used() {
+        for &target in BenchTarget::value_variants() {
+            for n in [128, 512, 1024, 16384] {
+                assert_eq!(target.max_n(Some(n)), n as usize);
+            }
+            for e in 3..=8 {
+                assert_eq!(target.max_exp(Some(e)), e);
+            }
+        }
+        assert_eq!(BenchTarget::Large.max_n(None), 16384);
+        assert_eq!(BenchTarget::Sliding3d.max_n(None), 512);
+        assert_eq!(BenchTarget::Rough.max_exp(None), 7);
+    }
+
+    /// An option the target does not use is refused, naming it and where it applies.
+    #[test]
+    fn bench_options_that_do_not_apply_are_refused() {
+        let none = None::<PathBuf>;
+        let e = bench_options_apply(BenchTarget::Mrd, None, Some(512), &none, false, &none);
+        assert!(e.unwrap_err().contains("--max-n applies to `mrdw bench bem,"));
+        let e = bench_options_apply(BenchTarget::Large, Some(5), None, &none, false, &none);
+        assert!(e.unwrap_err().contains("--max-exp"));
+        let e = bench_options_apply(BenchTarget::Bem, None, None, &none, true, &none);
+        assert!(e.unwrap_err().contains("not to `mrdw bench bem`"));
+        bench_options_apply(BenchTarget::Bem, None, Some(128), &none, false, &none).unwrap();
+        bench_options_apply(BenchTarget::Report, None, None, &none, true, &none).unwrap();
     }
 }

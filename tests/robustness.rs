@@ -475,6 +475,12 @@ fn static_friction_3d_and_rough_sphere_refuse_bad_values() {
             format!("{rs}hertz_depth = 1e-3\nbandwidth = 8\nalpha = [0.1]\nside = 1.0\n"),
             "side must lie in [2.5, 100]",
         ),
+        // The value given, not a wavenumber derived from it.
+        (
+            format!("{rs}hertz_depth = 1e-3\nbandwidth = 8\nalpha = [0.1]\n")
+                .replace("radius = 1.0", "radius = 1e300"),
+            "radius = 1e300 must lie in [1e-100, 1e100]",
+        ),
     ] {
         let scene = tmp.path().join("b.toml");
         std::fs::write(&scene, format!("{head}{body}")).unwrap();
@@ -511,6 +517,12 @@ fn lambda_study_refuses_bad_checks() {
             format!("{ls}scatter = {{ bandwidth = 32, realisations = 8 }}\n"),
             "scatter.bandwidth must be one of bandwidths",
         ),
+        // top_check runs at twice the study's cells: the message names the key given.
+        (
+            format!("{ls}top_check = {{ hurst = 0.0, bandwidth = 16, tolerance = 1e-10, realisations = 2 }}\n")
+                .replace("cells = 4", "cells = 17"),
+            "top_check runs at twice cells = 17 (so cells must be at most 16): 34 cells per wavelength, outside 3..=32",
+        ),
     ] {
         let scene = tmp.path().join("b.toml");
         std::fs::write(&scene, format!("{head}{body}")).unwrap();
@@ -529,7 +541,18 @@ fn viscoelastic_rough_refuses_bad_values() {
     for (body, needle) in [
         (
             format!("{vr}steps = 10\nmodulus = {{ relaxed = 1.0, terms = [[4.0, 0.05]] }}\n"),
-            "exceeds the shortest relaxation time 5.000e-2: give at least 20 steps",
+            "exceeds the shortest relaxation time modulus.terms tau = 5.000e-2: give steps >= 20",
+        ),
+        // A relaxation time no allowed step count resolves: said so, without a
+        // 301-digit step count.
+        (
+            format!("{vr}steps = 10\nmodulus = {{ relaxed = 1.0, terms = [[4.0, 1e-300]] }}\n"),
+            "steps would need 1.000e300, past the largest, 100000",
+        ),
+        // An empty lambda list is refused as static_friction_3d refuses it.
+        (
+            format!("{vr}steps = 10\nlambda = []\nmodulus = {{ relaxed = 1.0, terms = [[4.0, 0.5]] }}\n"),
+            "lambda = []: give at least one value",
         ),
         (
             format!("{vr}steps = 10\nmodulus = {{ relaxed = 1.0, terms = [[-4.0, 0.5]] }}\n"),

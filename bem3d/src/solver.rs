@@ -267,12 +267,22 @@ fn chunk_cells(nx: usize) -> usize {
     (CHUNK / nx).max(1) * nx
 }
 
-/// Whether starting from `warm` pays for `load` (module docs: small load steps only).
 /// The error of a forced path that cannot run.
 fn unavailable(path: &'static str, reason: String) -> BemError {
     BemError::PathUnavailable { path, reason }
 }
 
+/// Whether a restricted path's solution ran every forced strategy of the iteration
+/// (stencil, single precision, scaled directions); where it did not, the solve goes on
+/// to the full grid, which runs them or fails with [`BemError::PathUnavailable`].
+fn forced_ran(sol: &Solution, paths: Paths) -> bool {
+    let some = |count: usize| sol.iterations == 0 || count > 0;
+    (!paths.stencil.forced() || sol.stencil_iterations == sol.iterations)
+        && (!paths.single_precision.forced() || some(sol.single_iterations))
+        && (!paths.scaled_directions.forced() || sol.scaled_directions)
+}
+
+/// Whether starting from `warm` pays for `load` (module docs: small load steps only).
 fn warm_pays(warm: &Solution, load: Load, target_force: Option<f64>) -> bool {
     let ratio = match (load, target_force) {
         (Load::Approach(d), _) => d / warm.approach,
@@ -509,23 +519,30 @@ impl<K: SolverOperator> ContactSolver<K> {
         };
         // The paths in order (module docs): a window, a candidate set, the full grid.
         let loaded = target_force.unwrap_or(fixed_approach) > 0.0;
-        if warm.is_none() && loaded {
+        // A nested start is a start of the full grid: forced, it leaves the restricted
+        // paths out (and cannot be forced with one of them).
+        let restricted_allowed = !paths.nested_start.forced();
+        if warm.is_none() && loaded && restricted_allowed {
             if paths.window.allowed() {
                 match self.solve_windowed(target_force, fixed_approach, opts) {
-                    Ok(sol) => return Ok(sol),
+                    Ok(sol) if paths.window.forced() || forced_ran(&sol, paths) => {
+                        return Ok(sol)
+                    }
                     Err(reason) if paths.window.forced() => {
                         return Err(unavailable("window", reason))
                     }
-                    Err(_) => {}
+                    _ => {}
                 }
             }
             if paths.candidate_set.allowed() {
                 match self.solve_restricted(target_force, fixed_approach, opts) {
-                    Ok(sol) => return Ok(sol),
+                    Ok(sol) if paths.candidate_set.forced() || forced_ran(&sol, paths) => {
+                        return Ok(sol)
+                    }
                     Err(reason) if paths.candidate_set.forced() => {
                         return Err(unavailable("candidate_set", reason))
                     }
-                    Err(_) => {}
+                    _ => {}
                 }
             }
         }

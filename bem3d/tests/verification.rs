@@ -1162,6 +1162,20 @@ fn forced_paths_run_and_keep_the_answer() {
     same_solution(&nested, &reference, "nested start forced");
     let single = periodic(high, force(|p| p.single_precision = Choice::Force)).unwrap();
     assert_eq!(single.pressure, reference.pressure);
+    // At a low load the solver takes a candidate set; a forced strategy of the full
+    // iteration still runs (the candidate set is then left out), with the same answer.
+    let low = Load::MeanPressure(5e-4);
+    let set = periodic(low, Paths::default()).unwrap();
+    assert_eq!(set.path, Path::CandidateSet);
+    let nested = periodic(low, force(|p| p.nested_start = Choice::Force)).unwrap();
+    assert!(nested.nested_start && nested.path == Path::FullGrid);
+    same_solution(&nested, &set, "nested start forced at low load");
+    let stencil = periodic(low, force(|p| p.stencil = Choice::Force)).unwrap();
+    assert!(stencil.iterations > 0 && stencil.stencil_iterations == stencil.iterations);
+    same_solution(&stencil, &set, "stencil forced at low load");
+    let single = periodic(low, force(|p| p.single_precision = Choice::Force)).unwrap();
+    assert!(single.single_iterations > 0, "{:?}", single.path);
+    same_solution(&single, &set, "single precision forced at low load");
 
     // The sphere at 40 % contact: its window is the whole grid.
     let ball = sphere(n, 1.0, 1.0);

@@ -87,6 +87,9 @@ pub fn run_to_folder(
     control: &RunControl,
 ) -> Result<(Report, Vec<PathBuf>)> {
     let t0 = Instant::now();
+    if let Some(work) = work {
+        check_work_outside(work, out)?;
+    }
     let dest = Destination::claim(out)?;
     let work_root = work.map_or_else(|| dest.work_root(), Path::to_path_buf);
     let report = run_in(scene, &work_root, control)?;
@@ -95,6 +98,52 @@ pub fn run_to_folder(
         remove_checkpoints(scene, &work_root);
     }
     Ok((report, files))
+}
+
+/// Refuses a `--work` folder that is the `--out` folder or inside it, before anything
+/// is computed: the report replaces `--out` as a whole, checkpoints included.
+pub fn check_work_outside(work: &Path, out: &Path) -> Result<()> {
+    let (w, o) = (resolved(work), resolved(out));
+    if w.starts_with(&o) {
+        return Err(CompareError::Scene(format!(
+            "--work {} is {} --out {}: the report replaces that folder as a whole, so the \
+             checkpoints must live elsewhere (e.g. --work {}.work)",
+            work.display(),
+            if w == o { "the same folder as" } else { "inside" },
+            out.display(),
+            out.display()
+        )));
+    }
+    Ok(())
+}
+
+/// `path` made absolute with `.` and `..` resolved, through the nearest existing
+/// ancestor's real path (symbolic links included).
+fn resolved(path: &Path) -> PathBuf {
+    let abs = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+    let mut clean = PathBuf::new();
+    for c in abs.components() {
+        match c {
+            std::path::Component::ParentDir => {
+                clean.pop();
+            }
+            std::path::Component::CurDir => {}
+            other => clean.push(other),
+        }
+    }
+    // The longest existing prefix, canonicalised, and the rest appended.
+    let mut head = clean.clone();
+    let mut tail = Vec::new();
+    while !head.exists() {
+        match head.file_name() {
+            Some(name) => tail.push(name.to_os_string()),
+            None => break,
+        }
+        head.pop();
+    }
+    let mut real = head.canonicalize().unwrap_or(head);
+    real.extend(tail.iter().rev());
+    real
 }
 
 /// Removes the checkpoint folders of the scene's resumable outputs (and the work root
@@ -115,6 +164,27 @@ mod tests {
     use crate::outputs::Output;
     use crate::plan::Stage;
     use crate::scene::Entry;
+
+    /// `--work` at or inside `--out` is refused (through `..` and symbolic links too);
+    /// beside it, or holding it, is not.
+    #[test]
+    fn work_folder_outside_the_report() {
+        let tmp = tempfile::tempdir().unwrap();
+        let out = tmp.path().join("report");
+        std::fs::create_dir(&out).unwrap();
+        let refused = |work: &Path| check_work_outside(work, &out).unwrap_err().to_string();
+        assert!(refused(&out).contains("the same folder as"));
+        assert!(refused(&out.join("cp")).contains("inside"));
+        assert!(refused(&out.join("new/../cp/deeper")).contains("inside"));
+        #[cfg(unix)]
+        {
+            let link = tmp.path().join("link");
+            std::os::unix::fs::symlink(&out, &link).unwrap();
+            assert!(refused(&link.join("cp")).contains("inside"));
+        }
+        check_work_outside(&tmp.path().join("report.work"), &out).unwrap();
+        check_work_outside(tmp.path(), &out.join("sub")).unwrap();
+    }
 
     /// Declares the 3D solver but runs only the rule of Hess.
     #[derive(Debug)]

@@ -78,7 +78,26 @@ impl AxisymmetricContact {
         Ok(2.0 * self.e_star * (a * self.profile.z1d(a) - self.profile.int_z1d(a)))
     }
 
-    /// State at contact radius `a` (a below the rim).
+    /// The state at a contact radius `a` that a load reaches: as
+    /// [`Self::state_at_radius`], but a radius inside a flat central face (a flat
+    /// punch's, a flattened sphere's) is refused, since contact jumps from 0 to the
+    /// face's edge at depth 0 and no load has that radius. The query for a radius a user
+    /// gives.
+    pub fn state_at_reached_radius(&self, a: f64) -> Result<ContactState> {
+        self.check_radius(a)?;
+        let beyond = (a * (1.0 + 1e-9)).min(self.limit());
+        if a > 0.0 && beyond > a && self.profile.z1d(beyond) <= 0.0 {
+            return Err(MrdError::InvalidParameter {
+                name: "contact radius",
+                value: a,
+                reason: "no load has it: the profile is flat out to a larger radius, where contact starts at once (a flat punch touches with its whole face)",
+            });
+        }
+        self.state_at_radius(a)
+    }
+
+    /// State at contact radius `a` (a below the rim), the formulas of the module docs
+    /// at any radius (inside a flat face: zero depth and force).
     pub fn state_at_radius(&self, a: f64) -> Result<ContactState> {
         Ok(ContactState {
             depth: self.depth_at_radius(a)?,

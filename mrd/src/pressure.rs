@@ -31,6 +31,13 @@ pub fn abel_pressure(
     c: f64,
     r: f64,
 ) -> Result<f64> {
+    if r.is_nan() {
+        return Err(crate::error::MrdError::InvalidParameter {
+            name: "r",
+            value: r,
+            reason: "must be a number",
+        });
+    }
     let r = r.abs();
     if r >= a {
         return Ok(0.0);

@@ -202,10 +202,25 @@ pub struct LineFit {
 
 pub fn fit_line(x: &[f64], y: &[f64]) -> Result<LineFit> {
     let n = x.len();
-    if n < 3 || y.len() != n {
-        return Err(MrdError::InvalidData(
-            "a line fit needs at least 3 points".into(),
-        ));
+    if y.len() != n {
+        return Err(MrdError::InvalidData(format!(
+            "a line fit needs as many y as x: {} x and {} y",
+            n,
+            y.len()
+        )));
+    }
+    if n < 3 {
+        return Err(MrdError::InvalidData(format!(
+            "a line fit needs at least 3 points, got {n}"
+        )));
+    }
+    for (name, v) in [("x", x), ("y", y)] {
+        if let Some(i) = v.iter().position(|v| !v.is_finite()) {
+            return Err(MrdError::InvalidData(format!(
+                "a line fit needs finite points: {name}[{i}] = {}",
+                v[i]
+            )));
+        }
     }
     let nf = n as f64;
     let (mx, my) = (x.iter().sum::<f64>() / nf, y.iter().sum::<f64>() / nf);

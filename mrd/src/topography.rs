@@ -23,6 +23,33 @@ fn bad(path: &Path, what: impl std::fmt::Display) -> MrdError {
     MrdError::InvalidData(format!("{}: {what}", path.display()))
 }
 
+/// Why `path` cannot be read as a height file, if it cannot: missing, a folder, or a
+/// device or socket (a regular file or a named pipe is read).
+pub fn unreadable(path: &Path) -> Option<String> {
+    let meta = match std::fs::metadata(path) {
+        Ok(m) => m,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return Some(format!("no such file {}", path.display()))
+        }
+        Err(e) => return Some(format!("{}: {e}", path.display())),
+    };
+    let kind = meta.file_type();
+    #[cfg(unix)]
+    let pipe = std::os::unix::fs::FileTypeExt::is_fifo(&kind);
+    #[cfg(not(unix))]
+    let pipe = false;
+    if kind.is_dir() {
+        Some(format!("{} is a folder, not a height file", path.display()))
+    } else if !kind.is_file() && !pipe {
+        Some(format!(
+            "{} is a device or socket, not a height file",
+            path.display()
+        ))
+    } else {
+        None
+    }
+}
+
 impl HeightMap {
     fn checked(self, path: &Path) -> Result<Self> {
         if self.rows == 0 || self.cols == 0 {
@@ -50,18 +77,23 @@ impl HeightMap {
     /// [`Self::read`], and the cell size `(dx, dy)` where the file states it (ESRI grid,
     /// x-y-z list).
     pub fn read_with_cell(path: &Path) -> Result<(Self, Option<(f64, f64)>)> {
+        if let Some(why) = unreadable(path) {
+            return Err(MrdError::InvalidData(why));
+        }
         let ext = |e: &str| path.extension().is_some_and(|x| x.eq_ignore_ascii_case(e));
         if ext("npy") {
             return Ok((Self::read_npy(path)?, None));
         }
         let text = std::fs::read_to_string(path).map_err(|e| bad(path, e))?;
+        // A byte-order mark, as Windows programs write before UTF-8 text.
+        let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
         let (map, cell) = if ext("xyz") {
-            let (m, cell) = parse_xyz(&text).map_err(|m| bad(path, m))?;
+            let (m, cell) = parse_xyz(text).map_err(|m| bad(path, m))?;
             (m, Some(cell))
-        } else if let Some(grid) = parse_esri(&text).map_err(|m| bad(path, m))? {
+        } else if let Some(grid) = parse_esri(text).map_err(|m| bad(path, m))? {
             (grid.0, Some(grid.1))
         } else {
-            (Self::parse_text(path, &text)?, None)
+            (Self::parse_text(path, text)?, None)
         };
         Ok((map.checked(path)?, cell))
     }
@@ -188,6 +220,8 @@ impl HeightMap {
 
     pub fn read_text(path: &Path) -> Result<Self> {
         let text = std::fs::read_to_string(path).map_err(|e| bad(path, e))?;
+        // A byte-order mark, as Windows programs write before UTF-8 text.
+        let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
         Self::parse_text(path, &text)?.checked(path)
     }
 
@@ -294,8 +328,12 @@ fn parse_esri(text: &str) -> std::result::Result<Option<WithCell>, String> {
         return Ok(None);
     }
     let count = |k: &str| match keys.get(k) {
-        Some(&v) if v >= 1.0 && v.fract() == 0.0 && v <= 1e9 => Ok(v as usize),
-        _ => Err(format!("header `{k}` must be a whole number >= 1")),
+        None => Err(format!("the header has `ncols` but no `{k}`")),
+        Some(&v) if v > 1e9 => Err(format!(
+            "header `{k}` = {v}: more than 1e9 cells along one side"
+        )),
+        Some(&v) if v >= 1.0 && v.fract() == 0.0 => Ok(v as usize),
+        Some(&v) => Err(format!("header `{k}` = {v} must be a whole number >= 1")),
     };
     let (cols, rows) = (count("ncols")?, count("nrows")?);
     let cell = match (keys.get("cellsize"), keys.get("dx"), keys.get("dy")) {
@@ -331,11 +369,76 @@ fn parse_esri(text: &str) -> std::result::Result<Option<WithCell>, String> {
     Ok(Some((HeightMap { rows, cols, data }, cell)))
 }
 
+/// How far a point list's coordinate may lie from its grid line, in cells: exports that
+/// print six significant digits (C's `%g`) of a 512-cell scan are off by up to 3e-4 of a
+/// cell, coordinates computed as `i * dx` by rounding noise.
+pub const XYZ_GRID_TOLERANCE: f64 = 0.01;
+
+/// The grid lines of one axis of a point list: the sorted coordinates grouped into
+/// lines (a new line where consecutive values differ by more than a tenth of the
+/// largest gap), each line's mean; the lines must be uniformly spaced and each line's
+/// values within [`XYZ_GRID_TOLERANCE`] of a cell of it. Returns the lines and the step.
+fn grid_axis(name: &str, mut v: Vec<f64>) -> std::result::Result<(Vec<f64>, f64), String> {
+    if let Some(x) = v.iter().find(|x| !x.is_finite()) {
+        return Err(format!("non-finite {name} coordinate {x}"));
+    }
+    v.sort_by(f64::total_cmp);
+    let largest_gap = v.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
+    // (first, last, sum, count) of each grid line.
+    let mut lines: Vec<(f64, f64, f64, usize)> = Vec::new();
+    for &x in &v {
+        match lines.last_mut() {
+            Some(l) if x - l.1 <= 0.1 * largest_gap => {
+                l.1 = x;
+                l.2 += x;
+                l.3 += 1;
+            }
+            _ => lines.push((x, x, x, 1)),
+        }
+    }
+    let axis: Vec<f64> = lines.iter().map(|l| l.2 / l.3 as f64).collect();
+    if axis.len() < 2 {
+        return Ok((axis, 1.0));
+    }
+    // The median spacing of the lines finds a line off the grid by itself; the span
+    // gives the step.
+    let mut gaps: Vec<f64> = axis.windows(2).map(|w| w[1] - w[0]).collect();
+    gaps.sort_by(f64::total_cmp);
+    let typical = gaps[gaps.len() / 2];
+    let step = (axis[axis.len() - 1] - axis[0]) / (axis.len() - 1) as f64;
+    let tol = XYZ_GRID_TOLERANCE;
+    if let Some(l) = lines.iter().find(|l| l.1 - l.0 > tol * step) {
+        return Err(format!(
+            "{name} = {} and {name} = {} are {:.3} cells apart: neither one grid line \
+             (within {tol} of a cell) nor two (the grid's step is {step}); the spacing is \
+             not uniform",
+            l.0,
+            l.1,
+            (l.1 - l.0) / step
+        ));
+    }
+    for step in [typical, step] {
+        let off = |k: usize| (axis[k] - axis[0]) / step - k as f64;
+        if let Some(k) = (0..axis.len()).find(|&k| off(k).abs() > tol) {
+            return Err(format!(
+                "{name} = {} is {:.3} cells off the regular grid of step {step} from \
+                 {name} = {} ({} grid lines; allowed: {tol} of a cell)",
+                axis[k],
+                off(k),
+                axis[0],
+                axis.len()
+            ));
+        }
+    }
+    Ok((axis, step))
+}
+
 /// An x-y-z point list on a regular grid: `#` comments and one header line allowed; the
-/// points in any order, each grid point exactly once, the spacings uniform to 1e-6 of a
-/// cell.
+/// points in any order, each grid point exactly once, each coordinate within
+/// [`XYZ_GRID_TOLERANCE`] of a cell of its grid line.
 fn parse_xyz(text: &str) -> std::result::Result<WithCell, String> {
     let mut points = Vec::new();
+    let mut header = false;
     for (ln, line) in text.lines().enumerate() {
         let line = line.trim();
         if line.is_empty() || line.starts_with('#') {
@@ -350,35 +453,13 @@ fn parse_xyz(text: &str) -> std::result::Result<WithCell, String> {
                     v.len()
                 ))
             }
-            Err(_) if points.is_empty() => continue, // a header line
+            // One header line before the points.
+            Err(_) if points.is_empty() && !header => header = true,
             Err(m) => return Err(format!("line {}: {m}", ln + 1)),
         }
     }
-    // The grid's coordinates along one axis: distinct values, uniformly spaced.
-    let axis = |name: &str, v: Vec<f64>| -> std::result::Result<(Vec<f64>, f64), String> {
-        let mut v = v;
-        v.sort_by(f64::total_cmp);
-        v.dedup();
-        if v.iter().any(|x| !x.is_finite()) {
-            return Err(format!("non-finite {name} coordinate"));
-        }
-        if v.len() < 2 {
-            return Ok((v, 1.0));
-        }
-        let step = (v[v.len() - 1] - v[0]) / (v.len() - 1) as f64;
-        match v
-            .iter()
-            .enumerate()
-            .find(|(k, &x)| ((x - v[0]) / step - *k as f64).abs() > 1e-6)
-        {
-            Some((_, &x)) => Err(format!(
-                "{name} = {x} is off the regular grid of step {step}"
-            )),
-            None => Ok((v, step)),
-        }
-    };
-    let (xs, dx) = axis("x", points.iter().map(|p| p.0).collect())?;
-    let (ys, dy) = axis("y", points.iter().map(|p| p.1).collect())?;
+    let (xs, dx) = grid_axis("x", points.iter().map(|p| p.0).collect())?;
+    let (ys, dy) = grid_axis("y", points.iter().map(|p| p.1).collect())?;
     let (cols, rows) = (xs.len(), ys.len());
     // Checked before the grid is allocated (scattered points would span a huge one).
     if Some(points.len()) != rows.checked_mul(cols) {
@@ -617,6 +698,69 @@ mod tests {
             std::fs::write(&p, broken).unwrap();
             let e = HeightMap::read(&p).unwrap_err().to_string();
             assert!(e.contains(why), "{why}: {e}");
+        }
+    }
+
+    /// Exports as programs write them: a 512-pixel scan with coordinates printed to six
+    /// significant digits (C's `%g`) and a byte-order mark; coordinates with rounding
+    /// noise; headers that lack a key or promise too much name that key.
+    #[test]
+    fn ordinary_exports() {
+        let dir = tempdir();
+        let p = dir.join("scan.xyz");
+        let n = 512;
+        let dx = 1.0 / n as f64;
+        let z = |i: usize, j: usize| ((i * 7 + j * 13) % 17) as f64 * 1e-3;
+        let mut text = String::from("\u{feff}");
+        for j in 0..4 {
+            for i in 0..n {
+                // Six significant digits, as printf's %g writes them.
+                let g = |v: f64| format!("{:.*e}", 5, v).parse::<f64>().unwrap();
+                text += &format!("{} {} {}\n", g(i as f64 * dx), g(j as f64 * dx), z(i, j));
+            }
+        }
+        std::fs::write(&p, &text).unwrap();
+        let (m, cell) = HeightMap::read_with_cell(&p).unwrap();
+        assert_eq!((m.rows, m.cols), (4, n));
+        assert_eq!(m.data[n + 3], z(3, 1));
+        let (cx, cy) = cell.unwrap();
+        assert!((cx / dx - 1.0).abs() < 1e-5 && (cy / dx - 1.0).abs() < 1e-5);
+        // 1e-15 of noise on i * dx.
+        let noisy: String = (0..3)
+            .flat_map(|j| (0..5).map(move |i| (i, j)))
+            .map(|(i, j)| {
+                let e = 1e-15 * ((i + j) % 3) as f64 - 1e-15;
+                format!("{} {} {}\n", i as f64 * 0.1 + e, j as f64 * 0.1 - e, i + 10 * j)
+            })
+            .collect();
+        std::fs::write(&p, noisy).unwrap();
+        let m = HeightMap::read(&p).unwrap();
+        assert_eq!((m.rows, m.cols, m.data[7]), (3, 5, 12.0));
+        // A byte-order mark before a headerless text matrix keeps its first value.
+        let t = dir.join("m.txt");
+        std::fs::write(&t, "\u{feff}1 2\n3 4\n").unwrap();
+        assert_eq!(HeightMap::read(&t).unwrap().data, vec![1.0, 2.0, 3.0, 4.0]);
+        let g = dir.join("g.asc");
+        std::fs::write(&g, "\u{feff}ncols 2\nnrows 2\ncellsize 1\n1 2\n3 4\n").unwrap();
+        assert_eq!(HeightMap::read(&g).unwrap().data, vec![3.0, 4.0, 1.0, 2.0]);
+        for (header, why) in [
+            ("ncols 2\ncellsize 1\n", "the header has `ncols` but no `nrows`"),
+            ("ncols 10000000000\nnrows 2\ncellsize 1\n", "`ncols` = 10000000000: more than 1e9"),
+            ("ncols 2.5\nnrows 2\ncellsize 1\n", "`ncols` = 2.5 must be a whole number"),
+        ] {
+            std::fs::write(&g, format!("{header}1 2\n3 4\n")).unwrap();
+            let e = HeightMap::read(&g).unwrap_err().to_string();
+            assert!(e.contains(why), "{why}: {e}");
+        }
+        // What is not a file says what it is.
+        let e = HeightMap::read(&dir).unwrap_err().to_string();
+        assert!(e.contains("is a folder"), "{e}");
+        let e = HeightMap::read(&dir.join("none.txt")).unwrap_err().to_string();
+        assert!(e.contains("no such file"), "{e}");
+        #[cfg(unix)]
+        {
+            let e = HeightMap::read(Path::new("/dev/null")).unwrap_err().to_string();
+            assert!(e.contains("device"), "{e}");
         }
     }
 

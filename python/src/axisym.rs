@@ -237,7 +237,7 @@ pub fn normal<'py>(
     let s = match one_of(["depth", "force", "radius"], [depth, force, radius])? {
         (0, d) => c.state_at_depth(d),
         (1, f) => c.state_at_force(f),
-        (_, a) => c.state_at_radius(a),
+        (_, a) => c.state_at_reached_radius(a),
     }
     .map_err(|e| mrd_err(py, e))?;
     state_dict(py, &s)

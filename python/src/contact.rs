@@ -124,10 +124,12 @@ impl ContactResult {
     fn residual(&self) -> f64 {
         self.sol.residual
     }
-    /// Bound of the energy's duality gap relative to force x rms height: at most the
-    /// tolerance when the solve converged, and then the pressure error in the norm of K
-    /// satisfies (p - p*).K(p - p*) <= 2 x certificate x force x h_rms (see
-    /// `bem3d/src/solver.rs`, "What a converged solve guarantees").
+    /// Bound of the energy's duality gap relative to force x rms height; the pressure
+    /// error in the norm of K satisfies (p - p*).K(p - p*) <= 2 x certificate x force x
+    /// h_rms (see `bem3d/src/solver.rs`, "What a converged solve guarantees"). At most
+    /// the tolerance when the solve converged, except in complete contact, where a solve
+    /// may stop at the floor that rounding leaves (residual and certificate then above
+    /// the tolerance; "Complete contact" there).
     #[getter]
     fn certificate(&self) -> f64 {
         self.sol.certificate
@@ -199,65 +201,134 @@ impl ContactResult {
     }
 }
 
-/// A height map from an array (ny, nx) or a topography object (see [`Contact`]), not
-/// yet copied (its size is checked first), with the object's size and periodicity.
+/// A height map from an array (ny, nx), a numpy masked array (its masked cells are
+/// undefined) or a topography object (see [`Contact`]), not yet copied (its size is
+/// checked first), with the object's size and periodicity.
 pub struct HeightMap<'py> {
     array: PyArrayLike2<'py, f64, AllowTypeChange>,
+    /// The cells a masked array marks undefined, in the array's own indexing.
+    undefined: Option<PyArrayLike2<'py, bool, AllowTypeChange>>,
     /// A topography object's heights, indexed (x, y): the map is their transpose.
     by_x: bool,
     pub size: Option<(f64, f64)>,
     pub periodic: Option<bool>,
 }
 
+/// The name of a Python object's type, for messages.
+fn type_name(obj: &Bound<'_, PyAny>) -> String {
+    obj.get_type()
+        .name()
+        .map(|n| n.to_string())
+        .unwrap_or_else(|_| "?".into())
+}
+
+/// A 2D float array and, for a numpy masked array, its undefined cells (the data there
+/// replaced by the smallest defined height: any finite value serves, the cells are
+/// left out of the contact).
+fn unmask<'py>(
+    obj: &Bound<'py, PyAny>,
+    what: &str,
+) -> PyResult<(
+    PyArrayLike2<'py, f64, AllowTypeChange>,
+    Option<PyArrayLike2<'py, bool, AllowTypeChange>>,
+)> {
+    let py = obj.py();
+    let ma = py.import("numpy.ma")?;
+    let shape_error = |e: PyErr| {
+        pyo3::exceptions::PyTypeError::new_err(format!(
+            "{what} must be a 2D float array (ny, nx), got {} ({e})",
+            type_name(obj)
+        ))
+    };
+    if !ma.call_method1("isMaskedArray", (obj,))?.extract::<bool>()? {
+        return Ok((obj.extract().map_err(shape_error)?, None));
+    }
+    let defined: usize = obj.call_method0("count")?.extract()?;
+    if defined == 0 {
+        return Err(value_error(format!(
+            "{what}: every height is masked (undefined)"
+        )));
+    }
+    let filled = obj.call_method1("filled", (obj.call_method0("min")?,))?;
+    let undefined = ma.call_method1("getmaskarray", (obj,))?;
+    Ok((
+        filled.extract().map_err(shape_error)?,
+        Some(undefined.extract().map_err(shape_error)?),
+    ))
+}
+
 impl<'py> HeightMap<'py> {
     pub fn extract(obj: &Bound<'py, PyAny>) -> PyResult<Self> {
-        let topography =
-            obj.hasattr("physical_sizes")? && obj.getattr("heights").is_ok_and(|h| h.is_callable());
-        if !topography {
+        let (has_heights, has_sizes) = (obj.hasattr("heights")?, obj.hasattr("physical_sizes")?);
+        if !has_heights && !has_sizes {
+            let (array, undefined) = unmask(obj, "heights")?;
             return Ok(Self {
-                array: obj.extract()?,
+                array,
+                undefined,
                 by_x: false,
                 size: None,
                 periodic: None,
             });
         }
         let bad = |what: String| value_error(format!("topography object: {what}"));
-        let array = obj
-            .call_method0("heights")?
-            .extract()
-            .map_err(|e| bad(format!("heights() must give a 2D float array ({e})")))?;
+        let heights = obj.getattr("heights").ok().filter(|h| h.is_callable());
+        let Some(heights) = heights else {
+            return Err(bad(format!(
+                "it needs a method heights() giving a 2D array indexed (x, y){}",
+                match obj.getattr("heights") {
+                    Ok(h) => format!(", not an attribute of type {}", type_name(&h)),
+                    Err(_) => String::new(),
+                }
+            )));
+        };
+        if !has_sizes {
+            return Err(bad(
+                "it has heights() but no physical_sizes: give it physical_sizes = (lx, ly) \
+                 (or None and size= to Contact), or pass the heights as an array (ny, nx)"
+                    .into(),
+            ));
+        }
+        let (array, undefined) = unmask(&heights.call0()?, "topography object: heights()")?;
         // None where the topography's size is unknown (then `size=` must be given).
-        let size: Option<(f64, f64)> = obj
+        let size = match obj
             .getattr("physical_sizes")?
-            .extract()
-            .map_err(|e| bad(format!("physical_sizes must be (lx, ly) or None ({e})")))?;
+            .extract::<Option<Vec<f64>>>()
+        {
+            Ok(None) => None,
+            Ok(Some(v)) if v.len() == 2 => Some((v[0], v[1])),
+            Ok(Some(v)) => {
+                return Err(bad(format!(
+                    "physical_sizes must be (lx, ly) or None, got {} values",
+                    v.len()
+                )))
+            }
+            Err(e) => return Err(bad(format!("physical_sizes must be (lx, ly) or None ({e})"))),
+        };
         let periodic = match obj.getattr("is_periodic") {
-            Ok(v) => Some(
-                v.extract::<bool>()
-                    .map_err(|e| bad(format!("is_periodic ({e})")))?,
-            ),
+            Ok(v) => v
+                .extract::<Option<bool>>()
+                .map_err(|e| bad(format!("is_periodic must be True, False or None ({e})")))?,
             Err(_) => None,
         };
         Ok(Self {
             array,
+            undefined,
             by_x: true,
             size,
             periodic,
         })
     }
 
-    /// Whether the map came from a topography object (heights indexed (x, y)).
-    pub fn by_x(&self) -> bool {
-        self.by_x
-    }
-
-    fn view(&self) -> numpy::ndarray::ArrayView2<'_, f64> {
-        let v = self.array.as_array();
+    fn oriented<'a, T>(&self, v: numpy::ndarray::ArrayView2<'a, T>) -> numpy::ndarray::ArrayView2<'a, T> {
         if self.by_x {
             v.reversed_axes()
         } else {
             v
         }
+    }
+
+    fn view(&self) -> numpy::ndarray::ArrayView2<'_, f64> {
+        self.oriented(self.array.as_array())
     }
 
     /// (ny, nx).
@@ -273,6 +344,112 @@ impl<'py> HeightMap<'py> {
             Some(s) => s.to_vec(),
             None => view.iter().copied().collect(),
         }
+    }
+
+    /// The undefined cells row by row (y), if the heights were a masked array.
+    pub fn undefined(&self) -> Option<Vec<bool>> {
+        let u = self.undefined.as_ref()?;
+        Some(self.oriented(u.as_array()).iter().copied().collect())
+    }
+
+    /// The solver's mask: the cells `mask` admits (all if None) that are defined, and
+    /// how many defined cells there are not; warns when the heights had undefined cells.
+    pub fn solver_mask(
+        &self,
+        py: Python<'_>,
+        mask: Option<Vec<bool>>,
+    ) -> PyResult<(Option<Vec<bool>>, usize)> {
+        let Some(undefined) = self.undefined() else {
+            return Ok((mask, 0));
+        };
+        let count = undefined.iter().filter(|&&u| u).count();
+        if count == 0 {
+            return Ok((mask, 0));
+        }
+        let (ny, nx) = self.shape();
+        let message = std::ffi::CString::new(format!(
+            "heights: {count} of {} cells are undefined (masked); they are left out of the \
+             contact, as cells outside mask= are",
+            nx * ny
+        ))
+        .unwrap_or_default();
+        PyErr::warn(
+            py,
+            &py.get_type::<pyo3::exceptions::PyUserWarning>(),
+            &message,
+            2,
+        )?;
+        let admitted = undefined
+            .iter()
+            .enumerate()
+            .map(|(i, &u)| !u && mask.as_ref().is_none_or(|m| m[i]))
+            .collect();
+        Ok((Some(admitted), count))
+    }
+}
+
+/// The grid a constructor builds on: the heights (rows of y), the solver's mask, the
+/// size and periodicity from the arguments or else the topography object's.
+pub struct Grid {
+    pub heights: Vec<f64>,
+    pub mask: Option<Vec<bool>>,
+    /// Cells the heights left undefined (a masked array's masked cells).
+    pub undefined: usize,
+    pub shape: (usize, usize),
+    pub size: (f64, f64),
+    pub periodic: bool,
+}
+
+impl Grid {
+    /// From `heights` as `Contact` and `TransientContact` take them, `e_star` the
+    /// modulus the operator is built with (for the command line's range checks).
+    pub fn new(
+        py: Python<'_>,
+        heights: &Bound<'_, PyAny>,
+        size: Option<(f64, f64)>,
+        periodic: Option<bool>,
+        mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
+        e_star: f64,
+    ) -> PyResult<Self> {
+        let map = HeightMap::extract(heights)?;
+        if map.by_x && size.is_none() && map.size.is_none() {
+            return Err(value_error(
+                "the topography has no physical_sizes: give size=(lx, ly)",
+            ));
+        }
+        let size = size.or(map.size).unwrap_or((1.0, 1.0));
+        let periodic = periodic.or(map.periodic).unwrap_or(true);
+        let (ny, nx) = map.shape();
+        if nx < 2 || ny < 2 {
+            return Err(value_error(format!(
+                "heights must be a 2D array of at least 2 x 2 cells, got {ny} x {nx}"
+            )));
+        }
+        let (lx, ly) = size;
+        // The command line's checks: grid, size and modulus ranges, memory.
+        bem3d::operator::HalfSpace {
+            nx,
+            ny,
+            lx,
+            ly,
+            e_star,
+        }
+        .check(periodic)
+        .map_err(|e| bem_err(py, e, (ny, nx), lx * ly))?;
+        let (mask, undefined) = map.solver_mask(py, grid_mask(mask, (ny, nx))?)?;
+        if mask.as_ref().is_some_and(|m| !m.iter().any(|&m| m)) {
+            return Err(value_error(
+                "no cell may touch: every cell is undefined or outside mask=",
+            ));
+        }
+        Ok(Self {
+            heights: map.copy(),
+            mask,
+            undefined,
+            shape: (ny, nx),
+            size,
+            periodic,
+        })
     }
 }
 
@@ -291,8 +468,11 @@ impl<'py> HeightMap<'py> {
 /// modulus E* [stress] (Eq. 2); periodic: periodic half-space (False: isolated map,
 /// zero-padded FFTs; default True, or the object's); arguments given override the
 /// object's attributes. mask:
-/// optional boolean array (ny, nx) of the cells that may touch. The operator and
-/// buffers are built once; solve() may be called for many loads.
+/// optional boolean array (ny, nx) of the cells that may touch. A numpy masked array
+/// (as SurfaceTopography's heights() gives for maps with undefined points) leaves its
+/// masked cells out of the contact, as mask= does, with a UserWarning that counts them
+/// (`undefined_cells`). The operator and buffers are built once; solve() may be called
+/// for many loads.
 #[pyclass(module = "mrdw._mrdw")]
 pub struct Contact {
     solver: Solver,
@@ -300,6 +480,8 @@ pub struct Contact {
     size: (f64, f64),
     e_star: f64,
     periodic: bool,
+    /// Cells the heights left undefined (a masked array's), outside the contact.
+    undefined: usize,
     /// Set on Ctrl-C during a solve ([`interruptible`]).
     interrupt: Interrupt,
 }
@@ -333,6 +515,16 @@ pub(crate) fn request(
     stiffness: bool,
     paths: Paths,
 ) -> PyResult<Request> {
+    // Checked here, under the names the caller gave (a solver may see the load rescaled).
+    for (name, v) in [
+        ("mean_pressure", mean_pressure),
+        ("force", force),
+        ("approach", approach),
+    ] {
+        if let Some(v) = v.filter(|v| !(v.is_finite() && *v >= 0.0)) {
+            return Err(value_error(format!("{name} = {v} must be finite and >= 0")));
+        }
+    }
     let load = match (mean_pressure, force, approach) {
         (Some(p), None, None) => Load::MeanPressure(p),
         (None, Some(f), None) => Load::Force(f),
@@ -460,44 +652,20 @@ impl Contact {
         periodic: Option<bool>,
         mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
     ) -> PyResult<Self> {
-        let map = HeightMap::extract(heights)?;
-        if map.by_x && size.is_none() && map.size.is_none() {
-            return Err(value_error(
-                "the topography has no physical_sizes: give size=(lx, ly)",
-            ));
-        }
-        let size = size.or(map.size).unwrap_or((1.0, 1.0));
-        let periodic = periodic.or(map.periodic).unwrap_or(true);
-        let (ny, nx) = map.shape();
-        if nx < 2 || ny < 2 {
-            return Err(value_error(format!(
-                "heights must be a 2D array of at least 2 x 2 cells, got {ny} x {nx}"
-            )));
-        }
-        let (lx, ly) = size;
-        // The command line's checks: grid, size and modulus ranges, memory.
-        bem3d::operator::HalfSpace {
-            nx,
-            ny,
-            lx,
-            ly,
-            e_star,
-        }
-        .check(periodic)
-        .map_err(|e| bem_err(py, e, (ny, nx), lx * ly))?;
-        let h = map.copy();
-        let mask = grid_mask(mask, (ny, nx))?;
+        let grid = Grid::new(py, heights, size, periodic, mask, e_star)?;
+        let ((ny, nx), (lx, ly)) = (grid.shape, grid.size);
+        let (h, mask) = (&grid.heights, grid.mask);
         let built = py.detach(|| -> bem3d::Result<Solver> {
-            Ok(if periodic {
+            Ok(if grid.periodic {
                 Solver::Periodic(ContactSolver::new(
                     PeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?,
-                    &h,
+                    h,
                     mask,
                 )?)
             } else {
                 Solver::NonPeriodic(ContactSolver::new(
                     NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?,
-                    &h,
+                    h,
                     mask,
                 )?)
             })
@@ -506,9 +674,10 @@ impl Contact {
         Ok(Self {
             solver,
             shape: (ny, nx),
-            size,
+            size: grid.size,
             e_star,
-            periodic,
+            periodic: grid.periodic,
+            undefined: grid.undefined,
             interrupt: Interrupt::default(),
         })
     }
@@ -622,6 +791,12 @@ impl Contact {
     #[getter]
     fn periodic(&self) -> bool {
         self.periodic
+    }
+    /// Cells the heights left undefined (a numpy masked array's masked cells, as
+    /// SurfaceTopography gives for maps with missing points): left out of the contact.
+    #[getter]
+    fn undefined_cells(&self) -> usize {
+        self.undefined
     }
     fn __repr__(&self) -> String {
         format!(

@@ -34,7 +34,8 @@ fn _mrdw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(rough::line, m)?)?;
     m.add_function(wrap_pyfunction!(rough::psd, m)?)?;
     m.add_function(wrap_pyfunction!(rough::moments, m)?)?;
-    m.add_function(wrap_pyfunction!(rough::read_topography, m)?)?;
+    m.add_function(wrap_pyfunction!(rough::_read_topography_file, m)?)?;
+    m.add_function(wrap_pyfunction!(rough::_topography_parts, m)?)?;
     m.add_function(wrap_pyfunction!(rough::fit_line, m)?)?;
     m.add_class::<rough::RoughLine>()?;
     // MRD, axisymmetric

@@ -86,6 +86,7 @@ pub fn line_spectrum<'py>(
     rms_height: Option<f64>,
     rms_slope: Option<f64>,
 ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    let lam = line_lambda(lam, hurst)?;
     let l = spectrum_of(py, hurst, q0, qr, q1, rms_height, rms_slope)?.to_line(lam);
     Ok(PyArrayDyn::from_owned_array(
         py,
@@ -183,13 +184,18 @@ pub fn line<'py>(
     realisation: u64,
     gaussian: bool,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    if !(lam.is_finite() && lam > 0.0) {
-        return Err(value_error(format!("lam = {lam} must be finite and > 0")));
-    }
+    let lam = line_lambda(lam, hurst)?;
     let l = spectrum_of(py, hurst, q0, qr, q1, rms_height, rms_slope)?.to_line(lam);
     let h = synthesis::line(&l, n, length, seed, realisation, amplitudes(gaussian))
         .map_err(|e| mrd_err(py, e))?;
     Ok(PyArray1::from_vec(py, h))
+}
+
+/// `lam` checked by the rule every scene's `lambda` follows (`mrd::roughness::Lambda`).
+fn line_lambda(lam: f64, hurst: f64) -> PyResult<f64> {
+    mrd::roughness::Lambda::Value(lam)
+        .at(hurst)
+        .map_err(|e| value_error(format!("lam: {e}")))
 }
 
 fn check_length(name: &str, v: f64) -> PyResult<()> {
@@ -318,30 +324,86 @@ pub fn moments<'py>(
     Ok(d)
 }
 
-/// read_topography(source) -> ndarray (rows, cols)
+/// _read_topography_file(path) -> (ndarray (rows, cols), (dx, dy) or None)
 ///
-/// A height map from a file, `.npy` (float32/float64, C or Fortran order), an `.xyz`
-/// point list, an ESRI ASCII grid or a text matrix (rows of y), read by the same code as
-/// the CLI's bem_contact output;
-/// or from a topography object with `heights()` (indexed (x, y)) and `physical_sizes`
-/// (a SurfaceTopography Topography, for one), as rows of y (its transpose).
+/// A height map from a file (`.npy`, `.xyz`, an ESRI ASCII grid or a text matrix, read
+/// by the CLI's code) and its cell size where the file states it; the file is read on a
+/// thread of its own without the GIL, so other Python threads run (a pipe fed by one of
+/// them included) and Ctrl-C stops the wait. `mrdw.read_topography` wraps it.
 #[pyfunction]
-pub fn read_topography<'py>(
+pub fn _read_topography_file<'py>(
     py: Python<'py>,
-    source: &Bound<'py, PyAny>,
-) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let (shape, data) = match source.extract::<std::path::PathBuf>() {
-        Ok(path) => {
-            let m = mrd::topography::HeightMap::read(&path).map_err(|e| mrd_err(py, e))?;
-            ((m.rows, m.cols), m.data)
-        }
-        Err(_) => {
-            let m = crate::contact::HeightMap::extract(source)?;
-            (m.shape(), m.copy())
+    path: std::path::PathBuf,
+) -> PyResult<(Bound<'py, PyArray2<f64>>, Option<(f64, f64)>)> {
+    use std::sync::mpsc::{channel, RecvTimeoutError};
+    let (tx, rx) = channel();
+    // Not scoped: a read that never ends (a pipe nobody writes) must not hold Ctrl-C.
+    std::thread::spawn(move || {
+        let _ = tx.send(mrd::topography::HeightMap::read_with_cell(&path));
+    });
+    let mut rx = rx;
+    let read = loop {
+        let (back, got) = py.detach(move || {
+            let got = rx.recv_timeout(std::time::Duration::from_millis(50));
+            (rx, got)
+        });
+        rx = back;
+        match got {
+            Ok(read) => break read,
+            Err(RecvTimeoutError::Timeout) => py.check_signals()?,
+            Err(RecvTimeoutError::Disconnected) => {
+                return Err(pyo3::exceptions::PyRuntimeError::new_err(
+                    "internal error: the read ended without a result",
+                ))
+            }
         }
     };
-    let a = Array2::from_shape_vec(shape, data).map_err(|e| value_error(e.to_string()))?;
-    Ok(PyArray2::from_owned_array(py, a))
+    let (m, cell) = read.map_err(|e| mrd_err(py, e))?;
+    let a = Array2::from_shape_vec((m.rows, m.cols), m.data)
+        .map_err(|e| value_error(e.to_string()))?;
+    Ok((PyArray2::from_owned_array(py, a), cell))
+}
+
+/// The parts of a height map as Contact reads it: (heights (ny, nx) as rows of y,
+/// undefined cells (ny, nx) or None, (lx, ly) or None, periodic or None).
+type Parts<'py> = (
+    Bound<'py, PyArray2<f64>>,
+    Option<Bound<'py, PyArray2<bool>>>,
+    Option<(f64, f64)>,
+    Option<bool>,
+);
+
+/// _topography_parts(obj) -> (heights, undefined, size, periodic)
+///
+/// An array, masked array or topography object taken apart as `Contact` takes it (one
+/// reading for both): heights as rows of y with NaN in undefined cells.
+#[pyfunction]
+pub fn _topography_parts<'py>(py: Python<'py>, source: &Bound<'py, PyAny>) -> PyResult<Parts<'py>> {
+    let m = crate::contact::HeightMap::extract(source)?;
+    let mut heights = m.copy();
+    let undefined = m.undefined();
+    if let Some(u) = &undefined {
+        heights
+            .iter_mut()
+            .zip(u)
+            .filter(|(_, &u)| u)
+            .for_each(|(h, _)| *h = f64::NAN);
+    }
+    let shape = m.shape();
+    let grid = |v| Array2::from_shape_vec(shape, v).map_err(|e| value_error(e.to_string()));
+    let undefined = match undefined {
+        Some(u) => Some(PyArray2::from_owned_array(
+            py,
+            Array2::from_shape_vec(shape, u).map_err(|e| value_error(e.to_string()))?,
+        )),
+        None => None,
+    };
+    Ok((
+        PyArray2::from_owned_array(py, grid(heights)?),
+        undefined,
+        m.size,
+        m.periodic,
+    ))
 }
 
 fn state_dict<'py>(py: Python<'py>, s: &RoughState) -> PyResult<Bound<'py, PyDict>> {

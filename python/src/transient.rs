@@ -1,6 +1,6 @@
 //! Transient viscoelastic contact in 3D (`bem3d::viscoelastic`) on numpy height maps.
 
-use crate::contact::{grid_array, interruptible, request, HeightMap};
+use crate::contact::{grid_array, interruptible, request, Grid};
 use crate::errors::{bem_err, value_error};
 use bem3d::viscoelastic::{Relaxation, Step, TransientContact as Transient};
 use bem3d::{Interrupt, Load, NonPeriodicHalfSpace, Paths, PeriodicHalfSpace, SolverOptions};
@@ -139,41 +139,19 @@ impl TransientContact {
         mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
     ) -> PyResult<Self> {
         let modulus = Relaxation::new(relaxed, terms).map_err(|e| value_error(e.to_string()))?;
-        let map = HeightMap::extract(heights)?;
-        if map.by_x() && size.is_none() && map.size.is_none() {
-            return Err(value_error(
-                "the topography has no physical_sizes: give size=(lx, ly)",
-            ));
-        }
-        let size = size.or(map.size).unwrap_or((1.0, 1.0));
-        let periodic = periodic.or(map.periodic).unwrap_or(true);
-        let (ny, nx) = map.shape();
-        if nx < 2 || ny < 2 {
-            return Err(value_error(format!(
-                "heights must be a 2D array of at least 2 x 2 cells, got {ny} x {nx}"
-            )));
-        }
-        let (lx, ly) = size;
-        // The elastic solve's checks, then the history's arrays: heights, displacement,
-        // the raised heights and their lift, one hereditary integral per term.
+        // The elastic solve's checks (at the glassy modulus), then the history's arrays:
+        // heights, displacement, the raised heights and their lift, one hereditary
+        // integral per term.
         let e_ref = modulus.glassy();
-        bem3d::operator::HalfSpace {
-            nx,
-            ny,
-            lx,
-            ly,
-            e_star: e_ref,
-        }
-        .check(periodic)
-        .map_err(|e| bem_err(py, e, (ny, nx), lx * ly))?;
+        let grid = Grid::new(py, heights, size, periodic, mask, e_ref)?;
+        let ((ny, nx), (lx, ly)) = (grid.shape, grid.size);
         let per_cell = 8.0 * (4 + modulus.terms.len()) as f64;
         sysmem::check_estimate(
             per_cell * (nx * ny) as f64,
             &format!("the history of a {ny} x {nx} contact"),
         )
         .map_err(|e| pyo3::exceptions::PyMemoryError::new_err(e.to_string()))?;
-        let h = map.copy();
-        let mask = crate::contact::grid_mask(mask, (ny, nx))?;
+        let (h, mask, periodic) = (grid.heights, grid.mask, grid.periodic);
         let built = py.detach(|| -> bem3d::Result<History> {
             Ok(if periodic {
                 let op = PeriodicHalfSpace::try_new(nx, ny, lx, ly, e_ref)?;
@@ -187,7 +165,7 @@ impl TransientContact {
         Ok(Self {
             history,
             shape: (ny, nx),
-            size,
+            size: grid.size,
             periodic,
             interrupt: Interrupt::default(),
         })

@@ -126,7 +126,21 @@ pub fn run_large(w: &mut dyn Write, max_n: usize) -> Result<(), String> {
         }
         n *= 2;
     }
-    print_large_table(w, &lines).map_err(|e| format!("writing to standard output: {e}"))
+    print_large_table(w, &lines).map_err(|e| format!("writing to standard output: {e}"))?;
+    every_case_failed(&lines)
+}
+
+/// An error when no case of a benchmark gave a result (the table above says why each
+/// failed), so that the command's exit status shows it.
+fn every_case_failed(lines: &[String]) -> Result<(), String> {
+    if !lines.is_empty() && lines.iter().all(|l| l.starts_with("FAILED")) {
+        return Err(format!(
+            "every case of the benchmark failed ({} of {})",
+            lines.len(),
+            lines.len()
+        ));
+    }
+    Ok(())
 }
 
 fn print_large_table(w: &mut dyn Write, lines: &[String]) -> std::io::Result<()> {
@@ -185,4 +199,16 @@ fn print_large_table(w: &mut dyn Write, lines: &[String]) -> std::io::Result<()>
         w,
         "path: full = the full-grid iteration, restricted = a candidate set (bem3d::solver docs)."
     )
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn a_benchmark_with_no_result_fails() {
+        let ok = "RESULT n=1024".to_string();
+        let failed = "FAILED n=1024 mean_pressure=1e-2 out of memory".to_string();
+        assert!(super::every_case_failed(&[ok.clone(), failed.clone()]).is_ok());
+        let err = super::every_case_failed(&[failed.clone(), failed]).unwrap_err();
+        assert!(err.contains("every case of the benchmark failed (2 of 2)"), "{err}");
+    }
 }

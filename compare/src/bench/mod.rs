@@ -639,7 +639,19 @@ pub fn cpu_model() -> String {
 /// pressure 4 G0 h / L, tolerance 1e-6): wall time, outer and inner iterations of one
 /// cold-started velocity point at k v = 1e-2 .. 1e2 rad/s on grids 128^2 .. max_n^2, and
 /// the change of mu against the finest grid (all threads of the pool).
-pub fn run_sliding_3d(w: &mut dyn Write, max_n: usize) -> std::io::Result<()> {
+pub fn run_sliding_3d(w: &mut dyn Write, max_n: usize) -> Result<(), String> {
+    let (cases, failures) =
+        sliding_3d_table(w, max_n).map_err(|e| format!("writing to standard output: {e}"))?;
+    if cases > 0 && failures == cases {
+        return Err(format!(
+            "every case of the benchmark failed ({failures} of {cases})"
+        ));
+    }
+    Ok(())
+}
+
+/// The table of [`run_sliding_3d`]; returns the number of cases and of failed ones.
+fn sliding_3d_table(w: &mut dyn Write, max_n: usize) -> std::io::Result<(usize, usize)> {
     use bem3d::{SlidingContact, SolverOptions};
     use mrd::rheology::Eq84;
     use mrd::roughness::stats::surface_moments;
@@ -681,6 +693,7 @@ pub fn run_sliding_3d(w: &mut dyn Write, max_n: usize) -> std::io::Result<()> {
         .into_iter()
         .filter(|&n| n <= max_n.max(128))
         .collect();
+    let (mut cases, mut failures) = (0, 0);
     for &n in &grids {
         let h: Vec<f64> = upsample(&h0, &base, &Grid::square(n, l))
             .expect("upsample")
@@ -691,7 +704,10 @@ pub fn run_sliding_3d(w: &mut dyn Write, max_n: usize) -> std::io::Result<()> {
             let t0 = Instant::now();
             let mut s =
                 SlidingContact::new(n, n, l, l, &h, kv / k, &modulus).expect("sliding contact");
-            match s.solve(pm, &opts, None) {
+            cases += 1;
+            let solved = s.solve(pm, &opts, None);
+            failures += solved.is_err() as usize;
+            match solved {
                 Ok(sol) => writeln!(
                     w,
                     "{n:>6} | {kv:>10.0e} | {:>9.3} | {:>6} | {:>6} | {:>11.5e} | {:>10.4e}",
@@ -709,5 +725,5 @@ pub fn run_sliding_3d(w: &mut dyn Write, max_n: usize) -> std::io::Result<()> {
             }
         }
     }
-    Ok(())
+    Ok((cases, failures))
 }

@@ -164,8 +164,8 @@ impl Output for BemContact {
             .validate()
             .map_err(|e| crate::error::CompareError::Scene(e.to_string()))?;
         let path = ctx.resolve(&self.heights);
-        if !path.is_file() {
-            return bad(format!("heights: no such file {}", path.display()));
+        if let Some(why) = mrd::topography::unreadable(&path) {
+            return bad(format!("heights: {why}"));
         }
         Ok(())
     }
@@ -225,7 +225,7 @@ impl Output for BemContact {
         t.missing_ok = true;
         t.infinite_ok = true;
         t.notes.push(format!(
-            "{} {ny} x {nx} map from {} over {lx} x {ly}; E* = {e}; tolerance {:e} (criterion: bem3d::solver docs){}; certificate: bound of the energy's duality gap over F h_rms, at most the tolerance when converged (then the pressure error in the norm of K, (p - p*).K(p - p*), is at most 2 x tolerance x F x h_rms; bem3d::solver docs); converged = 0: the last iterate at max_iterations; iterations of restricted solves count iterations on a window around a compact contact (non-periodic) or applications of a dense K between a small candidate set (few contact cells; bem3d::solver docs); path, nested_start, single_precision_iterations (of iterations, those with K p carried in single precision) and stencil_iterations (those with the preconditioner applied by its stencil): the strategies the solve took (bem3d::Solution)",
+            "{} {ny} x {nx} map from {} over {lx} x {ly}; E* = {e}; tolerance {:e} (criterion: bem3d::solver docs){}; certificate: bound of the energy's duality gap over F h_rms, at most the tolerance when converged away from complete contact (then the pressure error in the norm of K, (p - p*).K(p - p*), is at most 2 x tolerance x F x h_rms; bem3d::solver docs); converged = 1: the criterion reached the tolerance, or in complete contact the floor of rounding it can reach (the residual then above the tolerance; bem3d::solver docs, Complete contact); converged = 0: the last iterate at max_iterations; iterations of restricted solves count iterations on a window around a compact contact (non-periodic) or applications of a dense K between a small candidate set (few contact cells; bem3d::solver docs); path, nested_start, single_precision_iterations (of iterations, those with K p carried in single precision) and stencil_iterations (those with the preconditioner applied by its stencil): the strategies the solve took (bem3d::Solution)",
             if self.periodic { "periodic" } else { "non-periodic" },
             path.display(),
             self.tolerance,

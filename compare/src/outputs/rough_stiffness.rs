@@ -47,9 +47,12 @@ impl Default for LambdaSpec {
 }
 
 impl LambdaSpec {
-    /// Checks every entry of `specs` before a run: numbers > 0, tables readable and
-    /// covering each of `hurst`.
+    /// Checks every entry of `specs` before a run: at least one, numbers > 0, tables
+    /// readable and covering each of `hurst`.
     pub fn check_all(specs: &[LambdaSpec], ctx: &Context, hurst: &[f64]) -> Result<()> {
+        if specs.is_empty() {
+            return bad("lambda = []: give at least one value (a number, \"pi\", \"cut\", \"calibrated\" or a table's path)".to_string());
+        }
         for l in specs {
             if let LambdaSpec::Value(v) = l {
                 if !positive(*v) {

@@ -19,7 +19,7 @@ Viscoelastic contact in time (E*(t) = relaxed + sum E_k exp(-t / tau_k))::
 
 Roughness: spectrum, line_spectrum, calibrated_lambda (lambda(H) of Eq. 76; the
 table with its provenance: calibrated_lambda_table), surface, line, psd, moments,
-read_topography.
+read_topography (a Topography: heights, physical size, undefined cells).
 MRD: Profile (sphere, cone, power_law, flattened_sphere, flat_punch, tabulated),
 normal, pressure, adhesion, pull_off, cattaneo_mindlin, damping, hess_inverse,
 RoughLine, fit_line. Scenes: scenes(), run_scene(name_or_path).
@@ -45,7 +45,6 @@ from ._mrdw import (
     line,
     psd,
     moments,
-    read_topography,
     fit_line,
     RoughLine,
     Profile,
@@ -59,6 +58,7 @@ from ._mrdw import (
     scenes,
     run_scene,
 )
+from ._topography import Topography, read_topography
 
 __all__ = [
     "__version__",
@@ -76,6 +76,7 @@ __all__ = [
     "psd",
     "moments",
     "read_topography",
+    "Topography",
     "fit_line",
     "RoughLine",
     "Profile",

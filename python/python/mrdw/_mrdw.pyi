@@ -55,8 +55,10 @@ class ContactResult:
         """Convergence criterion reached."""
     @property
     def certificate(self) -> float:
-        """Bound of the energy's duality gap over force x rms height: at most the
-        tolerance when converged; then (p - p*).K(p - p*) <= 2 certificate F h_rms."""
+        """Bound of the energy's duality gap over force x rms height;
+        (p - p*).K(p - p*) <= 2 certificate F h_rms. At most the tolerance when
+        converged, except in complete contact, where a solve may stop at the floor
+        rounding leaves (then above the tolerance)."""
     @property
     def stiffness(self) -> Optional[float]:
         """Tangent stiffness dF/dd [stress x length] if requested (+inf at complete
@@ -103,7 +105,9 @@ class Contact:
         """heights: (ny, nx) array, or a topography object with heights() (indexed
         (x, y)) and physical_sizes (e.g. SurfaceTopography's), whose size and
         is_periodic are the defaults of size and periodic (else (1, 1) and True; a
-        topography whose physical_sizes is None needs size)."""
+        topography whose physical_sizes is None needs size). A numpy masked array's
+        masked cells (undefined points) are left out of the contact, as mask= does,
+        with a UserWarning that counts them."""
     def solve(
         self,
         mean_pressure: Optional[float] = None,
@@ -140,6 +144,9 @@ class Contact:
     def e_star(self) -> float: ...
     @property
     def periodic(self) -> bool: ...
+    @property
+    def undefined_cells(self) -> int:
+        """Cells a masked array left undefined: outside the contact."""
 
 class TransientStep:
     """The state after a step of TransientContact.step."""
@@ -284,9 +291,15 @@ class Moments(TypedDict):
     rms_curvature: float
 
 def moments(h: ArrayLike, size: Union[float, Tuple[float, float]]) -> Moments: ...
-def read_topography(source: Union[str, PathLike[str], Any]) -> F64:
-    """A height map (rows of y) from .npy or a text matrix, or from a topography
-    object with heights() and physical_sizes."""
+def _read_topography_file(path: Union[str, PathLike[str]]) -> Tuple[F64, Optional[Tuple[float, float]]]:
+    """A height map (rows of y) from a file and its cell size (dx, dy) where the
+    file states it; used by mrdw.read_topography."""
+
+def _topography_parts(
+    source: Any,
+) -> Tuple[F64, Optional[npt.NDArray[np.bool_]], Optional[Tuple[float, float]], Optional[bool]]:
+    """An array, masked array or topography object taken apart as Contact takes it:
+    heights (rows of y, NaN where undefined), undefined cells, size, periodicity."""
 
 class LineFit(TypedDict):
     a: float

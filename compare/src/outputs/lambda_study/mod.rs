@@ -205,12 +205,15 @@ impl LambdaStudy {
         (-32..=32).map(|i| i as f64 / 8.0).collect()
     }
 
-    fn check_band(&self, b: usize, cells: usize) -> Result<()> {
+    /// A bandwidth `b` run at `cells` per shortest wavelength; `what` names the keys
+    /// that set them, for the messages (`cells` may be derived, as `top_check`'s
+    /// doubled cells are).
+    fn check_band(&self, b: usize, cells: usize, what: &str) -> Result<()> {
         if !(8..=1024).contains(&b) {
             return bad(format!("bandwidth {b} must lie in 8..=1024"));
         }
         if !(3..=32).contains(&cells) {
-            return bad(format!("cells = {cells} must lie in 3..=32"));
+            return bad(format!("{what}: {cells} cells per wavelength, outside 3..=32"));
         }
         let g = b * cells;
         if g > 8192 {
@@ -248,15 +251,16 @@ impl Output for LambdaStudy {
                 self.calibrate_at, self.bandwidths
             ));
         }
+        let cells = format!("cells = {}", self.cells);
         for &b in &self.bandwidths {
-            self.check_band(b, self.cells)?;
+            self.check_band(b, self.cells, &cells)?;
         }
         for e in &self.extra {
-            self.check_band(e.bandwidth, self.cells)?;
+            self.check_band(e.bandwidth, self.cells, &cells)?;
         }
         if let Some(r) = &self.resolution {
             for &c in &r.cells {
-                self.check_band(r.bandwidth, c)?;
+                self.check_band(r.bandwidth, c, &format!("resolution.cells entry {c}"))?;
             }
         }
         if let Some(t) = &self.tolerance_check {
@@ -281,7 +285,14 @@ impl Output for LambdaStudy {
             if !self.bandwidths.contains(&t.bandwidth) && !extra {
                 return bad("top_check.bandwidth must be one of bandwidths, or an extra bandwidth of its hurst");
             }
-            self.check_band(t.bandwidth, 2 * self.cells)?;
+            self.check_band(
+                t.bandwidth,
+                2 * self.cells,
+                &format!(
+                    "top_check runs at twice cells = {} (so cells must be at most 16)",
+                    self.cells
+                ),
+            )?;
             bem3d::SolverOptions::new(t.tolerance, 1)
                 .validate()
                 .map_err(|e| crate::error::CompareError::Scene(format!("top_check: {e}")))?;

@@ -26,7 +26,7 @@ mod report;
 mod runs;
 
 use super::rough_stiffness::LambdaSpec;
-use super::{bad, check_memory, count_in, positive, Env, Output, BYTES_PER_CELL_NON_PERIODIC};
+use super::{bad, check_memory, count_in, Env, Output, BYTES_PER_CELL_NON_PERIODIC};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::plan::Stage;
@@ -104,8 +104,11 @@ impl RoughSphere {
 
 impl Output for RoughSphere {
     fn validate(&self, ctx: &Context) -> Result<()> {
-        if !(positive(self.radius) && positive(self.hertz_depth)) {
-            return bad("radius and hertz_depth must be > 0");
+        let (lo, hi) = mrd::error::MAGNITUDE_RANGE;
+        for (name, v) in [("radius", self.radius), ("hertz_depth", self.hertz_depth)] {
+            if !(lo..=hi).contains(&v) {
+                return bad(format!("{name} = {v:e} must lie in [{lo:e}, {hi:e}]"));
+            }
         }
         if self.hertz_depth > 0.1 * self.radius {
             return bad("hertz_depth must be <= 0.1 radius (Hertz: small slopes)");

@@ -149,6 +149,9 @@ impl ViscoelasticRough {
     }
 }
 
+/// The largest `steps` of the ramp.
+const MAX_STEPS: u64 = 100_000;
+
 impl Output for ViscoelasticRough {
     fn validate(&self, ctx: &Context) -> Result<()> {
         if !(-1.0..=3.0).contains(&self.hurst) {
@@ -176,7 +179,7 @@ impl Output for ViscoelasticRough {
         if !(self.unload.is_finite() && (0.0..1.0).contains(&self.unload)) {
             return bad("unload must lie in [0, 1) (a fraction of the force or approach)");
         }
-        count_in("steps", self.steps as u64, 2..=100_000)?;
+        count_in("steps", self.steps as u64, 2..=MAX_STEPS)?;
         // The integration is exact for piecewise-linear displacement at any step, but a
         // step longer than a relaxation time cannot resolve that term's response.
         let tau_min = self
@@ -186,10 +189,19 @@ impl Output for ViscoelasticRough {
             .map(|t| t[1])
             .fold(f64::INFINITY, f64::min);
         if self.dt() > tau_min {
+            let needed = (self.ramp / tau_min).ceil();
+            let advice = if needed <= MAX_STEPS as f64 {
+                format!("give steps >= {needed}")
+            } else {
+                format!(
+                    "steps would need {needed:.3e}, past the largest, {MAX_STEPS}: lengthen \
+                     the shortest relaxation time or shorten the ramp"
+                )
+            };
             return bad(format!(
-                "the time step ramp / steps = {:.3e} exceeds the shortest relaxation time {tau_min:.3e}: give at least {} steps",
+                "the time step ramp / steps = {:.3e} exceeds the shortest relaxation time \
+                 modulus.terms tau = {tau_min:.3e}: {advice}",
                 self.dt(),
-                (self.ramp / tau_min).ceil()
             ));
         }
         // Counted before the history is built, so that no huge hold allocates.
