@@ -171,7 +171,11 @@ enum BenchTarget {
 impl BenchTarget {
     /// `--max-exp` as given, else this target's default.
     fn max_exp(self, given: Option<u32>) -> u32 {
-        given.unwrap_or(if matches!(self, BenchTarget::Rough) { 7 } else { 6 })
+        given.unwrap_or(if matches!(self, BenchTarget::Rough) {
+            7
+        } else {
+            6
+        })
     }
 
     /// `--max-n` as given, else this target's default.
@@ -216,7 +220,11 @@ fn bench_options_apply(
             "bem",
         ),
         ("--quick", quick && !matches!(target, Report), "report"),
-        ("--out", out.is_some() && !matches!(target, Report), "report"),
+        (
+            "--out",
+            out.is_some() && !matches!(target, Report),
+            "report",
+        ),
     ];
     match rules.iter().find(|r| r.1) {
         Some((option, _, applies)) => Err(format!(
@@ -503,7 +511,9 @@ mod tests {
     fn bench_options_that_do_not_apply_are_refused() {
         let none = None::<PathBuf>;
         let e = bench_options_apply(BenchTarget::Mrd, None, Some(512), &none, false, &none);
-        assert!(e.unwrap_err().contains("--max-n applies to `mrdw bench bem,"));
+        assert!(e
+            .unwrap_err()
+            .contains("--max-n applies to `mrdw bench bem,"));
         let e = bench_options_apply(BenchTarget::Large, Some(5), None, &none, false, &none);
         assert!(e.unwrap_err().contains("--max-exp"));
         let e = bench_options_apply(BenchTarget::Bem, None, None, &none, true, &none);

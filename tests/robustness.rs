@@ -623,3 +623,67 @@ fn viscoelastic_rough_refuses_bad_values() {
         "unload must lie in [0, 1)",
     );
 }
+
+/// Peak resident memory [bytes] of `mrdw run` of `scene` on one thread in a fresh
+/// process, read from /proc while it runs (VmHWM, the high-water mark).
+#[cfg(target_os = "linux")]
+fn peak_of_run(dir: &Path, scene: &str) -> f64 {
+    use std::process::Stdio;
+    std::fs::write(dir.join("m.toml"), scene).unwrap();
+    let _ = std::fs::remove_dir_all(dir.join("o"));
+    let mut child = Command::new(env!("CARGO_BIN_EXE_mrdw"))
+        .current_dir(dir)
+        .args(["run", "m.toml", "--out", "o", "--threads", "1"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("mrdw runs");
+    let status = format!("/proc/{}/status", child.id());
+    let mut peak: f64 = 0.0;
+    loop {
+        let kib = std::fs::read_to_string(&status).ok().and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("VmHWM:"))
+                .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
+        });
+        peak = peak.max(kib.unwrap_or(0.0) * 1024.0);
+        if let Some(done) = child.try_wait().unwrap() {
+            assert!(done.success(), "{scene}");
+            return peak;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    }
+}
+
+/// The memory checks of the 1D outputs hold what a run measures: per spring, the
+/// estimate is at least the measured peak (a refusal comes before an allocation fails)
+/// and at most twice it (no run that fits is refused for want of memory it does not
+/// need). The peak at 1e3 springs is subtracted (the process's own memory).
+#[cfg(target_os = "linux")]
+#[test]
+fn spring_memory_estimates_hold() {
+    use compare::outputs::spring_bytes as b;
+    let tmp = tempfile::tempdir().unwrap();
+    let head = "name = \"m\"\n[material]\ne_star = 1.0\ng_star = 0.8\n[profile]\nshapes = [{ kind = \"sphere\", radius = 1.0 }]\n[[outputs]]\n";
+    let prony = "prony = [[2.0, 0.5]]\n";
+    let cases: [(&str, String, f64); 6] = [
+        ("force_depth", "kind = \"force_depth\"\ndrive = \"force\"\nmax = 0.01\nsprings = N\n".into(), b::FORCE_DEPTH),
+        ("adhesion", "kind = \"adhesion\"\ngamma = 0.01\ndepth_max = 0.36\ncontrol = \"force\"\nsprings = N\n".into(), b::ADHESION),
+        ("damping", "kind = \"damping\"\nmu = 0.3\ndepth = 0.01\nmax_amplitude_ratio = 1.5\npoints = 4\nsprings = N\n".into(), b::DAMPING),
+        ("viscoelastic", format!("kind = \"viscoelastic\"\ne_inf = 1.0\n{prony}depth_max = 0.1\nramp_time = 1.0\nend_time = 2.0\nsprings = N\n"), b::viscoelastic(1)),
+        ("tangential_viscoelastic", format!("kind = \"tangential_viscoelastic\"\nmu = 0.3\nnormal_force = 0.1\ng_inf = 0.7\n{prony}amplitude = 0.2\nramp_time = 1.0\nhold_time = 1.0\nsteps = 10\nsprings = N\n"), b::tangential_viscoelastic(1)),
+        ("static_friction", "kind = \"static_friction\"\nhurst = 0.7\npoints = N\nlength = 1e5\ncontacts_at_max_force = 40.0\nrealisations = 2\nforce_min = 1.0\nforce_max = 500.0\n".into(), b::rough_line(1)),
+    ];
+    let n = 1_000_000.0;
+    for (kind, body, estimate) in cases {
+        let at = |springs: f64| {
+            let text = format!("{head}{}", body.replace("N", &format!("{springs}")));
+            peak_of_run(tmp.path(), &text)
+        };
+        let measured = (at(n) - at(1e3)) / n;
+        assert!(
+            measured <= estimate && estimate <= 2.0 * measured,
+            "{kind}: measured {measured:.1} bytes per spring, estimate {estimate}"
+        );
+    }
+}

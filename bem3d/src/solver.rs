@@ -525,9 +525,7 @@ impl<K: SolverOperator> ContactSolver<K> {
         if warm.is_none() && loaded && restricted_allowed {
             if paths.window.allowed() {
                 match self.solve_windowed(target_force, fixed_approach, opts) {
-                    Ok(sol) if paths.window.forced() || forced_ran(&sol, paths) => {
-                        return Ok(sol)
-                    }
+                    Ok(sol) if paths.window.forced() || forced_ran(&sol, paths) => return Ok(sol),
                     Err(reason) if paths.window.forced() => {
                         return Err(unavailable("window", reason))
                     }

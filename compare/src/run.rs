@@ -109,7 +109,11 @@ pub fn check_work_outside(work: &Path, out: &Path) -> Result<()> {
             "--work {} is {} --out {}: the report replaces that folder as a whole, so the \
              checkpoints must live elsewhere (e.g. --work {}.work)",
             work.display(),
-            if w == o { "the same folder as" } else { "inside" },
+            if w == o {
+                "the same folder as"
+            } else {
+                "inside"
+            },
             out.display(),
             out.display()
         )));

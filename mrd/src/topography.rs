@@ -222,7 +222,7 @@ impl HeightMap {
         let text = std::fs::read_to_string(path).map_err(|e| bad(path, e))?;
         // A byte-order mark, as Windows programs write before UTF-8 text.
         let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
-        Self::parse_text(path, &text)?.checked(path)
+        Self::parse_text(path, text)?.checked(path)
     }
 
     fn parse_text(path: &Path, text: &str) -> Result<Self> {
@@ -730,7 +730,12 @@ mod tests {
             .flat_map(|j| (0..5).map(move |i| (i, j)))
             .map(|(i, j)| {
                 let e = 1e-15 * ((i + j) % 3) as f64 - 1e-15;
-                format!("{} {} {}\n", i as f64 * 0.1 + e, j as f64 * 0.1 - e, i + 10 * j)
+                format!(
+                    "{} {} {}\n",
+                    i as f64 * 0.1 + e,
+                    j as f64 * 0.1 - e,
+                    i + 10 * j
+                )
             })
             .collect();
         std::fs::write(&p, noisy).unwrap();
@@ -744,9 +749,18 @@ mod tests {
         std::fs::write(&g, "\u{feff}ncols 2\nnrows 2\ncellsize 1\n1 2\n3 4\n").unwrap();
         assert_eq!(HeightMap::read(&g).unwrap().data, vec![3.0, 4.0, 1.0, 2.0]);
         for (header, why) in [
-            ("ncols 2\ncellsize 1\n", "the header has `ncols` but no `nrows`"),
-            ("ncols 10000000000\nnrows 2\ncellsize 1\n", "`ncols` = 10000000000: more than 1e9"),
-            ("ncols 2.5\nnrows 2\ncellsize 1\n", "`ncols` = 2.5 must be a whole number"),
+            (
+                "ncols 2\ncellsize 1\n",
+                "the header has `ncols` but no `nrows`",
+            ),
+            (
+                "ncols 10000000000\nnrows 2\ncellsize 1\n",
+                "`ncols` = 10000000000: more than 1e9",
+            ),
+            (
+                "ncols 2.5\nnrows 2\ncellsize 1\n",
+                "`ncols` = 2.5 must be a whole number",
+            ),
         ] {
             std::fs::write(&g, format!("{header}1 2\n3 4\n")).unwrap();
             let e = HeightMap::read(&g).unwrap_err().to_string();
@@ -755,11 +769,15 @@ mod tests {
         // What is not a file says what it is.
         let e = HeightMap::read(&dir).unwrap_err().to_string();
         assert!(e.contains("is a folder"), "{e}");
-        let e = HeightMap::read(&dir.join("none.txt")).unwrap_err().to_string();
+        let e = HeightMap::read(&dir.join("none.txt"))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("no such file"), "{e}");
         #[cfg(unix)]
         {
-            let e = HeightMap::read(Path::new("/dev/null")).unwrap_err().to_string();
+            let e = HeightMap::read(Path::new("/dev/null"))
+                .unwrap_err()
+                .to_string();
             assert!(e.contains("device"), "{e}");
         }
     }

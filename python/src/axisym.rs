@@ -31,9 +31,11 @@ fn shape(py: Python<'_>, s: mrd::Result<Shape>, rim: Option<f64>) -> PyResult<Pr
 fn map<'py>(
     py: Python<'py>,
     x: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    name: &str,
     f: impl Fn(f64) -> mrd::Result<f64>,
 ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
     let a = x.as_array();
+    crate::errors::no_nan(name, a.iter())?;
     let mut out = a.to_owned();
     for v in out.iter_mut() {
         *v = finite("value", f(*v).map_err(|e| mrd_err(py, e))?)?;
@@ -113,7 +115,7 @@ impl Profile {
         py: Python<'py>,
         r: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        map(py, r, |r| Ok(self.inner.z(r)))
+        map(py, r, "r", |r| Ok(self.inner.z(r)))
     }
     /// g(x): the MRD image by the rule of Hess (Eq. 11), closed forms per shape
     /// (Eqs. 13-15, 23) [length].
@@ -122,7 +124,7 @@ impl Profile {
         py: Python<'py>,
         x: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        map(py, x, |x| Ok(self.inner.z1d(x)))
+        map(py, x, "x", |x| Ok(self.inner.z1d(x)))
     }
     /// g(x) by tanh-sinh quadrature of Eq. (11): an independent check of z1d.
     fn z1d_numeric<'py>(
@@ -130,7 +132,7 @@ impl Profile {
         py: Python<'py>,
         x: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        map(py, x, |x| self.inner.z1d_numeric(x))
+        map(py, x, "x", |x| self.inner.z1d_numeric(x))
     }
     /// Largest contact radius the profile is defined for (rim or table end; inf).
     #[getter]
@@ -176,7 +178,7 @@ pub fn hess_inverse<'py>(
         let (x0, x1) = (x[k - 1], x[k]);
         g[k - 1] + (g[k] - g[k - 1]) * (t - x0) / (x1 - x0)
     };
-    map(py, r, |rv| {
+    map(py, r, "r", |rv| {
         if rv.abs() > last * (1.0 + 1e-12) {
             return Err(mrd::MrdError::OutOfRange {
                 needed: rv.abs(),
@@ -263,7 +265,7 @@ pub fn pressure<'py>(
         (_, f) => c.state_at_force(f),
     }
     .map_err(|e| mrd_err(py, e))?;
-    map(py, r, |r| {
+    map(py, r, "r", |r| {
         mrd::pressure::abel_pressure(&profile.inner, e_star, s.depth, s.radius, 0.0, r)
     })
 }

@@ -222,16 +222,18 @@ fn type_name(obj: &Bound<'_, PyAny>) -> String {
         .unwrap_or_else(|_| "?".into())
 }
 
+/// A 2D float array as numpy gives it.
+type Heights<'py> = PyArrayLike2<'py, f64, AllowTypeChange>;
+/// A 2D boolean array as numpy gives it.
+type Cells<'py> = PyArrayLike2<'py, bool, AllowTypeChange>;
+
 /// A 2D float array and, for a numpy masked array, its undefined cells (the data there
 /// replaced by the smallest defined height: any finite value serves, the cells are
 /// left out of the contact).
 fn unmask<'py>(
     obj: &Bound<'py, PyAny>,
     what: &str,
-) -> PyResult<(
-    PyArrayLike2<'py, f64, AllowTypeChange>,
-    Option<PyArrayLike2<'py, bool, AllowTypeChange>>,
-)> {
+) -> PyResult<(Heights<'py>, Option<Cells<'py>>)> {
     let py = obj.py();
     let ma = py.import("numpy.ma")?;
     let shape_error = |e: PyErr| {
@@ -240,7 +242,10 @@ fn unmask<'py>(
             type_name(obj)
         ))
     };
-    if !ma.call_method1("isMaskedArray", (obj,))?.extract::<bool>()? {
+    if !ma
+        .call_method1("isMaskedArray", (obj,))?
+        .extract::<bool>()?
+    {
         return Ok((obj.extract().map_err(shape_error)?, None));
     }
     let defined: usize = obj.call_method0("count")?.extract()?;
@@ -290,10 +295,7 @@ impl<'py> HeightMap<'py> {
         }
         let (array, undefined) = unmask(&heights.call0()?, "topography object: heights()")?;
         // None where the topography's size is unknown (then `size=` must be given).
-        let size = match obj
-            .getattr("physical_sizes")?
-            .extract::<Option<Vec<f64>>>()
-        {
+        let size = match obj.getattr("physical_sizes")?.extract::<Option<Vec<f64>>>() {
             Ok(None) => None,
             Ok(Some(v)) if v.len() == 2 => Some((v[0], v[1])),
             Ok(Some(v)) => {
@@ -302,7 +304,11 @@ impl<'py> HeightMap<'py> {
                     v.len()
                 )))
             }
-            Err(e) => return Err(bad(format!("physical_sizes must be (lx, ly) or None ({e})"))),
+            Err(e) => {
+                return Err(bad(format!(
+                    "physical_sizes must be (lx, ly) or None ({e})"
+                )))
+            }
         };
         let periodic = match obj.getattr("is_periodic") {
             Ok(v) => v
@@ -319,7 +325,10 @@ impl<'py> HeightMap<'py> {
         })
     }
 
-    fn oriented<'a, T>(&self, v: numpy::ndarray::ArrayView2<'a, T>) -> numpy::ndarray::ArrayView2<'a, T> {
+    fn oriented<'a, T>(
+        &self,
+        v: numpy::ndarray::ArrayView2<'a, T>,
+    ) -> numpy::ndarray::ArrayView2<'a, T> {
         if self.by_x {
             v.reversed_axes()
         } else {

@@ -51,6 +51,14 @@ pub fn finite_dict<'py>(
     Ok(d)
 }
 
+/// A ValueError naming the first NaN of the argument `name` (its flat index), if any.
+pub fn no_nan<'a>(name: &str, values: impl IntoIterator<Item = &'a f64>) -> PyResult<()> {
+    match values.into_iter().position(|v| v.is_nan()) {
+        Some(i) => Err(value_error(format!("{name}[{i}] = NaN is not a number"))),
+        None => Ok(()),
+    }
+}
+
 /// `v`, or a ValueError naming `what` when it is not finite.
 pub fn finite(what: &str, v: f64) -> PyResult<f64> {
     if v.is_finite() {

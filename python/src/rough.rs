@@ -61,6 +61,7 @@ pub fn spectrum<'py>(
     rms_slope: Option<f64>,
 ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
     let s = spectrum_of(py, hurst, q0, qr, q1, rms_height, rms_slope)?;
+    crate::errors::no_nan("q", q.as_array().iter())?;
     Ok(PyArrayDyn::from_owned_array(
         py,
         q.as_array().mapv(|q| s.c2d(q)),
@@ -88,6 +89,7 @@ pub fn line_spectrum<'py>(
 ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
     let lam = line_lambda(lam, hurst)?;
     let l = spectrum_of(py, hurst, q0, qr, q1, rms_height, rms_slope)?.to_line(lam);
+    crate::errors::no_nan("q", q.as_array().iter())?;
     Ok(PyArrayDyn::from_owned_array(
         py,
         q.as_array().mapv(|q| l.c1d(q)),
@@ -324,6 +326,9 @@ pub fn moments<'py>(
     Ok(d)
 }
 
+/// A height map and its cell size (dx, dy), where known.
+type MapAndCell<'py> = (Bound<'py, PyArray2<f64>>, Option<(f64, f64)>);
+
 /// _read_topography_file(path) -> (ndarray (rows, cols), (dx, dy) or None)
 ///
 /// A height map from a file (`.npy`, `.xyz`, an ESRI ASCII grid or a text matrix, read
@@ -334,7 +339,7 @@ pub fn moments<'py>(
 pub fn _read_topography_file<'py>(
     py: Python<'py>,
     path: std::path::PathBuf,
-) -> PyResult<(Bound<'py, PyArray2<f64>>, Option<(f64, f64)>)> {
+) -> PyResult<MapAndCell<'py>> {
     use std::sync::mpsc::{channel, RecvTimeoutError};
     let (tx, rx) = channel();
     // Not scoped: a read that never ends (a pipe nobody writes) must not hold Ctrl-C.
@@ -359,8 +364,8 @@ pub fn _read_topography_file<'py>(
         }
     };
     let (m, cell) = read.map_err(|e| mrd_err(py, e))?;
-    let a = Array2::from_shape_vec((m.rows, m.cols), m.data)
-        .map_err(|e| value_error(e.to_string()))?;
+    let a =
+        Array2::from_shape_vec((m.rows, m.cols), m.data).map_err(|e| value_error(e.to_string()))?;
     Ok((PyArray2::from_owned_array(py, a), cell))
 }
 

@@ -143,7 +143,18 @@ impl TransientContact {
         // heights, displacement, the raised heights and their lift, one hereditary
         // integral per term.
         let e_ref = modulus.glassy();
-        let grid = Grid::new(py, heights, size, periodic, mask, e_ref)?;
+        let grid = Grid::new(py, heights, size, periodic, mask, e_ref).map_err(|e| {
+            // The operator's check names E*, which this class takes as its terms.
+            let text = e.value(py).to_string().replace(
+                "e_star (the contact modulus E*)",
+                "the glassy modulus relaxed + sum of the terms' E_k",
+            );
+            if e.is_instance_of::<pyo3::exceptions::PyValueError>(py) {
+                value_error(text)
+            } else {
+                e
+            }
+        })?;
         let ((ny, nx), (lx, ly)) = (grid.shape, grid.size);
         let per_cell = 8.0 * (4 + modulus.terms.len()) as f64;
         sysmem::check_estimate(

@@ -244,7 +244,7 @@ def test_helpers_refuse_what_is_not_a_number():
     q = np.array([10.0, 20.0])
     with pytest.raises(ValueError, match="lam"):
         mrdw.line_spectrum(q, 0.8, 4.0, 4.0, 32.0, lam=-1.0)
-    with pytest.raises(ValueError, match="must be a number"):
+    with pytest.raises(ValueError, match=r"r\[0\] = NaN is not a number"):
         mrdw.pressure(mrdw.Profile.sphere(1.0), 1.0, [np.nan], depth=0.1)
     with pytest.raises(ValueError, match="no load has it"):
         mrdw.normal(mrdw.Profile.flat_punch(1.0), 1.0, radius=0.5)
@@ -252,6 +252,16 @@ def test_helpers_refuse_what_is_not_a_number():
     for bad in [np.nan, np.inf]:
         with pytest.raises(ValueError, match="finite points"):
             mrdw.fit_line([0.0, 1.0, bad, 3.0], [1.0, 2.0, 3.0, 4.0])
+
+
+def test_nan_arguments_are_named():
+    nan = float("nan")
+    with pytest.raises(ValueError, match=r"x\[0\] = NaN is not a number"):
+        mrdw.Profile.sphere(1.0).z1d([nan])
+    with pytest.raises(ValueError, match=r"q\[1\] = NaN is not a number"):
+        mrdw.spectrum([1.0, nan], 0.8, 1.0, 1.0, 10.0)
+    with pytest.raises(ValueError, match="glassy modulus relaxed"):
+        mrdw.TransientContact(rough(16), relaxed=1e100, terms=[(1e100, 1.0)])
 
 
 def test_loads_are_named_as_given():

@@ -209,6 +209,9 @@ mod tests {
         let failed = "FAILED n=1024 mean_pressure=1e-2 out of memory".to_string();
         assert!(super::every_case_failed(&[ok.clone(), failed.clone()]).is_ok());
         let err = super::every_case_failed(&[failed.clone(), failed]).unwrap_err();
-        assert!(err.contains("every case of the benchmark failed (2 of 2)"), "{err}");
+        assert!(
+            err.contains("every case of the benchmark failed (2 of 2)"),
+            "{err}"
+        );
     }
 }

@@ -45,7 +45,7 @@ impl Output for Adhesion {
             return bad("depth_max must be > 0");
         }
         if let Some(n) = self.springs {
-            check_springs(n, 2.0)?;
+            check_springs(n, super::spring_bytes::ADHESION)?;
         }
         Ok(())
     }

@@ -48,7 +48,7 @@ impl Output for Damping {
         if !positive(self.depth) || !positive(self.max_amplitude_ratio) {
             return bad("depth and max_amplitude_ratio must be > 0");
         }
-        check_springs(self.springs, 2.0)?;
+        check_springs(self.springs, super::spring_bytes::DAMPING)?;
         ctx.material.g_star().ctx("damping output")?;
         Ok(())
     }

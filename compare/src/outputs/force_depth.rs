@@ -35,7 +35,7 @@ impl Output for ForceDepth {
             return bad(format!("max = {:e} must lie in [{lo:e}, {hi:e}]", self.max));
         }
         if let Some(n) = self.springs {
-            check_springs(n, 1.0)?;
+            check_springs(n, super::spring_bytes::FORCE_DEPTH)?;
         }
         Ok(())
     }

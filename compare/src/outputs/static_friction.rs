@@ -3,7 +3,7 @@
 //! the fit xi = a + b ln f of Eq. (91).
 
 use super::{bad, check_memory, default_force_points, default_realisations, positive};
-use super::{Env, Output, BYTES_PER_SPRING};
+use super::{Env, Output};
 use crate::context::Context;
 use crate::error::{CompareError, Context as _, Result};
 use crate::plan::Stage;
@@ -48,7 +48,7 @@ pub(crate) fn check_line(hurst: f64, points: usize, length: f64, realisations: u
     super::count_in("realisations", realisations, 2..=1_000_000)?;
     // One line per worker thread at a time.
     check_memory(
-        points as f64 * BYTES_PER_SPRING * rayon::current_num_threads() as f64,
+        points as f64 * super::spring_bytes::rough_line(rayon::current_num_threads()),
         &format!("points = {points} per line"),
     )
 }

@@ -104,7 +104,10 @@ impl Output for TangentialViscoelastic {
         if (self.hold_time / self.ramp_time + 5.0) * self.steps as f64 > 1e6 {
             return bad("the history has more than 1e6 steps (hold_time / (ramp_time / steps))");
         }
-        check_springs(self.springs, 2.0 + self.prony.len() as f64)
+        check_springs(
+            self.springs,
+            super::spring_bytes::tangential_viscoelastic(self.prony.len()),
+        )
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {

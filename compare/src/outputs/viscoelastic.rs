@@ -58,7 +58,10 @@ impl Output for Viscoelastic {
                 self.ramp_time, self.end_time
             ));
         }
-        check_springs(self.springs, 1.0 + self.prony.len() as f64 / 4.0)?;
+        check_springs(
+            self.springs,
+            super::spring_bytes::viscoelastic(self.prony.len()),
+        )?;
         if self.half_length.is_some_and(|l| !positive(l)) {
             return bad("half_length must be > 0");
         }

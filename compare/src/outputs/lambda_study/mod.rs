@@ -213,7 +213,9 @@ impl LambdaStudy {
             return bad(format!("bandwidth {b} must lie in 8..=1024"));
         }
         if !(3..=32).contains(&cells) {
-            return bad(format!("{what}: {cells} cells per wavelength, outside 3..=32"));
+            return bad(format!(
+                "{what}: {cells} cells per wavelength, outside 3..=32"
+            ));
         }
         let g = b * cells;
         if g > 8192 {
