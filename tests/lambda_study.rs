@@ -239,3 +239,121 @@ fn the_study_machinery_runs_pairs_and_reproduces() {
     .unwrap();
     ok(&mrdw(&["run", &s("r.toml"), "--out", &s("r")], &[]));
 }
+
+/// The shipped lambda(H) means Eq. (76) as written. The committed ensemble-mean curves
+/// of the study (compare/data/lambda_calibrated_curves.csv: the 3D mean with control
+/// variates and 2000 MRD lines, each over its own rms height) give the table's lambda
+/// when their shift pi h1^2 / h3^2 is divided by the rms factor. And MRD lines built by
+/// the public synthesis API with C1D = lambda q C2D of the study's spectrum, in its units
+/// and not rescaled, pressed on springs at F = f h3 (h3 the punch face's expected rms
+/// height), reproduce that 3D k(F): lambda fitted on them lies in the table's 95 %
+/// interval (the shift itself lies outside), and with the table's lambda the misfit stays
+/// within the table's misfit_max plus 0.03 (other lines than the study's).
+#[test]
+fn the_calibrated_lambda_reproduces_the_3d_stiffness_through_the_public_api() {
+    use compare::outputs::hurst_sweep::fit::{calibrate_lambda_at, interp_loglog, window_points};
+    use compare::outputs::lambda_meaning::{rms_matched, Face};
+    use mrd::rough_contact::RoughLine;
+    use mrd::roughness::synthesis::{line, Amplitudes};
+    use mrd::roughness::{LambdaTable, SelfAffine};
+    use std::f64::consts::{PI, TAU};
+
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("compare/data");
+    let table_text = std::fs::read_to_string(data.join("lambda_calibrated.csv")).unwrap();
+    let table = LambdaTable::from_csv(&table_text).unwrap();
+    let numbers = |l: &str| -> Vec<f64> {
+        l.split(',')
+            .map(|v| v.parse().unwrap_or(f64::NAN))
+            .collect()
+    };
+    let row = |h: f64| -> Vec<f64> {
+        let l = table_text
+            .lines()
+            .find(|l| numbers(l).first() == Some(&h))
+            .unwrap();
+        numbers(l)
+    };
+    let curves_text = std::fs::read_to_string(data.join("lambda_calibrated_curves.csv")).unwrap();
+    let curves: Vec<Vec<f64>> = curves_text
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.starts_with("hurst"))
+        .map(numbers)
+        .collect();
+    let band = 128;
+    for hurst in [0.5, 1.0] {
+        let [_, lambda, lo, hi, misfit_max] = row(hurst)[..5] else {
+            unreachable!()
+        };
+        assert_eq!(table.at(hurst).unwrap(), lambda);
+        let mine: Vec<&Vec<f64>> = curves.iter().filter(|c| c[0] == hurst).collect();
+        let fs: Vec<f64> = mine.iter().map(|c| c[4]).collect();
+        let value = |x: f64| x.is_finite().then_some(x);
+        let k3: Vec<Option<f64>> = mine.iter().map(|c| value(c[5])).collect();
+        let k1: Vec<Option<f64>> = mine.iter().map(|c| value(c[6])).collect();
+        let points = window_points(&k3, 0.02, 0.5);
+        // The study's spectrum: wave vectors |k| <= 128 (units 2 pi / L), L = 1, E* = 1.
+        let q0 = TAU * (1.0 - 1e-9);
+        let spectrum = SelfAffine::new(hurst, q0, q0, TAU * (band as f64 + 0.5)).unwrap();
+        let c2d = |q: f64| spectrum.c2d(q);
+        let factor = rms_matched(1.0, &c2d, band as f64, 1.0, Face::Disc);
+        let shift = calibrate_lambda_at(&fs, &k3, &k1, &points).unwrap();
+        assert!(
+            (shift / factor / lambda - 1.0).abs() < 1e-6,
+            "H = {hurst}: the committed curves give {} against the table's {lambda}",
+            shift / factor
+        );
+        // The 3D curve at F = f h3; MRD lines of the public API at lambda = pi in the
+        // study's units (lambda only scales their heights by sqrt(lambda / pi)).
+        let h3 = mrd::roughness::nested::surface_mean_square(&c2d, band as f64, 1.0, true).sqrt();
+        let forces: Vec<f64> = fs.iter().map(|f| f * h3).collect();
+        let pi_line = spectrum.to_line(PI);
+        let (lines, n1) = (2000, 16 * 8 * band);
+        let sum = (0..lines)
+            .map(|r| {
+                let z = line(&pi_line, n1, 1.0, 77, r, Amplitudes::Deterministic).unwrap();
+                let rl = RoughLine::new(&z, 1.0, 1.0).unwrap();
+                let full = rl.at_depth(rl.full_contact_depth()).unwrap().force;
+                forces
+                    .iter()
+                    .map(|&f| {
+                        if f >= full {
+                            1.0
+                        } else {
+                            rl.at_force(f).unwrap().stiffness
+                        }
+                    })
+                    .collect::<Vec<f64>>()
+            })
+            .fold(vec![0.0; fs.len()], |acc, k| {
+                acc.iter().zip(&k).map(|(a, b)| a + b).collect()
+            });
+        let mean1: Vec<Option<f64>> = sum.iter().map(|s| Some(s / lines as f64)).collect();
+        let fitted = calibrate_lambda_at(&forces, &k3, &mean1, &points).unwrap();
+        assert!(
+            (lo..=hi).contains(&fitted),
+            "H = {hurst}: lambda from the public API's lines {fitted:.3}, table {lambda} [{lo}, {hi}]"
+        );
+        assert!(
+            !(lo..=hi).contains(&shift),
+            "H = {hurst}: the shift {shift} is inside"
+        );
+        let s = (PI / lambda).sqrt();
+        let (x, y): (Vec<f64>, Vec<f64>) = forces
+            .iter()
+            .zip(&mean1)
+            .map(|(f, k)| (*f, k.unwrap()))
+            .unzip();
+        let misfit = forces
+            .iter()
+            .zip(&k3)
+            .zip(&points)
+            .filter(|(_, &p)| p)
+            .map(|((f, k), _)| (k.unwrap().ln() - interp_loglog(&x, &y, f * s).unwrap().ln()).abs())
+            .fold(0.0, f64::max);
+        eprintln!("H = {hurst}: lambda {lambda:.3} [{lo:.3}, {hi:.3}], from the API's lines {fitted:.3}, shift {shift:.3}, misfit {misfit:.4} (table {misfit_max})");
+        assert!(
+            misfit <= misfit_max + 0.03,
+            "H = {hurst}: misfit {misfit:.4} against the table's {misfit_max}"
+        );
+    }
+}

@@ -400,8 +400,7 @@ fn grid_axis(name: &str, mut v: Vec<f64>) -> std::result::Result<(Vec<f64>, f64)
     if axis.len() < 2 {
         return Ok((axis, 1.0));
     }
-    // The median spacing of the lines finds a line off the grid by itself; the span
-    // gives the step.
+    // The span gives the step; the median spacing names a line off the grid.
     let mut gaps: Vec<f64> = axis.windows(2).map(|w| w[1] - w[0]).collect();
     gaps.sort_by(f64::total_cmp);
     let typical = gaps[gaps.len() / 2];
@@ -417,18 +416,24 @@ fn grid_axis(name: &str, mut v: Vec<f64>) -> std::result::Result<(Vec<f64>, f64)
             (l.1 - l.0) / step
         ));
     }
-    for step in [typical, step] {
-        let off = |k: usize| (axis[k] - axis[0]) / step - k as f64;
-        if let Some(k) = (0..axis.len()).find(|&k| off(k).abs() > tol) {
-            return Err(format!(
-                "{name} = {} is {:.3} cells off the regular grid of step {step} from \
-                 {name} = {} ({} grid lines; allowed: {tol} of a cell)",
-                axis[k],
-                off(k),
-                axis[0],
-                axis.len()
-            ));
-        }
+    let off = |k: usize| (axis[k] - axis[0]) / step - k as f64;
+    if (0..axis.len()).any(|k| off(k).abs() > tol) {
+        // Named by the first spacing that differs from the median one, else by the
+        // first line off the grid that the end lines span.
+        let gap_off = |k: usize| (axis[k] - axis[k - 1]) / typical - 1.0;
+        let (k, by, from, step) = match (1..axis.len()).find(|&k| gap_off(k).abs() > tol) {
+            Some(k) => (k, gap_off(k), axis[k - 1], typical),
+            None => {
+                let k = (0..axis.len()).find(|&k| off(k).abs() > tol).unwrap_or(0);
+                (k, off(k), axis[0], step)
+            }
+        };
+        return Err(format!(
+            "{name} = {} is {by:.3} cells off the regular grid of step {step} from {name} = \
+             {from} ({} grid lines; allowed: {tol} of a cell)",
+            axis[k],
+            axis.len()
+        ));
     }
     Ok((axis, step))
 }

@@ -72,7 +72,9 @@ pub fn spectrum<'py>(
 ///
 /// The 1D spectrum of MRD, C1D(q) = lam |q| C2D(q) (Eq. 76) [length^3], of the 2D
 /// spectrum `spectrum(...)` (rms_height, rms_slope: of the 2D surface). lam = pi keeps
-/// the rms height (Eq. 73); lambda(H) of Fig. 6 reproduces the 3D stiffness.
+/// the rms height in the continuum (Eq. 73; on the discrete wavenumbers the line is
+/// rougher, by 1.02-1.5 in mean square from H = -1 to 3); `calibrated_lambda(H)` (this
+/// meaning of lambda: the line not rescaled) reproduces the 3D stiffness.
 #[pyfunction]
 #[pyo3(signature = (q, hurst, q0, qr, q1, *, lam = PI, rms_height = None, rms_slope = None))]
 #[allow(clippy::too_many_arguments)]

@@ -201,6 +201,14 @@ fn equal_error(w: &mut dyn Write) -> std::io::Result<()> {
         .at(0.8)
         .expect("lambda at 0.8");
     for (name, lambda) in [("pi", PI), ("calibrated", calibrated)] {
+        // The face's rms height h3 as the line of Eq. (76) carries it (lambda_meaning).
+        let shift = crate::outputs::lambda_meaning::rms_matched(
+            lambda,
+            &|q| sa.c2d(q),
+            BAND as f64,
+            1.0,
+            crate::outputs::lambda_meaning::Face::Disc,
+        );
         let line = sa.to_line(lambda);
         let points = 16 * n;
         let (mut d1, mut c1) = (Vec::new(), 0.0);
@@ -211,7 +219,7 @@ fn equal_error(w: &mut dyn Write) -> std::io::Result<()> {
             let gaps: Vec<f64> = z.iter().map(|v| top - v).collect();
             let mean = z.iter().sum::<f64>() / points as f64;
             let h1 = (z.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / points as f64).sqrt();
-            let h3 = h1 * (PI / lambda).sqrt();
+            let h3 = h1 * (PI / shift).sqrt();
             let mut row = SpringRow::new(&gaps, 1.0 / points as f64, &prony).expect("row");
             let mut d = 0.0;
             for k in 1..=2 * STEPS {

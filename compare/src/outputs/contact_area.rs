@@ -12,8 +12,10 @@
 //! Set-up as in the sweep: E* = 1, punch diameter L = 1, self-affine spectrum from
 //! q0 = 2 pi/L to q1 = ratio x pi/dx without roll-off; 3D under approach control from
 //! 1e-3 of the full-contact approach to full contact; 1D on a fixed grid of reduced
-//! forces f = F/(E* h L). MRD's relative area is the fraction of springs in contact; its
-//! mean gap (over the line) is max z - mean z - d + F/(E* L), exactly.
+//! forces f = F/(E* h L), h the rms height of the punch face (for the line: the face's
+//! that its C1D = lambda q C2D implies, `lambda_meaning`, so lambda moves the MRD
+//! curves). MRD's relative area is the fraction of springs in contact; its mean gap
+//! (over the line) is max z - mean z - d + F/(E* L), exactly.
 
 use super::hurst_sweep::fit::mean_curve;
 use super::rough_stiffness::LambdaSpec;
@@ -191,22 +193,27 @@ impl ContactArea {
         Ok((points, failed))
     }
 
-    /// One MRD line on the f grid.
+    /// One MRD line on the f grid: C1D = lambda q C2D (Eq. 76), its forces and gaps over
+    /// the rms height h3 of the punch face it stands for, which the line carries as
+    /// sqrt(pi / l) of its own, l = pi h1^2 / h3^2 the shift lambda implies
+    /// ([`super::lambda_meaning`]).
     fn run_1d(&self, h: usize, r: u64, lambda: f64, fs: &[f64]) -> Result<Curve> {
+        use super::lambda_meaning::{rms_matched, Face};
         let n1 = self.points_1d_factor * self.grid;
-        let spec = self
-            .spectrum(self.hurst[h])
-            .ctx("spectrum")?
-            .to_line(lambda);
+        let surface = self.spectrum(self.hurst[h]).ctx("spectrum")?;
+        let band = self.upper_cutoff_ratio * self.grid as f64 / 2.0;
+        let shift = rms_matched(lambda, &|q| surface.c2d(q), band, 1.0, Face::Disc);
+        let spec = surface.to_line(lambda);
         let id = (4u64 << 60) ^ ((h as u64) << 40) ^ r;
         let z = line(&spec, n1, 1.0, self.seed, id, Amplitudes::Deterministic).ctx("1D line")?;
         let rl = RoughLine::new(&z, 1.0, 1.0).ctx("1D line")?;
         let zmax = z.iter().fold(f64::NEG_INFINITY, |m, &v| m.max(v));
         let mean = z.iter().sum::<f64>() / n1 as f64;
         let full = rl.at_depth(rl.full_contact_depth()).ctx("1D")?.force;
+        let h3 = rl.rms_height * (PI / shift).sqrt();
         let (mut area, mut gap) = (Vec::new(), Vec::new());
         for &f in fs {
-            let force = f * rl.rms_height;
+            let force = f * h3;
             if force >= full {
                 area.push(Some(1.0));
                 gap.push(Some(0.0));
@@ -215,7 +222,7 @@ impl ContactArea {
             let s = rl.at_force(force).ctx("1D")?;
             area.push(Some(s.contacts as f64 / n1 as f64));
             let g = (zmax - mean - s.depth + s.force).max(0.0);
-            gap.push(Some(g / rl.rms_height));
+            gap.push(Some(g / h3));
         }
         Ok((area, gap))
     }
@@ -460,4 +467,25 @@ fn finding(ratio: &[(f64, f64, f64)], a_min: f64) -> serde_json::Value {
         o.insert("area_3d_there".into(), serde_json::json!(p.2));
     }
     serde_json::Value::Object(o)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// lambda (Eq. 76) moves the MRD curve: a rougher line (larger lambda) touches with
+    /// fewer springs at the same reduced force, by the shift sqrt(pi / l) along f that
+    /// lambda_meaning gives; lambda = pi and lambda = 9 differ at every force.
+    #[test]
+    fn lambda_moves_the_mrd_area() {
+        let spec: ContactArea =
+            toml::from_str("hurst = [0.5]\ngrid = 32\nrealisations_3d = 2\nrealisations_1d = 2\n")
+                .unwrap();
+        let fs = [1e-3, 1e-2, 1e-1];
+        let (pi_area, _) = spec.run_1d(0, 0, PI, &fs).unwrap();
+        let (nine_area, _) = spec.run_1d(0, 0, 9.0, &fs).unwrap();
+        for (a, b) in pi_area.iter().zip(&nine_area) {
+            assert!(b.unwrap() < a.unwrap(), "{pi_area:?} {nine_area:?}");
+        }
+    }
 }

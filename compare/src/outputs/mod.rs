@@ -25,6 +25,7 @@ mod damping;
 mod elastomer;
 mod force_depth;
 pub mod hurst_sweep;
+pub mod lambda_meaning;
 pub mod lambda_study;
 mod pressure;
 mod profile_1d;

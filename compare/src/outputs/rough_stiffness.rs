@@ -30,9 +30,11 @@ pub struct MeasuredSurface {
     pub size: [f64; 2],
 }
 
-/// lambda of Eq. (76): a number, "pi" (Eq. 73), "cut" (straight cut), "calibrated" (the
-/// embedded table from the `fig6-converged` study), or the path of a CSV table `hurst, lambda`
-/// (relative to the scene), e.g. a sweep's `<label>_lambda_table.csv`.
+/// lambda of Eq. (76) as written, C1D = lambda q C2D of the same C2D, the line not
+/// rescaled ([`super::lambda_meaning`]): a number, "pi" (Eq. 73), "cut" (straight cut),
+/// "calibrated" (the embedded table from the `fig6-converged` study), or the path of a
+/// CSV table `hurst, lambda` (relative to the scene), e.g. a sweep's
+/// `<label>_lambda_table.csv`.
 #[derive(Debug, Clone, Deserialize, PartialEq)]
 #[serde(untagged)]
 pub enum LambdaSpec {
@@ -155,11 +157,19 @@ impl Output for RoughStiffness {
         let lam = self.lambda.build(env.ctx)?.at(hurst).ctx("lambda")?;
         let q0 = 2.0 * PI / length;
         let q1 = PI * points as f64 / length * self.upper_cutoff_ratio;
-        let surf = SelfAffine::new(hurst, q0, q0, q1).ctx("spectrum")?;
-        let spec = surf.to_line(lam).with_rms_height(1.0).ctx("spectrum")?;
-        let tab = match &self.measured {
-            Some(m) => Some(self.measured_psd(env, out, m)?),
-            None => None,
+        // f = F/(E* h L) with h the rms height of the surface the lines stand for (Eq. 76:
+        // C1D = lambda q C2D of that surface's C2D, so lambda moves the curve): the
+        // self-affine spectrum scaled to h = 1, or the measured map's own h.
+        let surf = SelfAffine::new(hurst, q0, q0, q1)
+            .and_then(|s| s.with_rms_height(1.0))
+            .ctx("spectrum")?;
+        let spec = surf.to_line(lam);
+        let (tab, h_surface) = match &self.measured {
+            Some(m) => {
+                let (tab, h) = self.measured_psd(env, out, m)?;
+                (Some(tab), h)
+            }
+            None => (None, 1.0),
         };
         let c1d = |q: f64| match &tab {
             Some(t) => lam * q * t.c2d(q),
@@ -182,7 +192,7 @@ impl Output for RoughStiffness {
                     fs.iter()
                         .map(|&f| {
                             Ok(rl.reduced_stiffness(
-                                rl.at_force(f * e * rl.rms_height * length)?.stiffness,
+                                rl.at_force(f * e * h_surface * length)?.stiffness,
                             ))
                         })
                         .collect()
@@ -219,8 +229,8 @@ impl Output for RoughStiffness {
         );
         let ratio = self.upper_cutoff_ratio;
         t.notes.push(match &self.measured {
-            Some(m) => format!("Eq. (77) on {realisations} MRD rough lines: N = {points}, L = {length}, C1D = lambda q C2D with lambda = {lam} (at H = {hurst}) and C2D the radially averaged PSD of {} ({} x {})", m.heights, m.size[0], m.size[1]),
-            None => format!("Eq. (77) on {realisations} MRD rough lines: N = {points}, L = {length}, H = {hurst}, C1D = lambda q C2D with lambda = {lam}, q from 2 pi/L to {ratio} x Nyquist"),
+            Some(m) => format!("Eq. (77) on {realisations} MRD rough lines: N = {points}, L = {length}, C1D = lambda q C2D with lambda = {lam} (at H = {hurst}) and C2D the radially averaged PSD of {} ({} x {}); f = F/(E* h L), h = {h_surface:.6e} the map's rms height", m.heights, m.size[0], m.size[1]),
+            None => format!("Eq. (77) on {realisations} MRD rough lines: N = {points}, L = {length}, H = {hurst}, C1D = lambda q C2D with lambda = {lam} (Eq. 76), q from 2 pi/L to {ratio} x Nyquist; f = F/(E* h L), h the rms height of the surface with that C2D (continuum, Eq. 70)"),
         });
         for (k, s) in stats.iter().enumerate() {
             t.push(vec![
@@ -252,16 +262,20 @@ impl RoughStiffness {
         env: &Env,
         out: &mut Section,
         m: &MeasuredSurface,
-    ) -> Result<TabulatedSpectrum> {
+    ) -> Result<(TabulatedSpectrum, f64)> {
         let path = env.ctx.resolve(&m.heights);
-        let tab = out.stage(Stage::Psd, || -> Result<_> {
+        let (tab, h) = out.stage(Stage::Psd, || -> Result<_> {
             let map = mrd::topography::HeightMap::read(&path).ctx("measured topography")?;
             let psd = mrd::roughness::stats::surface_psd(
                 &map.data, map.cols, map.rows, m.size[0], m.size[1], 40,
             );
-            Ok(TabulatedSpectrum::new(&psd)
+            let n = map.data.len() as f64;
+            let mean = map.data.iter().sum::<f64>() / n;
+            let h = (map.data.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt();
+            let tab = TabulatedSpectrum::new(&psd)
                 .ctx(format!("PSD of {}", path.display()))?
-                .with_lowest_wavenumber(2.0 * PI / m.size[0].max(m.size[1])))
+                .with_lowest_wavenumber(2.0 * PI / m.size[0].max(m.size[1]));
+            Ok((tab, h))
         })?;
         // A power-law exponent needs at least 8 bins over a decade of q, and a value
         // the self-affine spectra cover (Eq. 70).
@@ -275,7 +289,7 @@ impl RoughStiffness {
                 path.display()
             ));
         }
-        Ok(tab)
+        Ok((tab, h))
     }
 
     fn figure(

@@ -244,7 +244,9 @@ def line_spectrum(
     """C1D = lam |q| C2D (Eq. 76) [length^3]."""
 
 def calibrated_lambda(hurst: float) -> float:
-    """lambda(H) of Eq. (76) from the shipped calibration (fig6-converged, bandwidth 128)."""
+    """lambda(H) of Eq. (76) from the shipped calibration (fig6-converged, bandwidth 128),
+    as Eq. (76) states it: lines built with C1D = lambda q C2D of the same C2D
+    (line(lam=...), line_spectrum(lam=...)), not rescaled."""
 
 def calibrated_lambda_table() -> str:
     """The shipped calibration as CSV text with its provenance."""

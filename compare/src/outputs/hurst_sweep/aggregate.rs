@@ -39,7 +39,11 @@ pub struct PerHurst {
     pub alpha_mrd: Estimate,
     pub zeta_3d: Estimate,
     pub zeta_mrd: Estimate,
+    /// lambda of Eq. (76) (C1D = lambda q C2D on the same C2D), with its interval.
     pub lambda: Estimate,
+    /// The shift of the reduced MRD curve it implies, pi h1^2 / h3^2 (what the fit
+    /// finds: `lambda` times the rms factor of the spectrum on the line and the face).
+    pub lambda_shift: f64,
     /// Straight-cut lambda (NaN for H <= -1/2).
     pub lambda_cut: f64,
     /// The fitted 3D power law (alpha, zeta), if the window held 3 points.
@@ -195,7 +199,11 @@ pub fn aggregate(spec: &HurstSweep, work: &Path) -> Result<Results> {
                     calibrate_lambda_at(&fs, &m3, &m1, &p3).unwrap_or(f64::NAN)
                 })
                 .collect();
-            let lam = calibrate_lambda_at(&fs, &m3, &m1, &p3);
+            // Fitted as the shift of the reduced curves, reported as lambda of Eq. (76).
+            let shift = calibrate_lambda_at(&fs, &m3, &m1, &p3);
+            let factor = super::tasks::rms_factor(spec, hurst, g)?;
+            let lam = shift.map(|v| v / factor);
+            let boot_lam: Vec<f64> = boot_lam.into_iter().map(|v| v / factor).collect();
             let ci_z3 = interval(component(&boot3, |x| x.1));
             let ci_a1 = interval(component(&boot1, |x| x.0));
             let ci_z1 = interval(component(&boot1, |x| x.1));
@@ -229,6 +237,7 @@ pub fn aggregate(spec: &HurstSweep, work: &Path) -> Result<Results> {
                 zeta_3d: est(fit3.map(|x| x.1), ci_z3),
                 zeta_mrd: est(fit1.map(|x| x.1), ci_z1),
                 lambda: est(lam, ci_l),
+                lambda_shift: shift.unwrap_or(f64::NAN),
                 lambda_cut: lambda_cut(hurst).unwrap_or(f64::NAN),
                 fit_3d: fit3,
                 window: (glo, ghi),

@@ -381,7 +381,7 @@ fn kf_figure(spec: &HurstSweep, r: &Results, h: &PerHurst, label: &str) -> Figur
     }
     if h.lambda.value.is_finite() {
         let l = h.lambda.value;
-        let s = (PI / l).sqrt();
+        let s = (PI / h.lambda_shift).sqrt();
         let (f1, v1): (Vec<f64>, Vec<f64>) = pts(&h.mean_mrd).into_iter().unzip();
         let shifted: Vec<(f64, f64)> = fs
             .iter()

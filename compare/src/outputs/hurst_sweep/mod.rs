@@ -16,9 +16,12 @@
 //! a few cells in contact to well below saturation (k -> E* L); alpha and zeta by least
 //! squares in log space, 95 % intervals by a bootstrap over realisations (200 resamples).
 //!
-//! lambda(H): under Eq. (77) lambda only rescales the 1D heights, h1 = sqrt(lambda/pi) h3,
-//! so the 1D law in terms of the 3D surface's h is K1(f sqrt(pi/lambda)); lambda is the
-//! least-squares fit in log space of that curve to the 3D one over the 3D fit window.
+//! lambda(H), Eq. (76) as written (C1D = lambda q C2D on the same C2D,
+//! `outputs::lambda_meaning`): under Eq. (77) lambda only rescales the 1D heights, so
+//! the 1D law in terms of the 3D surface's h is K1(f sqrt(pi / l)) with the shift
+//! l = pi h1^2 / h3^2; l is the least-squares fit in log space of that curve to the 3D
+//! one over the 3D fit window, and lambda is l over the rms factor of the spectrum on
+//! the line and the punch face.
 //!
 //! Every task (one 3D realisation, or the whole 1D ensemble of one H) is checkpointed
 //! atomically to `<out>.work/<key>/`; a killed run resumes from there, shards

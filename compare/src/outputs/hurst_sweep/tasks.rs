@@ -91,6 +91,16 @@ fn stream(seed: u64, task_kind: u64, h: usize, g: usize, r: u64) -> (u64, u64) {
     )
 }
 
+/// pi h1^2 / h3^2 per unit lambda for the sweep's lines and punch faces at (H, grid):
+/// the calibrated shift of the reduced curves is lambda (Eq. 76) times this
+/// ([`crate::outputs::lambda_meaning`]).
+pub fn rms_factor(spec: &HurstSweep, hurst: f64, grid: usize) -> Result<f64> {
+    use crate::outputs::lambda_meaning::{rms_matched, Face};
+    let s = spectrum(spec, hurst, grid).ctx("sweep spectrum")?;
+    let band = spec.upper_cutoff_ratio * PI * grid as f64 / (2.0 * PI);
+    Ok(rms_matched(1.0, &|q| s.c2d(q), band, 1.0, Face::Disc))
+}
+
 fn spectrum(spec: &HurstSweep, hurst: f64, grid: usize) -> mrd::Result<SelfAffine> {
     let q0 = 2.0 * PI;
     let q1 = spec.upper_cutoff_ratio * PI * grid as f64;

@@ -45,6 +45,15 @@ impl Estimate {
         }
     }
 
+    /// The estimate and its interval times `factor` (> 0).
+    fn scaled(self, factor: f64) -> Self {
+        Self {
+            value: self.value * factor,
+            lo: self.lo * factor,
+            hi: self.hi * factor,
+        }
+    }
+
     /// The interval's larger distance from the value, relative to it.
     pub fn relative_half_width(&self) -> f64 {
         ((self.hi - self.value).max(self.value - self.lo) / self.value).abs()
@@ -364,7 +373,10 @@ fn analyse_case(s: &LambdaStudy, work: &Path, case: &Case) -> Result<Option<(Cas
     let (fs, nf) = (s.f_grid(), s.f_grid().len());
     let [lo, hi] = s.window;
     let mut rng = rng_for(s, case, n, 0);
-    let lambda = lambda_of(s, &data, &m1, &mut rng);
+    // Fitted as the shift of the reduced curves (lambda_rms), reported as lambda of
+    // Eq. (76): divided by the case's rms factor (the plan's tests use the shift).
+    let lambda_rms = lambda_of(s, &data, &m1, &mut rng);
+    let to_eq76 = 1.0 / super::tasks::rms_factor(case.hurst, case.band)?;
     let all: Vec<usize> = (0..data.len()).collect();
     let m3 = data.mean(&all, &data.all_controls());
     let points = window_points(&m3, lo, hi);
@@ -386,11 +398,11 @@ fn analyse_case(s: &LambdaStudy, work: &Path, case: &Case) -> Result<Option<(Cas
         .zip(boot_slope)
         .map(|(v, b)| v.map(|v| Estimate::of(Some(v), b)))
         .collect();
-    let (misfit_max, misfit_rms, f_range) = misfit(s, &m3, &m1, lambda.value);
+    let (misfit_max, misfit_rms, f_range) = misfit(s, &m3, &m1, lambda_rms.value);
     let (lower, upper) = halves(&points);
     let lambda_halves = (
-        calibrate_lambda_at(&fs, &m3, &m1, &lower).unwrap_or(f64::NAN),
-        calibrate_lambda_at(&fs, &m3, &m1, &upper).unwrap_or(f64::NAN),
+        to_eq76 * calibrate_lambda_at(&fs, &m3, &m1, &lower).unwrap_or(f64::NAN),
+        to_eq76 * calibrate_lambda_at(&fs, &m3, &m1, &upper).unwrap_or(f64::NAN),
     );
     let alpha = |k: &[Option<f64>], p: &[bool]| fit_points(&fs, k, p).map_or(f64::NAN, |x| x.0);
     let alpha_halves = [
@@ -407,7 +419,7 @@ fn analyse_case(s: &LambdaStudy, work: &Path, case: &Case) -> Result<Option<(Cas
     let result = CaseResult {
         case: *case,
         realisations: data.len(),
-        lambda,
+        lambda: lambda_rms.scaled(to_eq76),
         alpha_3d: Estimate::of(fit_points(&fs, &m3, &points).map(|x| x.0), boot_alpha),
         alpha_mrd,
         misfit_max,
@@ -545,7 +557,11 @@ pub fn analyse(s: &LambdaStudy, work: &Path) -> Result<Results> {
             res.cases.push(c);
         }
         if let Some(refc) = reference(s, &case) {
-            if let Some(p) = pair(s, work, &case, &refc)? {
+            if let Some(mut p) = pair(s, work, &case, &refc)? {
+                // The ratio of the shifts, as a ratio of lambda (Eq. 76).
+                let factor = super::tasks::rms_factor(refc.hurst, refc.band)?
+                    / super::tasks::rms_factor(case.hurst, case.band)?;
+                p.ratio = p.ratio.scaled(factor);
                 res.pairs.push(p);
             }
         }

@@ -13,11 +13,16 @@
 //! sampling noise of the shared modes. MRD lines (C1D = pi q C2D, Eq. 73) are nested
 //! the same way, on `points_1d_per_cell x cells x B` points.
 //!
-//! lambda: under Eq. (77) lambda only rescales the 1D heights (h1 = sqrt(lambda/pi) h3),
-//! so the MRD law with lambda is K1(f sqrt(pi/lambda)), K1 the lambda = pi curve; lambda
-//! minimises the log-space misfit to the 3D ensemble mean over every f where the 3D mean
-//! lies in the window k/(E* L) in [window[0], window[1]] (the whole common range, not one
-//! point). The residual misfit max and rms |Delta ln k| over that range is what MRD with
+//! lambda: Eq. (76) as written, C1D = lambda q C2D at the line's wavenumbers from the
+//! same C2D as the surface (`outputs::lambda_meaning`). Each side's curve is reduced by
+//! its own rms height (f = F/(E* h L)), and under Eq. (77) lambda only rescales the 1D
+//! heights, so the MRD law is K1(f sqrt(pi / l)), K1 the lambda = pi curve reduced by the
+//! line's rms and l = pi h1^2 / h3^2 the shift; l minimises the log-space misfit to the
+//! 3D ensemble mean over every f where the 3D mean lies in the window k/(E* L) in
+//! [window[0], window[1]] (the whole common range, not one point), and lambda is l over
+//! the case's rms factor (pi h1^2 / h3^2 per unit lambda on the line and the punch face,
+//! from the spectrum: 1.005-1.53 from H = -1 to 3 at bandwidth 128). The adaptive plan
+//! tests l (the same relative widths and ratios within a bandwidth). The residual misfit max and rms |Delta ln k| over that range is what MRD with
 //! the calibrated lambda gets wrong. Intervals: 95 % bootstrap over realisations (200
 //! resamples; paired comparisons resample the realisations the two cases share and use
 //! their plain means, the pairing taking the place of the control variates, and fit both

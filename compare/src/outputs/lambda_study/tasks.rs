@@ -375,6 +375,21 @@ pub fn plan(s: &LambdaStudy, work: &Path) -> Result<Vec<Task>> {
     Ok(todo)
 }
 
+/// pi h1^2 / h3^2 per unit lambda for the study's lines and punch faces of (H, band):
+/// the fit's shift of the reduced curves, lambda_rms, is lambda (Eq. 76) times this
+/// ([`crate::outputs::lambda_meaning`]).
+pub fn rms_factor(hurst: f64, band: usize) -> Result<f64> {
+    use crate::outputs::lambda_meaning::{rms_matched, Face};
+    let c2d = spectrum(hurst, band).ctx("study spectrum")?;
+    Ok(rms_matched(
+        1.0,
+        &|q| c2d.c2d(q),
+        band as f64,
+        1.0,
+        Face::Disc,
+    ))
+}
+
 fn spectrum(hurst: f64, band: usize) -> mrd::Result<SelfAffine> {
     // The band's edges are cut by the nested synthesis (|k| in 1..=B): the spectrum
     // reaches a little beyond them so that no mode sits on its boundary.

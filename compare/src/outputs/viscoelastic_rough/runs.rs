@@ -111,16 +111,26 @@ pub fn run_3d(spec: &ViscoelasticRough, modulus: &Relaxation, r: u64) -> Result<
 
 /// MRD line `r` (C1D = lambda q C2D, Eq. 76; length L = 1) through the same history:
 /// the force F = f E_inf h3 L (or the approach d = (d/h) h3) with h3 the surface's rms
-/// height, which the line carries as sqrt(pi / lambda) of its own (approach and force
-/// reported over h3).
+/// height, which the line carries as sqrt(pi / l) of its own, l = pi h1^2 / h3^2 the
+/// shift that lambda implies on the line and the punch face
+/// ([`crate::outputs::lambda_meaning`]; approach and force reported over h3).
 pub fn run_1d(spec: &ViscoelasticRough, modulus: &Prony, lambda: f64, r: u64) -> Result<Run> {
+    use crate::outputs::lambda_meaning::{rms_matched, Face};
     let n1 = spec.points_1d_per_cell * spec.cells * spec.bandwidth;
-    let line = spectrum(spec)?.to_line(lambda);
+    let sa = spectrum(spec)?;
+    let shift = rms_matched(
+        lambda,
+        &|q| sa.c2d(q),
+        spec.bandwidth as f64,
+        1.0,
+        Face::Disc,
+    );
+    let line = sa.to_line(lambda);
     let z = nested::line(&|q| line.c1d(q), spec.bandwidth, n1, 1.0, spec.seed, r).ctx("1D line")?;
     let n = n1 as f64;
     let mean = z.iter().sum::<f64>() / n;
     let h1 = (z.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt();
-    let h3 = h1 * (std::f64::consts::PI / lambda).sqrt();
+    let h3 = h1 * (std::f64::consts::PI / shift).sqrt();
     let top = z.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
     let gaps: Vec<f64> = z.iter().map(|v| top - v).collect();
     let dx = 1.0 / n;
