@@ -21,7 +21,7 @@
 //! elastic solver (warm-started from the previous step). No stability limit on dt;
 //! accuracy: exact under approach control with a fixed contact set, first order in dt
 //! after a load jump (the step treats it as a ramp over dt), second order for smooth
-//! histories (tests in `bem3d/tests/viscoelastic.rs`).
+//! histories (tests in `bem3d/tests/suite/viscoelastic.rs`).
 //!
 //! Approach: the rigid body's position D from the first contact of the undeformed
 //! surface (the approach of the elastic solver at t = 0). On the periodic half-space the

@@ -4,7 +4,7 @@
 //! therefore runs on any x86-64 processor. Every variant performs the same operations in
 //! the same order (the compiler never fuses a multiply and an add, nor reorders
 //! floating-point sums, on its own), so the results are bit-identical whatever the
-//! processor: `bem3d/tests/wide.rs` checks each variant the processor has against the
+//! processor: `bem3d/tests/suite/wide.rs` checks each variant the processor has against the
 //! baseline one.
 //!
 //! Only the dense products of the candidate-set path and the direct point-load sums need

@@ -20,7 +20,7 @@
 //! A new output kind is one new file in `outputs/` implementing [`outputs::Output`] plus
 //! one line in [`outputs::KINDS`]; it reads the scene through [`context::Context`] and
 //! writes only into its [`report::Section`]. Module order, bottom to top (no cycles;
-//! the workspace's `tests/architecture.rs` checks it): `error`, `files`, `plan`,
+//! the workspace's `tests/suite/architecture.rs` checks it): `error`, `files`, `plan`,
 //! `report`, `context`, `outputs`, `scene`, `run`, `shards`; `scenes` (embedded scene
 //! texts) and `bench` stand apart.
 

@@ -277,7 +277,7 @@ mod tests {
     use crate::operator::PeriodicHalfSpace;
 
     /// Bad input and the iteration cap give typed errors (the last iterate kept); the
-    /// answer itself is checked against the fast solver in tests/verification.rs.
+    /// answer itself is checked against the fast solver in tests/suite/verification.rs.
     #[test]
     fn errors_are_typed() {
         let n = 16;

@@ -290,7 +290,7 @@ pub(crate) fn check_points(points: usize) -> Result<()> {
 /// about a quarter (measured: force_depth 23.6, adhesion 197, damping 13.7-14.7,
 /// viscoelastic 14 + 8 per Prony term, tangential_viscoelastic 45 + 8.3 per term, rough
 /// lines 33-52 + 36-37 per worker thread; `spring_memory_estimates_hold` in
-/// tests/robustness.rs measures them again). Per grid cell of the 3D solvers:
+/// tests/suite/robustness.rs measures them again). Per grid cell of the 3D solvers:
 /// [`bem3d::operator::BYTES_PER_CELL_PERIODIC`] and
 /// [`bem3d::operator::BYTES_PER_CELL_NON_PERIODIC`].
 pub mod spring_bytes {

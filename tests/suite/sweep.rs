@@ -83,7 +83,7 @@ const SMALL: &str = "name = \"sw\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind 
 
 /// lambda at `hurst` as written in the shipped table (a row of it).
 fn shipped_lambda(hurst: f64) -> f64 {
-    include_str!("../compare/data/lambda_calibrated.csv")
+    include_str!("../../compare/data/lambda_calibrated.csv")
         .lines()
         .filter(|l| !l.starts_with('#'))
         .filter_map(|l| {

@@ -2,8 +2,8 @@
 //! starts. Each test pins a defect that once hung, returned NaN or cost more than a cold
 //! start (issue "Nothing lost, nothing hidden").
 
+use crate::common;
 use bem3d::*;
-mod common;
 use common::{rel, self_affine, sphere};
 
 fn opts(tolerance: f64, max_iterations: usize) -> SolverOptions {

@@ -3,10 +3,10 @@
 //! transposed with the surface. Each case is an independent check of the operators'
 //! index conventions and of the solver's determinism.
 
+use crate::common;
 use bem3d::*;
-use proptest::prelude::*;
-mod common;
 use common::self_affine;
+use proptest::prelude::*;
 
 fn solve<K: SolverOperator>(op: K, h: &[f64], pm: f64) -> Solution {
     let mut s = ContactSolver::new(op, h, None).unwrap();

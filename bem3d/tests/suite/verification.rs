@@ -3,11 +3,10 @@
 
 #![allow(clippy::needless_range_loop)]
 
+use crate::common;
 use bem3d::*;
-mod common;
 use common::{dense_reference, rel, rough, sphere};
 use std::f64::consts::PI;
-#[path = "verification/certificate.rs"]
 mod certificate;
 
 struct HertzErrors {

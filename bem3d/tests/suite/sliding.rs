@@ -1,6 +1,6 @@
 //! Steady viscoelastic sliding (`bem3d::sliding`): closed forms, limits against the
 //! elastic solver, the two friction routes, grid refinement and determinism.
-mod common;
+use crate::common;
 
 use bem3d::{ContactSolver, Load, PeriodicHalfSpace, SlidingContact, SolverOptions};
 use common::{dense_reference, max_abs_diff, rel, rough, self_affine};

@@ -113,7 +113,7 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             || *name == "rough-sphere"
             || *name == "viscoelastic-rough"
         {
-            continue; // sweeps: tests/sweep.rs (fig6-ci); the others are long runs
+            continue; // sweeps: tests/suite/sweep.rs (fig6-ci); the others are long runs
         }
         let out = tmp.path().join(name);
         let s = run_scene(name, &out);
@@ -311,7 +311,7 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             continue;
         }
         if *name == "viscoelastic-rough-ci" {
-            // Physics in tests/viscoelastic_rough.rs; here: the transient 3D stage ran.
+            // Physics in tests/suite/viscoelastic_rough.rs; here: the transient 3D stage ran.
             assert!(stages(&s).contains(&"viscoelastic_3d".to_string()));
             continue;
         }
@@ -552,7 +552,7 @@ fn rerun_replaces_report_and_csvs_are_deterministic() {
     run_scene("jkr", &out);
     let first = std::fs::read(out.join("adhesion.csv")).unwrap();
     // A report file mrdw wrote may go stale: it is replaced with the folder (a file a
-    // user added is kept and the run refused: tests/robustness.rs).
+    // user added is kept and the run refused: tests/suite/robustness.rs).
     std::fs::write(out.join("adhesion.png"), "old").unwrap();
     run_scene("jkr", &out);
     assert_eq!(std::fs::read(out.join("adhesion.csv")).unwrap(), first);
@@ -854,7 +854,7 @@ fn bench_report_quick_fits_the_known_orders() {
         ("order_jkr_springs", 0.9, 1.1),
         ("order_damping_springs", 1.8, 3.0),
         // 3D on 32^2 .. 128^2 cells (error ~ n^-order): Hertz tends to 2 (see
-        // bem3d/tests/verification.rs at finer grids), the cone's tip and the punch's
+        // bem3d/tests/suite/verification.rs at finer grids), the cone's tip and the punch's
         // pixelated rim converge more slowly.
         ("order_hertz_3d", 1.2, 2.2),
         ("order_cone_3d", 1.2, 2.2),

@@ -1,0 +1,13 @@
+//! The workspace's command-line and cross-crate tests in one binary (the workspace is
+//! linked once for them): the layering of the code (`architecture`), every command and
+//! scene (`cli`), bad and extreme input (`robustness`), report folders and files
+//! (`safety`), the Hurst sweep (`sweep`), the lambda study and the shipped calibration
+//! (`lambda_study`), viscoelastic rough contact (`viscoelastic_rough`).
+
+mod architecture;
+mod cli;
+mod lambda_study;
+mod robustness;
+mod safety;
+mod sweep;
+mod viscoelastic_rough;
