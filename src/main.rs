@@ -23,7 +23,7 @@ struct Cli {
 }
 
 const EXAMPLES: &str = "Examples:
-  mrdw run                      the default scene, fig6 (1-2 minutes on 2 cores), into reports/fig6/
+  mrdw run                      the default scene, fig6 (about a minute on 2 cores), into reports/fig6/
   mrdw run tour                 every axisymmetric output on one sphere (instant)
   mrdw run cases/jkr.toml --out /tmp/jkr
   mrdw scenes                   list the embedded scenes

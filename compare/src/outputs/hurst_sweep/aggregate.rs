@@ -20,6 +20,10 @@ use std::path::Path;
 /// Bootstrap resamples per interval.
 const RESAMPLES: usize = 200;
 
+/// The range of k/(E* L) lambda is fitted over: the lambda study's, so that the sweep's
+/// estimate and the shipped calibration are one quantity.
+pub const LAMBDA_WINDOW: (f64, f64) = (0.02, 0.5);
+
 /// Curves of one ensemble on the f grid (`None` outside a realisation's range).
 pub type Curves = Vec<Vec<Option<f64>>>;
 
@@ -191,16 +195,20 @@ pub fn aggregate(spec: &HurstSweep, work: &Path) -> Result<Results> {
                     fit_points(&fs, &mean_curve(&k1, &idx, nf), &p1)
                 })
                 .collect();
+            // lambda over the calibration's force range (LAMBDA_WINDOW), not the alpha
+            // window: below k/(E* L) = 0.02 a few contact cells set k and the 3D curve
+            // has its discretisation plateau.
+            let pl = window_points(&m3, LAMBDA_WINDOW.0, LAMBDA_WINDOW.1);
             let boot_lam: Vec<f64> = (0..RESAMPLES)
                 .map(|_| {
                     let i3 = resample(&mut rng, k3.len());
                     let i1 = resample(&mut rng, k1.len());
                     let (m3, m1) = (mean_curve(&k3, &i3, nf), mean_curve(&k1, &i1, nf));
-                    calibrate_lambda_at(&fs, &m3, &m1, &p3).unwrap_or(f64::NAN)
+                    calibrate_lambda_at(&fs, &m3, &m1, &pl).unwrap_or(f64::NAN)
                 })
                 .collect();
             // Fitted as the shift of the reduced curves, reported as lambda of Eq. (76).
-            let shift = calibrate_lambda_at(&fs, &m3, &m1, &p3);
+            let shift = calibrate_lambda_at(&fs, &m3, &m1, &pl);
             let factor = super::tasks::rms_factor(spec, hurst, g)?;
             let lam = shift.map(|v| v / factor);
             let boot_lam: Vec<f64> = boot_lam.into_iter().map(|v| v / factor).collect();

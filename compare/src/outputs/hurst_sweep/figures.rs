@@ -16,7 +16,8 @@ pub fn report(spec: &HurstSweep, r: &Results, out: &mut Section) {
     let alpha = alpha_table(spec, r, &label);
     let lambda = lambda_table(spec, r, &label);
     let curves = curves_table(r, &label);
-    out.figures.extend(summary_figures(r, &label));
+    let bandwidth = spec.upper_cutoff_ratio * spec.grid as f64 / 2.0;
+    out.figures.extend(summary_figures(r, &label, bandwidth));
     out.figures
         .extend(r.per_hurst.iter().map(|h| kf_figure(spec, r, h, &label)));
     out.tables
@@ -91,7 +92,7 @@ fn alpha_table(spec: &HurstSweep, r: &Results, label: &str) -> Table {
     );
     let (lo, hi) = spec.window(spec.grid);
     t.notes.push(format!(
-        "Eq. (77) fits over k/(E* L) in [{lo:e}, {hi}]; 95 % intervals: bootstrap over realisations (200 resamples); 3D grid {}^2 ({} realisations), 1D N = {} ({} realisations); empty cells: undefined (1/(1+H) at H = -1, lambda_cut for H <= -1/2, failed fits)",
+        "Eq. (77) fits over k/(E* L) in [{lo:e}, {hi}] (lambda: over [0.02, 0.5], the shipped calibration's range); 95 % intervals: bootstrap over realisations (200 resamples); 3D grid {}^2 ({} realisations), 1D N = {} ({} realisations); empty cells: undefined (1/(1+H) at H = -1, lambda_cut for H <= -1/2, failed fits)",
         spec.grid, spec.realisations_3d, spec.points_1d_factor * spec.grid, spec.realisations_1d
     ));
     t.missing_ok = true;
@@ -123,8 +124,8 @@ fn lambda_table(spec: &HurstSweep, r: &Results, label: &str) -> Table {
         &["hurst [1]".into(), "lambda [1]".into()],
     );
     t.notes.push(format!(
-        "calibrated lambda(H) of Eq. (76) on 3D {0}^2 circular rough punches ({1} realisations per H) against {2} MRD lines per H; load with lambda = \"<this file>\"",
-        spec.grid, spec.realisations_3d, spec.realisations_1d
+        "calibrated lambda(H) of Eq. (76) (C1D = lambda q C2D of the same C2D, the line not rescaled) on 3D {0}^2 circular rough punches ({1} realisations per H) against {2} MRD lines per H, fitted over k/(E* L) in [{3}, {4}] as the shipped calibration is; load with lambda = \"<this file>\"",
+        spec.grid, spec.realisations_3d, spec.realisations_1d, super::aggregate::LAMBDA_WINDOW.0, super::aggregate::LAMBDA_WINDOW.1
     ));
     for h in r.per_hurst.iter().filter(|h| h.lambda.value.is_finite()) {
         t.push(vec![h.hurst, h.lambda.value]);
@@ -235,8 +236,21 @@ fn failures(spec: &HurstSweep, r: &Results, out: &mut Section) {
     out.value("unconverged_3d_solves", serde_json::json!(bad.len()));
 }
 
+/// The shipped calibration (hurst, lambda, lo95, hi95) from its CSV text.
+fn shipped_lambda(csv: &str) -> Vec<(f64, f64, f64, f64)> {
+    csv.lines()
+        .filter(|l| !l.starts_with('#'))
+        .filter_map(|l| {
+            let v: Vec<f64> = l.split(',').map_while(|x| x.parse().ok()).collect();
+            (v.len() >= 4).then(|| (v[0], v[1], v[2], v[3]))
+        })
+        .collect()
+}
+
 /// alpha(H) (Fig. 6), lambda(H) and zeta(H).
-fn summary_figures(r: &Results, label: &str) -> [Figure; 3] {
+fn summary_figures(r: &Results, label: &str, bandwidth: f64) -> [Figure; 3] {
+    let shipped = shipped_lambda(crate::outputs::rough_stiffness::DEFAULT_LAMBDA_CSV);
+    let surfaces = r.per_hurst.first().map_or(0, |h| h.realisations_3d);
     let pts = |f: fn(&PerHurst) -> Estimate| -> Vec<(f64, f64)> {
         r.per_hurst
             .iter()
@@ -288,11 +302,19 @@ fn summary_figures(r: &Results, label: &str) -> [Figure; 3] {
     )
     .with(
         Series::new(
-            "calibrated on 3D (95% CI)",
+            &format!("this scene: bandwidth {bandwidth}, {surfaces} 3D surfaces (95% CI)"),
             pts(|h| h.lambda),
             Style::Crosses,
         )
         .with_bars(bars(|h| h.lambda)),
+    )
+    .with(
+        Series::new(
+            "shipped calibration: fig6-converged, bandwidth 128 (95% CI)",
+            shipped.iter().map(|s| (s.0, s.1)).collect(),
+            Style::Markers,
+        )
+        .with_bars(shipped.iter().map(|s| (s.0, s.2, s.3)).collect()),
     )
     .with(Series::new(
         "pi (Eq. 73)",
