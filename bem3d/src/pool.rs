@@ -30,11 +30,17 @@
 //! Results are bit-identical either way (every reduction has a fixed order whatever the
 //! thread).
 //!
-//! Deadlock freedom: a standing-by thread only returns when its solve has, so it must
-//! never sit on top of a solve in a thread's stack (two solves, each waiting on a thread
-//! held by the other's stand-by, would wait forever). Hence a stand-by that starts on a
-//! thread inside a solve returns at once, and solves called from inside the pool (e.g.
-//! one per task of a parallel loop) run in place without stand-bys, as before.
+//! Deadlock freedom: a standing-by thread must never sit on top of work its solve waits
+//! for (two solves, each waiting on a thread held by the other's stand-by, would wait
+//! forever). Hence a stand-by that starts on a thread inside a solve returns at once,
+//! and solves called from inside the pool (e.g. one per task of a parallel loop) run in
+//! place without stand-bys. That rule does not see the other way in: a pool thread that
+//! took half of one of the solve's parallel loops may run its own broadcast job while it
+//! waits inside that half, and stand by there; the solve then waits for the half below
+//! the stand-by, and nothing runs (the stand-by spinning, the solve's thread asleep in
+//! its join). So a stand-by also returns after [`IDLE_LIMIT`] without any work to
+//! run: a solve between two loops leaves its stand-bys idle for microseconds, a solve
+//! blocked on one of them for ever.
 
 use std::cell::Cell;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -71,6 +77,10 @@ impl Drop for Finished<'_> {
 
 /// Polls of an idle stand-by between two yields of its core to the system.
 const POLLS_PER_YIELD: u32 = 64;
+
+/// How long a stand-by polls without finding work before it returns (module docs): far
+/// above the gaps between a solve's loops, short against a stalled test or run.
+const IDLE_LIMIT: std::time::Duration = std::time::Duration::from_millis(100);
 
 /// The machine's cores besides the solving thread's: the most threads that stand by.
 fn stand_by_limit() -> usize {
@@ -117,19 +127,26 @@ pub(crate) fn on_pool<R: Send>(f: impl FnOnce() -> R + Send) -> R {
     r.expect("the solve ran on one of the pool's threads")
 }
 
-/// Runs the pool's pending work until `finished` is set; returns at once on a thread
-/// inside a solve (module docs).
+/// Runs the pool's pending work until `finished` is set or no work has come for
+/// [`IDLE_LIMIT`]; returns at once on a thread inside a solve (module docs).
 fn stand_by(finished: &AtomicBool) {
     if SOLVING.with(Cell::get) {
         return;
     }
     let mut idle = 0u32;
+    let mut idle_since = std::time::Instant::now();
     while !finished.load(Ordering::Acquire) {
         match rayon::yield_now() {
             Some(rayon::Yield::Executed) => idle = 0,
             _ => {
+                if idle == 0 {
+                    idle_since = std::time::Instant::now();
+                }
                 idle += 1;
                 if idle.is_multiple_of(POLLS_PER_YIELD) {
+                    if idle_since.elapsed() > IDLE_LIMIT {
+                        return;
+                    }
                     std::thread::yield_now();
                 } else {
                     std::hint::spin_loop();
@@ -187,6 +204,22 @@ mod tests {
             let _solving = Solving::enter();
             stand_by(&AtomicBool::new(false));
         });
+    }
+
+    /// A stand-by with nothing to run returns within about IDLE_LIMIT, even if its solve
+    /// never finishes: a solve that waits on work below the stand-by in the same thread's
+    /// stack (module docs) is then released.
+    #[test]
+    fn an_idle_stand_by_returns() {
+        let waited = within_a_minute(|| {
+            let t0 = std::time::Instant::now();
+            stand_by(&AtomicBool::new(false));
+            t0.elapsed()
+        });
+        assert!(
+            waited >= IDLE_LIMIT && waited < 50 * IDLE_LIMIT,
+            "{waited:?}"
+        );
     }
 
     #[test]
