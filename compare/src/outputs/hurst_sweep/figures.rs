@@ -302,7 +302,7 @@ fn summary_figures(r: &Results, label: &str, bandwidth: f64) -> [Figure; 3] {
     )
     .with(
         Series::new(
-            &format!("this scene: bandwidth {bandwidth}, {surfaces} 3D surfaces (95% CI)"),
+            format!("this scene: bandwidth {bandwidth}, {surfaces} 3D surfaces (95% CI)"),
             pts(|h| h.lambda),
             Style::Crosses,
         )
