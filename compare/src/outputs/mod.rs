@@ -285,12 +285,13 @@ pub(crate) fn check_points(points: usize) -> Result<()> {
     Ok(())
 }
 
-/// Peak bytes per spring of the 1D outputs, for their memory checks: the peak resident
-/// memory of `mrdw run` at 2e6-4e6 springs less that at 1e3, per spring, raised by
-/// about a quarter (measured: force_depth 23.6, adhesion 197, damping 13.7-14.7,
-/// viscoelastic 14 + 8 per Prony term, tangential_viscoelastic 45 + 8.3 per term, rough
-/// lines 33-52 + 36-37 per worker thread; `spring_memory_estimates_hold` in
-/// tests/suite/robustness.rs measures them again). Per grid cell of the 3D solvers:
+/// Peak bytes per spring of the 1D outputs, for their memory checks: the growth of the
+/// peak resident memory of `mrdw run` per spring, raised by about a quarter (measured
+/// between 1e6 and 2e6 springs on one thread: force_depth 22, adhesion 196, damping 14,
+/// viscoelastic with one Prony term 22, tangential_viscoelastic with one 56, a rough line
+/// 60; per further term 8 and 8.3, per further thread 36-37 bytes, between 1e3 and
+/// 2e6-4e6 springs; `spring_memory_estimates_hold` in tests/suite/robustness.rs measures
+/// the one-term, one-thread figures again). Per grid cell of the 3D solvers:
 /// [`bem3d::operator::BYTES_PER_CELL_PERIODIC`] and
 /// [`bem3d::operator::BYTES_PER_CELL_NON_PERIODIC`].
 pub mod spring_bytes {
