@@ -284,11 +284,14 @@ fn summary_figures(r: &Results, label: &str, bandwidth: f64) -> [Figure; 3] {
         )
         .with_bars(bars(|h| h.alpha_3d)),
     )
-    .with(Series::new(
-        "MRD (1D), lambda = pi",
-        pts(|h| h.alpha_mrd),
-        Style::Line,
-    ))
+    .with(
+        Series::new(
+            "MRD (1D), lambda = pi (95% CI)",
+            pts(|h| h.alpha_mrd),
+            Style::Line,
+        )
+        .with_bars(bars(|h| h.alpha_mrd)),
+    )
     .with(Series::new("1/(1+H), Eq. (80)", theory, Style::Dashed));
     let lam_cut_pts: Vec<(f64, f64)> = (0..=70)
         .map(|i| -0.45 + 3.45 * i as f64 / 70.0)
@@ -341,11 +344,14 @@ fn summary_figures(r: &Results, label: &str, bandwidth: f64) -> [Figure; 3] {
         )
         .with_bars(bars(|h| h.zeta_3d)),
     )
-    .with(Series::new(
-        "MRD (1D), lambda = pi",
-        pts(|h| h.zeta_mrd),
-        Style::Line,
-    ));
+    .with(
+        Series::new(
+            "MRD (1D), lambda = pi (95% CI)",
+            pts(|h| h.zeta_mrd),
+            Style::Line,
+        )
+        .with_bars(bars(|h| h.zeta_mrd)),
+    );
     [fig6, figl, figz]
 }
 
