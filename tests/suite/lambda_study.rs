@@ -4,21 +4,8 @@
 //! a report from committed checkpoints without computing, and the shipped table loads
 //! as lambda. The physics is checked at publication scale (fig6-converged).
 
+use crate::common::{mrdw_env as mrdw, ok};
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn mrdw(args: &[&str], env: &[(&str, &str)]) -> Output {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_mrdw"));
-    c.args(args);
-    for (k, v) in env {
-        c.env(k, v);
-    }
-    c.output().expect("mrdw runs")
-}
-
-fn ok(o: &Output) {
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-}
 
 /// Asserts two report folders hold the same CSVs, naming the first that differs.
 fn same_csvs(a: &Path, b: &Path) {

@@ -6,6 +6,7 @@
 
 mod architecture;
 mod cli;
+mod common;
 mod lambda_study;
 mod robustness;
 mod safety;

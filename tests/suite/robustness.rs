@@ -4,20 +4,9 @@
 //! run, report folders keep what a user added, and the benchmark commands refuse what
 //! they cannot do.
 
+use crate::common::{mrdw_in, stderr};
 use std::path::Path;
 use std::process::{Command, Output};
-
-fn mrdw_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mrdw"))
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .expect("mrdw runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
 
 /// Exit code 2 with one `error:` line containing `needle`; no panic, no abort.
 fn refused(o: &Output, needle: &str) {

@@ -2,20 +2,9 @@
 //! into one folder do not race, failures leave no debris, every file name is unique,
 //! and output errors (closed pipe, full disk) are errors, not panics.
 
+use crate::common::{mrdw_in, stderr};
 use std::path::Path;
-use std::process::{Command, Output, Stdio};
-
-fn mrdw_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mrdw"))
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .expect("mrdw runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use std::process::{Command, Stdio};
 
 /// Names in `dir` (hidden ones included).
 fn names(dir: &Path) -> Vec<String> {

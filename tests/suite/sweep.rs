@@ -1,22 +1,9 @@
 //! The Hurst sweep end to end: fitted exponents in 3D and 1D agree (fig6-ci), a killed
 //! run resumes to the same bytes, and shards merge to the same bytes as one run.
 
+use crate::common::{mrdw_env as mrdw, ok};
 use serde_json::Value;
 use std::path::Path;
-use std::process::Command;
-
-fn mrdw(args: &[&str], env: &[(&str, &str)]) -> std::process::Output {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_mrdw"));
-    c.args(args);
-    for (k, v) in env {
-        c.env(k, v);
-    }
-    c.output().expect("mrdw runs")
-}
-
-fn ok(o: &std::process::Output) {
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-}
 
 fn csvs(dir: &Path) -> Vec<(String, Vec<u8>)> {
     let mut v: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
