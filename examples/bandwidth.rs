@@ -71,7 +71,7 @@ fn main() {
     let threads = cores.max(2);
     println!(
         "{} ({cores} cores); three arrays of {mib} MiB",
-        compare::bench::cpu_model()
+        sysmem::cpu_model()
     );
     // Bytes each pass moves: three arrays (two read, one written).
     let bytes = 3.0 * (n * 8) as f64;

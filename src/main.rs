@@ -2,6 +2,8 @@
 //! calls the `compare` library; everything it prints goes through [`Out`], so a closed
 //! pipe or a full disk is an error like any other, not a panic.
 
+mod bench;
+
 use clap::{Parser, Subcommand};
 use compare::scene::Scene;
 use compare::{scenes, CompareError, RunControl};
@@ -380,7 +382,7 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
             Ok(())
         }
         Command::Kinds => {
-            for k in compare::outputs::KINDS {
+            for k in compare::registry::KINDS {
                 say!(out, "{:<16} {}", k.name, k.about);
             }
             say!(
@@ -406,15 +408,13 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
             bench_options_apply(target, max_exp, max_n, &write_surfaces, quick, &folder)?;
             let (exp, side) = (target.max_exp(max_exp), target.max_n(max_n));
             match target {
-                BenchTarget::Mrd => compare::bench::run_mrd(&mut out.0, exp)?,
-                BenchTarget::Rough => compare::bench::run_rough(&mut out.0, exp)?,
-                BenchTarget::Sliding => compare::bench::run_sliding(&mut out.0, exp)?,
-                BenchTarget::Sliding3d => compare::bench::run_sliding_3d(&mut out.0, side)?,
-                BenchTarget::Viscoelastic => compare::bench::run_viscoelastic(&mut out.0, side)?,
-                BenchTarget::Large => compare::bench::run_large(&mut out.0, side)?,
-                BenchTarget::Bem => {
-                    compare::bench::run_bem(&mut out.0, side, write_surfaces.as_deref())?
-                }
+                BenchTarget::Mrd => bench::run_mrd(&mut out.0, exp)?,
+                BenchTarget::Rough => bench::run_rough(&mut out.0, exp)?,
+                BenchTarget::Sliding => bench::run_sliding(&mut out.0, exp)?,
+                BenchTarget::Sliding3d => bench::run_sliding_3d(&mut out.0, side)?,
+                BenchTarget::Viscoelastic => bench::run_viscoelastic(&mut out.0, side)?,
+                BenchTarget::Large => bench::run_large(&mut out.0, side)?,
+                BenchTarget::Bem => bench::run_bem(&mut out.0, side, write_surfaces.as_deref())?,
                 BenchTarget::Report => {
                     let folder = folder.unwrap_or_else(|| {
                         PathBuf::from(if quick {
@@ -424,8 +424,8 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
                         })
                     });
                     let command: Vec<String> = std::env::args().collect();
-                    let files = compare::bench::report::write(
-                        compare::bench::report::Options { quick },
+                    let files = bench::report::write(
+                        bench::common::Options { quick },
                         &command.join(" "),
                         &folder,
                         &mut |what| note!("bench report: {what} ..."),
@@ -443,9 +443,9 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
             scaled_directions,
         } => {
             if kind == "large" {
-                compare::bench::run_large_case(&mut out.0, n, mean_pressure, scaled_directions)?;
+                bench::run_large_case(&mut out.0, n, mean_pressure, scaled_directions)?;
             } else {
-                compare::bench::run_bem_case(&mut out.0, &kind, n, write_surfaces.as_deref())?;
+                bench::run_bem_case(&mut out.0, &kind, n, write_surfaces.as_deref())?;
             }
             Ok(())
         }

@@ -1,6 +1,6 @@
 //! Stages and the plan: which computation stages each requested output will run.
 //!
-//! Each output declares its stages before running ([`crate::outputs::Output::stages`]),
+//! Each output declares its stages before running ([`crate::output::Output::stages`]),
 //! so a force-depth request never reconstructs pressure fields and an MRD-only scene never
 //! touches the 3D solver. The run records the stages each output actually executed
 //! ([`crate::report::Section::stage`]); `summary.json` lists them, and the test suite

@@ -7,7 +7,7 @@
 //! report atomically and removes the checkpoints of resumable outputs.
 
 use crate::error::{CompareError, Result};
-use crate::outputs::{Env, RunControl};
+use crate::output::{Env, RunControl};
 use crate::plan::Plan;
 use crate::report::write::Destination;
 use crate::report::{Provenance, Report, Section};
@@ -165,7 +165,7 @@ pub(crate) fn remove_checkpoints(scene: &Scene, work_root: &Path) {
 mod tests {
     use super::*;
     use crate::context::Context;
-    use crate::outputs::Output;
+    use crate::output::Output;
     use crate::plan::Stage;
     use crate::scene::Entry;
 

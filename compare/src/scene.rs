@@ -2,12 +2,13 @@
 //!
 //! A scene is TOML; unknown keys are errors. It declares units, the material, the
 //! indenter profile (together: the [`Context`]) and a list of `[[outputs]]`, each parsed
-//! by its kind from the registry ([`crate::outputs::KINDS`]) and validated before
+//! by its kind from the registry ([`crate::registry::KINDS`]) and validated before
 //! anything runs. The format is documented with examples in `cases/README.md`.
 
 use crate::context::{Context, MaterialSpec, ProfileSpec, Units};
 use crate::error::{CompareError, Result};
-use crate::outputs::{self, Output};
+use crate::output::Output;
+use crate::registry;
 use serde::Deserialize;
 use std::path::Path;
 
@@ -105,7 +106,7 @@ impl Scene {
                     )))
                 }
             };
-            let kind = outputs::kind(&kind_name).ok_or_else(|| {
+            let kind = registry::kind(&kind_name).ok_or_else(|| {
                 CompareError::Scene(format!(
                     "{at}: unknown output kind `{kind_name}` (one of: {})",
                     kind_names()
@@ -182,7 +183,7 @@ impl Scene {
 }
 
 fn kind_names() -> String {
-    outputs::KINDS
+    registry::KINDS
         .iter()
         .map(|k| k.name)
         .collect::<Vec<_>>()

@@ -5,7 +5,7 @@
 //! writes (same bytes in every CSV).
 
 use crate::error::{io_err, CompareError, Result};
-use crate::outputs::{Checkpointed, RunControl};
+use crate::output::{Checkpointed, RunControl};
 use crate::report::write::{marker_text, Destination, MARKER, SHARD_ENTRIES};
 use crate::report::Report;
 use crate::run::{provenance, remove_checkpoints, run_in, tool_version};

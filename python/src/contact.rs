@@ -1,6 +1,6 @@
 //! The 3D boundary-element contact solver (`bem3d`) on numpy height maps.
 
-use crate::errors::{bem_err, value_error};
+use crate::errors::{convergence, memory_error, value_error};
 use bem3d::{
     Choice, ContactSolver, Interrupt, Load, NonPeriodicHalfSpace, Paths, PeriodicHalfSpace,
     Solution, SolverOptions,
@@ -812,5 +812,37 @@ impl Contact {
             "Contact(shape={:?}, size={:?}, e_star={}, periodic={})",
             self.shape, self.size, self.e_star, self.periodic
         )
+    }
+}
+
+/// Errors of the 3D solver; the last iterate of an unconverged contact solve becomes a
+/// `ContactResult`.
+pub fn bem_err(py: Python<'_>, e: bem3d::BemError, shape: (usize, usize), area: f64) -> PyErr {
+    let message = e.to_string();
+    match e {
+        bem3d::BemError::InvalidInput(_)
+        | bem3d::BemError::Infeasible(_)
+        | bem3d::BemError::PathUnavailable { .. } => value_error(message),
+        bem3d::BemError::NoConvergence {
+            what,
+            iterations,
+            residual,
+            last,
+            ..
+        } => {
+            let last = ContactResult::new(*last, shape, area, None);
+            let last = Py::new(py, last).ok().map(|o| o.into_any());
+            convergence(py, message, what, iterations, residual, last)
+        }
+        bem3d::BemError::Breakdown {
+            what,
+            iterations,
+            residual,
+            ..
+        } => convergence(py, message, what, iterations, residual, None),
+        bem3d::BemError::Memory(m) => memory_error(m),
+        bem3d::BemError::Interrupted { .. } => {
+            pyo3::exceptions::PyKeyboardInterrupt::new_err(message)
+        }
     }
 }

@@ -4,9 +4,7 @@
 //! iterate.
 
 use pyo3::create_exception;
-use pyo3::exceptions::{
-    PyKeyboardInterrupt, PyMemoryError, PyOSError, PyRuntimeError, PyValueError,
-};
+use pyo3::exceptions::{PyMemoryError, PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
 create_exception!(
@@ -89,36 +87,6 @@ pub fn mrd_err(py: Python<'_>, e: mrd::MrdError) -> PyErr {
         } => convergence(py, e.to_string(), what, iterations, residual, None),
         mrd::MrdError::Memory(m) => memory_error(m),
         other => value_error(other.to_string()),
-    }
-}
-
-/// Errors of the 3D solver; the last iterate of an unconverged contact solve becomes a
-/// `ContactResult`.
-pub fn bem_err(py: Python<'_>, e: bem3d::BemError, shape: (usize, usize), area: f64) -> PyErr {
-    let message = e.to_string();
-    match e {
-        bem3d::BemError::InvalidInput(_)
-        | bem3d::BemError::Infeasible(_)
-        | bem3d::BemError::PathUnavailable { .. } => value_error(message),
-        bem3d::BemError::NoConvergence {
-            what,
-            iterations,
-            residual,
-            last,
-            ..
-        } => {
-            let last = crate::contact::ContactResult::new(*last, shape, area, None);
-            let last = Py::new(py, last).ok().map(|o| o.into_any());
-            convergence(py, message, what, iterations, residual, last)
-        }
-        bem3d::BemError::Breakdown {
-            what,
-            iterations,
-            residual,
-            ..
-        } => convergence(py, message, what, iterations, residual, None),
-        bem3d::BemError::Memory(m) => memory_error(m),
-        bem3d::BemError::Interrupted { .. } => PyKeyboardInterrupt::new_err(message),
     }
 }
 

@@ -107,7 +107,7 @@ pub fn line_spectrum<'py>(
 /// ValueError outside the table's range [-1, 3].
 #[pyfunction]
 pub fn calibrated_lambda(hurst: f64) -> PyResult<f64> {
-    mrd::roughness::LambdaTable::from_csv(compare::outputs::rough_stiffness::DEFAULT_LAMBDA_CSV)
+    mrd::roughness::LambdaTable::from_csv(compare::experiment::lambda::DEFAULT_LAMBDA_CSV)
         .and_then(|t| t.at(hurst))
         .map_err(|e| value_error(format!("calibrated_lambda({hurst}): {e}")))
 }
@@ -119,7 +119,7 @@ pub fn calibrated_lambda(hurst: f64) -> PyResult<f64> {
 /// realisations_3d, cells_per_min_wavelength.
 #[pyfunction]
 pub fn calibrated_lambda_table() -> &'static str {
-    compare::outputs::rough_stiffness::DEFAULT_LAMBDA_CSV
+    compare::experiment::lambda::DEFAULT_LAMBDA_CSV
 }
 
 fn grid_of(shape: (usize, usize), size: (f64, f64)) -> Grid {

@@ -1,7 +1,8 @@
 //! Transient viscoelastic contact in 3D (`bem3d::viscoelastic`) on numpy height maps.
 
+use crate::contact::bem_err;
 use crate::contact::{grid_array, interruptible, request, Grid};
-use crate::errors::{bem_err, value_error};
+use crate::errors::value_error;
 use bem3d::viscoelastic::{Relaxation, Step, TransientContact as Transient};
 use bem3d::{Interrupt, Load, NonPeriodicHalfSpace, Paths, PeriodicHalfSpace, SolverOptions};
 use numpy::{AllowTypeChange, PyArray2, PyArrayLike2};

@@ -276,6 +276,19 @@ fn cgroup_headroom(proc_cgroup: &str, root: &Path) -> Option<u64> {
     best
 }
 
+/// The CPU model (first `model name` of /proc/cpuinfo), for the record of a benchmark.
+pub fn cpu_model() -> String {
+    std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|m| m.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown CPU".into())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

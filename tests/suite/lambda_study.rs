@@ -238,8 +238,8 @@ fn the_study_machinery_runs_pairs_and_reproduces() {
 /// within the table's misfit_max plus 0.03 (other lines than the study's).
 #[test]
 fn the_calibrated_lambda_reproduces_the_3d_stiffness_through_the_public_api() {
-    use compare::outputs::hurst_sweep::fit::{calibrate_lambda_at, interp_loglog, window_points};
-    use compare::outputs::lambda_meaning::{rms_matched, Face};
+    use compare::experiment::fit::{calibrate_lambda_at, interp_loglog, window_points};
+    use compare::experiment::lambda_meaning::{rms_matched, Face};
     use mrd::rough_contact::RoughLine;
     use mrd::roughness::synthesis::{line, Amplitudes};
     use mrd::roughness::{LambdaTable, SelfAffine};

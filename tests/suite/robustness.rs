@@ -652,7 +652,7 @@ fn peak_of_run(dir: &Path, scene: &str) -> f64 {
 #[cfg(target_os = "linux")]
 #[test]
 fn spring_memory_estimates_hold() {
-    use compare::outputs::spring_bytes as b;
+    use compare::checks::spring_bytes as b;
     let tmp = tempfile::tempdir().unwrap();
     let head = "name = \"m\"\n[material]\ne_star = 1.0\ng_star = 0.8\n[profile]\nshapes = [{ kind = \"sphere\", radius = 1.0 }]\n[[outputs]]\n";
     let prony = "prony = [[2.0, 0.5]]\n";

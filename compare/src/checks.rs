@@ -1,0 +1,152 @@
+//! The checks and defaults that the output kinds share: scene errors, ranges of counts,
+//! memory estimates (bytes per spring and per cell), default sizes.
+
+use crate::error::{CompareError, Result};
+
+/// A scene error (the caller adds which output it is).
+pub(crate) fn bad<T>(what: impl Into<String>) -> Result<T> {
+    Err(CompareError::Scene(what.into()))
+}
+
+pub(crate) fn positive(x: f64) -> bool {
+    x.is_finite() && x > 0.0
+}
+
+/// A count key (`realisations`, `loads`, `f_points`, ...) within `range`: the bounds keep
+/// a run's size (tasks, table rows) within what a machine can hold and finish.
+pub(crate) fn count_in(key: &str, value: u64, range: std::ops::RangeInclusive<u64>) -> Result<()> {
+    if range.contains(&value) {
+        Ok(())
+    } else {
+        bad(format!(
+            "{key} = {value} must lie in {}..={}",
+            range.start(),
+            range.end()
+        ))
+    }
+}
+
+/// A 3D solver tolerance from a scene: the solver's own range and message
+/// ([`bem3d::SolverOptions::validate`]).
+pub(crate) fn check_tolerance(tolerance: f64) -> Result<()> {
+    bem3d::SolverOptions::new(tolerance, 1)
+        .validate()
+        .or_else(|e| bad(e.to_string()))
+}
+
+/// The 3D and MRD ensemble sizes of a comparison: at least 2 each, for intervals.
+pub(crate) fn check_ensembles(realisations_3d: u64, realisations_1d: u64) -> Result<()> {
+    count_in("realisations_3d", realisations_3d, 2..=MAX_REALISATIONS)?;
+    count_in("realisations_1d", realisations_1d, 2..=MAX_REALISATIONS)
+}
+
+/// Most realisations any output computes (tasks are listed before they run).
+pub(crate) const MAX_REALISATIONS: u64 = 100_000;
+/// Most load points of a force-controlled curve.
+pub(crate) const MAX_LOADS: u64 = 10_000;
+
+/// The half-length of a spring row: `given` if it covers the largest contact radius
+/// `a_max` the output reaches (springs beyond the row cannot touch), else an error
+/// naming both; without it `default_factor x a_max`.
+pub(crate) fn row_half_length(given: Option<f64>, a_max: f64, default_factor: f64) -> Result<f64> {
+    match given {
+        None if positive(default_factor * a_max) => Ok(default_factor * a_max),
+        None => bad(format!(
+            "springs: the largest contact radius is {a_max:e}, so the default half_length ({default_factor} x it) is unusable; give half_length > 0 or a larger max"
+        )),
+        Some(l) if positive(l) && l > a_max => Ok(l),
+        Some(l) => bad(format!(
+            "half_length = {l:e} does not cover the largest contact radius this output reaches, {a_max:e}: give half_length > {a_max:e}, or leave it out ({default_factor} x that radius)"
+        )),
+    }
+}
+
+/// `points` of an axisymmetric output.
+pub(crate) fn check_points(points: usize) -> Result<()> {
+    if !(2..=100_000).contains(&points) {
+        return bad(format!("points = {points} must lie in 2..=100000"));
+    }
+    Ok(())
+}
+
+/// Peak bytes per spring of the 1D outputs, for their memory checks: the growth of the
+/// peak resident memory of `mrdw run` per spring, raised by about a quarter (measured
+/// between 1e6 and 2e6 springs on one thread: force_depth 22, adhesion 196, damping 14,
+/// viscoelastic with one Prony term 22, tangential_viscoelastic with one 56, a rough line
+/// 60; per further term 8 and 8.3, per further thread 36-37 bytes, between 1e3 and
+/// 2e6-4e6 springs; `spring_memory_estimates_hold` in tests/suite/robustness.rs measures
+/// the one-term, one-thread figures again). Per grid cell of the 3D solvers:
+/// [`bem3d::operator::BYTES_PER_CELL_PERIODIC`] and
+/// [`bem3d::operator::BYTES_PER_CELL_NON_PERIODIC`].
+pub mod spring_bytes {
+    pub const FORCE_DEPTH: f64 = 30.0;
+    pub const ADHESION: f64 = 250.0;
+    pub const DAMPING: f64 = 18.0;
+    pub fn viscoelastic(terms: usize) -> f64 {
+        18.0 + 10.0 * terms as f64
+    }
+    pub fn tangential_viscoelastic(terms: usize) -> f64 {
+        56.0 + 11.0 * terms as f64
+    }
+    /// A rough line's point, with one line per worker thread at a time.
+    pub fn rough_line(threads: usize) -> f64 {
+        55.0 + 45.0 * threads as f64
+    }
+}
+pub(crate) use bem3d::operator::{BYTES_PER_CELL_NON_PERIODIC, BYTES_PER_CELL_PERIODIC};
+
+/// Refuses work whose memory estimate exceeds what this process may allocate
+/// ([`sysmem::check_estimate`]: free memory, rlimits, cgroup).
+pub fn check_memory(bytes: f64, what: &str) -> Result<()> {
+    sysmem::check_estimate(bytes, what).map_err(CompareError::from)
+}
+
+/// A spring count: at least 2, and within memory at `bytes` per spring
+/// ([`spring_bytes`]).
+pub(crate) fn check_springs(springs: usize, bytes: f64) -> Result<()> {
+    if springs < 2 {
+        return bad(format!("springs = {springs} must be >= 2"));
+    }
+    check_memory(springs as f64 * bytes, &format!("springs = {springs}"))
+}
+
+pub(crate) fn rel(a: f64, b: f64) -> f64 {
+    ((a - b) / b).abs()
+}
+
+pub(crate) fn default_points() -> usize {
+    60
+}
+pub(crate) fn default_springs() -> usize {
+    20_000
+}
+pub(crate) fn default_realisations() -> u64 {
+    100
+}
+/// The 3D solver tolerance of the comparison kinds.
+pub(crate) fn default_tolerance() -> f64 {
+    1e-8
+}
+pub(crate) fn default_force_points() -> usize {
+    30
+}
+
+/// The checks shared by the rough-line outputs.
+pub(crate) fn check_line(hurst: f64, points: usize, length: f64, realisations: u64) -> Result<()> {
+    if !(-1.0..=3.0).contains(&hurst) {
+        return bad(format!("hurst = {hurst} must lie in [-1, 3]"));
+    }
+    if !(64..=50_000_000).contains(&points) {
+        return bad(format!("points = {points} must lie in 64..=5e7"));
+    }
+    if !positive(length) {
+        return bad("length must be > 0");
+    }
+    // At least 2, for intervals.
+    count_in("realisations", realisations, 2..=1_000_000)?;
+    // One line per worker thread at a time.
+    check_memory(
+        points as f64 * spring_bytes::rough_line(rayon::current_num_threads()),
+        &format!("points = {points} per line"),
+    )
+}

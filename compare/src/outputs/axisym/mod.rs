@@ -1,0 +1,10 @@
+//! Axisymmetric MRD, exact by the rule of Hess (Eq. 11): profile, force-depth, pressure,
+//! adhesion, tangential loading and damping (Sections 3-7).
+
+pub mod adhesion;
+pub mod damping;
+pub mod force_depth;
+pub(crate) mod hess;
+pub mod pressure;
+pub mod profile_1d;
+pub mod tangential;

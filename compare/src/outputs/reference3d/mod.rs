@@ -1,0 +1,3 @@
+//! 3D boundary-element references on the user's own height maps.
+
+pub mod bem_contact;

@@ -1,0 +1,310 @@
+//! The sweep's checkpointed work: one task per 3D realisation (per H and grid) and one
+//! per H for the whole 1D ensemble (1D is cheap). Each task's result is written
+//! atomically to its own JSON file; a task whose file exists is not recomputed.
+
+use super::HurstSweep;
+use crate::error::{io_err, CompareError, Context as _, Result};
+use crate::files::write_atomic;
+use crate::output::RunControl;
+use bem3d::{BemError, ContactSolver, Load, NonPeriodicHalfSpace, SolverOptions};
+use mrd::rough_contact::RoughLine;
+use mrd::roughness::synthesis::{line, surface, Amplitudes, Grid};
+use mrd::roughness::SelfAffine;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+use std::path::Path;
+use std::time::Instant;
+
+/// One unit of checkpointed work.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Task {
+    /// 3D realisation `r` at Hurst index `h` on grid `g`.
+    Bem { h: usize, g: usize, r: u64 },
+    /// The whole 1D ensemble at Hurst index `h`.
+    Mrd { h: usize },
+}
+
+impl Task {
+    /// Checkpoint file name of the task.
+    pub fn file_name(&self) -> String {
+        match self {
+            Task::Bem { h, g, r } => format!("bem_h{h}_g{g}_r{r}.json"),
+            Task::Mrd { h } => format!("mrd_h{h}.json"),
+        }
+    }
+}
+
+/// One 3D solve of a realisation's load ladder, as recorded in the solves table.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct SolveRecord {
+    pub approach: f64,
+    pub force: f64,
+    pub iterations: usize,
+    pub residual: f64,
+    pub converged: bool,
+    pub stiffness_converged: bool,
+}
+
+/// Result of one 3D realisation: F and k at each approach where both converged (E* = 1,
+/// L = 1), and every solve's record.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct BemCurve {
+    pub rms_height: f64,
+    pub force: Vec<f64>,
+    pub stiffness: Vec<f64>,
+    pub solves: Vec<SolveRecord>,
+    pub iterations: usize,
+    /// Largest residual reached; above the tolerance when a solve did not converge.
+    pub max_residual: f64,
+    pub unconverged: usize,
+    pub seconds: f64,
+}
+
+/// Result of the 1D ensemble at one H: k/(E* L) per realisation on the f grid.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct MrdEnsemble {
+    pub stiffness: Vec<Vec<f64>>,
+    pub seconds: f64,
+    pub points: usize,
+}
+
+/// All tasks of a sweep in a fixed global order (shards take every N-th).
+pub fn all(spec: &HurstSweep) -> Vec<Task> {
+    let mut t = Vec::new();
+    for h in 0..spec.hurst.len() {
+        for g in spec.grids() {
+            for r in 0..spec.realisations_3d {
+                t.push(Task::Bem { h, g, r });
+            }
+        }
+        t.push(Task::Mrd { h });
+    }
+    t
+}
+
+/// The random stream of a task: (seed, stream id).
+fn stream(seed: u64, task_kind: u64, h: usize, g: usize, r: u64) -> (u64, u64) {
+    (
+        seed,
+        (task_kind << 60) ^ ((h as u64) << 40) ^ ((g as u64) << 24) ^ r,
+    )
+}
+
+/// pi h1^2 / h3^2 per unit lambda for the sweep's lines and punch faces at (H, grid):
+/// the calibrated shift of the reduced curves is lambda (Eq. 76) times this
+/// ([`crate::experiment::lambda_meaning`]).
+pub fn rms_factor(spec: &HurstSweep, hurst: f64, grid: usize) -> Result<f64> {
+    use crate::experiment::lambda_meaning::{rms_matched, Face};
+    let s = spectrum(spec, hurst, grid).ctx("sweep spectrum")?;
+    let band = spec.upper_cutoff_ratio * PI * grid as f64 / (2.0 * PI);
+    Ok(rms_matched(1.0, &|q| s.c2d(q), band, 1.0, Face::Disc))
+}
+
+fn spectrum(spec: &HurstSweep, hurst: f64, grid: usize) -> mrd::Result<SelfAffine> {
+    let q0 = 2.0 * PI;
+    let q1 = spec.upper_cutoff_ratio * PI * grid as f64;
+    SelfAffine::new(hurst, q0, q0, q1)
+}
+
+fn run_bem(spec: &HurstSweep, h: usize, g: usize, r: u64) -> Result<BemCurve> {
+    let t0 = Instant::now();
+    let sa = spectrum(spec, spec.hurst[h], g).ctx("sweep spectrum")?;
+    let (seed, id) = stream(spec.seed, 1, h, g, r);
+    let heights = surface(
+        &sa,
+        &Grid::square(g, 1.0),
+        seed,
+        id,
+        Amplitudes::Deterministic,
+    )
+    .ctx("3D surface")?;
+    let mut out = punch_curve(&heights, g, spec.loads, spec.tolerance)?;
+    out.seconds = t0.elapsed().as_secs_f64();
+    Ok(out)
+}
+
+/// The rough punch of the sweeps: the disc inscribed in the `g x g` map `heights` (side
+/// L = 1, E* = 1) pressed on the free half-space at `loads` approaches, log-spaced from
+/// 1e-3 of the full-contact approach to full contact, warm-started; F and the tangent
+/// stiffness k = dF/dd (contact set fixed) at each. `seconds` is left 0 for the caller.
+pub(crate) fn punch_curve(
+    heights: &[f64],
+    g: usize,
+    loads: usize,
+    tolerance: f64,
+) -> Result<BemCurve> {
+    let mask = bem3d::mask::disc(g, g, 1.0, 1.0, 0.5);
+    let (top, bottom) = heights
+        .iter()
+        .zip(&mask)
+        .filter(|(_, &m)| m)
+        .fold((f64::NEG_INFINITY, f64::INFINITY), |(t, b), (&v, _)| {
+            (t.max(v), b.min(v))
+        });
+    let full = top - bottom;
+    let mut solver = ContactSolver::new(
+        NonPeriodicHalfSpace::new(g, g, 1.0, 1.0, 1.0),
+        heights,
+        Some(mask),
+    )
+    .ctx("3D solver set-up")?;
+    let opts = SolverOptions {
+        tolerance,
+        max_iterations: 20 * g + 2000,
+        ..Default::default()
+    };
+    let stiffness_opts = SolverOptions {
+        tolerance: 1e-9,
+        ..opts.clone()
+    };
+    let mut out = BemCurve {
+        rms_height: solver.h_rms(),
+        force: vec![],
+        stiffness: vec![],
+        solves: vec![],
+        iterations: 0,
+        max_residual: 0.0,
+        unconverged: 0,
+        seconds: 0.0,
+    };
+    let mut warm: Option<bem3d::Solution> = None;
+    for k in 0..loads {
+        let d = full * 10f64.powf(-3.0 * (1.0 - k as f64 / (loads - 1) as f64));
+        let (sol, converged) = match solver.solve(Load::Approach(d), &opts, warm.as_ref()) {
+            Ok(s) => (s, true),
+            Err(BemError::NoConvergence { last, .. }) => {
+                out.unconverged += 1;
+                (*last, false)
+            }
+            Err(e) => return Err(e).ctx("3D solve"),
+        };
+        out.iterations += sol.iterations;
+        out.max_residual = out.max_residual.max(sol.residual);
+        // Unconverged iterates are recorded, not used.
+        let kk = match converged.then(|| solver.tangent_stiffness(&sol, &stiffness_opts)) {
+            Some(Ok(v)) => v,
+            Some(Err(e)) if e.progress().is_none() => return Err(e).ctx("3D stiffness"),
+            _ => f64::NAN,
+        };
+        out.solves.push(SolveRecord {
+            approach: d,
+            force: sol.force,
+            iterations: sol.iterations,
+            residual: sol.residual,
+            converged,
+            stiffness_converged: kk.is_finite(),
+        });
+        if sol.force > 0.0 && kk.is_finite() && kk > 0.0 {
+            out.force.push(sol.force);
+            out.stiffness.push(kk);
+        }
+        if converged {
+            warm = Some(sol);
+        }
+    }
+    Ok(out)
+}
+
+fn run_mrd(spec: &HurstSweep, h: usize) -> Result<MrdEnsemble> {
+    let t0 = Instant::now();
+    let n1 = spec.points_1d_factor * spec.grid;
+    let line_spec = spectrum(spec, spec.hurst[h], spec.grid)
+        .ctx("sweep spectrum")?
+        .to_line(PI);
+    let fs = spec.f_grid();
+    let stiffness: Vec<Vec<f64>> = (0..spec.realisations_1d)
+        .into_par_iter()
+        .map(|r| -> Result<Vec<f64>> {
+            let (seed, id) = stream(spec.seed, 2, h, spec.grid, r);
+            let z =
+                line(&line_spec, n1, 1.0, seed, id, Amplitudes::Deterministic).ctx("1D line")?;
+            let rl = RoughLine::new(&z, 1.0, 1.0).ctx("1D line")?;
+            let full_force = rl.at_depth(rl.full_contact_depth()).ctx("1D")?.force;
+            fs.iter()
+                .map(|&f| {
+                    let force = f * rl.rms_height;
+                    if full_force <= force {
+                        return Ok(1.0); // complete contact: k = E* L
+                    }
+                    Ok(rl.at_force(force).ctx("1D")?.stiffness)
+                })
+                .collect()
+        })
+        .collect::<Result<_>>()?;
+    Ok(MrdEnsemble {
+        stiffness,
+        seconds: t0.elapsed().as_secs_f64(),
+        points: n1,
+    })
+}
+
+/// Computes the missing tasks of `spec` (of this shard) into `work`.
+pub fn compute(spec: &HurstSweep, work: &Path, control: &RunControl) -> Result<()> {
+    std::fs::create_dir_all(work).map_err(io_err(format!("creating {}", work.display())))?;
+    let mine: Vec<Task> = all(spec)
+        .into_iter()
+        .enumerate()
+        .filter(|(i, _)| control.shard.is_none_or(|(k, n)| i % n == k))
+        .map(|(_, t)| t)
+        .collect();
+    let total = mine.len();
+    let todo: Vec<Task> = mine
+        .into_iter()
+        .filter(|t| !work.join(t.file_name()).exists())
+        .collect();
+    if control.progress && todo.len() < total {
+        let _ = std::io::Write::write_fmt(&mut std::io::stderr(), format_args!(
+            "hurst sweep: resuming: {} of {total} tasks taken from checkpoints in {}, {} to compute\n",
+            total - todo.len(),
+            work.display(),
+            todo.len()
+        ));
+    }
+    let bar = (control.progress && !todo.is_empty()).then(|| {
+        let b = indicatif::ProgressBar::new(todo.len() as u64);
+        b.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{msg} [{bar:30}] {pos}/{len} tasks, {elapsed} elapsed, ETA {eta}",
+            )
+            .expect("valid template")
+            .progress_chars("=> "),
+        );
+        b.set_message("hurst sweep");
+        b
+    });
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let result = todo
+        .par_iter()
+        .with_max_len(1)
+        .try_for_each(|t| -> Result<()> {
+            let text = match *t {
+                Task::Bem { h, g, r } => serde_json::to_string(&run_bem(spec, h, g, r)?),
+                Task::Mrd { h } => serde_json::to_string(&run_mrd(spec, h)?),
+            }
+            .map_err(|e| CompareError::Internal(e.to_string()))?;
+            write_atomic(&work.join(t.file_name()), &text)?;
+            if let Some(b) = &bar {
+                b.inc(1);
+            }
+            let n = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
+            match control.stop_after {
+                Some(s) if n >= s => Err(CompareError::Stopped { tasks: n }),
+                _ => Ok(()),
+            }
+        });
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    result
+}
+
+/// Reads one task's checkpoint.
+pub fn load<T: for<'de> Deserialize<'de>>(work: &Path, t: &Task) -> Result<T> {
+    let p = work.join(t.file_name());
+    let text = std::fs::read_to_string(&p).map_err(io_err(format!(
+        "reading {} (missing task: run all shards, or rerun to resume)",
+        p.display()
+    )))?;
+    serde_json::from_str(&text).map_err(|e| CompareError::Internal(format!("{}: {e}", p.display())))
+}

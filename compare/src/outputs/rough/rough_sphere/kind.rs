@@ -1,0 +1,108 @@
+//! `RoughSphere` as an output kind: its checks, its declared stages and its run, which
+//! calls the study's parts; the parameters and their defaults are in the parent module.
+
+use super::RoughSphere;
+use super::{report, runs};
+use crate::checks::bad;
+use crate::checks::check_memory;
+use crate::checks::count_in;
+use crate::checks::BYTES_PER_CELL_NON_PERIODIC;
+use crate::context::Context;
+use crate::error::{Context as _, Result};
+use crate::experiment::lambda::LambdaSpec;
+use crate::output::Env;
+use crate::output::Output;
+use crate::plan::Stage;
+use crate::report::Section;
+use rayon::prelude::*;
+
+impl Output for RoughSphere {
+    fn validate(&self, ctx: &Context) -> Result<()> {
+        let (lo, hi) = mrd::error::MAGNITUDE_RANGE;
+        for (name, v) in [("radius", self.radius), ("hertz_depth", self.hertz_depth)] {
+            if !(lo..=hi).contains(&v) {
+                return bad(format!("{name} = {v:e} must lie in [{lo:e}, {hi:e}]"));
+            }
+        }
+        if self.hertz_depth > 0.1 * self.radius {
+            return bad("hertz_depth must be <= 0.1 radius (Hertz: small slopes)");
+        }
+        if !(-1.0..=3.0).contains(&self.hurst) {
+            return bad(format!("hurst = {} must lie in [-1, 3]", self.hurst));
+        }
+        if self.alpha.is_empty() || self.alpha.iter().any(|a| !(a.is_finite() && *a >= 0.0)) {
+            return bad("alpha needs at least one entry, each finite and >= 0");
+        }
+        if !(self.side.is_finite() && (2.5..=100.0).contains(&self.side)) {
+            return bad("side must lie in [2.5, 100] (units of the Hertz radius)");
+        }
+        count_in("grid", self.grid as u64, 16..=4096)?;
+        count_in(
+            "bandwidth",
+            self.bandwidth as u64,
+            1..=(self.grid as u64 - 1) / 2,
+        )?;
+        crate::checks::check_ensembles(self.realisations_3d, self.realisations_1d)?;
+        count_in("points_1d_factor", self.points_1d_factor as u64, 1..=64)?;
+        count_in("loads", self.loads as u64, 3..=crate::checks::MAX_LOADS)?;
+        crate::checks::check_tolerance(self.tolerance)?;
+        LambdaSpec::check_all(&self.lambda, ctx, &[self.hurst])?;
+        let n = self.grid as f64;
+        check_memory(
+            n * n * BYTES_PER_CELL_NON_PERIODIC * rayon::current_num_threads() as f64,
+            &format!("3D grids of {n}^2 cells, one per thread"),
+        )
+    }
+
+    fn stages(&self, _: &Context) -> Vec<Stage> {
+        vec![
+            Stage::RoughSynthesis,
+            Stage::Bem3d,
+            Stage::Bem3dStiffness,
+            Stage::RoughContact,
+        ]
+    }
+
+    fn seed(&self) -> Option<u64> {
+        Some(self.seed)
+    }
+
+    fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
+        let lambdas: Vec<f64> = self
+            .lambda
+            .iter()
+            .map(|l| l.build(env.ctx)?.at(self.hurst).ctx("lambda"))
+            .collect::<Result<_>>()?;
+        let scale = runs::roughness_scale(self)?;
+        let stages = [Stage::RoughSynthesis, Stage::Bem3d, Stage::Bem3dStiffness];
+        let all_3d = out.stages_together(&stages, || {
+            self.alpha
+                .iter()
+                .map(|&a| {
+                    (0..self.realisations(a, self.realisations_3d))
+                        .into_par_iter()
+                        .map(|r| runs::press_3d(self, a, scale, r))
+                        .collect::<Result<Vec<_>>>()
+                })
+                .collect::<Result<Vec<_>>>()
+        })?;
+        let all_1d = out.stage(Stage::RoughContact, || {
+            self.alpha
+                .iter()
+                .map(|&a| {
+                    lambdas
+                        .iter()
+                        .map(|&lam| {
+                            (0..self.realisations(a, self.realisations_1d))
+                                .into_par_iter()
+                                .map(|r| runs::press_1d(self, a, scale, lam, r))
+                                .collect::<Result<Vec<_>>>()
+                        })
+                        .collect::<Result<Vec<_>>>()
+                })
+                .collect::<Result<Vec<_>>>()
+        })?;
+        report::report(self, &lambdas, &all_3d, &all_1d, out);
+        Ok(())
+    }
+}

@@ -1,0 +1,283 @@
+//! `tangential_viscoelastic`: Cattaneo-Mindlin on a viscoelastic foundation (Section 8,
+//! Eqs. 64-65): the profile pressed to `normal_force` and held long enough for the normal
+//! contact to have relaxed (normal springs E* dx, E* the material's), then moved
+//! tangentially: a ramp to `amplitude` times the elastic full-slip displacement of the
+//! relaxed tangential modulus over `ramp_time`, a hold of `hold_time`, and one cycle
+//! (to minus that displacement and back, each over twice `ramp_time`). Tangential
+//! springs G*(t) dx = (G*_inf + sum_k G_k exp(-t / tau_k)) dx that stick or slip with
+//! Coulomb friction mu (`mrd::viscoelastic::TangentialRow`). Reported per step: the
+//! tangential force, the stick zone (fraction of loaded springs and its radius), and the
+//! energy: external work Int F dux = stored + viscous + friction dissipation, and the same
+//! loop with the relaxed modulus held constant (the elastic Cattaneo-Mindlin /
+//! Mindlin-Deresiewicz loop) beside it.
+
+use crate::checks::bad;
+use crate::checks::check_springs;
+use crate::checks::default_springs;
+use crate::checks::positive;
+use crate::context::Context;
+use crate::error::{Context as _, Result};
+use crate::output::Env;
+use crate::output::Output;
+use crate::outputs::axisym::hess;
+use crate::plan::Stage;
+use crate::report::{Figure, Section, Series, Style, Table};
+use mrd::tangential::TangentialContact;
+use mrd::viscoelastic::{Prony, TangentialRow, TangentialRowState};
+use serde::Deserialize;
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TangentialViscoelastic {
+    mu: f64,
+    normal_force: f64,
+    /// Relaxed tangential modulus G*_inf.
+    g_inf: f64,
+    /// [G_k, tau_k] of G*(t) = G*_inf + sum G_k exp(-t / tau_k).
+    prony: Vec<[f64; 2]>,
+    /// Tangential amplitude as a fraction of the full-slip displacement at G*_inf.
+    amplitude: f64,
+    ramp_time: f64,
+    hold_time: f64,
+    /// Steps per ramp_time.
+    #[serde(default = "hundred")]
+    steps: usize,
+    #[serde(default = "default_springs")]
+    springs: usize,
+}
+
+fn hundred() -> usize {
+    100
+}
+
+impl TangentialViscoelastic {
+    fn modulus(&self) -> mrd::Result<Prony> {
+        Prony::new(
+            self.g_inf,
+            self.prony.iter().map(|t| (t[0], t[1])).collect(),
+        )
+    }
+
+    /// Tangential displacement (in units of the amplitude) at the end of each step.
+    fn history(&self) -> Vec<f64> {
+        let n = self.steps;
+        let hold = (self.hold_time / self.ramp_time * n as f64).round() as usize;
+        let mut u: Vec<f64> = (1..=n).map(|k| k as f64 / n as f64).collect();
+        u.extend(std::iter::repeat_n(1.0, hold));
+        u.extend((1..=2 * n).map(|k| 1.0 - 2.0 * k as f64 / (2 * n) as f64));
+        u.extend((1..=2 * n).map(|k| -1.0 + 2.0 * k as f64 / (2 * n) as f64));
+        u
+    }
+}
+
+/// Per step: state and stored energy and viscous power after it.
+type Track = Vec<(TangentialRowState, f64, f64)>;
+
+fn drive(row: &mut TangentialRow, dt: f64, path: &[f64], scale: f64) -> mrd::Result<Track> {
+    path.iter()
+        .map(|&u| {
+            let s = row.step(dt, u * scale)?;
+            Ok((s, row.stored_energy(), row.viscous_power()))
+        })
+        .collect()
+}
+
+impl Output for TangentialViscoelastic {
+    fn validate(&self, ctx: &Context) -> Result<()> {
+        ctx.profile()?;
+        if !(positive(self.mu) && positive(self.normal_force) && positive(self.g_inf)) {
+            return bad("mu, normal_force and g_inf must be > 0");
+        }
+        if !(self.amplitude > 0.0 && self.amplitude < 1.0) {
+            return bad("amplitude must lie in (0, 1) (a fraction of the full-slip displacement)");
+        }
+        if !(positive(self.ramp_time) && self.hold_time.is_finite() && self.hold_time >= 0.0) {
+            return bad("ramp_time must be > 0 and hold_time >= 0");
+        }
+        if !(2..=100_000).contains(&self.steps) {
+            return bad(format!("steps = {} must lie in 2..=100000", self.steps));
+        }
+        self.modulus().ctx("prony")?;
+        let dt = self.ramp_time / self.steps as f64;
+        if let Some(tau) = self.prony.iter().map(|t| t[1]).reduce(f64::min) {
+            if dt > tau {
+                return bad(format!(
+                    "the time step ramp_time / steps = {dt:.3e} exceeds the shortest relaxation time {tau:.3e}"
+                ));
+            }
+        }
+        // Counted before the history is built, so that no huge hold allocates.
+        if (self.hold_time / self.ramp_time + 5.0) * self.steps as f64 > 1e6 {
+            return bad("the history has more than 1e6 steps (hold_time / (ramp_time / steps))");
+        }
+        check_springs(
+            self.springs,
+            crate::checks::spring_bytes::tangential_viscoelastic(self.prony.len()),
+        )
+    }
+
+    fn stages(&self, _: &Context) -> Vec<Stage> {
+        vec![
+            Stage::HessTransform,
+            Stage::NormalSemiAnalytic,
+            Stage::Viscoelastic,
+        ]
+    }
+
+    fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
+        let contact = hess::hess(env, out)?;
+        let profile = env.ctx.profile()?;
+        let e = env.ctx.material.e_star;
+        let cm = out
+            .stage(Stage::NormalSemiAnalytic, || {
+                TangentialContact::new(contact, self.g_inf, self.mu, self.normal_force)
+            })
+            .ctx("normal contact")?;
+        let (d, a) = (cm.normal.depth, cm.normal.radius);
+        let (_, dx, gaps) =
+            mrd::foundation::half_line(profile, self.springs, 1.2 * a).ctx("springs")?;
+        let normal: Vec<f64> = gaps.iter().map(|g| e * dx * (d - g).max(0.0)).collect();
+        let scale = self.amplitude * cm.max_displacement();
+        let dt = self.ramp_time / self.steps as f64;
+        let path = self.history();
+        let modulus = self.modulus().ctx("prony")?;
+        let relaxed = Prony::new(self.g_inf, vec![]).ctx("prony")?;
+        let (ve, el) = out
+            .stage(Stage::Viscoelastic, || -> mrd::Result<_> {
+                let mut row = TangentialRow::new(&normal, dx, self.mu, &modulus)?;
+                let mut row_el = TangentialRow::new(&normal, dx, self.mu, &relaxed)?;
+                Ok((
+                    drive(&mut row, dt, &path, scale)?,
+                    drive(&mut row_el, dt, &path, scale)?,
+                ))
+            })
+            .ctx("tangential springs")?;
+        let units = &env.ctx.units;
+        let setup = Setup {
+            scale,
+            dt,
+            dx,
+            loaded: normal.iter().filter(|&&f| f > 0.0).count().max(1),
+            len: units.length.clone(),
+            force: units.force(),
+        };
+        report(self, &setup, &path, &ve, &el, out);
+        Ok(())
+    }
+}
+
+/// What the report needs besides the tracks.
+struct Setup {
+    /// The amplitude of ux.
+    scale: f64,
+    dt: f64,
+    dx: f64,
+    /// Springs under normal load.
+    loaded: usize,
+    len: String,
+    force: String,
+}
+
+fn report(
+    spec: &TangentialViscoelastic,
+    setup: &Setup,
+    path: &[f64],
+    ve: &Track,
+    el: &Track,
+    out: &mut Section,
+) {
+    let Setup { scale, dt, dx, .. } = *setup;
+    let (len, force) = (&setup.len, &setup.force);
+    let mut t = Table::new(
+        "tangential_viscoelastic",
+        &[
+            "time [s]".to_string(),
+            format!("ux [{len}]"),
+            format!("fx [{force}]"),
+            format!("fx_relaxed_elastic [{force}]"),
+            "stick_fraction [1]".to_string(),
+            format!("stick_radius [{len}]"),
+            format!("work [{force} {len}]"),
+            format!("stored [{force} {len}]"),
+            format!("viscous_dissipation [{force} {len}]"),
+            format!("friction_dissipation [{force} {len}]"),
+        ],
+    );
+    t.notes.push(format!("Eqs. 64-65: tangential springs G*(t) dx with G*_inf = {} and Prony {:?}, Coulomb mu = {}, under the relaxed normal contact at {} (both halves of the spring line counted); ramp to {:.4e} (amplitude {} of the full-slip displacement at G*_inf) in {}, hold {}, one cycle; the column fx_relaxed_elastic is the same with G* = G*_inf held constant (elastic Cattaneo-Mindlin); energies from t = 0: work by trapezoids of F dux, viscous dissipation by trapezoids of its power, friction sum of f (du - dw) per step", spec.g_inf, spec.prony, spec.mu, spec.normal_force, scale, spec.amplitude, spec.ramp_time, spec.hold_time));
+    let (mut work, mut visc, mut fric) = (0.0, 0.0, 0.0);
+    let (mut f_old, mut p_old, mut u_old) = (0.0, 0.0, 0.0);
+    let mut loop_ve = Vec::new();
+    let mut loop_el = Vec::new();
+    let mut stick = Vec::new();
+    let mut residual: f64 = 0.0;
+    let cycle_start = path.len() - 4 * spec.steps;
+    let (mut w_cycle, mut w_cycle_el, mut f_old_el) = (0.0, 0.0, 0.0);
+    for (k, ((s, stored, power), (se, _, _))) in ve.iter().zip(el).enumerate() {
+        let time = dt * (k + 1) as f64;
+        let (fx, fe) = (2.0 * s.force, 2.0 * se.force);
+        let ux = s.displacement;
+        work += 0.5 * (fx + f_old) * (ux - u_old);
+        visc += 0.5 * dt * (2.0 * power + p_old);
+        fric += 2.0 * s.slip_work;
+        if k >= cycle_start {
+            w_cycle += 0.5 * (fx + f_old) * (ux - u_old);
+            w_cycle_el += 0.5 * (fe + f_old_el) * (ux - u_old);
+        }
+        let radius = s.stick_edge.map_or(0.0, |i| (i as f64 + 0.5) * dx);
+        residual = residual.max((work - 2.0 * stored - visc - fric).abs());
+        t.push(vec![
+            time,
+            ux,
+            fx,
+            fe,
+            s.sticking as f64 / setup.loaded as f64,
+            radius,
+            work,
+            2.0 * stored,
+            visc,
+            fric,
+        ]);
+        if k >= cycle_start {
+            loop_ve.push((ux, fx));
+            loop_el.push((ux, fe));
+        }
+        stick.push((time, radius));
+        f_old = fx;
+        f_old_el = fe;
+        p_old = 2.0 * power;
+        u_old = ux;
+    }
+    out.scalar("cycle_dissipation", w_cycle);
+    out.scalar("cycle_dissipation_relaxed_elastic", w_cycle_el);
+    out.scalar(
+        "energy_balance_max_residual_over_work",
+        residual / work.abs().max(f64::MIN_POSITIVE),
+    );
+    out.tables.push(t);
+    out.figures.push(
+        Figure::new(
+            "tangential_viscoelastic_loop",
+            "Tangential force over one cycle: viscoelastic springs and the relaxed elastic loop",
+            &format!("tangential displacement ux [{len}]"),
+            &format!("tangential force Fx [{force}]"),
+        )
+        .with(Series::new("viscoelastic (Eqs. 64-65)", loop_ve, Style::Line).colored(0))
+        .with(
+            Series::new(
+                "elastic at G*_inf (Cattaneo-Mindlin)",
+                loop_el,
+                Style::Dashed,
+            )
+            .colored(1),
+        ),
+    );
+    out.figures.push(
+        Figure::new(
+            "tangential_viscoelastic_stick",
+            "Stick zone radius in time: ramp, hold, cycle",
+            "time t [s]",
+            &format!("stick radius c [{len}]"),
+        )
+        .with(Series::new("viscoelastic", stick, Style::Line).colored(0)),
+    );
+}

@@ -1,0 +1,123 @@
+//! The registry: the one place that lists the output kinds, in the order `mrdw kinds`
+//! prints them. A new kind is a file (or a folder, for a study) in its group under
+//! `outputs/` plus one line here; no kind imports this module.
+
+use crate::output::Output;
+use crate::outputs::{axisym, friction, reference3d, rough, viscoelastic};
+use serde::de::DeserializeOwned;
+
+/// A registered output kind.
+pub struct Kind {
+    pub name: &'static str,
+    /// One line: what the output computes.
+    pub about: &'static str,
+    parse: fn(toml::Value) -> std::result::Result<Box<dyn Output>, String>,
+}
+
+impl Kind {
+    const fn of<T: Output + DeserializeOwned + 'static>(
+        name: &'static str,
+        about: &'static str,
+    ) -> Self {
+        Self {
+            name,
+            about,
+            parse: parse_as::<T>,
+        }
+    }
+
+    /// Builds the output from its `[[outputs]]` table (without `kind`).
+    pub fn parse(&self, table: toml::Value) -> std::result::Result<Box<dyn Output>, String> {
+        (self.parse)(table)
+    }
+}
+
+fn parse_as<T: Output + DeserializeOwned + 'static>(
+    v: toml::Value,
+) -> std::result::Result<Box<dyn Output>, String> {
+    v.try_into::<T>()
+        .map(|t| Box::new(t) as Box<dyn Output>)
+        .map_err(|e| e.message().lines().next().unwrap_or("invalid").to_string())
+}
+
+/// The registry: every output kind, in the order `mrdw kinds` lists them.
+pub const KINDS: &[Kind] = &[
+    Kind::of::<axisym::profile_1d::Profile1d>(
+        "profile_1d",
+        "the 3D profile z(r) and its MRD image z1d(x) (Eq. 11)",
+    ),
+    Kind::of::<axisym::force_depth::ForceDepth>(
+        "force_depth",
+        "force, contact radius and stiffness against depth (Eqs. 20, 24, 25)",
+    ),
+    Kind::of::<axisym::pressure::Pressure>("pressure", "pressure p(r) by the Abel transform (Eq. 26)"),
+    Kind::of::<axisym::adhesion::Adhesion>(
+        "adhesion",
+        "adhesive loading-unloading and pull-off (Eqs. 33-37)",
+    ),
+    Kind::of::<axisym::tangential::Tangential>(
+        "tangential",
+        "Cattaneo-Mindlin tangential loading and tractions (Eqs. 41-51)",
+    ),
+    Kind::of::<axisym::damping::Damping>(
+        "damping",
+        "energy dissipated per cycle of an oscillating contact (Section 7)",
+    ),
+    Kind::of::<viscoelastic::viscoelastic::Viscoelastic>(
+        "viscoelastic",
+        "viscoelastic ramp-and-hold indentation against Radok (Eq. 63)",
+    ),
+    Kind::of::<friction::static_friction::StaticFriction>(
+        "static_friction",
+        "static friction from the mean slope in contact (Section 10.2, Fig. 9)",
+    ),
+    Kind::of::<friction::static_friction_3d::StaticFriction3d>(
+        "static_friction_3d",
+        "the mean slope in contact in 3D against MRD, Eq. (93) (Section 10.2)",
+    ),
+    Kind::of::<rough::rough_stiffness::RoughStiffness>(
+        "rough_stiffness",
+        "ensemble stiffness-force law of MRD rough lines (Eq. 77)",
+    ),
+    Kind::of::<friction::sliding_friction::SlidingFriction>(
+        "sliding_friction",
+        "elastomer friction mu(v) of rough lines on viscoelastic springs, Eq. 82 (Fig. 7)",
+    ),
+    Kind::of::<friction::sliding_friction_3d::SlidingFriction3d>(
+        "sliding_friction_3d",
+        "steady viscoelastic sliding of rough surfaces in 3D against MRD and Eq. 82 (Fig. 7 in 3D)",
+    ),
+    Kind::of::<reference3d::bem_contact::BemContact>(
+        "bem_contact",
+        "3D boundary-element contact of a height map from a file (.npy, text matrix, ESRI ASCII grid, .xyz point list)",
+    ),
+    Kind::of::<rough::contact_area::ContactArea>(
+        "contact_area",
+        "real contact area and mean gap against force, 3D against MRD (Section 11)",
+    ),
+    Kind::of::<rough::rough_sphere::RoughSphere>(
+        "rough_sphere",
+        "a sphere with self-affine roughness, 3D against MRD (Hess + Eq. 76), smooth to rough (Section 9)",
+    ),
+    Kind::of::<viscoelastic::tangential_viscoelastic::TangentialViscoelastic>(
+        "tangential_viscoelastic",
+        "Cattaneo-Mindlin on viscoelastic tangential springs: ramp, hold, cycle, stick zone and energy (Eqs. 64-65)",
+    ),
+    Kind::of::<viscoelastic::viscoelastic_rough::ViscoelasticRough>(
+        "viscoelastic_rough",
+        "a rough punch on a viscoelastic half-space through ramp, hold, unload and reload, 3D against MRD springs (Eq. 63, Section 8)",
+    ),
+    Kind::of::<rough::hurst_sweep::HurstSweep>(
+        "hurst_sweep",
+        "the Hurst sweep, 3D against MRD: alpha(H), zeta(H), lambda(H) (Fig. 6)",
+    ),
+    Kind::of::<rough::lambda_study::LambdaStudy>(
+        "lambda_study",
+        "lambda(H) and alpha(H) converged in bandwidth, resolution and realisations (calibration of Eq. 76)",
+    ),
+];
+
+/// The registered kind called `name`.
+pub fn kind(name: &str) -> Option<&'static Kind> {
+    KINDS.iter().find(|k| k.name == name)
+}
