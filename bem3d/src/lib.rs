@@ -1,9 +1,10 @@
 //! # bem3d: 3D FFT boundary-element half-space contact
 //!
 //! Frictionless, non-adhesive normal contact of a rigid body with an arbitrary height
-//! map against a linear elastic half-space of modulus E*. Knows nothing of MRD: it takes
-//! plain height arrays (row-major `ny x nx`). Operators ([`operator`]) are apart from the
-//! solver ([`solver`]).
+//! map against a linear elastic half-space of modulus E* ([`solver`]), and partial slip
+//! with Coulomb friction under a held normal pressure ([`tangential`]: a solver beside
+//! the normal one, on the same transforms). Knows nothing of MRD: it takes plain height
+//! arrays (row-major `ny x nx`). Operators ([`operator`]) are apart from the solvers.
 
 // Numerical kernels index several parallel arrays with one index.
 #![allow(clippy::needless_range_loop)]
@@ -21,6 +22,7 @@ pub mod solution;
 pub mod solver;
 pub mod stencil;
 pub mod symbol;
+pub mod tangential;
 pub mod viscoelastic;
 pub mod wide;
 pub use operator::{
