@@ -26,6 +26,8 @@ pub enum Stage {
     Tangential,
     /// Tangential traction by the Abel transform of Eq. (51).
     AbelTraction,
+    /// 3D partial slip with Coulomb friction under a held pressure (`bem3d::tangential`).
+    Tangential3d,
     /// Time-stepped oscillating contact with Coulomb friction (Section 7).
     OscillationDiscrete,
     /// Literature closed forms for overlay and error measures.
@@ -63,6 +65,7 @@ impl Stage {
             Stage::AdhesionDiscrete => "adhesion_discrete",
             Stage::Tangential => "tangential",
             Stage::AbelTraction => "abel_traction",
+            Stage::Tangential3d => "tangential_3d",
             Stage::OscillationDiscrete => "oscillation_discrete",
             Stage::ClosedForm => "closed_form",
             Stage::Viscoelastic => "viscoelastic_springs",

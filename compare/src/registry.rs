@@ -59,6 +59,10 @@ pub const KINDS: &[Kind] = &[
         "tangential",
         "Cattaneo-Mindlin tangential loading and tractions (Eqs. 41-51)",
     ),
+    Kind::of::<axisym::tangential_3d::Tangential3d>(
+        "tangential_3d",
+        "a sphere loaded tangentially in 3D beside MRD: stick radius (Cattaneo-Mindlin) and dissipation per cycle (Mindlin-Deresiewicz), Sections 6-7",
+    ),
     Kind::of::<axisym::damping::Damping>(
         "damping",
         "energy dissipated per cycle of an oscillating contact (Section 7)",

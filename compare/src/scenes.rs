@@ -12,6 +12,10 @@ pub const EMBEDDED: &[(&str, &str)] = &[
         "cattaneo-mindlin",
         include_str!("../../cases/cattaneo-mindlin.toml"),
     ),
+    (
+        "tangential-3d",
+        include_str!("../../cases/tangential-3d.toml"),
+    ),
     ("cone", include_str!("../../cases/cone.toml")),
     (
         "contact-area-ci",

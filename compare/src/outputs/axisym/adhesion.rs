@@ -3,24 +3,10 @@
 //! Eq. 37 (cone) and Eq. 34 (flat punch).
 
 use super::hess;
-
-use crate::checks::bad;
-
-use crate::checks::check_points;
-
-use crate::checks::check_springs;
-
-use crate::checks::default_points;
-
-use crate::checks::positive;
-
-use crate::checks::rel;
-
-use crate::output::Env;
-
+use crate::checks::{bad, check_points, check_springs, default_points, positive, rel};
 use crate::context::{Context, ControlSpec};
 use crate::error::{Context as _, Result};
-use crate::output::Output;
+use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
 use mrd::adhesion::{simulate_cycle, AdhesiveContact, Control};

@@ -4,22 +4,12 @@
 //! its small-amplitude limit Eq. 61 and the force form.
 
 use super::hess;
-
-use crate::checks::bad;
-
-use crate::checks::check_points;
-
-use crate::checks::check_springs;
-
-use crate::checks::default_points;
-
-use crate::checks::default_springs;
-use crate::checks::positive;
-use crate::checks::rel;
+use crate::checks::{
+    bad, check_points, check_springs, default_points, default_springs, positive, rel,
+};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
-use crate::output::Env;
-use crate::output::Output;
+use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
 use mrd::oscillation::{dissipation_semi_analytic, OscillatingContact};

@@ -3,22 +3,10 @@
 //! profile has one; the electrical conductance for a resistivity sum.
 
 use super::hess;
-
-use crate::checks::bad;
-
-use crate::checks::check_points;
-
-use crate::checks::check_springs;
-
-use crate::checks::default_points;
-
-use crate::checks::rel;
-
-use crate::output::Env;
-
+use crate::checks::{bad, check_points, check_springs, default_points, rel};
 use crate::context::{Context, Drive};
 use crate::error::{Context as _, Result};
-use crate::output::Output;
+use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
 use mrd::discrete::DiscreteAxisymmetric;

@@ -8,3 +8,4 @@ pub(crate) mod hess;
 pub mod pressure;
 pub mod profile_1d;
 pub mod tangential;
+pub mod tangential_3d;

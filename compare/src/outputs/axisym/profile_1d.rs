@@ -2,22 +2,10 @@
 //! (Eq. 11), per-shape closed form against independent quadrature.
 
 use super::hess;
-
-use crate::checks::bad;
-
-use crate::checks::check_points;
-
-use crate::checks::default_points;
-
-use crate::checks::positive;
-
-use crate::checks::rel;
-
-use crate::output::Env;
-
+use crate::checks::{bad, check_points, default_points, positive, rel};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
-use crate::output::Output;
+use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
 use serde::Deserialize;

@@ -3,22 +3,10 @@
 //! fractions of mu F_N (Abel transform of Eq. 51); closed forms for a sphere.
 
 use super::hess;
-
-use crate::checks::bad;
-
-use crate::checks::check_points;
-
-use crate::checks::default_points;
-
-use crate::checks::positive;
-
-use crate::checks::rel;
-
-use crate::output::Env;
-
+use crate::checks::{bad, check_points, default_points, positive, rel};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
-use crate::output::Output;
+use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
 use mrd::reference::{cattaneo_mindlin as cm, for_profile, hertz};

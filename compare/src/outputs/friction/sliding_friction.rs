@@ -13,12 +13,10 @@
 //! lines. A run that does not reach its steady state is listed and fails the run.
 
 use super::elastomer::{self, Material};
-use crate::checks::bad;
-use crate::checks::positive;
+use crate::checks::{bad, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
-use crate::output::Env;
-use crate::output::Output;
+use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
 use mrd::rheology::Prony;

@@ -17,15 +17,11 @@
 //! E*(omega) = 4 G(omega) (incompressible), G(omega) exact for Eq. (84).
 
 use super::elastomer::{self, Material};
-use super::sliding_friction::AtVelocity;
-use super::sliding_friction::LineSpec;
-use super::sliding_friction::SlidingFriction;
-use crate::checks::bad;
-use crate::checks::positive;
+use super::sliding_friction::{AtVelocity, LineSpec, SlidingFriction};
+use crate::checks::{bad, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
-use crate::output::Env;
-use crate::output::Output;
+use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
 use bem3d::{BemError, SlidingContact, SlidingSolution, SolverOptions};

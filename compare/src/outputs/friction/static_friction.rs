@@ -2,15 +2,10 @@
 //! slope of the contacting points of MRD rough lines against the reduced force, with
 //! the fit xi = a + b ln f of Eq. (91).
 
-use crate::checks::bad;
-use crate::checks::check_line;
-use crate::checks::default_force_points;
-use crate::checks::default_realisations;
-use crate::checks::positive;
+use crate::checks::{bad, check_line, default_force_points, default_realisations, positive};
 use crate::context::Context;
 use crate::error::{CompareError, Context as _, Result};
-use crate::output::Env;
-use crate::output::Output;
+use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
 use mrd::friction::{log_space, static_friction, FrictionSetup};

@@ -7,12 +7,10 @@
 //! fails (exit code 4). The tangent stiffness is computed only when `stiffness = true`;
 //! at complete contact of a periodic surface it is infinite (written `inf`).
 
-use crate::checks::bad;
-use crate::checks::positive;
+use crate::checks::{bad, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
-use crate::output::Env;
-use crate::output::Output;
+use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
 use bem3d::{

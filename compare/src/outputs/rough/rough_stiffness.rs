@@ -3,16 +3,11 @@
 //! from the radially averaged PSD of a measured topography; the reduction of Table 1 to
 //! a power-law profile n = H for comparison of slopes.
 
-use crate::checks::bad;
-use crate::checks::check_line;
-use crate::checks::default_force_points;
-use crate::checks::default_realisations;
-use crate::checks::positive;
+use crate::checks::{bad, check_line, default_force_points, default_realisations, positive};
 use crate::context::Context;
 use crate::error::{CompareError, Context as _, Result};
 use crate::experiment::lambda::LambdaSpec;
-use crate::output::Env;
-use crate::output::Output;
+use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
 use mrd::friction::log_space;

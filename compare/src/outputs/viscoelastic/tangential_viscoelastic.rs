@@ -11,14 +11,10 @@
 //! loop with the relaxed modulus held constant (the elastic Cattaneo-Mindlin /
 //! Mindlin-Deresiewicz loop) beside it.
 
-use crate::checks::bad;
-use crate::checks::check_springs;
-use crate::checks::default_springs;
-use crate::checks::positive;
+use crate::checks::{bad, check_springs, default_springs, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
-use crate::output::Env;
-use crate::output::Output;
+use crate::output::{Env, Output};
 use crate::outputs::axisym::hess;
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};

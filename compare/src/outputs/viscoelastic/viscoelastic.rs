@@ -2,15 +2,10 @@
 //! `depth_max` over `ramp_time`, then a hold until `end_time`, on Prony-series springs,
 //! against Radok's (1957) solution by quadrature.
 
-use crate::checks::bad;
-use crate::checks::check_springs;
-use crate::checks::default_springs;
-use crate::checks::positive;
-use crate::checks::rel;
+use crate::checks::{bad, check_springs, default_springs, positive, rel};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
-use crate::output::Env;
-use crate::output::Output;
+use crate::output::{Env, Output};
 use crate::outputs::axisym::hess;
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};

@@ -3,16 +3,11 @@
 
 use super::{report, runs};
 use super::{Geometry, StaticFriction3d};
-use crate::checks::bad;
-use crate::checks::check_memory;
-use crate::checks::count_in;
-use crate::checks::positive;
-use crate::checks::BYTES_PER_CELL_NON_PERIODIC;
+use crate::checks::{bad, check_memory, count_in, positive, BYTES_PER_CELL_NON_PERIODIC};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::lambda::LambdaSpec;
-use crate::output::Env;
-use crate::output::Output;
+use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::Section;
 use rayon::prelude::*;

@@ -6,9 +6,8 @@ use crate::error::{Context as _, Result};
 use bem3d::{BemError, ContactSolver, Load, NonPeriodicHalfSpace, PeriodicHalfSpace};
 use bem3d::{SolverOperator, SolverOptions};
 use mrd::rough_contact::RoughLine;
-use mrd::roughness::nested;
 use mrd::roughness::synthesis::Grid;
-use mrd::roughness::SelfAffine;
+use mrd::roughness::{nested, SelfAffine};
 use std::f64::consts::PI;
 
 /// The state of one realisation at one reduced force.

@@ -3,14 +3,10 @@
 
 use super::LambdaStudy;
 use super::{analysis, report, scatter, schedule};
-use crate::checks::bad;
-use crate::checks::count_in;
+use crate::checks::{bad, count_in};
 use crate::context::Context;
 use crate::error::{CompareError, Result};
-use crate::output::Checkpointed;
-use crate::output::Env;
-use crate::output::Output;
-use crate::output::RunControl;
+use crate::output::{Checkpointed, Env, Output, RunControl};
 use crate::plan::Stage;
 use crate::report::Section;
 use std::path::Path;

@@ -5,9 +5,8 @@ use super::RoughSphere;
 use crate::error::{Context as _, Result};
 use bem3d::{BemError, ContactSolver, Load, NonPeriodicHalfSpace, SolverOptions};
 use mrd::foundation::Foundation;
-use mrd::roughness::nested;
 use mrd::roughness::synthesis::Grid;
-use mrd::roughness::SelfAffine;
+use mrd::roughness::{nested, SelfAffine};
 use std::f64::consts::PI;
 
 /// The contact at one force.

@@ -3,15 +3,11 @@
 
 use super::{radok, report, runs};
 use super::{ViscoelasticRough, MAX_STEPS};
-use crate::checks::bad;
-use crate::checks::check_memory;
-use crate::checks::count_in;
-use crate::checks::BYTES_PER_CELL_NON_PERIODIC;
+use crate::checks::{bad, check_memory, count_in, BYTES_PER_CELL_NON_PERIODIC};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::lambda::LambdaSpec;
-use crate::output::Env;
-use crate::output::Output;
+use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::Section;
 use rayon::prelude::*;

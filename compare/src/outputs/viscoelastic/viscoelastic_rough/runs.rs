@@ -8,9 +8,8 @@ use crate::error::{Context as _, Result};
 use bem3d::viscoelastic::{Relaxation, TransientContact};
 use bem3d::{ContactSolver, Load, NonPeriodicHalfSpace, SolverOptions};
 use mrd::foundation::Foundation;
-use mrd::roughness::nested;
 use mrd::roughness::synthesis::Grid;
-use mrd::roughness::SelfAffine;
+use mrd::roughness::{nested, SelfAffine};
 use mrd::viscoelastic::{Prony, RowLoad, SpringRow};
 use std::f64::consts::TAU;
 

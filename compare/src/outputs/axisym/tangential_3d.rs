@@ -1,0 +1,393 @@
+//! `tangential_3d`: a sphere pressed and then loaded tangentially, in 3D and in MRD side
+//! by side (Sections 6 and 7): the stick radius against the tangential force
+//! (Cattaneo-Mindlin, Eqs. 41-50) and the energy dissipated per cycle of an oscillating
+//! tangential force (Mindlin-Deresiewicz; Section 7), each against its closed form.
+//!
+//! The 3D side solves the normal contact on a periodic half-space (the sphere at the
+//! centre of a cell of `period` contact radii) and then partial slip under that pressure
+//! (`bem3d::tangential`); the MRD side is the exact tangential springs of the rule of
+//! Hess. The 3D tangential operator takes the shear modulus G and Poisson's ratio nu of
+//! one body equivalent to the scene's E* and G* (rigid indenter: E* = 2G/(1 - nu),
+//! G* = 4G/(2 - nu)); for two elastic bodies that is the uncoupled approximation.
+
+use super::hess;
+use crate::checks::{bad, check_memory, check_tolerance, default_tolerance, positive};
+use crate::context::Context;
+use crate::error::{Context as _, Result};
+use crate::output::{Env, Output};
+use crate::plan::Stage;
+use crate::report::{Figure, Section, Series, Style, Table};
+use bem3d::tangential::{CerrutiPeriodic, PartialSlip};
+use bem3d::{ContactSolver, Load, PeriodicHalfSpace, SolverOptions};
+use mrd::oscillation::dissipation_semi_analytic;
+use mrd::reference::for_profile;
+use mrd::tangential::TangentialContact;
+use serde::Deserialize;
+use std::f64::consts::PI;
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Tangential3d {
+    mu: f64,
+    normal_force: f64,
+    /// Cells per side of the 3D grid.
+    #[serde(default = "default_cells")]
+    cells: usize,
+    /// The period of the 3D grid in contact radii (>= 10 keeps the periodic images'
+    /// effect on the dissipation under 1 %).
+    #[serde(default = "default_period")]
+    period: f64,
+    /// Tangential forces of the stick-radius table, as fractions of mu F_N.
+    #[serde(default = "default_fractions")]
+    fractions: Vec<f64>,
+    /// Force amplitudes of the oscillation, as fractions of mu F_N.
+    #[serde(default = "default_amplitudes")]
+    amplitudes: Vec<f64>,
+    /// Force steps per half cycle of the 3D oscillation.
+    #[serde(default = "default_steps")]
+    steps: usize,
+    #[serde(default = "default_tolerance")]
+    tolerance: f64,
+}
+
+fn default_cells() -> usize {
+    128
+}
+fn default_period() -> f64 {
+    10.0
+}
+fn default_fractions() -> Vec<f64> {
+    (1..10).map(|k| k as f64 / 10.0).collect()
+}
+fn default_amplitudes() -> Vec<f64> {
+    vec![0.2, 0.4, 0.6, 0.8]
+}
+fn default_steps() -> usize {
+    20
+}
+
+/// Peak bytes per cell of the 3D side: the normal solver's and the partial slip's
+/// buffers (a dozen grids).
+const BYTES_PER_CELL: f64 = crate::checks::BYTES_PER_CELL_PERIODIC + 120.0;
+
+/// Poisson's ratio and shear modulus of the one body with these E* and G*.
+fn equivalent_body(e_star: f64, g_star: f64) -> (f64, f64) {
+    let rho = g_star / e_star;
+    let nu = (2.0 - 2.0 * rho) / (2.0 - rho);
+    (nu, e_star * (1.0 - nu) / 2.0)
+}
+
+/// Mindlin-Deresiewicz: the energy dissipated per cycle of a force amplitude x mu P
+/// (G* = 4G/(2 - nu)).
+fn mindlin_deresiewicz(mu_p: f64, g_star: f64, a: f64, x: f64) -> f64 {
+    18.0 * mu_p * mu_p / (5.0 * g_star * a)
+        * (1.0 - (1.0 - x).powf(5.0 / 3.0) - 5.0 * x / 6.0 * (1.0 + (1.0 - x).powf(2.0 / 3.0)))
+}
+
+impl Output for Tangential3d {
+    fn validate(&self, ctx: &Context) -> Result<()> {
+        let profile = ctx.profile()?;
+        if for_profile::sphere_radius(profile).is_none() {
+            return bad("tangential_3d needs a sphere (profile = paraboloid): its closed forms are Cattaneo-Mindlin's");
+        }
+        if !positive(self.mu) {
+            return bad("friction coefficient mu must be > 0");
+        }
+        if !positive(self.normal_force) {
+            return bad("normal_force must be > 0");
+        }
+        let g = ctx.material.g_star().ctx("tangential_3d")?;
+        let (nu, _) = equivalent_body(ctx.material.e_star, g);
+        if !(0.0..=0.5).contains(&nu) {
+            return bad(format!(
+                "G*/E* = {} gives Poisson's ratio {nu:.3} outside [0, 0.5]: G*/E* must lie in [2/3, 1]",
+                g / ctx.material.e_star
+            ));
+        }
+        if !(16..=4096).contains(&self.cells) {
+            return bad(format!("cells = {} must lie in 16..=4096", self.cells));
+        }
+        check_memory(
+            (self.cells * self.cells) as f64 * BYTES_PER_CELL,
+            &format!("cells = {}", self.cells),
+        )?;
+        if !(self.period.is_finite() && (3.0..=1000.0).contains(&self.period)) {
+            return bad(format!(
+                "period = {} contact radii must lie in [3, 1000]",
+                self.period
+            ));
+        }
+        for (key, v) in [
+            ("fractions", &self.fractions),
+            ("amplitudes", &self.amplitudes),
+        ] {
+            if v.is_empty() || v.iter().any(|f| !(*f > 0.0 && *f < 1.0)) {
+                return bad(format!("{key} = {v:?}: give fractions of mu F_N in (0, 1)"));
+            }
+        }
+        if !(2..=1000).contains(&self.steps) {
+            return bad(format!(
+                "steps = {} per half cycle must lie in 2..=1000",
+                self.steps
+            ));
+        }
+        check_tolerance(self.tolerance)
+    }
+
+    fn stages(&self, _: &Context) -> Vec<Stage> {
+        vec![
+            Stage::HessTransform,
+            Stage::NormalSemiAnalytic,
+            Stage::Tangential,
+            Stage::ClosedForm,
+            Stage::Bem3d,
+            Stage::Tangential3d,
+        ]
+    }
+
+    fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
+        let ctx = env.ctx;
+        let contact = hess::hess(env, out)?;
+        let profile = ctx.profile()?.clone();
+        let e = ctx.material.e_star;
+        let g = ctx.material.g_star().ctx("tangential_3d")?;
+        let (mu, fn_) = (self.mu, self.normal_force);
+        let tc = out
+            .stage(Stage::NormalSemiAnalytic, || {
+                TangentialContact::new(contact, g, mu, fn_)
+            })
+            .ctx("normal contact")?;
+        let (a, depth) = (tc.normal.radius, tc.normal.depth);
+        let mrd = out
+            .stage(
+                Stage::Tangential,
+                || -> mrd::Result<(Vec<f64>, Vec<f64>)> {
+                    let c = self
+                        .fractions
+                        .iter()
+                        .map(|f| Ok(tc.at_force(f * mu * fn_)?.stick_radius / a))
+                        .collect::<mrd::Result<Vec<_>>>()?;
+                    let w = self
+                        .amplitudes
+                        .iter()
+                        .map(|x| {
+                            let amp = tc.at_force(x * mu * fn_)?.displacement;
+                            dissipation_semi_analytic(&profile, e, g, mu, depth, amp)
+                        })
+                        .collect::<mrd::Result<Vec<_>>>()?;
+                    Ok((c, w))
+                },
+            )
+            .ctx("MRD tangential springs")?;
+        let closed = out.stage(Stage::ClosedForm, || {
+            let c: Vec<f64> = self.fractions.iter().map(|x| (1.0 - x).cbrt()).collect();
+            let w: Vec<f64> = self
+                .amplitudes
+                .iter()
+                .map(|x| mindlin_deresiewicz(mu * fn_, g, a, *x))
+                .collect();
+            (c, w)
+        });
+        let pressure = self.normal_3d(env, out, a)?;
+        let three = out
+            .stage(Stage::Tangential3d, || {
+                self.partial_slip(&pressure, a, e, g)
+            })
+            .ctx("3D partial slip")?;
+        self.report(
+            env,
+            out,
+            a,
+            (&mrd.0, &closed.0, &three.0),
+            (&mrd.1, &closed.1, &three.1),
+        );
+        Ok(())
+    }
+}
+
+/// The 3D side: stick radii over a, and per amplitude the dissipation and the loop's area.
+type Results3d = (Vec<f64>, Vec<(f64, f64)>);
+
+impl Tangential3d {
+    /// The sphere's pressure on the periodic grid at the normal force.
+    fn normal_3d(&self, env: &Env, out: &mut Section, a: f64) -> Result<Vec<f64>> {
+        let ctx = env.ctx;
+        let radius = for_profile::sphere_radius(ctx.profile()?).unwrap_or(1.0);
+        let (n, l) = (self.cells, self.period * a);
+        let h = l / n as f64;
+        let z: Vec<f64> = (0..n * n)
+            .map(|k| {
+                let x = ((k % n) as f64 + 0.5) * h - 0.5 * l;
+                let y = ((k / n) as f64 + 0.5) * h - 0.5 * l;
+                -(x * x + y * y) / (2.0 * radius)
+            })
+            .collect();
+        let opts = SolverOptions::new(self.tolerance, 10_000);
+        let sol = out
+            .stage(Stage::Bem3d, || {
+                let op = PeriodicHalfSpace::new(n, n, l, l, ctx.material.e_star);
+                ContactSolver::new(op, &z, None)?.solve(Load::Force(self.normal_force), &opts, None)
+            })
+            .ctx("3D normal contact")?;
+        out.scalar("contact_radius_3d", (sol.contact_area / PI).sqrt());
+        out.scalar("cells_per_contact_radius", a / h);
+        Ok(sol.pressure)
+    }
+
+    /// Monotonic loading through the fractions, then per amplitude a first loading and
+    /// two cycles, the second measured.
+    fn partial_slip(&self, p: &[f64], a: f64, e: f64, g_star: f64) -> bem3d::Result<Results3d> {
+        let (nu, g) = equivalent_body(e, g_star);
+        let (n, l) = (self.cells, self.period * a);
+        let fresh = || -> bem3d::Result<PartialSlip> {
+            PartialSlip::new(CerrutiPeriodic::new(n, n, l, l, g, nu)?, p, self.mu)
+        };
+        let cell = (l / n as f64).powi(2);
+        let tol = self.tolerance.max(1e-12);
+        let mut ps = fresh()?;
+        let limit = ps.friction_limit();
+        let mut stick = Vec::new();
+        for f in &self.fractions {
+            let s = ps.load(f * limit, tol)?;
+            stick.push((s.stick_cells as f64 * cell / PI).sqrt() / a);
+        }
+        let mut cycles = Vec::new();
+        for x in &self.amplitudes {
+            let amp = x * limit;
+            let mut ps = fresh()?;
+            let steps = self.steps;
+            for k in 1..=steps {
+                ps.load(amp * k as f64 / steps as f64, tol)?;
+            }
+            let (mut w, mut area) = (0.0, 0.0);
+            for cycle in 0..2 {
+                let mut last = ps.load(amp, tol)?;
+                for k in 1..=2 * steps {
+                    // Down to -amp in `steps` steps, back up in `steps` more.
+                    let f = if k <= steps {
+                        amp * (1.0 - 2.0 * k as f64 / steps as f64)
+                    } else {
+                        amp * (-1.0 + 2.0 * (k - steps) as f64 / steps as f64)
+                    };
+                    let s = ps.load(f, tol)?;
+                    if cycle == 1 {
+                        w += s.dissipated;
+                        area += 0.5 * (s.force + last.force) * (s.shift - last.shift);
+                    }
+                    last = s;
+                }
+            }
+            cycles.push((w, area));
+        }
+        Ok((stick, cycles))
+    }
+
+    /// The tables, figures and agreement scalars of both comparisons.
+    fn report(
+        &self,
+        env: &Env,
+        out: &mut Section,
+        a: f64,
+        (c_mrd, c_cf, c_3d): (&[f64], &[f64], &[f64]),
+        (w_mrd, w_cf, w_3d): (&[f64], &[f64], &[(f64, f64)]),
+    ) {
+        let units = &env.ctx.units;
+        let energy = format!("{} {}", units.force(), units.length);
+        let mut t = Table::new(
+            "stick",
+            &[
+                "tangential_force_over_mu_fn [1]".to_string(),
+                "stick_radius_over_a_closed_form [1]".to_string(),
+                "stick_radius_over_a_mrd [1]".to_string(),
+                "stick_radius_over_a_3d [1]".to_string(),
+            ],
+        );
+        t.notes.push(format!(
+            "Cattaneo-Mindlin c/a = (1 - F_x/(mu F_N))^(1/3); MRD: exact tangential springs; 3D: {0}^2 periodic cells, period {1} contact radii, {2:.1} cells per radius (stick radius from the count of stick cells)",
+            self.cells, self.period, a * self.cells as f64 / (self.period * a)
+        ));
+        let (mut dev_mrd, mut dev_3d) = (0.0f64, 0.0f64);
+        for (k, f) in self.fractions.iter().enumerate() {
+            dev_mrd = dev_mrd.max((c_mrd[k] - c_cf[k]).abs() / c_cf[k]);
+            dev_3d = dev_3d.max((c_3d[k] - c_cf[k]).abs() / c_cf[k]);
+            t.push(vec![*f, c_cf[k], c_mrd[k], c_3d[k]]);
+        }
+        out.scalar("stick_radius_max_rel_error_mrd", dev_mrd);
+        out.scalar("stick_radius_max_rel_error_3d", dev_3d);
+        let fig = Figure::new(
+            "stick",
+            "Stick radius against tangential force: 3D, MRD and Cattaneo-Mindlin",
+            "tangential force F_x / (mu F_N) [1]",
+            "stick radius c / contact radius a [1]",
+        )
+        .with(Series::new(
+            "Cattaneo-Mindlin (closed form)",
+            t.xy(
+                "tangential_force_over_mu_fn",
+                "stick_radius_over_a_closed_form",
+            ),
+            Style::Line,
+        ))
+        .with(Series::new(
+            "MRD (tangential springs)",
+            t.xy("tangential_force_over_mu_fn", "stick_radius_over_a_mrd"),
+            Style::Markers,
+        ))
+        .with(Series::new(
+            "3D boundary elements",
+            t.xy("tangential_force_over_mu_fn", "stick_radius_over_a_3d"),
+            Style::Crosses,
+        ));
+        out.tables.push(t);
+        out.figures.push(fig);
+        let mut t = Table::new(
+            "dissipation",
+            &[
+                "force_amplitude_over_mu_fn [1]".to_string(),
+                format!("dissipation_closed_form [{energy}]"),
+                format!("dissipation_mrd [{energy}]"),
+                format!("dissipation_3d [{energy}]"),
+                format!("loop_area_3d [{energy}]"),
+            ],
+        );
+        t.notes.push(format!(
+            "energy per cycle of an oscillating tangential force; closed form: Mindlin-Deresiewicz; MRD: its springs at the displacement amplitude of the force amplitude; 3D: the second of two cycles, {} force steps per half cycle, the dissipation summed over the steps and the loop's area (work of the force over the shift)",
+            self.steps
+        ));
+        let (mut wd_mrd, mut wd_3d, mut balance) = (0.0f64, 0.0f64, 0.0f64);
+        for (k, x) in self.amplitudes.iter().enumerate() {
+            wd_mrd = wd_mrd.max((w_mrd[k] - w_cf[k]).abs() / w_cf[k]);
+            wd_3d = wd_3d.max((w_3d[k].0 - w_cf[k]).abs() / w_cf[k]);
+            balance = balance.max((w_3d[k].1 - w_3d[k].0).abs() / w_3d[k].0);
+            t.push(vec![*x, w_cf[k], w_mrd[k], w_3d[k].0, w_3d[k].1]);
+        }
+        out.scalar("dissipation_max_rel_error_mrd", wd_mrd);
+        out.scalar("dissipation_max_rel_error_3d", wd_3d);
+        out.scalar("energy_balance_max_rel_3d", balance);
+        let x = "force_amplitude_over_mu_fn";
+        let fig = Figure::new(
+            "dissipation",
+            "Energy dissipated per cycle: 3D, MRD and Mindlin-Deresiewicz",
+            "force amplitude F* / (mu F_N) [1]",
+            &format!("dissipation per cycle W [{energy}]"),
+        )
+        .with(Series::new(
+            "Mindlin-Deresiewicz (closed form)",
+            t.xy(x, "dissipation_closed_form"),
+            Style::Line,
+        ))
+        .with(Series::new(
+            "MRD (tangential springs)",
+            t.xy(x, "dissipation_mrd"),
+            Style::Markers,
+        ))
+        .with(Series::new(
+            "3D boundary elements",
+            t.xy(x, "dissipation_3d"),
+            Style::Crosses,
+        ))
+        .log_log();
+        out.tables.push(t);
+        out.figures.push(fig);
+    }
+}
