@@ -312,6 +312,7 @@ impl PartialSlip {
         let mut v = vec![0.0; n];
         let mut free_prev: Vec<bool> = Vec::new();
         let mut g_old = 0.0;
+        let mut last = f64::INFINITY;
         for it in 0..MAX_ITERATIONS {
             self.op.apply(&self.q, &mut u);
             let r: Vec<f64> = (0..n).map(|i| u[i] + self.slip[i]).collect();
@@ -360,6 +361,7 @@ impl PartialSlip {
                 }
             }
             let residual = worst / scale;
+            last = residual;
             if residual <= tolerance {
                 return Ok((it, residual, shift));
             }
@@ -414,7 +416,7 @@ impl PartialSlip {
         Err(BemError::Breakdown {
             what: "partial slip",
             iterations: MAX_ITERATIONS,
-            residual: f64::NAN,
+            residual: last,
             reason: "no convergence within the iteration limit",
         })
     }

@@ -678,3 +678,45 @@ fn spring_memory_estimates_hold() {
         );
     }
 }
+
+/// `tangential_3d` refuses what it cannot compare, naming the key: a profile without
+/// Cattaneo-Mindlin's closed forms, fractions out of (0, 1) or not increasing (they are
+/// read along one monotonic loading), G*/E* outside what one elastic body can have, a
+/// grid too coarse.
+#[test]
+fn tangential_3d_bad_input_names_the_key() {
+    let tmp = tempfile::tempdir().unwrap();
+    let base = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/tangential-3d.toml"),
+    )
+    .unwrap();
+    let cases = [
+        (
+            base.replace(
+                "{ kind = \"sphere\", radius = 10.0 }",
+                "{ kind = \"cone\", slope = 0.2 }",
+            ),
+            "needs a sphere",
+        ),
+        (base.clone() + "fractions = [0.5, 0.2]\n", "must increase"),
+        (base.clone() + "amplitudes = [0.5, 1.0]\n", "amplitudes"),
+        (base.replace("cells = 256", "cells = 8"), "cells = 8"),
+        (
+            base.replace(
+                "[material.indenter]\nyoungs_modulus = inf\npoisson_ratio = 0.5\n\n[material.substrate]\nyoungs_modulus = 3.0\npoisson_ratio = 0.5",
+                "[material]\ne_star = 1.0\ng_star = 0.1",
+            ),
+            "Poisson's ratio",
+        ),
+    ];
+    for (k, (text, needle)) in cases.iter().enumerate() {
+        assert_ne!(text, &base, "case {k} changed nothing");
+        let path = tmp.path().join(format!("t{k}.toml"));
+        std::fs::write(&path, text).unwrap();
+        let o = mrdw_in(
+            tmp.path(),
+            &["run", path.to_str().unwrap(), "--out", &format!("o{k}")],
+        );
+        refused(&o, needle);
+    }
+}

@@ -125,6 +125,14 @@ impl Output for Tangential3d {
                 return bad(format!("{key} = {v:?}: give fractions of mu F_N in (0, 1)"));
             }
         }
+        // The stick radii are read along one monotonic loading (a smaller force after a
+        // larger one would be an unloading, with other stick radii).
+        if self.fractions.windows(2).any(|w| w[1] <= w[0]) {
+            return bad(format!(
+                "fractions = {:?} must increase: they are read along one monotonic loading",
+                self.fractions
+            ));
+        }
         if !(2..=1000).contains(&self.steps) {
             return bad(format!(
                 "steps = {} per half cycle must lie in 2..=1000",
@@ -243,7 +251,7 @@ impl Tangential3d {
             PartialSlip::new(CerrutiPeriodic::new(n, n, l, l, g, nu)?, p, self.mu)
         };
         let cell = (l / n as f64).powi(2);
-        let tol = self.tolerance.max(1e-12);
+        let tol = self.tolerance;
         let mut ps = fresh()?;
         let limit = ps.friction_limit();
         let mut stick = Vec::new();
