@@ -5,6 +5,12 @@
 //! with Coulomb friction under a held normal pressure ([`tangential`]: a solver beside
 //! the normal one, on the same transforms). Knows nothing of MRD: it takes plain height
 //! arrays (row-major `ny x nx`). Operators ([`operator`]) are apart from the solvers.
+//!
+//! Public modules beyond the solvers and operators, and who needs them: [`fft`] (the
+//! real 2D transform: `mrdw bench` times one convolution with it, and bem3d's tests
+//! check the transforms), [`wide`] (the SIMD kernels, tested one by one in
+//! `bem3d/tests`), [`mask`] (disc masks for scenes and tests). The symbols and the
+//! stencil preconditioner are internal.
 
 // Numerical kernels index several parallel arrays with one index.
 #![allow(clippy::needless_range_loop)]
@@ -20,8 +26,8 @@ pub use error::{BemError, Result};
 pub mod sliding;
 pub mod solution;
 pub mod solver;
-pub mod stencil;
-pub mod symbol;
+mod stencil;
+mod symbol;
 pub mod tangential;
 pub mod viscoelastic;
 pub mod wide;
