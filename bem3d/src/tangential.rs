@@ -220,10 +220,9 @@ impl PartialSlip {
         if force.abs() >= self.friction {
             return Ok(self.sliding(force));
         }
-        let (iterations, residual, shift) = self.iterate(force, tolerance)?;
+        // `u = K q` of the converged traction, from the iteration's last check.
+        let (iterations, residual, shift, u) = self.iterate(force, tolerance)?;
         let n = self.q.len();
-        let mut u = vec![0.0; n];
-        self.op.apply(&self.q, &mut u);
         let (mut stick, mut slipping, mut dissipated) = (0, 0, 0.0);
         for i in 0..n {
             if self.bound[i] == 0.0 {
@@ -302,8 +301,8 @@ impl PartialSlip {
     }
 
     /// The projected conjugate gradient of one step (module docs); returns the
-    /// iterations, the residual and the shift.
-    fn iterate(&mut self, force: f64, tolerance: f64) -> Result<(usize, f64, f64)> {
+    /// iterations, the residual, the shift and the displacement `K q`.
+    fn iterate(&mut self, force: f64, tolerance: f64) -> Result<(usize, f64, f64, Vec<f64>)> {
         let n = self.q.len();
         let target = force / self.op.cell_area();
         self.restore_force(target);
@@ -363,7 +362,7 @@ impl PartialSlip {
             let residual = worst / scale;
             last = residual;
             if residual <= tolerance {
-                return Ok((it, residual, shift));
+                return Ok((it, residual, shift, u));
             }
             // Conjugate direction on the stick set, its residual about its mean.
             let fc = free.iter().filter(|f| **f).count().max(1) as f64;
