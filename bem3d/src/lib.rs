@@ -3,7 +3,9 @@
 //! Frictionless, non-adhesive normal contact of a rigid body with an arbitrary height
 //! map against a linear elastic half-space of modulus E* ([`solver`]), and partial slip
 //! with Coulomb friction under a held normal pressure ([`tangential`]: a solver beside
-//! the normal one, on the same transforms). Knows nothing of MRD: it takes plain height
+//! the normal one, on the same transforms), and adhesive normal contact in the JKR limit
+//! ([`adhesion`]: a second solver beside the normal one, generic over the same
+//! operators). Knows nothing of MRD: it takes plain height
 //! arrays (row-major `ny x nx`). Operators ([`operator`]) are apart from the solvers.
 //!
 //! Public modules beyond the solvers and operators, and who needs them: [`fft`] (the
@@ -15,6 +17,7 @@
 // Numerical kernels index several parallel arrays with one index.
 #![allow(clippy::needless_range_loop)]
 
+pub mod adhesion;
 pub mod error;
 pub mod fft;
 mod love;
