@@ -504,22 +504,6 @@ mod tests {
         (d, f)
     }
 
-    /// JKR's contact radius at approach `d` on the stable branch (a above the turning
-    /// point of d(a)), by bisection.
-    fn jkr_radius(e: f64, r: f64, w: f64, d: f64) -> f64 {
-        let turn = (PI * w * r * r / (8.0 * e)).cbrt();
-        let (mut lo, mut hi) = (turn, 10.0 * turn + (r * d.abs()).sqrt());
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            if jkr(e, r, w, mid).0 < d {
-                lo = mid
-            } else {
-                hi = mid
-            }
-        }
-        0.5 * (lo + hi)
-    }
-
     #[test]
     fn cell_compliance_is_the_mean_of_loves_displacement() {
         for (hx, hy) in [(1.0, 1.0), (2.0, 1.0), (0.3, 1.7)] {
@@ -542,39 +526,6 @@ mod tests {
         }
         // Pohrt & Popov's factor for a square cell: c / 2 = 0.47320 h / E*.
         assert!((cell_compliance(1.0, 1.0) / 2.0 - 0.473201).abs() < 1e-6);
-    }
-
-    /// An approach-controlled cycle of a sphere (R = 1, E* = 1): loading to `d_max`,
-    /// unloading until separation; the unloading branch as (d, F, contact radius).
-    fn sphere_cycle(n: usize, l: f64, w: f64, d_max: f64, steps: usize) -> Vec<(f64, f64, f64)> {
-        let h = l / n as f64;
-        let heights: Vec<f64> = (0..n * n)
-            .map(|k| {
-                let x = ((k % n) as f64 + 0.5) * h - 0.5 * l;
-                let y = ((k / n) as f64 + 0.5) * h - 0.5 * l;
-                -(x * x + y * y) / 2.0
-            })
-            .collect();
-        let op = NonPeriodicHalfSpace::new(n, n, l, l, 1.0);
-        let mut c = AdhesiveContact::new(op, &heights, None, w).unwrap();
-        // Depths measured from the highest cell centre, whose offset from the apex is
-        // the same at every resolution: shift to the apex.
-        let apex = heights.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
-        for k in 1..=steps {
-            c.step(Load::Approach(d_max * k as f64 / steps as f64 + apex), 1e-8)
-                .unwrap();
-        }
-        let mut branch = Vec::new();
-        let dd = d_max / steps as f64;
-        let mut d = d_max;
-        loop {
-            let s = c.step(Load::Approach(d + apex), 1e-8).unwrap();
-            branch.push((d, s.force, (s.contact_area / PI).sqrt()));
-            if s.separated {
-                return branch;
-            }
-            d -= dd;
-        }
     }
 
     /// An approach-controlled cycle of a body of revolution `z(r)` (E* = 1) on an
