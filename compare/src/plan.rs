@@ -22,6 +22,8 @@ pub enum Stage {
     AdhesionSemiAnalytic,
     /// Event-driven loading-unloading of the adhesive spring row.
     AdhesionDiscrete,
+    /// 3D adhesive contact in the JKR limit (`bem3d::adhesion`).
+    Adhesion3d,
     /// Cattaneo-Mindlin/Jager tangential contact (Eqs. 41-50).
     Tangential,
     /// Tangential traction by the Abel transform of Eq. (51).
@@ -63,6 +65,7 @@ impl Stage {
             Stage::AbelPressure => "abel_pressure",
             Stage::AdhesionSemiAnalytic => "adhesion_semi_analytic",
             Stage::AdhesionDiscrete => "adhesion_discrete",
+            Stage::Adhesion3d => "adhesion_3d",
             Stage::Tangential => "tangential",
             Stage::AbelTraction => "abel_traction",
             Stage::Tangential3d => "tangential_3d",

@@ -55,6 +55,10 @@ pub const KINDS: &[Kind] = &[
         "adhesion",
         "adhesive loading-unloading and pull-off (Eqs. 33-37)",
     ),
+    Kind::of::<axisym::adhesion_3d::Adhesion3d>(
+        "adhesion_3d",
+        "an adhesive loading-unloading cycle in 3D beside MRD: loop, pull-off and jump-out on a ladder of grids against Eq. 33 and JKR, Kendall or the cone (Section 5)",
+    ),
     Kind::of::<axisym::tangential::Tangential>(
         "tangential",
         "Cattaneo-Mindlin tangential loading and tractions (Eqs. 41-51)",

@@ -4,6 +4,15 @@
 /// (name, TOML text); the first is the default scene.
 pub const EMBEDDED: &[(&str, &str)] = &[
     ("fig6", include_str!("../../cases/fig6.toml")),
+    ("adhesion-3d", include_str!("../../cases/adhesion-3d.toml")),
+    (
+        "adhesion-3d-punch",
+        include_str!("../../cases/adhesion-3d-punch.toml"),
+    ),
+    (
+        "adhesion-3d-cone",
+        include_str!("../../cases/adhesion-3d-cone.toml"),
+    ),
     (
         "adhesive-cone",
         include_str!("../../cases/adhesive-cone.toml"),

@@ -720,3 +720,45 @@ fn tangential_3d_bad_input_names_the_key() {
         refused(&o, needle);
     }
 }
+
+/// `adhesion_3d` refuses what it cannot run, naming the key: no work of adhesion, a
+/// ladder that does not refine, a grid too coarse, a domain that cuts the contact.
+#[test]
+fn adhesion_3d_bad_input_names_the_key() {
+    let tmp = tempfile::tempdir().unwrap();
+    let base = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/adhesion-3d.toml"),
+    )
+    .unwrap();
+    let cases = [
+        (base.replace("gamma = 0.002", "gamma = 0.0"), "gamma"),
+        (base.replace("gamma = 0.002", "gamma = -1.0"), "gamma"),
+        (
+            base.replace("cells = [32, 64, 128, 256]", "cells = [64, 32]"),
+            "must increase",
+        ),
+        (
+            base.replace("cells = [32, 64, 128, 256]", "cells = [8]"),
+            "cells = [8]",
+        ),
+        (
+            base.replace("extent = 1.25", "extent = 0.5"),
+            "extent = 0.5",
+        ),
+        (base.replace("steps = 100", "steps = 1"), "steps = 1"),
+        (
+            base.replace("depth_max = 0.155", "depth_max = nan"),
+            "depth_max",
+        ),
+    ];
+    for (k, (text, needle)) in cases.iter().enumerate() {
+        assert_ne!(text, &base, "case {k} changed nothing");
+        let path = tmp.path().join(format!("a{k}.toml"));
+        std::fs::write(&path, text).unwrap();
+        let o = mrdw_in(
+            tmp.path(),
+            &["run", path.to_str().unwrap(), "--out", &format!("o{k}")],
+        );
+        refused(&o, needle);
+    }
+}

@@ -2,6 +2,7 @@
 //! adhesion, tangential loading and damping (Sections 3-7).
 
 pub mod adhesion;
+pub mod adhesion_3d;
 pub mod damping;
 pub mod force_depth;
 pub(crate) mod hess;

@@ -1,0 +1,480 @@
+//! `adhesion_3d`: an adhesive loading-unloading cycle of a body of revolution in 3D and
+//! in MRD side by side (Section 5): the force-approach loop, the pull-off force under
+//! force control (the smallest force of the approach-controlled branch) and the jump-out
+//! under approach control, each on a ladder of grids, against MRD's rule of Hess
+//! (Eq. 33, exact for bodies of revolution) and the closed forms where the profile has
+//! one (JKR, Kendall's punch Eq. 34, the cone Eq. 37).
+//!
+//! The 3D side is `bem3d::adhesion` on a non-periodic half-space: zero-range adhesion
+//! with Pohrt & Popov's mesh-dependent detachment criterion, the 3D counterpart of
+//! Eq. 33, which converges to the Griffith (JKR) limit as the cells shrink. Both sides
+//! load without adhesion at a distance (cells and springs join on touching) and unload
+//! through the adhesive branch, so their loops are the same construction.
+
+use super::hess;
+use crate::checks::{bad, check_memory, check_tolerance, default_tolerance, positive};
+use crate::context::Context;
+use crate::error::{Context as _, Result};
+use crate::output::{Env, Output};
+use crate::plan::Stage;
+use crate::report::{Figure, Section, Series, Style, Table};
+use bem3d::adhesion::AdhesiveContact;
+use bem3d::{Load, NonPeriodicHalfSpace};
+use mrd::adhesion::{AdhesiveContact as AdhesiveRow, Control, PullOff};
+use mrd::reference::for_profile;
+use serde::Deserialize;
+use std::f64::consts::PI;
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Adhesion3d {
+    /// Work of adhesion [energy / length^2].
+    gamma: f64,
+    /// Depth of the loading [length].
+    depth_max: f64,
+    /// Cells per side of the 3D grids, coarse to fine (a grid-convergence ladder).
+    #[serde(default = "default_cells")]
+    cells: Vec<usize>,
+    /// Side of the 3D grid over the contact diameter at `depth_max` (the free
+    /// half-space needs no margin for images; >= 1.1 keeps the rim inside).
+    #[serde(default = "default_extent")]
+    extent: f64,
+    /// Approach steps of the loading; the unloading goes down by the same step until
+    /// the body separates.
+    #[serde(default = "default_steps")]
+    steps: usize,
+    #[serde(default = "default_tolerance")]
+    tolerance: f64,
+}
+
+fn default_cells() -> Vec<usize> {
+    vec![32, 64, 128]
+}
+fn default_extent() -> f64 {
+    1.25
+}
+fn default_steps() -> usize {
+    100
+}
+
+/// Peak bytes per cell of the 3D side: the non-periodic operator and a dozen grids.
+const BYTES_PER_CELL: f64 = crate::checks::BYTES_PER_CELL_NON_PERIODIC + 100.0;
+
+/// One grid's cycle: the unloading branch's points and its pull-off measures.
+struct Cycle3d {
+    cells: usize,
+    /// Cell size [length].
+    h: f64,
+    /// (depth, force, contact radius, unloading).
+    curve: Vec<(f64, f64, f64, bool)>,
+    /// The smallest force of the unloading branch (force control's pull-off).
+    pull_off: f64,
+    /// Force and depth of the last step in contact (approach control's jump-out).
+    jump_force: f64,
+    jump_depth: f64,
+    rounds: usize,
+    iterations: usize,
+}
+
+/// MRD's loop and pull-offs: (loading and unloading curve, force and approach control).
+struct Mrd {
+    curve: Vec<(f64, f64, f64, bool)>,
+    force: PullOff,
+    approach: PullOff,
+}
+
+impl Output for Adhesion3d {
+    fn validate(&self, ctx: &Context) -> Result<()> {
+        ctx.profile()?;
+        if !positive(self.gamma) {
+            return bad("gamma (work of adhesion) must be > 0");
+        }
+        if !positive(self.depth_max) {
+            return bad("depth_max must be > 0");
+        }
+        if self.cells.is_empty() || self.cells.iter().any(|n| !(16..=2048).contains(n)) {
+            return bad(format!(
+                "cells = {:?}: give grid sizes in 16..=2048, coarse to fine",
+                self.cells
+            ));
+        }
+        if self.cells.windows(2).any(|w| w[1] <= w[0]) {
+            return bad(format!(
+                "cells = {:?} must increase (a refinement ladder)",
+                self.cells
+            ));
+        }
+        let n = *self.cells.last().unwrap_or(&16);
+        check_memory((n * n) as f64 * BYTES_PER_CELL, &format!("cells = {n}"))?;
+        if !(self.extent.is_finite() && (1.1..=100.0).contains(&self.extent)) {
+            return bad(format!(
+                "extent = {}: the grid's side over the contact diameter must lie in [1.1, 100]",
+                self.extent
+            ));
+        }
+        if !(2..=10_000).contains(&self.steps) {
+            return bad(format!("steps = {} must lie in 2..=10000", self.steps));
+        }
+        check_tolerance(self.tolerance)
+    }
+
+    fn stages(&self, ctx: &Context) -> Vec<Stage> {
+        let mut s = vec![Stage::HessTransform, Stage::AdhesionSemiAnalytic];
+        if ctx
+            .profile
+            .as_ref()
+            .and_then(|p| for_profile::pull_off(p, 1.0, 1.0, true))
+            .is_some()
+        {
+            s.push(Stage::ClosedForm);
+        }
+        s.push(Stage::Adhesion3d);
+        s
+    }
+
+    fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
+        let contact = hess::hess(env, out)?;
+        let e = env.ctx.material.e_star;
+        let gamma = self.gamma;
+        let mrd = out
+            .stage(Stage::AdhesionSemiAnalytic, || self.mrd(contact))
+            .ctx("MRD adhesion")?;
+        let profile = env.ctx.profile()?;
+        let closed = out.stage(Stage::ClosedForm, || {
+            (
+                for_profile::pull_off(profile, e, gamma, true),
+                for_profile::pull_off(profile, e, gamma, false),
+            )
+        });
+        let a_top = mrd.curve.iter().map(|c| c.2).fold(0.0, f64::max);
+        let grids = out
+            .stage(Stage::Adhesion3d, || {
+                self.cells
+                    .iter()
+                    .map(|&n| self.cycle_3d(env, n, a_top))
+                    .collect::<bem3d::Result<Vec<_>>>()
+            })
+            .ctx("3D adhesive cycle")?;
+        self.report(env, out, &mrd, closed, &grids);
+        Ok(())
+    }
+}
+
+impl Adhesion3d {
+    /// MRD: loading without adhesion to `depth_max`, unloading by the rule of Hess down
+    /// to the jump-out of approach control (the smaller radius of the two controls).
+    fn mrd(&self, contact: mrd::normal::AxisymmetricContact) -> mrd::Result<Mrd> {
+        let ad = AdhesiveRow::new(contact.clone(), self.gamma)?;
+        let top = contact.state_at_depth(self.depth_max)?;
+        let a_max = top.radius;
+        let force = ad.pull_off(a_max, Control::Force)?;
+        let approach = ad.pull_off(a_max, Control::Displacement)?;
+        let points = 200;
+        let mut curve = Vec::with_capacity(2 * points + 2);
+        for k in 0..=points {
+            let a = a_max * k as f64 / points as f64;
+            let s = contact.state_at_radius(a)?;
+            curve.push((s.depth, s.force, a, false));
+        }
+        curve.push((top.depth, top.force, a_max, true));
+        for k in 0..=points {
+            let a = a_max - (a_max - approach.radius) * k as f64 / points as f64;
+            curve.push((ad.depth_at_radius(a)?, ad.force_at_radius(a)?, a, true));
+        }
+        Ok(Mrd {
+            curve,
+            force,
+            approach,
+        })
+    }
+
+    /// The 3D cycle on an `n x n` non-periodic grid of side `extent * 2 a_top`.
+    fn cycle_3d(&self, env: &Env, n: usize, a_top: f64) -> bem3d::Result<Cycle3d> {
+        let profile = env
+            .ctx
+            .profile()
+            .map_err(|e| bem3d::BemError::InvalidInput(format!("profile: {e}")))?;
+        let l = self.extent * 2.0 * a_top;
+        let h = l / n as f64;
+        let radius = |k: usize| {
+            let x = ((k % n) as f64 + 0.5) * h - 0.5 * l;
+            let y = ((k / n) as f64 + 0.5) * h - 0.5 * l;
+            x.hypot(y)
+        };
+        // Cells beyond the rim (a punch) or the profile's table cannot touch.
+        let reach = profile.max_contact_radius();
+        let mask: Vec<bool> = (0..n * n).map(|k| radius(k) < reach).collect();
+        let heights: Vec<f64> = (0..n * n)
+            .map(|k| if mask[k] { -profile.z(radius(k)) } else { 0.0 })
+            .collect();
+        // Approaches from the apex (z = 0), as MRD's depths: the solver's are from the
+        // highest cell.
+        let apex = (0..n * n)
+            .filter(|&k| mask[k])
+            .map(|k| heights[k])
+            .fold(f64::NEG_INFINITY, f64::max);
+        let op = NonPeriodicHalfSpace::new(n, n, l, l, env.ctx.material.e_star);
+        let mut c = AdhesiveContact::new(op, &heights, Some(&mask), self.gamma)?;
+        let dd = self.depth_max / self.steps as f64;
+        let mut cycle = Cycle3d {
+            cells: n,
+            h,
+            curve: Vec::new(),
+            pull_off: 0.0,
+            jump_force: 0.0,
+            jump_depth: 0.0,
+            rounds: 0,
+            iterations: 0,
+        };
+        let mut record = |d: f64, unloading: bool, c: &mut AdhesiveContact<_>| {
+            let s = c.step(Load::Approach(d + apex), self.tolerance)?;
+            cycle.rounds += s.rounds;
+            cycle.iterations += s.iterations;
+            if !s.separated {
+                let a = (s.contact_area / PI).sqrt();
+                cycle.curve.push((d, s.force, a, unloading));
+            }
+            Ok::<bool, bem3d::BemError>(s.separated)
+        };
+        for k in 1..=self.steps {
+            record(dd * k as f64, false, &mut c)?;
+        }
+        // Unloading until separation; a guard far below any jump-out.
+        let mut separated = false;
+        for k in 0..100 * self.steps {
+            if record(self.depth_max - dd * k as f64, true, &mut c)? {
+                separated = true;
+                break;
+            }
+        }
+        if !separated {
+            return Err(bem3d::BemError::Infeasible(format!(
+                "the body did not separate within {} approach steps below depth_max",
+                100 * self.steps
+            )));
+        }
+        let unloading = cycle.curve.iter().filter(|p| p.3);
+        let last = unloading.clone().next_back().copied().unwrap_or_default();
+        cycle.pull_off = unloading.map(|p| p.1).fold(f64::INFINITY, f64::min);
+        cycle.jump_force = last.1;
+        cycle.jump_depth = last.0;
+        Ok(cycle)
+    }
+}
+
+/// The closed-form pull-off magnitudes (force control, approach control) and their
+/// sources, where the profile has them.
+type ClosedForms<'a> = (Option<(f64, &'a str)>, Option<(f64, &'a str)>);
+
+/// Observed order of convergence between the last two grids of a ladder.
+fn observed_order(err: &[(f64, f64)]) -> f64 {
+    match err {
+        [.., (n1, e1), (n2, e2)] => (e1 / e2).ln() / (n2 / n1).ln(),
+        _ => f64::NAN,
+    }
+}
+
+impl Adhesion3d {
+    /// Tables, figures and scalars: the loops, and the pull-offs against the grid.
+    fn report(
+        &self,
+        env: &Env,
+        out: &mut Section,
+        mrd: &Mrd,
+        (closed_force, closed_approach): ClosedForms,
+        grids: &[Cycle3d],
+    ) {
+        let u = &env.ctx.units;
+        let (len, force) = (&u.length, u.force());
+        let mut t = Table::new(
+            "cycle",
+            &[
+                "cells [1]".to_string(),
+                format!("depth [{len}]"),
+                format!("force [{force}]"),
+                format!("contact_radius [{len}]"),
+                "unloading [0/1]".to_string(),
+            ],
+        );
+        t.notes.push(format!(
+            "work of adhesion {:e} [{}]; cells = 0: MRD (loading without adhesion, unloading by the rule of Hess, Eq. 33, to the jump-out of approach control); cells = n: 3D, n x n free half-space of side {} contact diameters, approach steps of depth_max / {}, contact radius sqrt(area / pi)",
+            self.gamma,
+            u.surface_energy(),
+            self.extent,
+            self.steps
+        ));
+        for p in &mrd.curve {
+            t.push(vec![0.0, p.0, p.1, p.2, p.3 as u8 as f64]);
+        }
+        for g in grids {
+            for p in &g.curve {
+                t.push(vec![g.cells as f64, p.0, p.1, p.2, p.3 as u8 as f64]);
+            }
+        }
+        let mut fig = Figure::new(
+            "cycle",
+            "Adhesive loading and unloading: 3D boundary elements and MRD",
+            &format!("depth d [{len}]"),
+            &format!("normal force F [{force}]"),
+        );
+        let branch = |cells: usize, unloading: bool| -> Vec<(f64, f64)> {
+            t.rows
+                .iter()
+                .filter(|r| r[0] == cells as f64 && (r[4] == 1.0) == unloading)
+                .map(|r| (r[1], r[2]))
+                .collect()
+        };
+        // 3D first (every few steps, so the lines stay visible), MRD's lines on top.
+        let stride = (self.steps / 25).max(1);
+        for (k, g) in grids.iter().enumerate() {
+            let mut pts = branch(g.cells, false);
+            pts.extend(branch(g.cells, true));
+            let pts: Vec<(f64, f64)> = pts.into_iter().step_by(stride).collect();
+            let style = if k + 1 == grids.len() {
+                Style::Markers
+            } else {
+                Style::Crosses
+            };
+            fig = fig.with(Series::new(
+                format!(
+                    "3D, {}^2 cells ({:.0} per pull-off radius), every {stride} steps",
+                    g.cells,
+                    mrd.force.radius / g.h
+                ),
+                pts,
+                style,
+            ));
+        }
+        fig = fig
+            .with(Series::new(
+                "MRD loading (springs join on touching)",
+                branch(0, false),
+                Style::Line,
+            ))
+            .with(Series::new(
+                "MRD unloading (rule of Hess, Eq. 33)",
+                branch(0, true),
+                Style::Line,
+            ));
+        out.tables.push(t);
+        out.figures.push(fig);
+        self.report_pull_off(env, out, mrd, (closed_force, closed_approach), grids);
+    }
+
+    /// The pull-off table, its convergence figure and the scalars.
+    fn report_pull_off(
+        &self,
+        env: &Env,
+        out: &mut Section,
+        mrd: &Mrd,
+        (closed_force, closed_approach): ClosedForms,
+        grids: &[Cycle3d],
+    ) {
+        let u = &env.ctx.units;
+        let (len, force) = (&u.length, u.force());
+        let mut t = Table::new(
+            "pull_off",
+            &[
+                "cells [1]".to_string(),
+                "cells_per_pull_off_radius [1]".to_string(),
+                format!("pull_off_force_3d [{force}]"),
+                format!("pull_off_force_mrd [{force}]"),
+                "pull_off_rel_error_3d [1]".to_string(),
+                format!("jump_out_force_3d [{force}]"),
+                format!("jump_out_force_mrd [{force}]"),
+                format!("jump_out_depth_3d [{len}]"),
+                format!("jump_out_depth_mrd [{len}]"),
+                "jump_out_depth_rel_error_3d [1]".to_string(),
+                "rounds [1]".to_string(),
+                "iterations [1]".to_string(),
+            ],
+        );
+        t.notes.push(format!(
+            "pull-off: the smallest force of the approach-controlled unloading (force control's pull-off); jump-out: the last step in contact under approach control, its depth within one approach step (depth_max / {}) of the jump (the force there is ill-conditioned: F(d) has a vertical tangent at the jump); errors against MRD (exact for bodies of revolution); cells per pull-off radius: MRD's force-control pull-off radius {:e} [{len}] over the cell size",
+            self.steps, mrd.force.radius
+        ));
+        let (f_po, f_jump) = (mrd.force.force, mrd.approach.force);
+        let mut err_po = Vec::new();
+        let mut err_jump = Vec::new();
+        for g in grids {
+            let per = mrd.force.radius / g.h;
+            let e1 = g.pull_off / f_po - 1.0;
+            let e2 = g.jump_depth / mrd.approach.depth - 1.0;
+            err_po.push((per, e1.abs()));
+            err_jump.push((per, e2.abs()));
+            t.push(vec![
+                g.cells as f64,
+                per,
+                g.pull_off,
+                f_po,
+                e1,
+                g.jump_force,
+                f_jump,
+                g.jump_depth,
+                mrd.approach.depth,
+                e2,
+                g.rounds as f64,
+                g.iterations as f64,
+            ]);
+        }
+        if let Some((v, source)) = closed_force {
+            out.scalar("pull_off_rel_error_mrd", (-f_po / v - 1.0).abs());
+            t.notes.push(format!(
+                "closed form (force control, {source}): {:e} [{force}]",
+                -v
+            ));
+        }
+        if let Some((v, source)) = closed_approach {
+            out.scalar("jump_out_rel_error_mrd", (-f_jump / v - 1.0).abs());
+            t.notes.push(format!(
+                "closed form (approach control, {source}): {:e} [{force}]",
+                -v
+            ));
+        }
+        let finest = err_po.last().copied().unwrap_or((f64::NAN, f64::NAN));
+        out.scalar("cells_per_pull_off_radius", finest.0);
+        out.scalar("pull_off_rel_error_3d", finest.1);
+        out.scalar("pull_off_order_3d", observed_order(&err_po));
+        out.scalar(
+            "jump_out_depth_rel_error_3d",
+            err_jump.last().map_or(f64::NAN, |e| e.1),
+        );
+        out.scalar(
+            "approach_step_over_jump_out_depth",
+            self.depth_max / self.steps as f64 / mrd.approach.depth.abs(),
+        );
+        let fig = Figure::new(
+            "convergence",
+            "3D pull-off against MRD: error against the grid",
+            "cells per pull-off radius [1]",
+            "relative error against MRD [1]",
+        )
+        .with(Series::new(
+            "pull-off force (force control)",
+            err_po,
+            Style::Markers,
+        ))
+        .with(Series::new(
+            "jump-out depth (approach control)",
+            err_jump.clone(),
+            Style::Crosses,
+        ))
+        .with(Series::new(
+            "one approach step over the jump-out depth (the depth's resolution)",
+            vec![
+                (
+                    err_jump[0].0,
+                    self.depth_max / self.steps as f64 / mrd.approach.depth.abs(),
+                ),
+                (
+                    finest.0,
+                    self.depth_max / self.steps as f64 / mrd.approach.depth.abs(),
+                ),
+            ],
+            Style::Dashed,
+        ))
+        .log_log();
+        out.tables.push(t);
+        out.figures.push(fig);
+    }
+}
