@@ -33,7 +33,7 @@ const EXAMPLES: &str = "Examples:
   mrdw show jkr > my.toml       start a new scene from an embedded one
   mrdw run fig6-full --shard 0/4 --out shards/0    one machine's share of a sweep
   mrdw merge shards/0 shards/1 shards/2 shards/3   combine the shares into one report
-  mrdw bench mrd | rough | bem | sliding | sliding3d | viscoelastic
+  mrdw bench mrd | rough | bem | sliding | sliding3d | viscoelastic | adhesion
                                                      run time (and error) of the solvers
   mrdw bench report [--quick]   run time against error as a report folder, reports/bench/
 
@@ -164,6 +164,10 @@ enum BenchTarget {
     /// elastic solves of the same grid, 128^2 .. (--max-n)^2 (default up to 512), and of
     /// 400 MRD lines on viscoelastic springs.
     Viscoelastic,
+    /// Adhesive contact: seconds per load step of a JKR sphere's approach-retraction
+    /// cycle (bem3d::adhesion) against warm-started non-adhesive solves at the same
+    /// approaches, free grids 128^2 .. (--max-n)^2 (default up to 512).
+    Adhesion,
     /// Run time against error as a report folder (CSV + PNG): axisymmetric cases with
     /// closed forms (MRD semi-analytic, springs, 3D), rough contacts (alpha against a
     /// reference, 3D and MRD), scaling with fitted exponents.
@@ -183,7 +187,7 @@ impl BenchTarget {
     /// `--max-n` as given, else this target's default.
     fn max_n(self, given: Option<u64>) -> usize {
         let default = match self {
-            BenchTarget::Sliding3d | BenchTarget::Viscoelastic => 512,
+            BenchTarget::Sliding3d | BenchTarget::Viscoelastic | BenchTarget::Adhesion => 512,
             BenchTarget::Large => 16384,
             _ => 1024,
         };
@@ -213,8 +217,8 @@ fn bench_options_apply(
         ),
         (
             "--max-n",
-            max_n.is_some() && !matches!(target, Bem | Sliding3d | Viscoelastic | Large),
-            "bem, sliding3d, viscoelastic and large",
+            max_n.is_some() && !matches!(target, Bem | Sliding3d | Viscoelastic | Adhesion | Large),
+            "bem, sliding3d, viscoelastic, adhesion and large",
         ),
         (
             "--write-surfaces",
@@ -413,6 +417,7 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
                 BenchTarget::Sliding => bench::run_sliding(&mut out.0, exp)?,
                 BenchTarget::Sliding3d => bench::run_sliding_3d(&mut out.0, side)?,
                 BenchTarget::Viscoelastic => bench::run_viscoelastic(&mut out.0, side)?,
+                BenchTarget::Adhesion => bench::run_adhesion(&mut out.0, side)?,
                 BenchTarget::Large => bench::run_large(&mut out.0, side)?,
                 BenchTarget::Bem => bench::run_bem(&mut out.0, side, write_surfaces.as_deref())?,
                 BenchTarget::Report => {

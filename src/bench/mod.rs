@@ -5,8 +5,10 @@ pub mod common;
 mod large;
 pub mod report;
 mod rough_ladder;
+mod adhesion;
 mod viscoelastic;
 pub use large::{run_large, run_large_case};
+pub use adhesion::run_adhesion;
 pub use viscoelastic::run_viscoelastic;
 
 use common::{child_error, field, peak_memory_mib, reference_surface};
