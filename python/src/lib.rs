@@ -3,6 +3,7 @@
 //! results are bit-identical to the CLI's. Arrays come in as numpy (converted once) and
 //! go out as numpy arrays that own their data; long solves release the GIL.
 
+mod adhesive;
 mod axisym;
 mod contact;
 mod errors;
@@ -25,6 +26,8 @@ fn _mrdw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<contact::ContactResult>()?;
     m.add_class::<transient::TransientContact>()?;
     m.add_class::<transient::TransientStep>()?;
+    m.add_class::<adhesive::AdhesiveContact>()?;
+    m.add_class::<adhesive::AdhesiveStep>()?;
     // roughness
     m.add_function(wrap_pyfunction!(rough::spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(rough::line_spectrum, m)?)?;

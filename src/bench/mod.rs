@@ -1,14 +1,14 @@
 //! `mrdw bench`: run time against error for the MRD solvers (not a test: figures go to
 //! the README's performance section with the command that produced them).
 
+mod adhesion;
 pub mod common;
 mod large;
 pub mod report;
 mod rough_ladder;
-mod adhesion;
 mod viscoelastic;
-pub use large::{run_large, run_large_case};
 pub use adhesion::run_adhesion;
+pub use large::{run_large, run_large_case};
 pub use viscoelastic::run_viscoelastic;
 
 use common::{child_error, field, peak_memory_mib, reference_surface};

@@ -17,6 +17,12 @@ Viscoelastic contact in time (E*(t) = relaxed + sum E_k exp(-t / tau_k))::
     s = v.step(0.1 * tau, force=F)           # or mean_pressure=..., approach=...
     s.time, s.approach, s.force, s.contact_area, s.pressure
 
+Adhesive contact along a history (JKR limit; w the work of adhesion)::
+
+    a = mrdw.AdhesiveContact(heights, work=w, size=(lx, ly), periodic=False)
+    s = a.step(approach=d)                   # or force=..., mean_pressure=...; < 0 pulls
+    s.force, s.contact_area, s.separated, s.pressure
+
 Roughness: spectrum, line_spectrum, calibrated_lambda (lambda(H) of Eq. 76; the
 table with its provenance: calibrated_lambda_table), surface, line, psd, moments,
 read_topography (a Topography: heights, physical size, undefined cells).
@@ -37,6 +43,8 @@ from ._mrdw import (
     ContactResult,
     TransientContact,
     TransientStep,
+    AdhesiveContact,
+    AdhesiveStep,
     spectrum,
     line_spectrum,
     calibrated_lambda,
@@ -67,6 +75,8 @@ __all__ = [
     "ContactResult",
     "TransientContact",
     "TransientStep",
+    "AdhesiveContact",
+    "AdhesiveStep",
     "spectrum",
     "line_spectrum",
     "calibrated_lambda",

@@ -218,6 +218,86 @@ class TransientContact:
     @property
     def periodic(self) -> bool: ...
 
+class AdhesiveStep:
+    """The state after a step of AdhesiveContact.step."""
+
+    @property
+    def approach(self) -> float:
+        """Approach from first contact [length] (negative: retracted past it)."""
+    @property
+    def force(self) -> float:
+        """Total normal force [stress x length^2], negative in tension."""
+    @property
+    def contact_area(self) -> float:
+        """Contact cells times cell area [length^2]."""
+    @property
+    def contact_cells(self) -> int: ...
+    @property
+    def joined(self) -> int:
+        """Cells that joined (touched) during the step."""
+    @property
+    def detached(self) -> int:
+        """Cells that detached during the step."""
+    @property
+    def tension(self) -> float:
+        """The largest tension of a contact cell over the critical stress (<= 1)."""
+    @property
+    def rounds(self) -> int:
+        """Set-update rounds of the step."""
+    @property
+    def iterations(self) -> int:
+        """Conjugate-gradient iterations summed over the rounds."""
+    @property
+    def residual(self) -> float:
+        """The last round's criterion value."""
+    @property
+    def separated(self) -> bool:
+        """No cell is in contact at the end of the step."""
+    @property
+    def pressure(self) -> F64:
+        """Cell pressures, shape (ny, nx) [stress], negative in tension."""
+
+class AdhesiveContact:
+    """A rigid surface in adhesive contact with an elastic half-space, loaded along a
+    history: zero-range adhesion in the JKR limit (a cell joins on touching and detaches
+    when its tension exceeds sqrt(2 w E* / c), Pohrt & Popov's mesh-dependent criterion;
+    converges to JKR as the cells shrink)."""
+
+    def __init__(
+        self,
+        heights: Union[ArrayLike, Any],
+        work: float,
+        size: Optional[Tuple[float, float]] = None,
+        e_star: float = 1.0,
+        periodic: Optional[bool] = None,
+        mask: Optional[ArrayLike] = None,
+    ) -> None:
+        """work: the work of adhesion w [stress x length], > 0; heights, size, e_star,
+        periodic, mask as for Contact. Starts out of contact."""
+    def step(
+        self,
+        mean_pressure: Optional[float] = None,
+        force: Optional[float] = None,
+        approach: Optional[float] = None,
+        *,
+        tolerance: float = 1e-8,
+    ) -> AdhesiveStep:
+        """Load from the last state to exactly one of mean_pressure [stress], force
+        [stress x length^2] (negative: tension) or approach [length] from first contact
+        (negative: retracted; free half-space only). Releases the GIL."""
+    @property
+    def critical_stress(self) -> float:
+        """The critical tension of a cell [stress]."""
+    @property
+    def gap(self) -> F64:
+        """Gap of the last step, shape (ny, nx) [length]."""
+    @property
+    def shape(self) -> Tuple[int, int]: ...
+    @property
+    def size(self) -> Tuple[float, float]: ...
+    @property
+    def periodic(self) -> bool: ...
+
 def spectrum(
     q: ArrayLike,
     hurst: float,

@@ -1,0 +1,261 @@
+//! Adhesive normal contact in 3D (`bem3d::adhesion`: the JKR limit with Pohrt & Popov's
+//! mesh-dependent detachment criterion) on numpy height maps.
+
+use crate::contact::bem_err;
+use crate::contact::{grid_array, Grid};
+use crate::errors::value_error;
+use bem3d::adhesion::{AdhesiveContact as Adhesive, AdhesiveStep as Step};
+use bem3d::{Load, NonPeriodicHalfSpace, PeriodicHalfSpace};
+use numpy::{AllowTypeChange, PyArray2, PyArrayLike2};
+use pyo3::prelude::*;
+
+/// The contact on one of the two operators.
+enum State {
+    Periodic(Adhesive<PeriodicHalfSpace>),
+    NonPeriodic(Adhesive<NonPeriodicHalfSpace>),
+}
+
+impl State {
+    fn step(&mut self, load: Load, tolerance: f64) -> bem3d::Result<Step> {
+        match self {
+            State::Periodic(c) => c.step(load, tolerance),
+            State::NonPeriodic(c) => c.step(load, tolerance),
+        }
+    }
+    fn pressure(&self) -> &[f64] {
+        match self {
+            State::Periodic(c) => c.pressure(),
+            State::NonPeriodic(c) => c.pressure(),
+        }
+    }
+    fn gap(&self) -> Vec<f64> {
+        match self {
+            State::Periodic(c) => c.gap(),
+            State::NonPeriodic(c) => c.gap(),
+        }
+    }
+    fn critical_stress(&self) -> f64 {
+        match self {
+            State::Periodic(c) => c.critical_stress(),
+            State::NonPeriodic(c) => c.critical_stress(),
+        }
+    }
+}
+
+/// The state after a step of `AdhesiveContact.step`.
+#[pyclass(module = "mrdw._mrdw", frozen)]
+pub struct AdhesiveStep {
+    step: Step,
+    pressure: Vec<f64>,
+    shape: (usize, usize),
+}
+
+#[pymethods]
+impl AdhesiveStep {
+    /// Approach from first contact [length] (negative: retracted past it).
+    #[getter]
+    fn approach(&self) -> f64 {
+        self.step.approach
+    }
+    /// Total normal force [stress x length^2], negative in tension.
+    #[getter]
+    fn force(&self) -> f64 {
+        self.step.force
+    }
+    /// Contact cells times cell area [length^2].
+    #[getter]
+    fn contact_area(&self) -> f64 {
+        self.step.contact_area
+    }
+    #[getter]
+    fn contact_cells(&self) -> usize {
+        self.step.contact_cells
+    }
+    /// Cells that joined (touched) and detached during the step.
+    #[getter]
+    fn joined(&self) -> usize {
+        self.step.joined
+    }
+    #[getter]
+    fn detached(&self) -> usize {
+        self.step.detached
+    }
+    /// The largest tension of a contact cell over the critical stress (<= 1).
+    #[getter]
+    fn tension(&self) -> f64 {
+        self.step.tension
+    }
+    /// Set-update rounds, and conjugate-gradient iterations summed over them.
+    #[getter]
+    fn rounds(&self) -> usize {
+        self.step.rounds
+    }
+    #[getter]
+    fn iterations(&self) -> usize {
+        self.step.iterations
+    }
+    /// The last round's criterion value (bem3d/src/adhesion.rs).
+    #[getter]
+    fn residual(&self) -> f64 {
+        self.step.residual
+    }
+    /// No cell is in contact at the end of the step.
+    #[getter]
+    fn separated(&self) -> bool {
+        self.step.separated
+    }
+    /// Cell pressures, shape (ny, nx) [stress], negative in tension.
+    #[getter]
+    fn pressure<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        grid_array(py, &self.pressure, self.shape)
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "AdhesiveStep(approach={:.6e}, force={:.6e}, contact_cells={}, separated={})",
+            self.step.approach, self.step.force, self.step.contact_cells, self.step.separated
+        )
+    }
+}
+
+/// A rigid surface in adhesive contact with an elastic half-space, loaded along a
+/// history (3D FFT boundary elements; Section 5 of the MRD review in 3D).
+///
+/// AdhesiveContact(heights, work, size=None, e_star=1.0, periodic=None, mask=None)
+///
+/// Zero-range adhesion in the JKR limit: a cell joins the contact when the body
+/// penetrates it and detaches when its tension exceeds the critical stress
+/// sqrt(2 w E* / c), c the mean displacement of a uniformly loaded cell per unit
+/// pressure (Pohrt & Popov's mesh-dependent criterion; the result converges to JKR as
+/// the cells shrink). `work` is the work of adhesion w [stress x length]. heights, size,
+/// e_star, periodic and mask as for Contact. Starts out of contact; each step() loads
+/// from the last state (adhesion is path dependent).
+#[pyclass(module = "mrdw._mrdw")]
+pub struct AdhesiveContact {
+    state: State,
+    shape: (usize, usize),
+    size: (f64, f64),
+    periodic: bool,
+}
+
+#[pymethods]
+impl AdhesiveContact {
+    #[new]
+    #[pyo3(signature = (heights, work, size = None, e_star = 1.0, periodic = None, mask = None))]
+    fn new(
+        py: Python<'_>,
+        heights: &Bound<'_, PyAny>,
+        work: f64,
+        size: Option<(f64, f64)>,
+        e_star: f64,
+        periodic: Option<bool>,
+        mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
+    ) -> PyResult<Self> {
+        if !(work.is_finite() && work > 0.0) {
+            return Err(value_error(format!(
+                "work = {work}: the work of adhesion must be finite and > 0 (without adhesion use Contact)"
+            )));
+        }
+        let grid = Grid::new(py, heights, size, periodic, mask, e_star)?;
+        let ((ny, nx), (lx, ly)) = (grid.shape, grid.size);
+        sysmem::check_estimate(
+            8.0 * 9.0 * (nx * ny) as f64,
+            &format!("an adhesive {ny} x {nx} contact"),
+        )
+        .map_err(|e| pyo3::exceptions::PyMemoryError::new_err(e.to_string()))?;
+        let (h, mask, periodic) = (grid.heights, grid.mask, grid.periodic);
+        let built = py.detach(|| -> bem3d::Result<State> {
+            Ok(if periodic {
+                let op = PeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
+                State::Periodic(Adhesive::new(op, &h, mask.as_deref(), work)?)
+            } else {
+                let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
+                State::NonPeriodic(Adhesive::new(op, &h, mask.as_deref(), work)?)
+            })
+        });
+        let state = built.map_err(|e| bem_err(py, e, (ny, nx), lx * ly))?;
+        Ok(Self {
+            state,
+            shape: (ny, nx),
+            size: grid.size,
+            periodic,
+        })
+    }
+
+    /// step(mean_pressure=None, force=None, approach=None, *, tolerance=1e-8)
+    ///     -> AdhesiveStep
+    ///
+    /// Loads from the last state to exactly one of: mean pressure over lx * ly [stress],
+    /// total force [stress x length^2] (both may be negative: tension) or approach
+    /// [length] from first contact (negative: retracted; free half-space only, a
+    /// periodic one takes a force). Raises ValueError for bad input, ConvergenceError if
+    /// the contact set or a solve does not settle. The GIL is released while solving.
+    #[pyo3(signature = (mean_pressure = None, force = None, approach = None, *, tolerance = 1e-8))]
+    fn step(
+        &mut self,
+        py: Python<'_>,
+        mean_pressure: Option<f64>,
+        force: Option<f64>,
+        approach: Option<f64>,
+        tolerance: f64,
+    ) -> PyResult<AdhesiveStep> {
+        for (name, v) in [
+            ("mean_pressure", mean_pressure),
+            ("force", force),
+            ("approach", approach),
+        ] {
+            if let Some(v) = v.filter(|v| !v.is_finite()) {
+                return Err(value_error(format!("{name} = {v} must be finite")));
+            }
+        }
+        let load = match (mean_pressure, force, approach) {
+            (Some(p), None, None) => Load::MeanPressure(p),
+            (None, Some(f), None) => Load::Force(f),
+            (None, None, Some(d)) => Load::Approach(d),
+            _ => {
+                return Err(value_error(
+                    "give exactly one of mean_pressure, force and approach",
+                ))
+            }
+        };
+        let state = &mut self.state;
+        let out = py.detach(|| state.step(load, tolerance));
+        let (ny, nx) = self.shape;
+        let step = out.map_err(|e| bem_err(py, e, (ny, nx), self.size.0 * self.size.1))?;
+        Ok(AdhesiveStep {
+            step,
+            pressure: self.state.pressure().to_vec(),
+            shape: self.shape,
+        })
+    }
+
+    /// The critical tension of a cell [stress].
+    #[getter]
+    fn critical_stress(&self) -> f64 {
+        self.state.critical_stress()
+    }
+    /// Gap of the last step at every cell, shape (ny, nx) [length].
+    #[getter]
+    fn gap<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        grid_array(py, &self.state.gap(), self.shape)
+    }
+    /// (ny, nx)
+    #[getter]
+    fn shape(&self) -> (usize, usize) {
+        self.shape
+    }
+    /// (lx, ly) [length]
+    #[getter]
+    fn size(&self) -> (f64, f64) {
+        self.size
+    }
+    #[getter]
+    fn periodic(&self) -> bool {
+        self.periodic
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "AdhesiveContact(shape={:?}, size={:?}, periodic={})",
+            self.shape, self.size, self.periodic
+        )
+    }
+}
