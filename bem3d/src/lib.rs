@@ -5,7 +5,7 @@
 //! with Coulomb friction under a held normal pressure ([`tangential`]: a solver beside
 //! the normal one, on the same transforms), and adhesive normal contact in the JKR limit
 //! ([`adhesion`]: a second solver beside the normal one, generic over the same
-//! operators). Knows nothing of MRD: it takes plain height
+//! operators) and with the finite-range Maugis-Dugdale law ([`cohesive`]). Knows nothing of MRD: it takes plain height
 //! arrays (row-major `ny x nx`). Operators ([`operator`]) are apart from the solvers.
 //!
 //! Public modules beyond the solvers and operators, and who needs them: [`fft`] (the
@@ -18,6 +18,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod adhesion;
+pub mod cohesive;
 pub mod error;
 pub mod fft;
 mod love;

@@ -1,0 +1,459 @@
+//! Adhesive normal contact with a finite-range cohesive law: Maugis-Dugdale (a constant
+//! tension `sigma0` wherever the gap lies below the range `delta = w / sigma0`), on the
+//! free half-space under a prescribed approach. The finite-range counterpart of
+//! [`crate::adhesion`] (whose zero range is the JKR limit); with the Tabor-Maugis
+//! parameter `lambda = sigma0 (9 R / (2 pi w E*^2))^(1/3)` it spans Bradley's rigid limit
+//! (lambda -> 0) to JKR's (lambda -> infinity), as Maugis' closed form does.
+//!
+//! **Law, per cell** (pressure positive in compression, gap `g = u + z - d` as in the
+//! normal solver): in contact (`g = 0`) any pressure `p >= -sigma0`; in the cohesive zone
+//! (`0 < g < delta`) `p = -sigma0`; beyond, `p = 0`.
+//!
+//! **Iteration.** For a cohesive set `S` (the cells with `g < delta`), the law on `S` is a
+//! linear complementarity problem (`p >= -sigma0`, `g >= 0`, one of them tight) with
+//! `p = 0` off `S`: the minimum of the convex energy `p.K p / 2 + p.(z - d)` over
+//! `p >= -sigma0` on `S`, solved by Polonsky & Keer's projected conjugate gradient with
+//! the bound moved from 0 to `-sigma0`. Then `S` is updated from the gaps (cells with
+//! `g >= delta` leave, cells outside with `g < delta` join) and the rounds repeat from the
+//! last pressures until `S` holds. Each round is convex and stops when every cell of `S`
+//! satisfies the complementarity within `tolerance` times the length scale
+//! `max(rms of z, |d|, delta)`; the set update is exact. The whole problem is not
+//! convex (the cohesive energy is not), so the result is the equilibrium reached from
+//! the previous state along the history; a set that keeps changing is an error.
+//!
+//! **Resolution.** The cohesive zone must span cells: its width near a crack tip is of
+//! the order of the Dugdale length `E* w / sigma0^2` ([`CohesiveContact::dugdale_length`]).
+//! The sphere's pull-off against Maugis' closed form (tests): 4.7 % with 17 cells per
+//! Dugdale length, 9 % with 8.5, 22 % with 4.3, 32 % with 1.9, first order in the cell;
+//! [`CohesiveContact::resolved`] asks for 10 cells, and a caller warns below.
+
+use crate::error::{BemError, Result};
+use crate::operator::Preconditioner;
+
+/// Cells per Dugdale length for [`CohesiveContact::resolved`].
+pub const RESOLVED_CELLS: f64 = 10.0;
+/// Rounds of set updates in one step.
+pub const MAX_ROUNDS: usize = 20_000;
+const MAX_ITERATIONS: usize = 20_000;
+
+/// The state reached by one approach step.
+#[derive(Debug, Clone)]
+pub struct CohesiveStep {
+    /// Approach from first contact [length].
+    pub approach: f64,
+    /// Total normal force [force], negative in tension.
+    pub force: f64,
+    /// Cells in contact (`g = 0`) and in the cohesive zone (`0 < g < delta`).
+    pub contact_cells: usize,
+    pub cohesive_cells: usize,
+    /// Contact cells times the cell area [length^2].
+    pub contact_area: f64,
+    pub rounds: usize,
+    pub iterations: usize,
+    /// The last round's criterion value (module docs).
+    pub residual: f64,
+}
+
+/// A rigid surface in Maugis-Dugdale adhesive contact with a free elastic half-space.
+pub struct CohesiveContact<C: Preconditioner> {
+    op: C,
+    z: Vec<f64>,
+    domain: Vec<bool>,
+    sigma0: f64,
+    range: f64,
+    rms: f64,
+    /// The cohesive set S.
+    cohesive: Vec<bool>,
+    p: Vec<f64>,
+    u: Vec<f64>,
+}
+
+impl<C: Preconditioner> CohesiveContact<C> {
+    /// `heights` (`ny x nx`), an optional mask, the work of adhesion `work` > 0 and the
+    /// cohesive stress `sigma0` > 0 (the range is `work / sigma0`). The operator must be
+    /// non-periodic (the approach is prescribed). Starts out of contact.
+    pub fn new(
+        op: C,
+        heights: &[f64],
+        mask: Option<&[bool]>,
+        work: f64,
+        sigma0: f64,
+    ) -> Result<Self> {
+        let n = op.cells();
+        if op.is_periodic() {
+            return Err(BemError::InvalidInput(
+                "the cohesive law is solved under a prescribed approach: use the free (non-periodic) half-space".into(),
+            ));
+        }
+        if heights.len() != n {
+            return Err(BemError::InvalidInput(format!(
+                "heights have {} values for a grid of {n} cells",
+                heights.len()
+            )));
+        }
+        if let Some(i) = heights.iter().position(|h| !h.is_finite()) {
+            return Err(BemError::InvalidInput(format!(
+                "heights[{i}] = {} must be finite",
+                heights[i]
+            )));
+        }
+        for (name, v) in [
+            ("work of adhesion w", work),
+            ("cohesive stress sigma0", sigma0),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(BemError::InvalidInput(format!(
+                    "{name} = {v} must be finite and > 0"
+                )));
+            }
+        }
+        let domain: Vec<bool> = match mask {
+            Some(m) if m.len() != n => {
+                return Err(BemError::InvalidInput(format!(
+                    "mask has {} values for a grid of {n} cells",
+                    m.len()
+                )))
+            }
+            Some(m) => m.to_vec(),
+            None => vec![true; n],
+        };
+        let cells = domain.iter().filter(|d| **d).count();
+        if cells == 0 {
+            return Err(BemError::InvalidInput(
+                "the mask leaves no cell that may touch".into(),
+            ));
+        }
+        let top = (0..n)
+            .filter(|&i| domain[i])
+            .map(|i| heights[i])
+            .fold(f64::NEG_INFINITY, f64::max);
+        let z: Vec<f64> = heights.iter().map(|h| top - h).collect();
+        let mean = (0..n).filter(|&i| domain[i]).map(|i| z[i]).sum::<f64>() / cells as f64;
+        let rms = ((0..n)
+            .filter(|&i| domain[i])
+            .map(|i| (z[i] - mean).powi(2))
+            .sum::<f64>()
+            / cells as f64)
+            .sqrt();
+        Ok(Self {
+            op,
+            z,
+            domain,
+            sigma0,
+            range: work / sigma0,
+            rms,
+            cohesive: vec![false; n],
+            p: vec![0.0; n],
+            u: vec![0.0; n],
+        })
+    }
+
+    /// The Dugdale length `E* w / sigma0^2` [length]: the scale of the cohesive zone's
+    /// width at a crack tip.
+    pub fn dugdale_length(&self) -> f64 {
+        self.op.e_star() * self.range / self.sigma0
+    }
+
+    /// Whether the Dugdale length spans at least [`RESOLVED_CELLS`] cells (module docs).
+    pub fn resolved(&self) -> bool {
+        let h = (self.op.lx() / self.op.nx() as f64).max(self.op.ly() / self.op.ny() as f64);
+        self.dugdale_length() >= RESOLVED_CELLS * h
+    }
+
+    /// Cell pressures of the last step (`ny x nx`, negative in tension).
+    pub fn pressure(&self) -> &[f64] {
+        &self.p
+    }
+
+    /// Loads to the approach `d` (from first contact) from the last state; `tolerance`
+    /// relative, in (0, 0.01].
+    pub fn step(&mut self, d: f64, tolerance: f64) -> Result<CohesiveStep> {
+        if !d.is_finite() {
+            return Err(BemError::InvalidInput(format!(
+                "approach {d} must be finite"
+            )));
+        }
+        if !(tolerance > 0.0 && tolerance <= 0.01) {
+            return Err(BemError::InvalidInput(format!(
+                "tolerance {tolerance} must lie in (0, 0.01]"
+            )));
+        }
+        crate::pool::on_pool(|| self.settle(d, tolerance))
+    }
+
+    fn settle(&mut self, d: f64, tolerance: f64) -> Result<CohesiveStep> {
+        let n = self.z.len();
+        let (mut iterations, mut residual) = (0, 0.0);
+        for round in 1..=MAX_ROUNDS {
+            if self.cohesive.iter().any(|c| *c) {
+                let (it, res) = self.solve_on_set(d, tolerance)?;
+                iterations += it;
+                residual = res;
+            } else {
+                self.p.iter_mut().for_each(|p| *p = 0.0);
+                self.u.iter_mut().for_each(|u| *u = 0.0);
+            }
+            // The set from the gaps.
+            let mut changed = 0;
+            for i in 0..n {
+                let within = self.domain[i] && self.u[i] + self.z[i] - d < self.range;
+                if within != self.cohesive[i] {
+                    self.cohesive[i] = within;
+                    changed += 1;
+                    if !within {
+                        self.p[i] = 0.0;
+                    } else {
+                        self.p[i] = -self.sigma0;
+                    }
+                }
+            }
+            if changed == 0 {
+                return Ok(self.report(d, round, iterations, residual));
+            }
+            self.op.apply(&self.p, &mut self.u);
+        }
+        Err(BemError::Breakdown {
+            what: "cohesive contact",
+            iterations,
+            residual,
+            reason: "the cohesive set kept changing within the round limit",
+        })
+    }
+
+    fn report(&self, d: f64, rounds: usize, iterations: usize, residual: f64) -> CohesiveStep {
+        let cell = self.op.cell_area();
+        let contact = (0..self.p.len())
+            .filter(|&i| self.cohesive[i] && self.p[i] > -self.sigma0)
+            .count();
+        let cohesive = self.cohesive.iter().filter(|c| **c).count() - contact;
+        CohesiveStep {
+            approach: d,
+            force: self.p.iter().sum::<f64>() * cell,
+            contact_cells: contact,
+            cohesive_cells: cohesive,
+            contact_area: contact as f64 * cell,
+            rounds,
+            iterations,
+            residual,
+        }
+    }
+
+    /// Polonsky & Keer's projected conjugate gradient on the set, the bound at -sigma0
+    /// (module docs). Returns the iterations and the criterion reached.
+    fn solve_on_set(&mut self, d: f64, tolerance: f64) -> Result<(usize, f64)> {
+        let n = self.z.len();
+        let b = -self.sigma0;
+        let scale = self.rms.max(d.abs()).max(self.range);
+        let (mut t, mut kt, mut y) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let mut rho_old = 0.0;
+        let mut free_old: Vec<bool> = Vec::new();
+        self.op.apply(&self.p, &mut self.u);
+        for it in 0..MAX_ITERATIONS {
+            // Free cells (above the bound, or at it and penetrating) carry g = 0.
+            let g: Vec<f64> = (0..n).map(|i| self.u[i] + self.z[i] - d).collect();
+            let free: Vec<bool> = (0..n)
+                .map(|i| self.cohesive[i] && (self.p[i] > b || g[i] < 0.0))
+                .collect();
+            let mut worst = 0.0f64;
+            for i in 0..n {
+                if free[i] {
+                    worst = worst.max(g[i].abs());
+                } else if self.cohesive[i] {
+                    worst = worst.max((-g[i]).max(0.0));
+                }
+            }
+            let residual = worst / scale;
+            if residual <= tolerance {
+                return Ok((it, residual));
+            }
+            for i in 0..n {
+                y[i] = if free[i] { g[i] } else { 0.0 };
+            }
+            self.op.precondition(&mut y);
+            for i in 0..n {
+                if !free[i] {
+                    y[i] = 0.0;
+                }
+            }
+            let rho: f64 = (0..n).map(|i| g[i] * y[i]).sum();
+            let beta = if free == free_old && rho_old > 0.0 {
+                rho / rho_old
+            } else {
+                0.0
+            };
+            rho_old = rho;
+            free_old = free;
+            for i in 0..n {
+                t[i] = y[i] + beta * t[i];
+            }
+            self.op.apply(&t, &mut kt);
+            let curvature: f64 = t.iter().zip(&kt).map(|(a, c)| a * c).sum();
+            if !(curvature > 0.0 && rho.is_finite()) {
+                return Err(BemError::Breakdown {
+                    what: "cohesive contact",
+                    iterations: it,
+                    residual,
+                    reason: "a direction without curvature",
+                });
+            }
+            let tau = rho / curvature;
+            for i in 0..n {
+                if free_old[i] {
+                    self.p[i] = (self.p[i] - tau * t[i]).max(b);
+                }
+            }
+            self.op.apply(&self.p, &mut self.u);
+        }
+        Err(BemError::Breakdown {
+            what: "cohesive contact",
+            iterations: MAX_ITERATIONS,
+            residual: f64::NAN,
+            reason: "the solve on a cohesive set did not converge within the iteration limit",
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::operator::NonPeriodicHalfSpace;
+    use std::f64::consts::PI;
+
+    /// Maugis (1992): the pull-off force of a sphere over pi w R (force control) for the
+    /// Tabor-Maugis parameter `lambda`: the smallest load of the parametric solution in
+    /// m = c/a (2 = Bradley, 1.5 = JKR).
+    fn maugis_pull_off(lambda: f64) -> f64 {
+        let mut best = f64::INFINITY;
+        // m - 1 from 1e-12 to 1e9, evenly in its logarithm (m -> 1: JKR, m -> inf: Bradley).
+        for k in 0..=42_000 {
+            let m: f64 = 1.0 + 10f64.powf(-12.0 + k as f64 * 5e-4);
+            let s = (m * m - 1.0).sqrt();
+            let at = s.atan();
+            // lambda A^2/2 [s + (m^2 - 2) at] + 4 lambda^2 A/3 [s at - m + 1] = 1.
+            let qa = lambda / 2.0 * (s + (m * m - 2.0) * at);
+            let qb = 4.0 * lambda * lambda / 3.0 * (s * at - m + 1.0);
+            let a = if qa.abs() < 1e-300 {
+                1.0 / qb
+            } else {
+                (-qb + (qb * qb + 4.0 * qa).sqrt()) / (2.0 * qa)
+            };
+            let p = a.powi(3) - lambda * a * a * (s + m * m * at);
+            if p.is_finite() {
+                best = best.min(p);
+            }
+        }
+        best
+    }
+
+    #[test]
+    fn maugis_limits() {
+        assert!((maugis_pull_off(1.0) + 1.600733).abs() < 1e-5);
+        assert!(
+            (maugis_pull_off(0.01) + 2.0).abs() < 0.02,
+            "{}",
+            maugis_pull_off(0.01)
+        );
+        assert!(
+            (maugis_pull_off(30.0) + 1.5).abs() < 0.02,
+            "{}",
+            maugis_pull_off(30.0)
+        );
+    }
+
+    /// Approach-controlled cycle of a sphere (R = 1, E* = 1): the smallest force.
+    fn pull_off(n: usize, l: f64, w: f64, sigma0: f64, d_max: f64, steps: usize) -> (f64, bool) {
+        let h = l / n as f64;
+        let heights: Vec<f64> = (0..n * n)
+            .map(|k| {
+                let x = ((k % n) as f64 + 0.5) * h - 0.5 * l;
+                let y = ((k / n) as f64 + 0.5) * h - 0.5 * l;
+                -(x * x + y * y) / 2.0
+            })
+            .collect();
+        let apex = heights.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+        let op = NonPeriodicHalfSpace::new(n, n, l, l, 1.0);
+        let mut c = CohesiveContact::new(op, &heights, None, w, sigma0).unwrap();
+        let resolved = c.resolved();
+        let dd = d_max / steps as f64;
+        let mut min_f = f64::INFINITY;
+        for k in 1..=steps {
+            c.step(dd * k as f64 + apex, 1e-8).unwrap();
+        }
+        for k in 0..10 * steps {
+            let s = c.step(d_max - dd * k as f64 + apex, 1e-8).unwrap();
+            min_f = min_f.min(s.force);
+            if s.contact_cells == 0 && s.force > 0.5 * min_f {
+                break;
+            }
+        }
+        (min_f, resolved)
+    }
+
+    /// The pull-off against Maugis' closed form at two Tabor parameters, on a ladder of
+    /// grids (R = 1, w = 0.002, 32^2 to 128^2 cells over 1.2 R: the Dugdale length spans
+    /// 190, 17 and 1.9 cells of the finest grid for lambda = 0.3, 1 and 3). Measured F/(pi w R): lambda 0.3
+    /// -1.887, -1.837, -1.823 against -1.816 (0.4 % on the finest); lambda 1 -1.953,
+    /// -1.751, -1.676 against -1.601 (4.7 %); lambda 3 (unresolved, and flagged so) -3.51,
+    /// -2.46, -2.01 against -1.517.
+    #[test]
+    fn sphere_pull_off_follows_maugis() {
+        let w = 0.002;
+        for (lambda, bound) in [(0.3, 0.01), (1.0, 0.06)] {
+            let sigma0 = lambda / (9.0 / (2.0 * PI * w)).cbrt();
+            let closed = maugis_pull_off(lambda);
+            let mut errs = Vec::new();
+            for n in [32usize, 64, 128] {
+                let (f, resolved) = pull_off(n, 1.2, w, sigma0, 0.15, 100);
+                assert!(resolved || n < 128);
+                errs.push((f / (PI * w) / closed - 1.0).abs());
+            }
+            assert!(
+                errs[0] > errs[1] && errs[1] > errs[2],
+                "lambda {lambda}: {errs:?}"
+            );
+            assert!(errs[2] < bound, "lambda {lambda}: {errs:?}");
+        }
+        let sigma0 = 3.0 / (9.0 / (2.0 * PI * w)).cbrt();
+        let op = NonPeriodicHalfSpace::new(128, 128, 1.2, 1.2, 1.0);
+        let c = CohesiveContact::new(op, &vec![0.0; 128 * 128], None, w, sigma0).unwrap();
+        assert!(!c.resolved());
+    }
+
+    #[test]
+    fn bad_input_names_the_parameter() {
+        let flat = vec![0.0; 64];
+        let op = || NonPeriodicHalfSpace::new(8, 8, 1.0, 1.0, 1.0);
+        for (w, s, what) in [
+            (0.0, 1.0, "work of adhesion"),
+            (1.0, -1.0, "cohesive stress"),
+            (f64::NAN, 1.0, "work"),
+            (1.0, f64::INFINITY, "sigma0"),
+        ] {
+            let e = CohesiveContact::new(op(), &flat, None, w, s)
+                .err()
+                .unwrap()
+                .to_string();
+            assert!(e.contains(what), "{e}");
+        }
+        let periodic = crate::PeriodicHalfSpace::new(8, 8, 1.0, 1.0, 1.0);
+        let e = CohesiveContact::new(periodic, &flat, None, 1.0, 1.0)
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(e.contains("non-periodic"), "{e}");
+        let mut c = CohesiveContact::new(op(), &flat, None, 0.01, 0.1).unwrap();
+        assert!(c
+            .step(f64::NAN, 1e-8)
+            .unwrap_err()
+            .to_string()
+            .contains("approach"));
+        assert!(c
+            .step(0.1, 0.5)
+            .unwrap_err()
+            .to_string()
+            .contains("tolerance"));
+        // Retraction beyond the range: no contact, no force.
+        let s = c.step(-1.0, 1e-8).unwrap();
+        assert!(s.contact_cells == 0 && s.cohesive_cells == 0 && s.force == 0.0);
+    }
+}
