@@ -59,6 +59,10 @@ pub const KINDS: &[Kind] = &[
         "adhesion_3d",
         "an adhesive loading-unloading cycle in 3D beside MRD: loop, pull-off and jump-out on a ladder of grids against Eq. 33 and JKR, Kendall or the cone (Section 5)",
     ),
+    Kind::of::<axisym::tabor_3d::Tabor3d>(
+        "tabor_3d",
+        "a sphere's pull-off against the Tabor-Maugis parameter: 3D Maugis-Dugdale, Maugis' closed form and MRD's JKR limit (Section 5)",
+    ),
     Kind::of::<axisym::tangential::Tangential>(
         "tangential",
         "Cattaneo-Mindlin tangential loading and tractions (Eqs. 41-51)",

@@ -10,6 +10,10 @@ pub const EMBEDDED: &[(&str, &str)] = &[
         include_str!("../../cases/adhesion-3d-punch.toml"),
     ),
     (
+        "adhesion-tabor",
+        include_str!("../../cases/adhesion-tabor.toml"),
+    ),
+    (
         "adhesion-3d-cone",
         include_str!("../../cases/adhesion-3d-cone.toml"),
     ),

@@ -116,6 +116,54 @@ pub mod jkr {
     }
 }
 
+/// Maugis-Dugdale adhesive sphere (Maugis 1992, J. Colloid Interface Sci. 150), in
+/// Maugis' dimensionless variables: contact radius A = a (4 E* / (3 pi w R^2))^(1/3),
+/// load P = F / (pi w R), parametric in m = c/a (c the outer radius of the cohesive zone),
+/// for the Tabor-Maugis parameter lambda = sigma0 (9 R / (2 pi w E*^2))^(1/3).
+pub mod maugis_dugdale {
+    /// lambda of a cohesive stress sigma0.
+    pub fn lambda(sigma0: f64, r: f64, w: f64, e_star: f64) -> f64 {
+        sigma0 * (9.0 * r / (2.0 * std::f64::consts::PI * w * e_star * e_star)).cbrt()
+    }
+    /// (A, P) at m > 1: A from lambda A^2/2 [s + (m^2 - 2) atan s] + 4 lambda^2 A/3
+    /// [s atan s - m + 1] = 1 with s = sqrt(m^2 - 1), then P = A^3 - lambda A^2
+    /// [s + m^2 atan s].
+    pub fn state(lambda: f64, m: f64) -> (f64, f64) {
+        let s = (m * m - 1.0).sqrt();
+        let at = s.atan();
+        let qa = lambda / 2.0 * (s + (m * m - 2.0) * at);
+        let qb = 4.0 * lambda * lambda / 3.0 * (s * at - m + 1.0);
+        // The positive root of qa A^2 + qb A - 1 = 0, without cancellation.
+        let a = 2.0 / (qb + (qb * qb + 4.0 * qa).sqrt());
+        (a, a.powi(3) - lambda * a * a * (s + m * m * at))
+    }
+    /// Pull-off load under force control over pi w R (negative): the smallest P over m,
+    /// scanned with m - 1 from 1e-12 to 1e9 evenly in its logarithm and refined by golden
+    /// sections (-2 in Bradley's limit lambda -> 0, -1.5 in JKR's).
+    pub fn pull_off(lambda: f64) -> f64 {
+        let x = |k: f64| -12.0 + k * 1e-3;
+        let p = |x: f64| state(lambda, 1.0 + 10f64.powf(x)).1;
+        let mut best = (0.0, f64::INFINITY);
+        for k in 0..=21_000 {
+            let v = p(x(k as f64));
+            if v < best.1 {
+                best = (x(k as f64), v);
+            }
+        }
+        let (mut lo, mut hi) = (best.0 - 1e-3, best.0 + 1e-3);
+        let g = 0.5 * (5f64.sqrt() - 1.0);
+        for _ in 0..100 {
+            let (a, b) = (hi - g * (hi - lo), lo + g * (hi - lo));
+            if p(a) < p(b) {
+                hi = b;
+            } else {
+                lo = a;
+            }
+        }
+        p(0.5 * (lo + hi)).min(best.1)
+    }
+}
+
 /// Adhesive flat punch (Kendall 1971; Eq. 34): F_A = sqrt(8 pi a^3 E* gamma).
 pub fn adhesive_flat_punch_pull_off(e_star: f64, a: f64, gamma: f64) -> f64 {
     (8.0 * e_star * a.powi(3) * PI * gamma).sqrt()
@@ -343,6 +391,26 @@ pub mod for_profile {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn maugis_dugdale_limits_and_a_middle_value() {
+        use super::maugis_dugdale::pull_off;
+        // Bradley (-2) and JKR (-1.5) at the ends; lambda = 1 against an independent scan
+        // (numpy, m in steps of 0.1 %: -1.600733, above the refined minimum -1.6007349).
+        assert!((pull_off(1e-3) + 2.0).abs() < 2e-3, "{}", pull_off(1e-3));
+        assert!((pull_off(100.0) + 1.5).abs() < 5e-3, "{}", pull_off(100.0));
+        assert!(
+            (pull_off(1.0) + 1.6007349).abs() < 1e-7 && pull_off(1.0) < -1.600733,
+            "{}",
+            pull_off(1.0)
+        );
+        // Monotonic in lambda.
+        let v: Vec<f64> = [0.01, 0.1, 0.3, 1.0, 3.0, 10.0]
+            .iter()
+            .map(|l| pull_off(*l))
+            .collect();
+        assert!(v.windows(2).all(|w| w[1] > w[0]), "{v:?}");
+    }
+
     use super::*;
 
     #[test]

@@ -762,3 +762,45 @@ fn adhesion_3d_bad_input_names_the_key() {
         refused(&o, needle);
     }
 }
+
+/// `tabor_3d` refuses what it cannot run, naming the key.
+#[test]
+fn tabor_3d_bad_input_names_the_key() {
+    let tmp = tempfile::tempdir().unwrap();
+    let base = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/adhesion-tabor.toml"),
+    )
+    .unwrap();
+    let cases = [
+        (
+            base.replace("lambdas = [0.1, 0.3, 1.0, 3.0]", "lambdas = []"),
+            "lambdas",
+        ),
+        (
+            base.replace("lambdas = [0.1, 0.3, 1.0, 3.0]", "lambdas = [0.0]"),
+            "lambdas",
+        ),
+        (base.replace("gamma = 0.002", "gamma = 0.0"), "gamma"),
+        (
+            base.replace("cells = [64, 128]", "cells = [128, 64]"),
+            "must increase",
+        ),
+        (
+            base.replace(
+                "{ kind = \"sphere\", radius = 1.0 }",
+                "{ kind = \"cone\", slope = 0.2 }",
+            ),
+            "needs a sphere",
+        ),
+    ];
+    for (k, (text, needle)) in cases.iter().enumerate() {
+        assert_ne!(text, &base, "case {k} changed nothing");
+        let path = tmp.path().join(format!("t{k}.toml"));
+        std::fs::write(&path, text).unwrap();
+        let o = mrdw_in(
+            tmp.path(),
+            &["run", path.to_str().unwrap(), "--out", &format!("o{k}")],
+        );
+        refused(&o, needle);
+    }
+}

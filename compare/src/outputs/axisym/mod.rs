@@ -8,5 +8,6 @@ pub mod force_depth;
 pub(crate) mod hess;
 pub mod pressure;
 pub mod profile_1d;
+pub mod tabor_3d;
 pub mod tangential;
 pub mod tangential_3d;

@@ -1,0 +1,331 @@
+//! `tabor_3d`: where MRD's adhesion holds as the range of adhesion grows: the pull-off
+//! force of a sphere against the Tabor-Maugis parameter lambda, in 3D with the
+//! Maugis-Dugdale law (`bem3d::cohesive`), in Maugis' closed form, and by MRD's rule of
+//! Hess with Eq. 33, which is the zero-range (JKR) limit: -3/2 pi w R whatever lambda.
+//!
+//! Each lambda sets the cohesive stress sigma0 = lambda (2 pi w E*^2 / (9 R))^(1/3) and
+//! the range w / sigma0. The 3D grid is free, of side `extent` times the diameter of the
+//! cohesive zone at `depth_max` (rigid estimate sqrt(a^2 + 2 R range)); the cycle is
+//! the one of `adhesion_3d` (approach steps in, and out until the cohesive zone is
+//! gone); the pull-off is the smallest force of the unloading.
+
+use super::hess;
+use crate::checks::{bad, check_memory, check_tolerance, default_tolerance, positive};
+use crate::context::Context;
+use crate::error::{Context as _, Result};
+use crate::output::{Env, Output};
+use crate::plan::Stage;
+use crate::report::{Figure, Section, Series, Style, Table};
+use bem3d::cohesive::{CohesiveContact, RESOLVED_CELLS};
+use bem3d::NonPeriodicHalfSpace;
+use mrd::adhesion::{AdhesiveContact as AdhesiveRow, Control};
+use mrd::reference::{for_profile, maugis_dugdale};
+use serde::Deserialize;
+use std::f64::consts::PI;
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Tabor3d {
+    /// Work of adhesion [energy / length^2].
+    gamma: f64,
+    /// Tabor-Maugis parameters of the 3D runs.
+    lambdas: Vec<f64>,
+    /// Depth of the loading [length].
+    depth_max: f64,
+    /// Cells per side of the 3D grids, coarse to fine.
+    #[serde(default = "default_cells")]
+    cells: Vec<usize>,
+    /// Side of the grid over the cohesive zone's diameter at `depth_max`.
+    #[serde(default = "default_extent")]
+    extent: f64,
+    /// Approach steps of the loading (the unloading goes by the same step).
+    #[serde(default = "default_steps")]
+    steps: usize,
+    #[serde(default = "default_tolerance")]
+    tolerance: f64,
+}
+
+fn default_cells() -> Vec<usize> {
+    vec![64, 128]
+}
+fn default_extent() -> f64 {
+    1.25
+}
+fn default_steps() -> usize {
+    100
+}
+
+const BYTES_PER_CELL: f64 = crate::checks::BYTES_PER_CELL_NON_PERIODIC + 100.0;
+
+/// One 3D run: lambda, cells, cell size, Dugdale length, pull-off force.
+struct Run {
+    lambda: f64,
+    cells: usize,
+    h: f64,
+    dugdale: f64,
+    pull_off: f64,
+}
+
+impl Output for Tabor3d {
+    fn validate(&self, ctx: &Context) -> Result<()> {
+        if for_profile::sphere_radius(ctx.profile()?).is_none() {
+            return bad("tabor_3d needs a sphere (profile = paraboloid): Maugis' closed form is the sphere's");
+        }
+        if !positive(self.gamma) {
+            return bad("gamma (work of adhesion) must be > 0");
+        }
+        if !positive(self.depth_max) {
+            return bad("depth_max must be > 0");
+        }
+        if self.lambdas.is_empty() || self.lambdas.iter().any(|l| !(*l >= 0.01 && *l <= 100.0)) {
+            return bad(format!(
+                "lambdas = {:?}: give Tabor-Maugis parameters in [0.01, 100]",
+                self.lambdas
+            ));
+        }
+        if self.cells.is_empty() || self.cells.iter().any(|n| !(16..=2048).contains(n)) {
+            return bad(format!(
+                "cells = {:?}: give grid sizes in 16..=2048",
+                self.cells
+            ));
+        }
+        if self.cells.windows(2).any(|w| w[1] <= w[0]) {
+            return bad(format!(
+                "cells = {:?} must increase (a refinement ladder)",
+                self.cells
+            ));
+        }
+        let n = *self.cells.last().unwrap_or(&16);
+        check_memory((n * n) as f64 * BYTES_PER_CELL, &format!("cells = {n}"))?;
+        if !(self.extent.is_finite() && (1.1..=100.0).contains(&self.extent)) {
+            return bad(format!("extent = {} must lie in [1.1, 100]", self.extent));
+        }
+        if !(2..=10_000).contains(&self.steps) {
+            return bad(format!("steps = {} must lie in 2..=10000", self.steps));
+        }
+        check_tolerance(self.tolerance)
+    }
+
+    fn stages(&self, _: &Context) -> Vec<Stage> {
+        vec![
+            Stage::HessTransform,
+            Stage::AdhesionSemiAnalytic,
+            Stage::ClosedForm,
+            Stage::Adhesion3d,
+        ]
+    }
+
+    fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
+        let contact = hess::hess(env, out)?;
+        let radius = for_profile::sphere_radius(env.ctx.profile()?).unwrap_or(1.0);
+        let e = env.ctx.material.e_star;
+        let (mrd, a_top) = out
+            .stage(
+                Stage::AdhesionSemiAnalytic,
+                || -> mrd::Result<(f64, f64)> {
+                    let top = contact.state_at_depth(self.depth_max)?;
+                    let ad = AdhesiveRow::new(contact.clone(), self.gamma)?;
+                    Ok((ad.pull_off(top.radius, Control::Force)?.force, top.radius))
+                },
+            )
+            .ctx("MRD adhesion")?;
+        let scale = PI * self.gamma * radius;
+        let closed: Vec<f64> = out.stage(Stage::ClosedForm, || {
+            self.lambdas
+                .iter()
+                .map(|l| maugis_dugdale::pull_off(*l))
+                .collect()
+        });
+        let runs = out
+            .stage(Stage::Adhesion3d, || {
+                let mut runs = Vec::new();
+                for &lambda in &self.lambdas {
+                    for &n in &self.cells {
+                        runs.push(self.run_3d(lambda, n, radius, e, a_top)?);
+                    }
+                }
+                Ok::<_, bem3d::BemError>(runs)
+            })
+            .ctx("3D cohesive contact")?;
+        self.report(env, out, (mrd / scale, &closed), &runs, scale);
+        Ok(())
+    }
+}
+
+impl Tabor3d {
+    fn run_3d(&self, lambda: f64, n: usize, r: f64, e: f64, a_top: f64) -> bem3d::Result<Run> {
+        let sigma0 = lambda * (2.0 * PI * self.gamma * e * e / (9.0 * r)).cbrt();
+        let range = self.gamma / sigma0;
+        let l = self.extent * 2.0 * (a_top * a_top + 2.0 * r * range).sqrt();
+        let h = l / n as f64;
+        let heights: Vec<f64> = (0..n * n)
+            .map(|k| {
+                let x = ((k % n) as f64 + 0.5) * h - 0.5 * l;
+                let y = ((k / n) as f64 + 0.5) * h - 0.5 * l;
+                -(x * x + y * y) / (2.0 * r)
+            })
+            .collect();
+        let apex = heights.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+        let op = NonPeriodicHalfSpace::new(n, n, l, l, e);
+        let mut c = CohesiveContact::new(op, &heights, None, self.gamma, sigma0)?;
+        let dd = self.depth_max / self.steps as f64;
+        for k in 1..=self.steps {
+            c.step(dd * k as f64 + apex, self.tolerance)?;
+        }
+        let mut pull_off = f64::INFINITY;
+        let mut apart = false;
+        for k in 0..100 * self.steps {
+            let s = c.step(self.depth_max - dd * k as f64 + apex, self.tolerance)?;
+            pull_off = pull_off.min(s.force);
+            if s.contact_cells == 0 && s.cohesive_cells == 0 {
+                apart = true;
+                break;
+            }
+        }
+        if !apart {
+            return Err(bem3d::BemError::Infeasible(format!(
+                "lambda = {lambda}: the sphere did not come apart within {} approach steps",
+                100 * self.steps
+            )));
+        }
+        Ok(Run {
+            lambda,
+            cells: n,
+            h,
+            dugdale: c.dugdale_length(),
+            pull_off,
+        })
+    }
+
+    fn report(
+        &self,
+        env: &Env,
+        out: &mut Section,
+        (mrd, closed): (f64, &[f64]),
+        runs: &[Run],
+        scale: f64,
+    ) {
+        let force = env.ctx.units.force();
+        let mut t = Table::new(
+            "tabor",
+            &[
+                "lambda [1]".to_string(),
+                "cells [1]".to_string(),
+                "cells_per_dugdale_length [1]".to_string(),
+                "resolved [0/1]".to_string(),
+                "pull_off_3d_over_pi_w_r [1]".to_string(),
+                "pull_off_maugis_over_pi_w_r [1]".to_string(),
+                "pull_off_mrd_over_pi_w_r [1]".to_string(),
+                "rel_error_3d_vs_maugis [1]".to_string(),
+                "rel_error_mrd_vs_maugis [1]".to_string(),
+            ],
+        );
+        t.notes.push(format!(
+            "pull-off force over pi w R (pi w R = {scale:e} [{force}]), force control (the smallest force of the approach-controlled unloading); 3D: Maugis-Dugdale law on the free half-space, resolved when the Dugdale length E* w / sigma0^2 spans {RESOLVED_CELLS} cells; MRD: rule of Hess with Eq. 33 (zero range: JKR)"
+        ));
+        let (mut worst, mut unresolved) = (0.0f64, 0usize);
+        let finest = *self.cells.last().unwrap_or(&0);
+        for run in runs {
+            let k = self
+                .lambdas
+                .iter()
+                .position(|l| *l == run.lambda)
+                .unwrap_or(0);
+            let per = run.dugdale / run.h;
+            let resolved = per >= RESOLVED_CELLS;
+            let p3 = run.pull_off / scale;
+            let err = p3 / closed[k] - 1.0;
+            if run.cells == finest {
+                if resolved {
+                    worst = worst.max(err.abs());
+                } else {
+                    unresolved += 1;
+                }
+            }
+            t.push(vec![
+                run.lambda,
+                run.cells as f64,
+                per,
+                resolved as u8 as f64,
+                p3,
+                closed[k],
+                mrd,
+                err,
+                mrd / closed[k] - 1.0,
+            ]);
+        }
+        out.scalar("rel_error_3d_vs_maugis_max_resolved", worst);
+        out.scalar("unresolved_lambdas", unresolved as f64);
+        let (lo, hi) = self
+            .lambdas
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(a, b), l| (a.min(*l), b.max(*l)));
+        out.scalar(
+            "rel_error_mrd_vs_maugis_at_smallest_lambda",
+            mrd / maugis_dugdale::pull_off(lo) - 1.0,
+        );
+        out.scalar(
+            "rel_error_mrd_vs_maugis_at_largest_lambda",
+            mrd / maugis_dugdale::pull_off(hi) - 1.0,
+        );
+        if unresolved > 0 {
+            out.warnings.push(format!(
+                "tabor_3d: {unresolved} lambda(s) not resolved on the finest grid (the Dugdale length spans fewer than {RESOLVED_CELLS} cells): their 3D pull-off is not converged"
+            ));
+        }
+        let curve: Vec<(f64, f64)> = (0..=60)
+            .map(|k| {
+                let l = (lo / 3.0) * (9.0 * hi / lo).powf(k as f64 / 60.0);
+                (l, -maugis_dugdale::pull_off(l))
+            })
+            .collect();
+        let ends = vec![(curve[0].0, -mrd), (curve[60].0, -mrd)];
+        let mut fig = Figure::new(
+            "tabor",
+            "Pull-off of a sphere against the Tabor-Maugis parameter: 3D, Maugis and MRD",
+            "Tabor-Maugis parameter lambda [1]",
+            "pull-off force -F / (pi w R) [1]",
+        )
+        .with(Series::new(
+            "Maugis-Dugdale (closed form)",
+            curve,
+            Style::Line,
+        ))
+        .with(Series::new(
+            "MRD (rule of Hess, Eq. 33: JKR)",
+            ends,
+            Style::Dashed,
+        ));
+        for (k, &n) in self.cells.iter().enumerate() {
+            let pts = |res: bool| -> Vec<(f64, f64)> {
+                t.rows
+                    .iter()
+                    .filter(|r| r[1] == n as f64 && (r[3] == 1.0) == res)
+                    .map(|r| (r[0], -r[4]))
+                    .collect()
+            };
+            let style = if k + 1 == self.cells.len() {
+                Style::Markers
+            } else {
+                Style::Crosses
+            };
+            let resolved = pts(true);
+            if !resolved.is_empty() {
+                fig = fig.with(Series::new(format!("3D, {n}^2 cells"), resolved, style));
+            }
+            let rest = pts(false);
+            if !rest.is_empty() {
+                fig = fig.with(Series::new(
+                    format!(
+                        "3D, {n}^2 cells, unresolved (< {RESOLVED_CELLS} cells per Dugdale length)"
+                    ),
+                    rest,
+                    Style::Crosses,
+                ));
+            }
+        }
+        fig.log_x = true;
+        out.tables.push(t);
+        out.figures.push(fig);
+    }
+}
