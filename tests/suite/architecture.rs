@@ -1,5 +1,5 @@
 //! The shape of the workspace, checked on its sources: no function longer than 150 lines
-//! in any crate; no import cycle among the top-level modules of `bem3d` and `compare`
+//! in any crate; a budget for bem3d's public API; no import cycle among the top-level modules of `bem3d` and `compare`
 //! (through `crate::`) nor among the solver's files (through `super::`); `compare`'s
 //! documented module order; the registry as the one place that lists output kinds.
 
@@ -536,4 +536,133 @@ fn output_kinds_are_listed_only_in_the_registry() {
             assert!(!text.contains(k), "{rel} names the kind {k}");
         }
     }
+}
+
+/// The public modules of a crate, from its `lib.rs` down through `pub mod` (files
+/// relative to `src`, with their module paths).
+fn public_files(root: &Path) -> Vec<(String, PathBuf)> {
+    let mut out = Vec::new();
+    let mut stack = vec![(String::new(), root.join("lib.rs"))];
+    while let Some((path, file)) = stack.pop() {
+        let text = code(&std::fs::read_to_string(&file).unwrap());
+        // Children live beside lib.rs / mod.rs, or in a folder named after the file.
+        let dir = match file.file_name().and_then(|f| f.to_str()) {
+            Some("lib.rs") | Some("mod.rs") => file.parent().unwrap().to_path_buf(),
+            _ => file.with_extension(""),
+        };
+        for child in names_after(&text, "pub mod ") {
+            let single = dir.join(format!("{child}.rs"));
+            let folder = dir.join(&child).join("mod.rs");
+            let f = if single.exists() { single } else { folder };
+            let p = if path.is_empty() {
+                child.clone()
+            } else {
+                format!("{path}::{child}")
+            };
+            stack.push((p, f));
+        }
+        out.push((
+            if path.is_empty() {
+                "(crate root)".into()
+            } else {
+                path
+            },
+            file,
+        ));
+    }
+    out.sort();
+    out
+}
+
+/// The public items of one file: `pub fn`, `pub struct`, `pub enum`, `pub trait`,
+/// `pub const`, `pub type` and `pub use` (not `pub(crate)`), outside its unit tests.
+fn public_items(file: &Path) -> usize {
+    let text = std::fs::read_to_string(file).unwrap();
+    // The file's test module (last in the file), then item by item: an item under
+    // `#[cfg(test)]` is not API; a `pub use` counts the names it re-exports.
+    let text = text.split("\n#[cfg(test)]\nmod ").next().unwrap_or("");
+    let lines: Vec<&str> = text.lines().map(str::trim_start).collect();
+    let mut count = 0;
+    for i in 0..lines.len() {
+        let l = lines[i];
+        if i > 0 && lines[i - 1].starts_with("#[cfg(test)]") {
+            continue;
+        }
+        if l.starts_with("pub use ") {
+            let statement: String = lines[i..].join(" ");
+            let statement = statement.split(';').next().unwrap_or("");
+            count += match statement.split_once('{') {
+                Some((_, names)) => names
+                    .split(',')
+                    .filter(|n| !n.trim().trim_end_matches('}').trim().is_empty())
+                    .count(),
+                None => 1,
+            };
+        } else if [
+            "pub fn ",
+            "pub struct ",
+            "pub enum ",
+            "pub trait ",
+            "pub const ",
+            "pub type ",
+        ]
+        .iter()
+        .any(|p| l.starts_with(p))
+        {
+            count += 1;
+        }
+    }
+    count
+}
+
+/// bem3d's public API has a budget per public module (159 items: declarations, and the
+/// names of `pub use` re-exports): a change that adds public items raises the budget
+/// here, and the commit says who needs them (the crate doc names the users of `fft`,
+/// `wide` and `mask`). Items of private modules (`symbol`, `stencil`, `love`, `pool`)
+/// are not counted unless re-exported: they are not reachable.
+#[test]
+fn bem3d_public_api_stays_within_its_budget() {
+    const BUDGET: &[(&str, usize)] = &[
+        ("(crate root)", 25),
+        ("adhesion", 12),
+        ("cohesive", 9),
+        ("error", 3),
+        ("fft", 25),
+        ("mask", 1),
+        ("operator", 21),
+        ("sliding", 4),
+        ("solution", 5),
+        ("solver", 17),
+        ("tangential", 12),
+        ("viscoelastic", 10),
+        ("wide", 5),
+    ];
+    let root = src("bem3d");
+    let mut over = Vec::new();
+    let mut seen = BTreeMap::new();
+    for (path, file) in public_files(&root) {
+        *seen
+            .entry(path.split("::").next().unwrap().to_string())
+            .or_insert(0) += public_items(&file);
+    }
+    for (module, count) in &seen {
+        match BUDGET.iter().find(|(m, _)| m == module) {
+            Some((_, b)) if count <= b => {}
+            Some((_, b)) => over.push(format!("{module}: {count} public items, budget {b}")),
+            None => over.push(format!("{module}: {count} public items, no budget")),
+        }
+    }
+    assert!(
+        over.is_empty(),
+        "bem3d's public API grew past its budget: {over:?} (all: {seen:?})"
+    );
+    // The budget is tight: a module that shrank lowers it (so the next growth is seen).
+    let slack: Vec<_> = BUDGET
+        .iter()
+        .filter(|(m, b)| seen.get(*m).is_some_and(|c| c < b))
+        .collect();
+    assert!(
+        slack.is_empty(),
+        "lower the budget of {slack:?} to the counts {seen:?}"
+    );
 }
