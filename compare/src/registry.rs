@@ -69,7 +69,7 @@ pub const KINDS: &[Kind] = &[
     ),
     Kind::of::<axisym::tangential_3d::Tangential3d>(
         "tangential_3d",
-        "a sphere loaded tangentially in 3D beside MRD: stick radius (Cattaneo-Mindlin) and dissipation per cycle (Mindlin-Deresiewicz), Sections 6-7",
+        "a body of revolution loaded tangentially in 3D beside MRD: stick radius and dissipation per cycle, against Cattaneo-Mindlin and Mindlin-Deresiewicz for a sphere, Jaeger (MRD) for a cone or power law, Sections 6-7",
     ),
     Kind::of::<axisym::damping::Damping>(
         "damping",

@@ -29,6 +29,10 @@ pub const EMBEDDED: &[(&str, &str)] = &[
         "tangential-3d",
         include_str!("../../cases/tangential-3d.toml"),
     ),
+    (
+        "tangential-3d-cone",
+        include_str!("../../cases/tangential-3d-cone.toml"),
+    ),
     ("cone", include_str!("../../cases/cone.toml")),
     (
         "contact-area-ci",

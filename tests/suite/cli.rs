@@ -179,6 +179,13 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             {
                 assert!(v < 0.015, "{name}: {k} = {v}");
             }
+            // 3D against MRD's exact springs (the cone: measured 2.0 % on the stick radius,
+            // 0.49 % on the dissipation; the sphere 0.95 % and 0.63 %).
+            if k == "tangential_3d.stick_radius_max_rel_dev_3d_vs_mrd"
+                || k == "tangential_3d.dissipation_max_rel_dev_3d_vs_mrd"
+            {
+                assert!(v < 0.025, "{name}: {k} = {v}");
+            }
             if k == "tangential_3d.energy_balance_max_rel_3d" {
                 assert!(v < 0.005, "{name}: {k} = {v}");
             }
@@ -243,6 +250,16 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             // approach step of JKR's (measured 3.2 %, a step 6.1 %).
             let step = result(&s, "adhesion_3d.approach_step_over_jump_out_depth");
             assert!(result(&s, "adhesion_3d.jump_out_depth_rel_error_3d") < step);
+            continue;
+        }
+        if *name == "tangential-3d-cone" {
+            for k in [
+                "stick_radius_max_rel_dev_3d_vs_mrd",
+                "dissipation_max_rel_dev_3d_vs_mrd",
+                "energy_balance_max_rel_3d",
+            ] {
+                assert!(result(&s, &format!("tangential_3d.{k}")).is_finite(), "{k}");
+            }
             continue;
         }
         if *name == "tangential-3d" {

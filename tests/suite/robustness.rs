@@ -679,8 +679,8 @@ fn spring_memory_estimates_hold() {
     }
 }
 
-/// `tangential_3d` refuses what it cannot compare, naming the key: a profile without
-/// Cattaneo-Mindlin's closed forms, fractions out of (0, 1) or not increasing (they are
+/// `tangential_3d` refuses what it cannot compare, naming the key: a flat punch (no
+/// partial slip), fractions out of (0, 1) or not increasing (they are
 /// read along one monotonic loading), G*/E* outside what one elastic body can have, a
 /// grid too coarse.
 #[test]
@@ -694,9 +694,10 @@ fn tangential_3d_bad_input_names_the_key() {
         (
             base.replace(
                 "{ kind = \"sphere\", radius = 10.0 }",
-                "{ kind = \"cone\", slope = 0.2 }",
-            ),
-            "needs a sphere",
+                "",
+            )
+            .replace("[profile]\n", "[profile]\nrim = 1.0\n"),
+            "needs a curved body",
         ),
         (base.clone() + "fractions = [0.5, 0.2]\n", "must increase"),
         (base.clone() + "amplitudes = [0.5, 1.0]\n", "amplitudes"),

@@ -1,7 +1,8 @@
-//! `tangential_3d`: a sphere pressed and then loaded tangentially, in 3D and in MRD side
-//! by side (Sections 6 and 7): the stick radius against the tangential force
-//! (Cattaneo-Mindlin, Eqs. 41-50) and the energy dissipated per cycle of an oscillating
-//! tangential force (Mindlin-Deresiewicz; Section 7), each against its closed form.
+//! `tangential_3d`: a body of revolution pressed and then loaded tangentially, in 3D and
+//! in MRD side by side (Sections 6 and 7): the stick radius against the tangential force
+//! and the energy dissipated per cycle of an oscillating tangential force; for a sphere
+//! also against the closed forms (Cattaneo-Mindlin, Eqs. 41-50; Mindlin-Deresiewicz),
+//! for other bodies (a cone, a power law) against MRD's exact springs (Jaeger).
 //!
 //! The 3D side solves the normal contact on a periodic half-space (the sphere at the
 //! centre of a cell of `period` contact radii) and then partial slip under that pressure
@@ -86,9 +87,8 @@ fn mindlin_deresiewicz(mu_p: f64, g_star: f64, a: f64, x: f64) -> f64 {
 
 impl Output for Tangential3d {
     fn validate(&self, ctx: &Context) -> Result<()> {
-        let profile = ctx.profile()?;
-        if for_profile::sphere_radius(profile).is_none() {
-            return bad("tangential_3d needs a sphere (profile = paraboloid): its closed forms are Cattaneo-Mindlin's");
+        if ctx.profile()?.rim().is_some() {
+            return bad("tangential_3d needs a curved body (sphere, cone, power law): a flat punch's tangential traction is proportional to its pressure (Jaeger, uncoupled), so it sticks everywhere until it slides as a whole, with no partial slip or dissipation to compare");
         }
         if !positive(self.mu) {
             return bad("friction coefficient mu must be > 0");
@@ -142,15 +142,22 @@ impl Output for Tangential3d {
         check_tolerance(self.tolerance)
     }
 
-    fn stages(&self, _: &Context) -> Vec<Stage> {
-        vec![
+    fn stages(&self, ctx: &Context) -> Vec<Stage> {
+        let sphere = ctx
+            .profile
+            .as_ref()
+            .and_then(for_profile::sphere_radius)
+            .is_some();
+        let mut s = vec![
             Stage::HessTransform,
             Stage::NormalSemiAnalytic,
             Stage::Tangential,
-            Stage::ClosedForm,
-            Stage::Bem3d,
-            Stage::Tangential3d,
-        ]
+        ];
+        if sphere {
+            s.push(Stage::ClosedForm);
+        }
+        s.extend([Stage::Bem3d, Stage::Tangential3d]);
+        s
     }
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
@@ -187,14 +194,18 @@ impl Output for Tangential3d {
                 },
             )
             .ctx("MRD tangential springs")?;
-        let closed = out.stage(Stage::ClosedForm, || {
-            let c: Vec<f64> = self.fractions.iter().map(|x| (1.0 - x).cbrt()).collect();
-            let w: Vec<f64> = self
-                .amplitudes
-                .iter()
-                .map(|x| mindlin_deresiewicz(mu * fn_, g, a, *x))
-                .collect();
-            (c, w)
+        // Cattaneo-Mindlin and Mindlin-Deresiewicz are the sphere's; other bodies have
+        // MRD (exact for bodies of revolution, Jaeger) as their reference.
+        let closed = for_profile::sphere_radius(&profile).map(|_| {
+            out.stage(Stage::ClosedForm, || {
+                let c: Vec<f64> = self.fractions.iter().map(|x| (1.0 - x).cbrt()).collect();
+                let w: Vec<f64> = self
+                    .amplitudes
+                    .iter()
+                    .map(|x| mindlin_deresiewicz(mu * fn_, g, a, *x))
+                    .collect();
+                (c, w)
+            })
         });
         let pressure = self.normal_3d(env, out, a)?;
         let three = out
@@ -206,12 +217,16 @@ impl Output for Tangential3d {
             env,
             out,
             a,
-            (&mrd.0, &closed.0, &three.0),
-            (&mrd.1, &closed.1, &three.1),
+            (&mrd.0, closed.as_ref().map(|c| &c.0[..]), &three.0),
+            (&mrd.1, closed.as_ref().map(|c| &c.1[..]), &three.1),
         );
         Ok(())
     }
 }
+
+/// Dissipation per cycle: MRD, the closed form (a sphere), and the 3D (dissipation, loop
+/// area) per amplitude.
+type Dissipations<'a> = (&'a [f64], Option<&'a [f64]>, &'a [(f64, f64)]);
 
 /// The 3D side: stick radii over a, and per amplitude the dissipation and the loop's area.
 type Results3d = (Vec<f64>, Vec<(f64, f64)>);
@@ -220,21 +235,41 @@ impl Tangential3d {
     /// The sphere's pressure on the periodic grid at the normal force.
     fn normal_3d(&self, env: &Env, out: &mut Section, a: f64) -> Result<Vec<f64>> {
         let ctx = env.ctx;
-        let radius = for_profile::sphere_radius(ctx.profile()?).unwrap_or(1.0);
+        let profile = ctx.profile()?;
         let (n, l) = (self.cells, self.period * a);
         let h = l / n as f64;
-        let z: Vec<f64> = (0..n * n)
-            .map(|k| {
-                let x = ((k % n) as f64 + 0.5) * h - 0.5 * l;
-                let y = ((k / n) as f64 + 0.5) * h - 0.5 * l;
-                -(x * x + y * y) / (2.0 * radius)
-            })
-            .collect();
+        let at = |k: usize| {
+            let x = ((k % n) as f64 + 0.5) * h - 0.5 * l;
+            let y = ((k / n) as f64 + 0.5) * h - 0.5 * l;
+            (x, y)
+        };
+        // The sphere in its own arithmetic; other bodies from the profile, cells beyond
+        // a rim (a punch) or a table masked out.
+        let (z, mask): (Vec<f64>, Option<Vec<bool>>) = match for_profile::sphere_radius(profile) {
+            Some(radius) => (
+                (0..n * n)
+                    .map(|k| {
+                        let (x, y) = at(k);
+                        -(x * x + y * y) / (2.0 * radius)
+                    })
+                    .collect(),
+                None,
+            ),
+            None => {
+                let reach = profile.max_contact_radius();
+                let r = |k: usize| at(k).0.hypot(at(k).1);
+                let mask: Vec<bool> = (0..n * n).map(|k| r(k) < reach).collect();
+                let z = (0..n * n)
+                    .map(|k| if mask[k] { -profile.z(r(k)) } else { 0.0 })
+                    .collect();
+                (z, Some(mask))
+            }
+        };
         let opts = SolverOptions::new(self.tolerance, 10_000);
         let sol = out
             .stage(Stage::Bem3d, || {
                 let op = PeriodicHalfSpace::new(n, n, l, l, ctx.material.e_star);
-                ContactSolver::new(op, &z, None)?.solve(Load::Force(self.normal_force), &opts, None)
+                ContactSolver::new(op, &z, mask)?.solve(Load::Force(self.normal_force), &opts, None)
             })
             .ctx("3D normal contact")?;
         out.scalar("contact_radius_3d", (sol.contact_area / PI).sqrt());
@@ -290,111 +325,154 @@ impl Tangential3d {
         Ok((stick, cycles))
     }
 
-    /// The tables, figures and agreement scalars of both comparisons.
+    /// The tables, figures and agreement scalars of both comparisons (the closed-form
+    /// columns for the sphere only).
     fn report(
         &self,
         env: &Env,
         out: &mut Section,
         a: f64,
-        (c_mrd, c_cf, c_3d): (&[f64], &[f64], &[f64]),
-        (w_mrd, w_cf, w_3d): (&[f64], &[f64], &[(f64, f64)]),
+        (c_mrd, c_cf, c_3d): (&[f64], Option<&[f64]>, &[f64]),
+        (w_mrd, w_cf, w_3d): Dissipations,
     ) {
         let units = &env.ctx.units;
         let energy = format!("{} {}", units.force(), units.length);
-        let mut t = Table::new(
-            "stick",
-            &[
-                "tangential_force_over_mu_fn [1]".to_string(),
-                "stick_radius_over_a_closed_form [1]".to_string(),
-                "stick_radius_over_a_mrd [1]".to_string(),
-                "stick_radius_over_a_3d [1]".to_string(),
-            ],
-        );
+        let x = "tangential_force_over_mu_fn";
+        let mut cols = vec![format!("{x} [1]")];
+        if c_cf.is_some() {
+            cols.push("stick_radius_over_a_closed_form [1]".to_string());
+        }
+        cols.push("stick_radius_over_a_mrd [1]".to_string());
+        cols.push("stick_radius_over_a_3d [1]".to_string());
+        let mut t = Table::new("stick", &cols);
         t.notes.push(format!(
-            "Cattaneo-Mindlin c/a = (1 - F_x/(mu F_N))^(1/3); MRD: exact tangential springs; 3D: {0}^2 periodic cells, period {1} contact radii, {2:.1} cells per radius (stick radius from the count of stick cells)",
+            "{}MRD: exact tangential springs; 3D: {1}^2 periodic cells, period {2} contact radii, {3:.1} cells per radius (stick radius from the count of stick cells)",
+            if c_cf.is_some() { "Cattaneo-Mindlin c/a = (1 - F_x/(mu F_N))^(1/3); " } else { "" },
             self.cells, self.period, a * self.cells as f64 / (self.period * a)
         ));
-        let (mut dev_mrd, mut dev_3d) = (0.0f64, 0.0f64);
+        let (mut dev_mrd, mut dev_3d, mut dev_3d_mrd) = (0.0f64, 0.0f64, 0.0f64);
         for (k, f) in self.fractions.iter().enumerate() {
-            dev_mrd = dev_mrd.max((c_mrd[k] - c_cf[k]).abs() / c_cf[k]);
-            dev_3d = dev_3d.max((c_3d[k] - c_cf[k]).abs() / c_cf[k]);
-            t.push(vec![*f, c_cf[k], c_mrd[k], c_3d[k]]);
+            dev_3d_mrd = dev_3d_mrd.max((c_3d[k] - c_mrd[k]).abs() / c_mrd[k]);
+            let mut row = vec![*f];
+            if let Some(cf) = c_cf {
+                dev_mrd = dev_mrd.max((c_mrd[k] - cf[k]).abs() / cf[k]);
+                dev_3d = dev_3d.max((c_3d[k] - cf[k]).abs() / cf[k]);
+                row.push(cf[k]);
+            }
+            row.extend([c_mrd[k], c_3d[k]]);
+            t.push(row);
         }
-        out.scalar("stick_radius_max_rel_error_mrd", dev_mrd);
-        out.scalar("stick_radius_max_rel_error_3d", dev_3d);
-        let fig = Figure::new(
+        if c_cf.is_some() {
+            out.scalar("stick_radius_max_rel_error_mrd", dev_mrd);
+            out.scalar("stick_radius_max_rel_error_3d", dev_3d);
+        }
+        out.scalar("stick_radius_max_rel_dev_3d_vs_mrd", dev_3d_mrd);
+        let mut fig = Figure::new(
             "stick",
             "Stick radius against tangential force: 3D, MRD and Cattaneo-Mindlin",
             "tangential force F_x / (mu F_N) [1]",
             "stick radius c / contact radius a [1]",
-        )
-        .with(Series::new(
-            "Cattaneo-Mindlin (closed form)",
-            t.xy(
-                "tangential_force_over_mu_fn",
-                "stick_radius_over_a_closed_form",
-            ),
-            Style::Line,
-        ))
-        .with(Series::new(
-            "MRD (tangential springs)",
-            t.xy("tangential_force_over_mu_fn", "stick_radius_over_a_mrd"),
-            Style::Markers,
-        ))
-        .with(Series::new(
-            "3D boundary elements",
-            t.xy("tangential_force_over_mu_fn", "stick_radius_over_a_3d"),
-            Style::Crosses,
-        ));
+        );
+        if c_cf.is_some() {
+            fig = fig.with(Series::new(
+                "Cattaneo-Mindlin (closed form)",
+                t.xy(x, "stick_radius_over_a_closed_form"),
+                Style::Line,
+            ));
+        } else {
+            fig.title = "Stick radius against tangential force: 3D and MRD (Jaeger)".into();
+        }
+        fig = fig
+            .with(Series::new(
+                "MRD (tangential springs)",
+                t.xy(x, "stick_radius_over_a_mrd"),
+                if c_cf.is_some() {
+                    Style::Markers
+                } else {
+                    Style::Line
+                },
+            ))
+            .with(Series::new(
+                "3D boundary elements",
+                t.xy(x, "stick_radius_over_a_3d"),
+                Style::Crosses,
+            ));
         out.tables.push(t);
         out.figures.push(fig);
-        let mut t = Table::new(
-            "dissipation",
-            &[
-                "force_amplitude_over_mu_fn [1]".to_string(),
-                format!("dissipation_closed_form [{energy}]"),
-                format!("dissipation_mrd [{energy}]"),
-                format!("dissipation_3d [{energy}]"),
-                format!("loop_area_3d [{energy}]"),
-            ],
-        );
+        self.report_dissipation(out, &energy, (w_mrd, w_cf, w_3d));
+    }
+
+    /// The dissipation table, figure and scalars.
+    fn report_dissipation(
+        &self,
+        out: &mut Section,
+        energy: &str,
+        (w_mrd, w_cf, w_3d): Dissipations,
+    ) {
+        let mut cols = vec!["force_amplitude_over_mu_fn [1]".to_string()];
+        if w_cf.is_some() {
+            cols.push(format!("dissipation_closed_form [{energy}]"));
+        }
+        cols.push(format!("dissipation_mrd [{energy}]"));
+        cols.push(format!("dissipation_3d [{energy}]"));
+        cols.push(format!("loop_area_3d [{energy}]"));
+        let mut t = Table::new("dissipation", &cols);
         t.notes.push(format!(
-            "energy per cycle of an oscillating tangential force; closed form: Mindlin-Deresiewicz; MRD: its springs at the displacement amplitude of the force amplitude; 3D: the second of two cycles, {} force steps per half cycle, the dissipation summed over the steps and the loop's area (work of the force over the shift)",
+            "energy per cycle of an oscillating tangential force; {}MRD: its springs at the displacement amplitude of the force amplitude; 3D: the second of two cycles, {} force steps per half cycle, the dissipation summed over the steps and the loop's area (work of the force over the shift)",
+            if w_cf.is_some() { "closed form: Mindlin-Deresiewicz; " } else { "" },
             self.steps
         ));
-        let (mut wd_mrd, mut wd_3d, mut balance) = (0.0f64, 0.0f64, 0.0f64);
+        let (mut wd_mrd, mut wd_3d, mut wd_3d_mrd, mut balance) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
         for (k, x) in self.amplitudes.iter().enumerate() {
-            wd_mrd = wd_mrd.max((w_mrd[k] - w_cf[k]).abs() / w_cf[k]);
-            wd_3d = wd_3d.max((w_3d[k].0 - w_cf[k]).abs() / w_cf[k]);
+            wd_3d_mrd = wd_3d_mrd.max((w_3d[k].0 - w_mrd[k]).abs() / w_mrd[k]);
             balance = balance.max((w_3d[k].1 - w_3d[k].0).abs() / w_3d[k].0);
-            t.push(vec![*x, w_cf[k], w_mrd[k], w_3d[k].0, w_3d[k].1]);
+            let mut row = vec![*x];
+            if let Some(cf) = w_cf {
+                wd_mrd = wd_mrd.max((w_mrd[k] - cf[k]).abs() / cf[k]);
+                wd_3d = wd_3d.max((w_3d[k].0 - cf[k]).abs() / cf[k]);
+                row.push(cf[k]);
+            }
+            row.extend([w_mrd[k], w_3d[k].0, w_3d[k].1]);
+            t.push(row);
         }
-        out.scalar("dissipation_max_rel_error_mrd", wd_mrd);
-        out.scalar("dissipation_max_rel_error_3d", wd_3d);
+        if w_cf.is_some() {
+            out.scalar("dissipation_max_rel_error_mrd", wd_mrd);
+            out.scalar("dissipation_max_rel_error_3d", wd_3d);
+        }
+        out.scalar("dissipation_max_rel_dev_3d_vs_mrd", wd_3d_mrd);
         out.scalar("energy_balance_max_rel_3d", balance);
         let x = "force_amplitude_over_mu_fn";
-        let fig = Figure::new(
+        let mut fig = Figure::new(
             "dissipation",
             "Energy dissipated per cycle: 3D, MRD and Mindlin-Deresiewicz",
             "force amplitude F* / (mu F_N) [1]",
             &format!("dissipation per cycle W [{energy}]"),
-        )
-        .with(Series::new(
-            "Mindlin-Deresiewicz (closed form)",
-            t.xy(x, "dissipation_closed_form"),
-            Style::Line,
-        ))
-        .with(Series::new(
-            "MRD (tangential springs)",
-            t.xy(x, "dissipation_mrd"),
-            Style::Markers,
-        ))
-        .with(Series::new(
-            "3D boundary elements",
-            t.xy(x, "dissipation_3d"),
-            Style::Crosses,
-        ))
-        .log_log();
+        );
+        if w_cf.is_some() {
+            fig = fig.with(Series::new(
+                "Mindlin-Deresiewicz (closed form)",
+                t.xy(x, "dissipation_closed_form"),
+                Style::Line,
+            ));
+        } else {
+            fig.title = "Energy dissipated per cycle: 3D and MRD".into();
+        }
+        fig = fig
+            .with(Series::new(
+                "MRD (tangential springs)",
+                t.xy(x, "dissipation_mrd"),
+                if w_cf.is_some() {
+                    Style::Markers
+                } else {
+                    Style::Line
+                },
+            ))
+            .with(Series::new(
+                "3D boundary elements",
+                t.xy(x, "dissipation_3d"),
+                Style::Crosses,
+            ))
+            .log_log();
         out.tables.push(t);
         out.figures.push(fig);
     }
