@@ -123,54 +123,13 @@ impl<C: Preconditioner> AdhesiveContact<C> {
     /// `heights` (`ny x nx`, finite), an optional `mask` of the cells that may touch, and
     /// the work of adhesion `work` > 0 [energy / length^2]. Starts out of contact.
     pub fn new(op: C, heights: &[f64], mask: Option<&[bool]>, work: f64) -> Result<Self> {
-        let n = op.cells();
-        if heights.len() != n {
-            return Err(BemError::InvalidInput(format!(
-                "heights have {} values for a grid of {} x {} cells",
-                heights.len(),
-                op.nx(),
-                op.ny()
-            )));
-        }
-        if let Some(i) = heights.iter().position(|h| !h.is_finite()) {
-            return Err(BemError::InvalidInput(format!(
-                "heights[{i}] = {} must be finite",
-                heights[i]
-            )));
-        }
         if !(work.is_finite() && work > 0.0) {
             return Err(BemError::InvalidInput(format!(
                 "work of adhesion w = {work} must be finite and > 0 (without adhesion use the normal solver)"
             )));
         }
-        let domain: Vec<bool> = match mask {
-            Some(m) if m.len() != n => {
-                return Err(BemError::InvalidInput(format!(
-                    "mask has {} values for a grid of {n} cells",
-                    m.len()
-                )))
-            }
-            Some(m) => m.to_vec(),
-            None => vec![true; n],
-        };
-        let cells = domain.iter().filter(|d| **d).count();
-        if cells == 0 {
-            return Err(BemError::InvalidInput(
-                "the mask leaves no cell that may touch".into(),
-            ));
-        }
-        let top = (0..n)
-            .filter(|&i| domain[i])
-            .map(|i| heights[i])
-            .fold(f64::NEG_INFINITY, f64::max);
-        let z: Vec<f64> = heights.iter().map(|h| top - h).collect();
-        let mean = (0..n).filter(|&i| domain[i]).map(|i| z[i]).sum::<f64>() / cells as f64;
-        let rms = ((0..n)
-            .filter(|&i| domain[i])
-            .map(|i| (z[i] - mean).powi(2))
-            .sum::<f64>()
-            / cells as f64)
-            .sqrt();
+        let (z, domain, rms) = rigid_surface(&op, heights, mask)?;
+        let n = z.len();
         let (hx, hy) = (op.lx() / op.nx() as f64, op.ly() / op.ny() as f64);
         let critical = critical_stress(op.e_star(), work, hx, hy);
         if !(critical.is_finite() && critical > 0.0) {
@@ -452,6 +411,60 @@ impl<C: Preconditioner> AdhesiveContact<C> {
             reason: "the solve on a contact set did not converge within the iteration limit",
         })
     }
+}
+
+/// The rigid surface of the adhesive solvers from the caller's heights and mask, checked:
+/// `z = max(h) - h` over the cells that may touch, those cells, and the rms of z over
+/// them (the normal solver's conventions).
+pub(crate) fn rigid_surface<C: Preconditioner>(
+    op: &C,
+    heights: &[f64],
+    mask: Option<&[bool]>,
+) -> Result<(Vec<f64>, Vec<bool>, f64)> {
+    let n = op.cells();
+    if heights.len() != n {
+        return Err(BemError::InvalidInput(format!(
+            "heights have {} values for a grid of {} x {} cells",
+            heights.len(),
+            op.nx(),
+            op.ny()
+        )));
+    }
+    if let Some(i) = heights.iter().position(|h| !h.is_finite()) {
+        return Err(BemError::InvalidInput(format!(
+            "heights[{i}] = {} must be finite",
+            heights[i]
+        )));
+    }
+    let domain: Vec<bool> = match mask {
+        Some(m) if m.len() != n => {
+            return Err(BemError::InvalidInput(format!(
+                "mask has {} values for a grid of {n} cells",
+                m.len()
+            )))
+        }
+        Some(m) => m.to_vec(),
+        None => vec![true; n],
+    };
+    let cells = domain.iter().filter(|d| **d).count();
+    if cells == 0 {
+        return Err(BemError::InvalidInput(
+            "the mask leaves no cell that may touch".into(),
+        ));
+    }
+    let top = (0..n)
+        .filter(|&i| domain[i])
+        .map(|i| heights[i])
+        .fold(f64::NEG_INFINITY, f64::max);
+    let z: Vec<f64> = heights.iter().map(|h| top - h).collect();
+    let mean = (0..n).filter(|&i| domain[i]).map(|i| z[i]).sum::<f64>() / cells as f64;
+    let rms = ((0..n)
+        .filter(|&i| domain[i])
+        .map(|i| (z[i] - mean).powi(2))
+        .sum::<f64>()
+        / cells as f64)
+        .sqrt();
+    Ok((z, domain, rms))
 }
 
 #[derive(Debug, Clone, Copy)]

@@ -27,6 +27,7 @@
 //! Dugdale length, 9 % with 8.5, 22 % with 4.3, 32 % with 1.9, first order in the cell;
 //! [`CohesiveContact::resolved`] asks for 10 cells, and a caller warns below.
 
+use crate::adhesion::rigid_surface;
 use crate::error::{BemError, Result};
 use crate::operator::Preconditioner;
 
@@ -79,23 +80,10 @@ impl<C: Preconditioner> CohesiveContact<C> {
         work: f64,
         sigma0: f64,
     ) -> Result<Self> {
-        let n = op.cells();
         if op.is_periodic() {
             return Err(BemError::InvalidInput(
                 "the cohesive law is solved under a prescribed approach: use the free (non-periodic) half-space".into(),
             ));
-        }
-        if heights.len() != n {
-            return Err(BemError::InvalidInput(format!(
-                "heights have {} values for a grid of {n} cells",
-                heights.len()
-            )));
-        }
-        if let Some(i) = heights.iter().position(|h| !h.is_finite()) {
-            return Err(BemError::InvalidInput(format!(
-                "heights[{i}] = {} must be finite",
-                heights[i]
-            )));
         }
         for (name, v) in [
             ("work of adhesion w", work),
@@ -107,34 +95,8 @@ impl<C: Preconditioner> CohesiveContact<C> {
                 )));
             }
         }
-        let domain: Vec<bool> = match mask {
-            Some(m) if m.len() != n => {
-                return Err(BemError::InvalidInput(format!(
-                    "mask has {} values for a grid of {n} cells",
-                    m.len()
-                )))
-            }
-            Some(m) => m.to_vec(),
-            None => vec![true; n],
-        };
-        let cells = domain.iter().filter(|d| **d).count();
-        if cells == 0 {
-            return Err(BemError::InvalidInput(
-                "the mask leaves no cell that may touch".into(),
-            ));
-        }
-        let top = (0..n)
-            .filter(|&i| domain[i])
-            .map(|i| heights[i])
-            .fold(f64::NEG_INFINITY, f64::max);
-        let z: Vec<f64> = heights.iter().map(|h| top - h).collect();
-        let mean = (0..n).filter(|&i| domain[i]).map(|i| z[i]).sum::<f64>() / cells as f64;
-        let rms = ((0..n)
-            .filter(|&i| domain[i])
-            .map(|i| (z[i] - mean).powi(2))
-            .sum::<f64>()
-            / cells as f64)
-            .sqrt();
+        let (z, domain, rms) = rigid_surface(&op, heights, mask)?;
+        let n = z.len();
         Ok(Self {
             op,
             z,
