@@ -710,16 +710,7 @@ fn tangential_3d_bad_input_names_the_key() {
             "Poisson's ratio",
         ),
     ];
-    for (k, (text, needle)) in cases.iter().enumerate() {
-        assert_ne!(text, &base, "case {k} changed nothing");
-        let path = tmp.path().join(format!("t{k}.toml"));
-        std::fs::write(&path, text).unwrap();
-        let o = mrdw_in(
-            tmp.path(),
-            &["run", path.to_str().unwrap(), "--out", &format!("o{k}")],
-        );
-        refused(&o, needle);
-    }
+    refuses_each(tmp.path(), &base, &cases);
 }
 
 /// `adhesion_3d` refuses what it cannot run, naming the key: no work of adhesion, a
@@ -752,16 +743,7 @@ fn adhesion_3d_bad_input_names_the_key() {
             "depth_max",
         ),
     ];
-    for (k, (text, needle)) in cases.iter().enumerate() {
-        assert_ne!(text, &base, "case {k} changed nothing");
-        let path = tmp.path().join(format!("a{k}.toml"));
-        std::fs::write(&path, text).unwrap();
-        let o = mrdw_in(
-            tmp.path(),
-            &["run", path.to_str().unwrap(), "--out", &format!("o{k}")],
-        );
-        refused(&o, needle);
-    }
+    refuses_each(tmp.path(), &base, &cases);
 }
 
 /// `tabor_3d` refuses what it cannot run, naming the key.
@@ -794,12 +776,18 @@ fn tabor_3d_bad_input_names_the_key() {
             "needs a sphere",
         ),
     ];
+    refuses_each(tmp.path(), &base, &cases);
+}
+
+/// Runs each edited scene and checks it is refused with its message (edits must change
+/// the scene).
+fn refuses_each(dir: &Path, base: &str, cases: &[(String, &str)]) {
     for (k, (text, needle)) in cases.iter().enumerate() {
-        assert_ne!(text, &base, "case {k} changed nothing");
-        let path = tmp.path().join(format!("t{k}.toml"));
+        assert_ne!(text, base, "case {k} changed nothing");
+        let path = dir.join(format!("case{k}.toml"));
         std::fs::write(&path, text).unwrap();
         let o = mrdw_in(
-            tmp.path(),
+            dir,
             &["run", path.to_str().unwrap(), "--out", &format!("o{k}")],
         );
         refused(&o, needle);
