@@ -1,12 +1,15 @@
 //! # bem3d: 3D FFT boundary-element half-space contact
 //!
 //! Frictionless, non-adhesive normal contact of a rigid body with an arbitrary height
-//! map against a linear elastic half-space of modulus E* ([`solver`]), and partial slip
-//! with Coulomb friction under a held normal pressure ([`tangential`]: a solver beside
-//! the normal one, on the same transforms), and adhesive normal contact in the JKR limit
-//! ([`adhesion`]: a second solver beside the normal one, generic over the same
-//! operators) and with the finite-range Maugis-Dugdale law ([`cohesive`]). Knows nothing of MRD: it takes plain height
-//! arrays (row-major `ny x nx`). Operators ([`operator`]) are apart from the solvers.
+//! map against a linear elastic half-space of modulus E* ([`solver`]); partial slip
+//! with Coulomb friction under a held normal pressure and the stiffness of a contact
+//! held in full stick ([`tangential`]: solvers beside the normal one, on the same
+//! transforms, with Cerruti's tensor); adhesive normal contact in the JKR limit
+//! ([`adhesion`]: a solver beside the normal one, generic over the same operators) and
+//! with the finite-range Maugis-Dugdale law ([`cohesive`]). Knows nothing of MRD: it
+//! takes plain height arrays (row-major `ny x nx`). Operators ([`operator`]) are apart
+//! from the solvers; a linear solve restricted to a set of cells (the tangent and stick
+//! stiffnesses) is shared by both kinds of solver.
 //!
 //! Public modules beyond the solvers and operators, and who needs them: [`fft`] (the
 //! real 2D transform: `mrdw bench` times one convolution with it, and bem3d's tests
@@ -25,6 +28,7 @@ mod love;
 pub mod mask;
 pub mod operator;
 mod pool;
+mod set_solve;
 
 pub use error::{BemError, Result};
 pub mod sliding;

@@ -538,28 +538,49 @@ fn output_kinds_are_listed_only_in_the_registry() {
     }
 }
 
-/// The public modules of a crate, from its `lib.rs` down through `pub mod` (files
-/// relative to `src`, with their module paths).
-fn public_files(root: &Path) -> Vec<(String, PathBuf)> {
+/// The files of a crate's public modules, from its `lib.rs` down through `pub mod`
+/// (relative to `src`, with their module paths), and below them the files of their
+/// private modules (`mod x;`), under the path of their public ancestor and marked
+/// `false`: the methods there belong to re-exported types and are API too.
+fn public_files(root: &Path) -> Vec<(String, PathBuf, bool)> {
     let mut out = Vec::new();
-    let mut stack = vec![(String::new(), root.join("lib.rs"))];
-    while let Some((path, file)) = stack.pop() {
+    let mut stack = vec![(String::new(), root.join("lib.rs"), true)];
+    while let Some((path, file, public)) = stack.pop() {
         let text = code(&std::fs::read_to_string(&file).unwrap());
         // Children live beside lib.rs / mod.rs, or in a folder named after the file.
         let dir = match file.file_name().and_then(|f| f.to_str()) {
             Some("lib.rs") | Some("mod.rs") => file.parent().unwrap().to_path_buf(),
             _ => file.with_extension(""),
         };
-        for child in names_after(&text, "pub mod ") {
+        let child_file = |child: &str| {
             let single = dir.join(format!("{child}.rs"));
-            let folder = dir.join(&child).join("mod.rs");
-            let f = if single.exists() { single } else { folder };
-            let p = if path.is_empty() {
-                child.clone()
+            let folder = dir.join(child).join("mod.rs");
+            if single.exists() {
+                single
             } else {
-                format!("{path}::{child}")
-            };
-            stack.push((p, f));
+                folder
+            }
+        };
+        for child in names_after(&text, "pub mod ") {
+            if public {
+                let p = if path.is_empty() {
+                    child.clone()
+                } else {
+                    format!("{path}::{child}")
+                };
+                stack.push((p, child_file(&child), true));
+            } else {
+                stack.push((path.clone(), child_file(&child), false));
+            }
+        }
+        // Private children of a public module other than the crate root (the root's
+        // private modules are internal unless re-exported by name).
+        if !path.is_empty() {
+            for l in text.lines().map(str::trim) {
+                if let Some(child) = l.strip_prefix("mod ").and_then(|r| r.strip_suffix(';')) {
+                    stack.push((path.clone(), child_file(child), false));
+                }
+            }
         }
         out.push((
             if path.is_empty() {
@@ -568,6 +589,7 @@ fn public_files(root: &Path) -> Vec<(String, PathBuf)> {
                 path
             },
             file,
+            public,
         ));
     }
     out.sort();
@@ -575,8 +597,10 @@ fn public_files(root: &Path) -> Vec<(String, PathBuf)> {
 }
 
 /// The public items of one file: `pub fn`, `pub struct`, `pub enum`, `pub trait`,
-/// `pub const`, `pub type` and `pub use` (not `pub(crate)`), outside its unit tests.
-fn public_items(file: &Path) -> usize {
+/// `pub const`, `pub type` and `pub use` (not `pub(crate)`), outside its unit tests;
+/// of a private module's file (`public` false) its `pub fn`s only (the methods of types
+/// its public parent re-exports: the types are counted there, by name).
+fn public_items(file: &Path, public: bool) -> usize {
     let text = std::fs::read_to_string(file).unwrap();
     // The file's test module (last in the file), then item by item: an item under
     // `#[cfg(test)]` is not API; a `pub use` counts the names it re-exports.
@@ -588,7 +612,9 @@ fn public_items(file: &Path) -> usize {
         if i > 0 && lines[i - 1].starts_with("#[cfg(test)]") {
             continue;
         }
-        if l.starts_with("pub use ") {
+        if !public {
+            count += l.starts_with("pub fn ") as usize;
+        } else if l.starts_with("pub use ") {
             let statement: String = lines[i..].join(" ");
             let statement = statement.split(';').next().unwrap_or("");
             count += match statement.split_once('{') {
@@ -615,11 +641,12 @@ fn public_items(file: &Path) -> usize {
     count
 }
 
-/// bem3d's public API has a budget per public module (159 items: declarations, and the
-/// names of `pub use` re-exports): a change that adds public items raises the budget
-/// here, and the commit says who needs them (the crate doc names the users of `fft`,
-/// `wide` and `mask`). Items of private modules (`symbol`, `stencil`, `love`, `pool`)
-/// are not counted unless re-exported: they are not reachable.
+/// bem3d's public API has a budget per public module (175 items: declarations, the
+/// names of `pub use` re-exports, and the methods in a public module's private files):
+/// a change that adds public items raises the budget here, and the commit says who
+/// needs them (the crate doc names the users of `fft`, `wide` and `mask`). The crate
+/// root's private modules (`symbol`, `stencil`, `love`, `pool`, `set_solve`) are not
+/// counted unless re-exported: they are not reachable.
 #[test]
 fn bem3d_public_api_stays_within_its_budget() {
     const BUDGET: &[(&str, usize)] = &[
@@ -629,21 +656,21 @@ fn bem3d_public_api_stays_within_its_budget() {
         ("error", 3),
         ("fft", 25),
         ("mask", 1),
-        ("operator", 21),
+        ("operator", 34),
         ("sliding", 4),
         ("solution", 5),
-        ("solver", 17),
-        ("tangential", 12),
+        ("solver", 28),
+        ("tangential", 14),
         ("viscoelastic", 10),
         ("wide", 5),
     ];
     let root = src("bem3d");
     let mut over = Vec::new();
     let mut seen = BTreeMap::new();
-    for (path, file) in public_files(&root) {
+    for (path, file, public) in public_files(&root) {
         *seen
             .entry(path.split("::").next().unwrap().to_string())
-            .or_insert(0) += public_items(&file);
+            .or_insert(0) += public_items(&file, public);
     }
     for (module, count) in &seen {
         match BUDGET.iter().find(|(m, _)| m == module) {

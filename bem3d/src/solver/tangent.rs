@@ -3,6 +3,7 @@
 use super::{ContactSolver, Solution, SolverOptions};
 use crate::error::{BemError, Result};
 use crate::operator::SolverOperator;
+use crate::set_solve::{SetEnd, SetSolve};
 
 impl<K: SolverOperator> ContactSolver<K> {
     /// Tangent normal stiffness dF/dd with the contact set held fixed: solves
@@ -39,71 +40,25 @@ impl<K: SolverOperator> ContactSolver<K> {
         if self.op.is_periodic() && nc == n {
             return Ok(f64::INFINITY);
         }
-        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
-        let mut x = vec![0.0; n];
-        let mut res = c.clone();
-        let mut zr = res.clone();
-        self.op.precondition(&mut zr);
-        zr.iter_mut().zip(&c).for_each(|(v, m)| *v *= m);
-        let mut dir = zr.clone();
-        let mut q = vec![0.0; n];
-        let b_norm = (nc as f64).sqrt();
-        let mut rz = dot(&res, &zr);
-        let mut residual = 1.0;
-        for it in 0..=opts.max_iterations {
-            residual = dot(&res, &res).sqrt() / b_norm;
-            if !residual.is_finite() {
-                return Err(BemError::Breakdown {
-                    what: WHAT,
-                    iterations: it,
-                    residual,
-                    reason: "non-finite residual",
-                });
-            }
-            if residual <= opts.tolerance {
-                return Ok(x.iter().sum::<f64>() * self.op.cell_area());
-            }
-            if it == opts.max_iterations {
-                break;
-            }
-            if opts.interrupted() {
-                return Err(BemError::Interrupted {
-                    what: WHAT,
-                    iterations: it,
-                });
-            }
-            self.op.apply(&dir, &mut q);
-            q.iter_mut().zip(&c).for_each(|(v, m)| *v *= m);
-            let curvature = dot(&dir, &q);
-            if !(curvature > 0.0 && curvature.is_finite() && rz > 0.0) {
-                return Err(BemError::Breakdown {
-                    what: WHAT,
-                    iterations: it,
-                    residual,
-                    reason: "vanishing or non-finite step",
-                });
-            }
-            let alpha = rz / curvature;
-            for i in 0..n {
-                x[i] += alpha * dir[i];
-                res[i] -= alpha * q[i];
-            }
-            zr.copy_from_slice(&res);
-            self.op.precondition(&mut zr);
-            zr.iter_mut().zip(&c).for_each(|(v, m)| *v *= m);
-            let rz_new = dot(&res, &zr);
-            let beta = rz_new / rz;
-            for i in 0..n {
-                dir[i] = zr[i] + beta * dir[i];
-            }
-            rz = rz_new;
-        }
-        Err(BemError::NoConvergence {
+        let mut solve = SetSolve {
             what: WHAT,
-            iterations: opts.max_iterations,
-            residual,
+            op: &mut self.op,
             tolerance: opts.tolerance,
-            last: Box::new(sol.clone()),
-        })
+            max_iterations: opts.max_iterations,
+            interrupted: &|| opts.interrupted(),
+        };
+        match solve.run(&c, &c)? {
+            SetEnd::Converged { x, .. } => Ok(x.iter().sum::<f64>() * self.op.cell_area()),
+            SetEnd::Limit {
+                iterations,
+                residual,
+            } => Err(BemError::NoConvergence {
+                what: WHAT,
+                iterations,
+                residual,
+                tolerance: opts.tolerance,
+                last: Box::new(sol.clone()),
+            }),
+        }
     }
 }

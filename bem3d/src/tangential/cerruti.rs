@@ -1,0 +1,85 @@
+//! The Cerruti compliance of the periodic half-space (the tangential operator).
+
+use crate::error::{BemError, Result};
+use crate::fft::Fft2;
+use crate::operator::spectral_grid;
+
+/// The Cerruti compliance (x traction to x displacement) of a periodic half-space of
+/// shear modulus `G` and Poisson's ratio `nu` on an `ny x nx` grid of size `lx x ly`.
+pub struct CerrutiPeriodic {
+    pub(super) nx: usize,
+    pub(super) ny: usize,
+    pub(super) lx: f64,
+    pub(super) ly: f64,
+    pub(super) shear_modulus: f64,
+    pub(super) poisson: f64,
+    pub(super) fft: Fft2,
+    /// The xx entry of the tensor (module docs of [`super`]).
+    symbol: Vec<f64>,
+}
+
+impl CerrutiPeriodic {
+    pub fn new(
+        nx: usize,
+        ny: usize,
+        lx: f64,
+        ly: f64,
+        shear_modulus: f64,
+        poisson: f64,
+    ) -> Result<Self> {
+        if nx < 2 || ny < 2 {
+            return Err(BemError::InvalidInput(format!(
+                "tangential grid {nx} x {ny}: at least 2 x 2 cells"
+            )));
+        }
+        if !(lx.is_finite() && ly.is_finite() && lx > 0.0 && ly > 0.0) {
+            return Err(BemError::InvalidInput(format!(
+                "tangential grid size {lx} x {ly} must be finite and > 0"
+            )));
+        }
+        if !(shear_modulus.is_finite() && shear_modulus > 0.0) {
+            return Err(BemError::InvalidInput(format!(
+                "shear modulus G = {shear_modulus} must be finite and > 0"
+            )));
+        }
+        if !(0.0..=0.5).contains(&poisson) {
+            return Err(BemError::InvalidInput(format!(
+                "Poisson's ratio nu = {poisson} must lie in [0, 0.5]"
+            )));
+        }
+        let g = shear_modulus;
+        let symbol = spectral_grid(nx, ny, lx, ly, |kx, ky| {
+            let k2 = kx * kx + ky * ky;
+            if k2 == 0.0 {
+                0.0
+            } else {
+                (1.0 - poisson * kx * kx / k2) / (g * k2.sqrt())
+            }
+        });
+        Ok(Self {
+            nx,
+            ny,
+            lx,
+            ly,
+            shear_modulus,
+            poisson,
+            fft: Fft2::new(nx, ny),
+            symbol,
+        })
+    }
+
+    /// Cells of the grid.
+    pub fn cells(&self) -> usize {
+        self.nx * self.ny
+    }
+
+    /// Area of one cell.
+    pub fn cell_area(&self) -> f64 {
+        self.lx * self.ly / (self.nx * self.ny) as f64
+    }
+
+    /// `u = K_t q` (zero mean).
+    pub fn apply(&mut self, q: &[f64], u: &mut [f64]) {
+        self.fft.convolve(q, (self.nx, self.ny), &self.symbol, u);
+    }
+}
