@@ -87,6 +87,10 @@ pub const KINDS: &[Kind] = &[
         "static_friction_3d",
         "the mean slope in contact in 3D against MRD, Eq. (93) (Section 10.2)",
     ),
+    Kind::of::<rough::tangential_stiffness_3d::TangentialStiffness3d>(
+        "tangential_stiffness_3d",
+        "tangential over normal stiffness of rough contacts held in stick, 3D (Cerruti's tensor) against MRD's G*/E* (Section 6 on rough surfaces)",
+    ),
     Kind::of::<rough::rough_stiffness::RoughStiffness>(
         "rough_stiffness",
         "ensemble stiffness-force law of MRD rough lines (Eq. 77)",

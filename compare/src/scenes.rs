@@ -33,6 +33,14 @@ pub const EMBEDDED: &[(&str, &str)] = &[
         "tangential-3d-cone",
         include_str!("../../cases/tangential-3d-cone.toml"),
     ),
+    (
+        "tangential-stiffness-3d-ci",
+        include_str!("../../cases/tangential-stiffness-3d-ci.toml"),
+    ),
+    (
+        "tangential-stiffness-3d",
+        include_str!("../../cases/tangential-stiffness-3d.toml"),
+    ),
     ("cone", include_str!("../../cases/cone.toml")),
     (
         "contact-area-ci",

@@ -112,6 +112,7 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             || *name == "static-friction-3d"
             || *name == "rough-sphere"
             || *name == "viscoelastic-rough"
+            || *name == "tangential-stiffness-3d"
         {
             continue; // sweeps: tests/suite/sweep.rs (fig6-ci); the others are long runs
         }
@@ -189,6 +190,20 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             if k == "tangential_3d.energy_balance_max_rel_3d" {
                 assert!(v < 0.005, "{name}: {k} = {v}");
             }
+            // Rough contacts held in stick (`tangential-stiffness-3d-ci`, 32^2 and 64^2
+            // cells): the 3D k_t / k_n lies a few per cent above MRD's G*/E* (measured
+            // 4.3 % at 21 % contact, nu = 0.5; the report-scale scene 1.3-6.1 %), the
+            // last refinement moves it by under 1 % (measured 0.09 %), and q_y = 0 softens
+            // the set by under 3 % (measured 1.5 %).
+            if k == "tangential_stiffness_3d.kt_over_kn_max_rel_dev_3d_vs_mrd" {
+                assert!(v > 0.01 && v < 0.08, "{name}: {k} = {v}");
+            }
+            if k == "tangential_stiffness_3d.kt_over_kn_max_rel_change_last_refinement" {
+                assert!(v < 0.01, "{name}: {k} = {v}");
+            }
+            if k == "tangential_stiffness_3d.kt_along_only_max_rel_dev" {
+                assert!(v < 0.03, "{name}: {k} = {v}");
+            }
             // Adhesion in 3D (`adhesion-3d*`): MRD's pull-off against JKR, Kendall and
             // Eq. 37 to rounding; the 3D pull-off against MRD's on the finest grid (measured
             // 1.7 % for the sphere at 50 cells per pull-off radius, 0.21 % for the punch at
@@ -250,6 +265,17 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             // approach step of JKR's (measured 3.2 %, a step 6.1 %).
             let step = result(&s, "adhesion_3d.approach_step_over_jump_out_depth");
             assert!(result(&s, "adhesion_3d.jump_out_depth_rel_error_3d") < step);
+            continue;
+        }
+        if *name == "tangential-stiffness-3d-ci" {
+            for k in [
+                "kt_over_kn_max_rel_dev_3d_vs_mrd",
+                "kt_over_kn_max_rel_change_last_refinement",
+                "kt_along_only_max_rel_dev",
+            ] {
+                let key = format!("tangential_stiffness_3d.{k}");
+                assert!(result(&s, &key).is_finite(), "{k}");
+            }
             continue;
         }
         if *name == "tangential-3d-cone" {

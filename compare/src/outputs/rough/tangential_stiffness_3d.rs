@@ -1,0 +1,363 @@
+//! `tangential_stiffness_3d`: MRD's tangential springs on a rough contact, against 3D.
+//!
+//! MRD gives every normal spring E* dx a tangential partner G* dx (Eqs. 3 and 6), so a
+//! contact held in stick has k_t / k_n = G* / E* = 2 (1 - nu) / (2 - nu) whatever its
+//! shape: Mindlin's ratio for one circle, and the ratio Campana, Persson & Mueser
+//! (J. Phys.: Condens. Matter 23, 085001, 2011) derived for randomly rough interfaces.
+//! In 3D, many small contacts interact through Cerruti's anisotropic kernel, so the
+//! ratio is a measurement. Here:
+//!
+//! - 3D: rigid self-affine surfaces (C2D ~ q^(-2H-2) from the period L = 1 to the
+//!   shortest wavelength L / `bandwidth`, nested synthesis: a finer grid samples the same
+//!   surface) pressed on the periodic half-space, force controlled at mean pressures
+//!   p = `pressures` x E* h' (h' the rms slope of the band, the same for every
+//!   realisation); k_n = dF/dd with the contact set held
+//!   ([`bem3d::ContactSolver::tangent_stiffness`]), k_t the stick stiffness of that set
+//!   from Cerruti's whole tensor along x and along y ([`bem3d::tangential::StickStiffness`],
+//!   both measured from the mean surface displacement), for each Poisson's ratio; the
+//!   normal contact does not depend on nu (E* fixed; the normal-tangential coupling
+//!   vanishes at nu = 0.5 and is neglected otherwise, as MRD does).
+//! - MRD: G* / E* of a rigid indenter on the substrate of that nu (Eqs. 2 and 5).
+//!
+//! Each point is the mean over realisations of k_t / k_n (x and y averaged), with the 95 %
+//! interval of that mean (normal approximation); each grid of the `cells` ladder is a
+//! refinement of the same surfaces.
+
+use crate::checks::{bad, check_memory, check_tolerance, count_in, positive};
+use crate::checks::{BYTES_PER_CELL_PERIODIC, MAX_REALISATIONS};
+use crate::context::Context;
+use crate::error::{Context as _, Result};
+use crate::output::{Env, Output};
+use crate::plan::Stage;
+use crate::report::{Figure, Section, Series, Style, Table};
+use bem3d::tangential::CerrutiPeriodic;
+use bem3d::{ContactSolver, Load, PeriodicHalfSpace, SolverOptions};
+use mrd::material::{ElasticBody, Material};
+use mrd::rough_contact::Stat;
+use mrd::roughness::synthesis::Grid;
+use mrd::roughness::{nested, SelfAffine};
+use rayon::prelude::*;
+use serde::Deserialize;
+use std::f64::consts::PI;
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TangentialStiffness3d {
+    /// Hurst exponents, each in [0, 1].
+    hurst: Vec<f64>,
+    /// Poisson's ratios of the substrate, each in [0, 0.5].
+    poisson: Vec<f64>,
+    /// Shortest wavelength L / bandwidth; the period L is 1.
+    bandwidth: usize,
+    /// Cells per shortest wavelength, coarse to fine (a refinement ladder).
+    cells: Vec<usize>,
+    /// Mean pressures over E* h' (h' the rms slope), increasing.
+    pressures: Vec<f64>,
+    realisations: u64,
+    #[serde(default = "crate::checks::default_tolerance")]
+    tolerance: f64,
+    #[serde(default)]
+    seed: u64,
+}
+
+/// One realisation on one grid: per pressure, the contact fraction, k_n and k_t / k_n
+/// per Poisson's ratio (x and y averaged; and along x with q_y = 0).
+struct Run {
+    area: Vec<f64>,
+    kn: Vec<f64>,
+    ratio: Vec<Vec<f64>>,
+    ratio_along_only: Vec<Vec<f64>>,
+}
+
+impl Output for TangentialStiffness3d {
+    fn validate(&self, _: &Context) -> Result<()> {
+        if self.hurst.is_empty() || self.poisson.is_empty() || self.pressures.is_empty() {
+            return bad("hurst, poisson and pressures need at least one entry each");
+        }
+        if let Some(h) = self.hurst.iter().find(|h| !(0.0..=1.0).contains(*h)) {
+            return bad(format!("hurst = {h} must lie in [0, 1]"));
+        }
+        if let Some(nu) = self.poisson.iter().find(|n| !(0.0..=0.5).contains(*n)) {
+            return bad(format!("poisson = {nu} must lie in [0, 0.5]"));
+        }
+        if self.pressures.iter().any(|p| !(positive(*p) && *p <= 10.0))
+            || self.pressures.windows(2).any(|w| w[1] <= w[0])
+        {
+            return bad(format!(
+                "pressures = {:?}: give increasing mean pressures over E* h' in (0, 10]",
+                self.pressures
+            ));
+        }
+        count_in("bandwidth", self.bandwidth as u64, 2..=512)?;
+        if self.cells.is_empty() || self.cells.windows(2).any(|w| w[1] <= w[0]) {
+            return bad(format!(
+                "cells = {:?}: give increasing cells per shortest wavelength",
+                self.cells
+            ));
+        }
+        for &c in &self.cells {
+            count_in("cells", c as u64, 2..=256)?;
+            count_in("cells x bandwidth", (c * self.bandwidth) as u64, 8..=4096)?;
+        }
+        count_in("realisations", self.realisations, 2..=MAX_REALISATIONS)?;
+        check_tolerance(self.tolerance)?;
+        let n = (self.cells.last().copied().unwrap_or(2) * self.bandwidth) as f64;
+        // The normal solver and the Cerruti tensor (14 double arrays of n^2), per thread.
+        check_memory(
+            n * n * (BYTES_PER_CELL_PERIODIC + 112.0) * rayon::current_num_threads() as f64,
+            &format!("3D grids of {n}^2 cells, one per thread"),
+        )
+    }
+
+    fn stages(&self, _: &Context) -> Vec<Stage> {
+        vec![
+            Stage::RoughSynthesis,
+            Stage::Bem3d,
+            Stage::Bem3dStiffness,
+            Stage::Tangential,
+        ]
+    }
+
+    fn seed(&self) -> Option<u64> {
+        Some(self.seed)
+    }
+
+    fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
+        let e_star = env.ctx.material.e_star;
+        let stages = [Stage::RoughSynthesis, Stage::Bem3d, Stage::Bem3dStiffness];
+        let runs = out.stages_together(&stages, || {
+            let mut all = Vec::new();
+            for &h in &self.hurst {
+                for &cells in &self.cells {
+                    let ens = (0..self.realisations)
+                        .into_par_iter()
+                        .map(|r| self.run_3d(h, cells, r, e_star))
+                        .collect::<Result<Vec<_>>>()?;
+                    all.push((h, cells, ens));
+                }
+            }
+            Ok::<_, crate::error::CompareError>(all)
+        })?;
+        let mrd = out.stage(Stage::Tangential, || {
+            self.poisson
+                .iter()
+                .map(|&nu| mrd_ratio(e_star, nu))
+                .collect::<Result<Vec<_>>>()
+        })?;
+        self.report(out, &runs, &mrd);
+        Ok(())
+    }
+}
+
+/// MRD's k_t / k_n: G* / E* of a rigid indenter on a substrate of modulus E* and `nu`.
+fn mrd_ratio(e_star: f64, nu: f64) -> Result<f64> {
+    let rigid = ElasticBody::new(f64::INFINITY, nu).ctx("indenter")?;
+    let substrate = ElasticBody::new(e_star * (1.0 - nu * nu), nu).ctx("substrate")?;
+    let m = Material::from_bodies(rigid, substrate).ctx("material")?;
+    Ok(m.g_star().ctx("G*")? / m.e_star)
+}
+
+/// The rms slope of the nested surfaces of `c2d` cut at `band` (the same for every
+/// realisation): sum over 0 < |k| <= band of (2 pi / L)^2 C2D(q) q^2, L = 1.
+fn rms_slope(c2d: impl Fn(f64) -> f64, band: usize) -> f64 {
+    let b = band as i64;
+    let dq = 2.0 * PI;
+    let mut sum = 0.0;
+    for i in -b..=b {
+        for j in -b..=b {
+            let k2 = (i * i + j * j) as f64;
+            if k2 > 0.0 && k2 <= (b * b) as f64 {
+                let q = dq * k2.sqrt();
+                sum += dq * dq * c2d(q) * q * q;
+            }
+        }
+    }
+    sum.sqrt()
+}
+
+impl TangentialStiffness3d {
+    fn spectrum(&self, hurst: f64) -> Result<SelfAffine> {
+        let q0 = 2.0 * PI;
+        SelfAffine::new(hurst, q0, q0, q0 * (self.bandwidth as f64 + 2.0)).ctx("spectrum")
+    }
+
+    fn run_3d(&self, hurst: f64, cells: usize, r: u64, e_star: f64) -> Result<Run> {
+        let n = cells * self.bandwidth;
+        let sa = self.spectrum(hurst)?;
+        let c2d = |q: f64| sa.c2d(q);
+        let z = nested::surface(&c2d, self.bandwidth, &Grid::square(n, 1.0), self.seed, r)
+            .ctx("3D surface")?;
+        let slope = rms_slope(c2d, self.bandwidth);
+        let op = PeriodicHalfSpace::new(n, n, 1.0, 1.0, e_star);
+        let mut solver = ContactSolver::new(op, &z, None).ctx("3D solver set-up")?;
+        let opts = SolverOptions {
+            tolerance: self.tolerance,
+            max_iterations: 20 * n + 2000,
+            ..Default::default()
+        };
+        let mut cerruti: Vec<CerrutiPeriodic> = self
+            .poisson
+            .iter()
+            .map(|&nu| CerrutiPeriodic::new(n, n, 1.0, 1.0, e_star * (1.0 - nu) / 2.0, nu))
+            .collect::<bem3d::Result<_>>()
+            .ctx("Cerruti operator")?;
+        let np = self.pressures.len();
+        let mut run = Run {
+            area: Vec::with_capacity(np),
+            kn: Vec::with_capacity(np),
+            ratio: vec![Vec::with_capacity(np); self.poisson.len()],
+            ratio_along_only: vec![Vec::with_capacity(np); self.poisson.len()],
+        };
+        let mut warm: Option<bem3d::Solution> = None;
+        for &p in &self.pressures {
+            let sol = solver
+                .solve(Load::Force(p * e_star * slope), &opts, warm.as_ref())
+                .ctx("3D normal solve")?;
+            let kn = solver
+                .tangent_stiffness(&sol, &opts)
+                .ctx("3D normal stiffness")?;
+            let contact: Vec<bool> = sol.pressure.iter().map(|&p| p > 0.0).collect();
+            run.area
+                .push(contact.iter().filter(|c| **c).count() as f64 / (n * n) as f64);
+            run.kn.push(kn);
+            for (k, op) in cerruti.iter_mut().enumerate() {
+                let kt = op
+                    .stick_stiffness(&contact, self.tolerance, 20 * n + 2000)
+                    .ctx("3D stick stiffness")?;
+                run.ratio[k].push(0.5 * (kt.x + kt.y) / kn);
+                run.ratio_along_only[k].push(kt.x_along_only / kt.x);
+            }
+            warm = Some(sol);
+        }
+        Ok(run)
+    }
+
+    fn report(&self, out: &mut Section, runs: &[(f64, usize, Vec<Run>)], mrd: &[f64]) {
+        let cols = [
+            "hurst [1]",
+            "poisson [1]",
+            "cells_per_shortest_wavelength [1]",
+            "grid [1]",
+            "pressure_over_e_star_rms_slope [1]",
+            "area_fraction_mean [1]",
+            "kn_mean [force/length]",
+            "kt_over_kn_mean [1]",
+            "kt_over_kn_ci95_low [1]",
+            "kt_over_kn_ci95_high [1]",
+            "kt_over_kn_mrd [1]",
+            "rel_dev_3d_vs_mrd [1]",
+            "kt_along_only_over_kt_mean [1]",
+        ];
+        let mut t = Table::new(
+            "stiffness_ratio",
+            &cols.iter().map(|c| c.to_string()).collect::<Vec<_>>(),
+        );
+        t.notes.push(format!(
+            "periodic self-affine surfaces, period 1, bandwidth {}, {} realisations (nested: each grid of a hurst samples the same surfaces); kt: Cerruti stick stiffness along x and y averaged; kn: dF/dd with the contact set held; interval: mean +- 1.96 standard errors over realisations; MRD: G*/E* (Eqs. 2, 5); kt_along_only: traction along x only (q_y = 0)",
+            self.bandwidth, self.realisations
+        ));
+        let finest = *self.cells.last().unwrap_or(&0);
+        let (mut worst, mut along_worst) = (0.0f64, 0.0f64);
+        let mean_of = |h: f64, cells: usize, k: usize, j: usize| -> Option<f64> {
+            runs.iter()
+                .find(|(hh, c, _)| *hh == h && *c == cells)
+                .map(|(_, _, ens)| {
+                    Stat::of(&ens.iter().map(|r| r.ratio[k][j]).collect::<Vec<_>>()).mean
+                })
+        };
+        let mut grid_change = 0.0f64;
+        for (h, cells, ens) in runs {
+            for (k, &nu) in self.poisson.iter().enumerate() {
+                for (j, &p) in self.pressures.iter().enumerate() {
+                    let of =
+                        |f: &dyn Fn(&Run) -> f64| Stat::of(&ens.iter().map(f).collect::<Vec<_>>());
+                    let ratio = of(&|r| r.ratio[k][j]);
+                    let along = of(&|r| r.ratio_along_only[k][j]);
+                    let dev = ratio.mean / mrd[k] - 1.0;
+                    if *cells == finest {
+                        worst = worst.max(dev.abs());
+                        along_worst = along_worst.max((along.mean - 1.0).abs());
+                        if self.cells.len() > 1 {
+                            let coarse = self.cells[self.cells.len() - 2];
+                            if let Some(c) = mean_of(*h, coarse, k, j) {
+                                grid_change = grid_change.max((ratio.mean / c - 1.0).abs());
+                            }
+                        }
+                    }
+                    t.push(vec![
+                        *h,
+                        nu,
+                        *cells as f64,
+                        (*cells * self.bandwidth) as f64,
+                        p,
+                        of(&|r| r.area[j]).mean,
+                        of(&|r| r.kn[j]).mean,
+                        ratio.mean,
+                        ratio.mean - ratio.ci95,
+                        ratio.mean + ratio.ci95,
+                        mrd[k],
+                        dev,
+                        along.mean,
+                    ]);
+                }
+            }
+        }
+        out.scalar("kt_over_kn_max_rel_dev_3d_vs_mrd", worst);
+        out.scalar("kt_over_kn_max_rel_change_last_refinement", grid_change);
+        out.scalar("kt_along_only_max_rel_dev", along_worst);
+        out.figures.push(self.figure(&t, mrd, finest));
+        out.tables.push(t);
+    }
+
+    fn figure(&self, t: &Table, mrd: &[f64], finest: usize) -> Figure {
+        let mut fig = Figure::new(
+            "stiffness_ratio",
+            "Tangential over normal stiffness of rough contacts: 3D against MRD's G*/E*",
+            "contact area fraction [1]",
+            "k_t / k_n [1]",
+        );
+        let (lo, hi) = t
+            .column("area_fraction_mean [1]")
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(*x), b.max(*x)));
+        // One colour per Poisson's ratio (its MRD line and its 3D points), one marker per
+        // Hurst exponent.
+        for (k, &nu) in self.poisson.iter().enumerate() {
+            fig = fig.with(
+                Series::new(
+                    format!("MRD and Mindlin, nu = {nu}: 2 (1 - nu) / (2 - nu)"),
+                    vec![(lo, mrd[k]), (hi, mrd[k])],
+                    Style::Dashed,
+                )
+                .colored(k),
+            );
+            for (i, &h) in self.hurst.iter().enumerate() {
+                let rows: Vec<&Vec<f64>> = t
+                    .rows
+                    .iter()
+                    .filter(|r| r[0] == h && r[1] == nu && r[2] == finest as f64)
+                    .collect();
+                let style = if i % 2 == 0 {
+                    Style::Markers
+                } else {
+                    Style::Crosses
+                };
+                fig = fig.with(
+                    Series::new(
+                        format!(
+                            "3D, H = {h}, nu = {nu}: mean of {} surfaces on {}^2 cells, 95 % interval",
+                            self.realisations,
+                            finest * self.bandwidth
+                        ),
+                        rows.iter().map(|r| (r[5], r[7])).collect(),
+                        style,
+                    )
+                    .with_bars(rows.iter().map(|r| (r[5], r[8], r[9])).collect())
+                    .colored(k),
+                );
+            }
+        }
+        fig.log_x = true;
+        fig
+    }
+}
