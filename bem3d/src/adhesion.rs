@@ -554,14 +554,9 @@ mod tests {
         d_max: f64,
         steps: usize,
     ) -> Vec<(f64, f64, f64)> {
-        let h = l / n as f64;
-        let at = |k: usize| {
-            let x = ((k % n) as f64 + 0.5) * h - 0.5 * l;
-            let y = ((k / n) as f64 + 0.5) * h - 0.5 * l;
-            x.hypot(y)
-        };
-        let heights: Vec<f64> = (0..n * n).map(|k| -profile(at(k))).collect();
-        let mask: Option<Vec<bool>> = rim.map(|a| (0..n * n).map(|k| at(k) < a).collect());
+        let at = crate::mask::centred(n, l, f64::hypot);
+        let heights: Vec<f64> = at.iter().map(|r| -profile(*r)).collect();
+        let mask: Option<Vec<bool>> = rim.map(|a| at.iter().map(|r| *r < a).collect());
         let op = NonPeriodicHalfSpace::new(n, n, l, l, 1.0);
         let mut c = AdhesiveContact::new(op, &heights, mask.as_deref(), w).unwrap();
         // Approaches from the apex: the highest cell centre sits below it by the same
@@ -633,12 +628,9 @@ mod tests {
         let mut errs = Vec::new();
         for n in [32usize, 64, 128] {
             let h = l / n as f64;
-            let cells = (0..n * n)
-                .filter(|k| {
-                    let x = ((k % n) as f64 + 0.5) * h - 0.5 * l;
-                    let y = ((k / n) as f64 + 0.5) * h - 0.5 * l;
-                    x.hypot(y) < rim
-                })
+            let cells = crate::mask::centred(n, l, f64::hypot)
+                .iter()
+                .filter(|r| **r < rim)
                 .count();
             let a = (cells as f64 * h * h / PI).sqrt();
             let kendall = (8.0 * PI * a.powi(3) * w).sqrt();
@@ -676,14 +668,7 @@ mod tests {
         let d_max = (1.3 * a0).powi(2);
         let branch = cycle(n, l, w, |x| x * x / (2.0 * r), None, d_max, 200);
         let min_f = branch.iter().map(|b| b.1).fold(f64::INFINITY, f64::min);
-        let h = l / n as f64;
-        let heights: Vec<f64> = (0..n * n)
-            .map(|k| {
-                let x = ((k % n) as f64 + 0.5) * h - 0.5 * l;
-                let y = ((k / n) as f64 + 0.5) * h - 0.5 * l;
-                -(x * x + y * y) / (2.0 * r)
-            })
-            .collect();
+        let heights = crate::mask::centred(n, l, |x, y| -(x * x + y * y) / (2.0 * r));
         let top = branch[0].1;
         let run = |last: f64| -> AdhesiveStep {
             let op = NonPeriodicHalfSpace::new(n, n, l, l, 1.0);
@@ -716,14 +701,9 @@ mod tests {
     fn vanishing_adhesion_is_the_normal_solver() {
         let n = 64;
         let l = 1.0;
-        let h = l / n as f64;
-        let heights: Vec<f64> = (0..n * n)
-            .map(|k| {
-                let x = ((k % n) as f64 + 0.5) * h - 0.5 * l;
-                let y = ((k / n) as f64 + 0.5) * h - 0.5 * l;
-                -(x * x + y * y) / 2.0 - 0.003 * (9.0 * x).sin() * (7.0 * y).cos()
-            })
-            .collect();
+        let heights = crate::mask::centred(n, l, |x, y| {
+            -(x * x + y * y) / 2.0 - 0.003 * (9.0 * x).sin() * (7.0 * y).cos()
+        });
         let d = 0.01;
         let op = NonPeriodicHalfSpace::new(n, n, l, l, 1.0);
         let mut c = AdhesiveContact::new(op, &heights, None, 1e-14).unwrap();

@@ -324,14 +324,7 @@ mod tests {
 
     /// Approach-controlled cycle of a sphere (R = 1, E* = 1): the smallest force.
     fn pull_off(n: usize, l: f64, w: f64, sigma0: f64, d_max: f64, steps: usize) -> (f64, bool) {
-        let h = l / n as f64;
-        let heights: Vec<f64> = (0..n * n)
-            .map(|k| {
-                let x = ((k % n) as f64 + 0.5) * h - 0.5 * l;
-                let y = ((k / n) as f64 + 0.5) * h - 0.5 * l;
-                -(x * x + y * y) / 2.0
-            })
-            .collect();
+        let heights = crate::mask::centred(n, l, |x, y| -(x * x + y * y) / 2.0);
         let apex = heights.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
         let op = NonPeriodicHalfSpace::new(n, n, l, l, 1.0);
         let mut c = CohesiveContact::new(op, &heights, None, w, sigma0).unwrap();

@@ -14,6 +14,20 @@ pub fn disc(nx: usize, ny: usize, lx: f64, ly: f64, radius: f64) -> Vec<bool> {
         .collect()
 }
 
+/// `f(x, y)` at the cell centres of an `n x n` grid of side `l` centred on the origin,
+/// row-major, centres at `((i + 1/2) h - l/2, (j + 1/2) h - l/2)`, `h = l / n` (the
+/// convention of [`disc`]): the heights of a body of revolution on the free half-space.
+pub fn centred(n: usize, l: f64, f: impl Fn(f64, f64) -> f64) -> Vec<f64> {
+    let h = l / n as f64;
+    (0..n * n)
+        .map(|k| {
+            let x = ((k % n) as f64 + 0.5) * h - 0.5 * l;
+            let y = ((k / n) as f64 + 0.5) * h - 0.5 * l;
+            f(x, y)
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     #[test]

@@ -34,14 +34,7 @@ pub fn run_adhesion(w: &mut dyn Write, max_n: usize) -> std::io::Result<()> {
         if n > max_n.max(128) {
             break;
         }
-        let h = l / n as f64;
-        let heights: Vec<f64> = (0..n * n)
-            .map(|k| {
-                let x = ((k % n) as f64 + 0.5) * h - 0.5 * l;
-                let y = ((k / n) as f64 + 0.5) * h - 0.5 * l;
-                -(x * x + y * y) / (2.0 * r)
-            })
-            .collect();
+        let heights = bem3d::mask::centred(n, l, |x, y| -(x * x + y * y) / (2.0 * r));
         let apex = heights.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
         let dd = d_max / STEPS as f64;
         let mut approaches: Vec<f64> = (1..=STEPS).map(|k| dd * k as f64).collect();

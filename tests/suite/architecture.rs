@@ -655,7 +655,7 @@ fn bem3d_public_api_stays_within_its_budget() {
         ("cohesive", 9),
         ("error", 3),
         ("fft", 25),
-        ("mask", 1),
+        ("mask", 2),
         ("operator", 34),
         ("sliding", 4),
         ("solution", 5),

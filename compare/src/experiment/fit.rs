@@ -130,6 +130,12 @@ pub fn calibrate_lambda_at(
     Some((0.5 * (a + b)).exp())
 }
 
+/// A bootstrap draw of `n` indices into an ensemble of `n` (with replacement).
+pub fn resample(rng: &mut rand_chacha::ChaCha8Rng, n: usize) -> Vec<usize> {
+    use rand::RngExt;
+    (0..n).map(|_| rng.random_range(0..n)).collect()
+}
+
 /// 95 % percentile interval of bootstrap draws (nearest rank). A draw that is not
 /// finite (its statistic failed) counts against the interval on both sides, as if it
 /// lay beyond either end: a bound that such draws could reach is undefined (NaN)

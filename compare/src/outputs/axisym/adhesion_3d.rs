@@ -196,16 +196,12 @@ impl Adhesion3d {
             .map_err(|e| bem3d::BemError::InvalidInput(format!("profile: {e}")))?;
         let l = self.extent * 2.0 * a_top;
         let h = l / n as f64;
-        let radius = |k: usize| {
-            let x = ((k % n) as f64 + 0.5) * h - 0.5 * l;
-            let y = ((k / n) as f64 + 0.5) * h - 0.5 * l;
-            x.hypot(y)
-        };
+        let radius = bem3d::mask::centred(n, l, f64::hypot);
         // Cells beyond the rim (a punch) or the profile's table cannot touch.
         let reach = profile.max_contact_radius();
-        let mask: Vec<bool> = (0..n * n).map(|k| radius(k) < reach).collect();
+        let mask: Vec<bool> = radius.iter().map(|r| *r < reach).collect();
         let heights: Vec<f64> = (0..n * n)
-            .map(|k| if mask[k] { -profile.z(radius(k)) } else { 0.0 })
+            .map(|k| if mask[k] { -profile.z(radius[k]) } else { 0.0 })
             .collect();
         // Approaches from the apex (z = 0), as MRD's depths: the solver's are from the
         // highest cell.

@@ -158,13 +158,7 @@ impl Tabor3d {
         let range = self.gamma / sigma0;
         let l = self.extent * 2.0 * (a_top * a_top + 2.0 * r * range).sqrt();
         let h = l / n as f64;
-        let heights: Vec<f64> = (0..n * n)
-            .map(|k| {
-                let x = ((k % n) as f64 + 0.5) * h - 0.5 * l;
-                let y = ((k / n) as f64 + 0.5) * h - 0.5 * l;
-                -(x * x + y * y) / (2.0 * r)
-            })
-            .collect();
+        let heights = bem3d::mask::centred(n, l, |x, y| -(x * x + y * y) / (2.0 * r));
         let apex = heights.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
         let op = NonPeriodicHalfSpace::new(n, n, l, l, e);
         let mut c = CohesiveContact::new(op, &heights, None, self.gamma, sigma0)?;

@@ -10,11 +10,12 @@ use super::tasks::{load, BemCurve, MrdEnsemble, SolveRecord, Task};
 use super::HurstSweep;
 use crate::error::Result;
 use crate::experiment::fit::{
-    calibrate_lambda_at, fit_points, fit_window, interp_loglog, interval, mean_curve, window_points,
+    calibrate_lambda_at, fit_points, fit_window, interp_loglog, interval, mean_curve, resample,
+    window_points,
 };
 use mrd::rough_contact::Stat;
 use mrd::roughness::lambda_cut;
-use rand::{RngExt, SeedableRng};
+use rand::SeedableRng;
 use std::path::Path;
 
 /// Bootstrap resamples per interval.
@@ -96,11 +97,6 @@ fn half_widths(curves: &Curves, mean: &[Option<f64>]) -> Vec<f64> {
             None => f64::NAN,
         })
         .collect()
-}
-
-/// A bootstrap index sample of size n.
-fn resample(rng: &mut rand_chacha::ChaCha8Rng, n: usize) -> Vec<usize> {
-    (0..n).map(|_| rng.random_range(0..n)).collect()
 }
 
 /// The 3D curves of one H and grid, interpolated onto the f grid.

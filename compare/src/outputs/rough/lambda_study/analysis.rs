@@ -12,10 +12,10 @@ use super::tasks::{
 use super::LambdaStudy;
 use crate::error::Result;
 use crate::experiment::fit::{
-    calibrate_lambda_at, fit_points, fit_window, interp_loglog, mean_curve, window_points,
+    calibrate_lambda_at, fit_points, fit_window, interp_loglog, mean_curve, resample, window_points,
 };
 use crate::outputs::rough::hurst_sweep::tasks::{BemCurve, MrdEnsemble};
-use rand::{RngExt, SeedableRng};
+use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::path::Path;
 
@@ -233,10 +233,6 @@ fn rng_for(s: &LambdaStudy, case: &Case, n: u64, salt: u64) -> ChaCha8Rng {
         h = (h ^ b as u64).wrapping_mul(0x0100_0000_01b3);
     }
     ChaCha8Rng::seed_from_u64(h)
-}
-
-fn resample(rng: &mut ChaCha8Rng, n: usize) -> Vec<usize> {
-    (0..n).map(|_| rng.random_range(0..n)).collect()
 }
 
 /// lambda of the first `n` realisations of `case` with its bootstrap interval (the
