@@ -40,5 +40,5 @@ mod partial_slip;
 mod stick;
 
 pub use cerruti::CerrutiPeriodic;
-pub use partial_slip::{PartialSlip, TangentialStep};
+pub use partial_slip::{Cycle, PartialSlip, TangentialStep};
 pub use stick::StickStiffness;

@@ -91,6 +91,10 @@ pub const KINDS: &[Kind] = &[
         "tangential_stiffness_3d",
         "tangential over normal stiffness of rough contacts held in stick, 3D (Cerruti's tensor) against MRD's G*/E* (Section 6 on rough surfaces)",
     ),
+    Kind::of::<rough::rough_partial_slip_3d::RoughPartialSlip3d>(
+        "rough_partial_slip_3d",
+        "partial slip of rough contacts: the 3D shift against the force and the energy per cycle against MRD's tangential mapping of each surface's normal curve (Ciavarella-Jaeger, Masing; Sections 6-7 on rough surfaces)",
+    ),
     Kind::of::<rough::rough_stiffness::RoughStiffness>(
         "rough_stiffness",
         "ensemble stiffness-force law of MRD rough lines (Eq. 77)",

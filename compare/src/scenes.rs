@@ -34,6 +34,10 @@ pub const EMBEDDED: &[(&str, &str)] = &[
         include_str!("../../cases/tangential-3d-cone.toml"),
     ),
     (
+        "rough-partial-slip-3d-ci",
+        include_str!("../../cases/rough-partial-slip-3d-ci.toml"),
+    ),
+    (
         "tangential-stiffness-3d-ci",
         include_str!("../../cases/tangential-stiffness-3d-ci.toml"),
     ),

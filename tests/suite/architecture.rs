@@ -660,7 +660,7 @@ fn bem3d_public_api_stays_within_its_budget() {
         ("sliding", 4),
         ("solution", 5),
         ("solver", 28),
-        ("tangential", 14),
+        ("tangential", 16),
         ("viscoelastic", 10),
         ("wide", 5),
     ];

@@ -113,6 +113,7 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             || *name == "rough-sphere"
             || *name == "viscoelastic-rough"
             || *name == "tangential-stiffness-3d"
+            || *name == "rough-partial-slip-3d"
         {
             continue; // sweeps: tests/suite/sweep.rs (fig6-ci); the others are long runs
         }
@@ -204,6 +205,22 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             if k == "tangential_stiffness_3d.kt_along_only_max_rel_dev" {
                 assert!(v < 0.03, "{name}: {k} = {v}");
             }
+            // Rough partial slip (`rough-partial-slip-3d-ci`, 64^2 cells): at nu = 0 the
+            // 3D shift equals MRD's mapping of the 3D normal curve to the solvers'
+            // tolerance (measured 1.2e-9) and the energy per cycle to the loop's steps
+            // (measured 2.2e-4, 6 steps per half cycle); at nu = 0.5 MRD's mapping is off
+            // by a few per cent (measured 4.2 % on the shift, 5.6 % on the energy).
+            if k == "rough_partial_slip_3d.shift_max_rel_dev_3d_vs_mrd_at_nu_0" {
+                assert!(v < 1e-6, "{name}: {k} = {v}");
+            }
+            if k == "rough_partial_slip_3d.dissipation_max_rel_dev_3d_vs_mrd_at_nu_0" {
+                assert!(v < 2e-3, "{name}: {k} = {v}");
+            }
+            if k == "rough_partial_slip_3d.shift_max_rel_dev_3d_vs_mrd"
+                || k == "rough_partial_slip_3d.dissipation_max_rel_dev_3d_vs_mrd"
+            {
+                assert!(v > 0.005 && v < 0.15, "{name}: {k} = {v}");
+            }
             // Adhesion in 3D (`adhesion-3d*`): MRD's pull-off against JKR, Kendall and
             // Eq. 37 to rounding; the 3D pull-off against MRD's on the finest grid (measured
             // 1.7 % for the sphere at 50 cells per pull-off radius, 0.21 % for the punch at
@@ -265,6 +282,19 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             // approach step of JKR's (measured 3.2 %, a step 6.1 %).
             let step = result(&s, "adhesion_3d.approach_step_over_jump_out_depth");
             assert!(result(&s, "adhesion_3d.jump_out_depth_rel_error_3d") < step);
+            continue;
+        }
+        if *name == "rough-partial-slip-3d-ci" {
+            for k in [
+                "shift_max_rel_dev_3d_vs_mrd",
+                "dissipation_max_rel_dev_3d_vs_mrd",
+                "shift_max_rel_dev_3d_vs_mrd_at_nu_0",
+                "dissipation_max_rel_dev_3d_vs_mrd_at_nu_0",
+                "ratio_max_rel_change_last_refinement",
+            ] {
+                let key = format!("rough_partial_slip_3d.{k}");
+                assert!(result(&s, &key).is_finite(), "{k}");
+            }
             continue;
         }
         if *name == "tangential-stiffness-3d-ci" {

@@ -4,6 +4,16 @@
 use super::cerruti::CerrutiPeriodic;
 use crate::error::{BemError, Result};
 
+/// The energy of one cycle of an oscillating tangential force (Section 7).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cycle {
+    /// The energy dissipated by slip, summed over the cycle's steps [force x length].
+    pub dissipated: f64,
+    /// The area of the cycle's force-shift loop (trapezoids) [force x length]: equal to
+    /// the dissipation where the steps resolve the loop (the energy balance).
+    pub loop_area: f64,
+}
+
 /// The state of one tangential load step.
 #[derive(Debug, Clone)]
 pub struct TangentialStep {
@@ -92,6 +102,56 @@ impl PartialSlip {
     /// The largest tangential force the contact carries without sliding, `mu P`.
     pub fn friction_limit(&self) -> f64 {
         self.friction
+    }
+
+    /// An oscillating tangential force of `amplitude` (below the friction limit): from the
+    /// current state the force ramps to `amplitude` in `steps` steps, then runs `cycles`
+    /// cycles down to `-amplitude` and back (`steps` steps each way); returns the last
+    /// cycle (the first after a fresh start is already the steady loop of Masing's rule,
+    /// a second one shows it).
+    pub fn cycle(
+        &mut self,
+        amplitude: f64,
+        steps: usize,
+        cycles: usize,
+        tolerance: f64,
+    ) -> Result<Cycle> {
+        if !(amplitude.is_finite() && amplitude > 0.0 && amplitude < self.friction) {
+            return Err(BemError::InvalidInput(format!(
+                "force amplitude {amplitude} must lie in (0, mu P = {}): at mu P the body slides",
+                self.friction
+            )));
+        }
+        if steps == 0 || cycles == 0 {
+            return Err(BemError::InvalidInput(format!(
+                "steps = {steps} and cycles = {cycles} must be >= 1"
+            )));
+        }
+        for k in 1..=steps {
+            self.load(amplitude * k as f64 / steps as f64, tolerance)?;
+        }
+        let mut out = Cycle {
+            dissipated: 0.0,
+            loop_area: 0.0,
+        };
+        for cycle in 0..cycles {
+            let mut last = self.load(amplitude, tolerance)?;
+            for k in 1..=2 * steps {
+                // Down to -amplitude in `steps` steps, back up in `steps` more.
+                let f = if k <= steps {
+                    amplitude * (1.0 - 2.0 * k as f64 / steps as f64)
+                } else {
+                    amplitude * (-1.0 + 2.0 * (k - steps) as f64 / steps as f64)
+                };
+                let s = self.load(f, tolerance)?;
+                if cycle + 1 == cycles {
+                    out.dissipated += s.dissipated;
+                    out.loop_area += 0.5 * (s.force + last.force) * (s.shift - last.shift);
+                }
+                last = s;
+            }
+        }
+        Ok(out)
     }
 
     /// Loads to the tangential force `force` from the last state (`tolerance` relative,
@@ -496,5 +556,60 @@ mod tests {
                 "x = {x}: work {work:e}, dissipated {dissipated:e}"
             );
         }
+    }
+
+    /// Ciavarella and Jaeger: at nu = 0 Cerruti's operator is the normal one (G = E* / 2),
+    /// so q = mu [p(d) - p(d')] solves partial slip exactly on the grid, with the stick
+    /// set the contact set at d' (F_N(d') = F_N(d) - Q / mu) and the shift mu (d - d'),
+    /// for any surface: here a periodic one with several contact spots.
+    #[test]
+    fn at_nu_zero_partial_slip_is_the_normal_curve_shifted() {
+        use crate::{ContactSolver, Load, PeriodicHalfSpace, SolverOptions};
+        let n = 64;
+        let z: Vec<f64> = (0..n * n)
+            .map(|k| {
+                let (x, y) = ((k % n) as f64 / n as f64, (k / n) as f64 / n as f64);
+                let t = 2.0 * PI;
+                0.01 * ((3.0 * t * x).cos() + (2.0 * t * y).cos())
+                    + 0.004 * (t * (5.0 * x + 3.0 * y)).cos()
+            })
+            .collect();
+        let mut solver =
+            ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &z, None).unwrap();
+        let opts = SolverOptions::new(1e-12, 5000);
+        let (f, mu) = (0.002, 0.4);
+        let sol = solver.solve(Load::Force(f), &opts, None).unwrap();
+        let spots = sol.pressure.iter().filter(|p| **p > 0.0).count();
+        assert!(spots > 50 && spots < n * n / 2, "{spots} cells in contact");
+        let op = CerrutiPeriodic::new(n, n, 1.0, 1.0, 0.5, 0.0).unwrap();
+        let mut ps = PartialSlip::new(op, &sol.pressure, mu).unwrap();
+        for x in [0.2, 0.5, 0.8] {
+            let s = ps.load(x * mu * f, 1e-10).unwrap();
+            let reduced = solver.solve(Load::Force((1.0 - x) * f), &opts, None).unwrap();
+            let mapped = mu * (sol.approach - reduced.approach);
+            assert!(
+                (s.shift / mapped - 1.0).abs() < 1e-6,
+                "Q = {x} mu F: shift {} against {mapped}",
+                s.shift
+            );
+            let stick_mapped = reduced.pressure.iter().filter(|p| **p > 0.0).count();
+            assert_eq!(s.stick_cells, stick_mapped, "Q = {x} mu F");
+        }
+    }
+
+    #[test]
+    fn a_cycle_refuses_what_it_cannot_run() {
+        let p = hertz(32, 0.2, 1.0);
+        let op = CerrutiPeriodic::new(32, 32, 1.0, 1.0, 1.0, 0.5).unwrap();
+        let mut ps = PartialSlip::new(op, &p, 0.5).unwrap();
+        let limit = ps.friction_limit();
+        for (amp, steps) in [(limit, 4), (-0.1 * limit, 4), (f64::NAN, 4), (0.5 * limit, 0)] {
+            assert!(matches!(
+                ps.cycle(amp, steps, 1, 1e-8),
+                Err(BemError::InvalidInput(_))
+            ));
+        }
+        let c = ps.cycle(0.5 * limit, 8, 2, 1e-8).unwrap();
+        assert!(c.dissipated > 0.0 && (c.loop_area / c.dissipated - 1.0).abs() < 0.05);
     }
 }

@@ -297,30 +297,8 @@ impl Tangential3d {
         let mut cycles = Vec::new();
         for x in &self.amplitudes {
             let amp = x * limit;
-            let mut ps = fresh()?;
-            let steps = self.steps;
-            for k in 1..=steps {
-                ps.load(amp * k as f64 / steps as f64, tol)?;
-            }
-            let (mut w, mut area) = (0.0, 0.0);
-            for cycle in 0..2 {
-                let mut last = ps.load(amp, tol)?;
-                for k in 1..=2 * steps {
-                    // Down to -amp in `steps` steps, back up in `steps` more.
-                    let f = if k <= steps {
-                        amp * (1.0 - 2.0 * k as f64 / steps as f64)
-                    } else {
-                        amp * (-1.0 + 2.0 * (k - steps) as f64 / steps as f64)
-                    };
-                    let s = ps.load(f, tol)?;
-                    if cycle == 1 {
-                        w += s.dissipated;
-                        area += 0.5 * (s.force + last.force) * (s.shift - last.shift);
-                    }
-                    last = s;
-                }
-            }
-            cycles.push((w, area));
+            let c = fresh()?.cycle(amp, self.steps, 2, tol)?;
+            cycles.push((c.dissipated, c.loop_area));
         }
         Ok((stick, cycles))
     }

@@ -27,6 +27,7 @@ use crate::checks::{bad, check_memory, check_tolerance, count_in, positive};
 use crate::checks::{BYTES_PER_CELL_PERIODIC, MAX_REALISATIONS};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
+use crate::experiment::periodic::{patch, Patch};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
@@ -34,11 +35,8 @@ use bem3d::tangential::CerrutiPeriodic;
 use bem3d::{ContactSolver, Load, PeriodicHalfSpace, SolverOptions};
 use mrd::material::{ElasticBody, Material};
 use mrd::rough_contact::Stat;
-use mrd::roughness::synthesis::Grid;
-use mrd::roughness::{nested, SelfAffine};
 use rayon::prelude::*;
 use serde::Deserialize;
-use std::f64::consts::PI;
 
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -157,37 +155,13 @@ fn mrd_ratio(e_star: f64, nu: f64) -> Result<f64> {
     Ok(m.g_star().ctx("G*")? / m.e_star)
 }
 
-/// The rms slope of the nested surfaces of `c2d` cut at `band` (the same for every
-/// realisation): sum over 0 < |k| <= band of (2 pi / L)^2 C2D(q) q^2, L = 1.
-fn rms_slope(c2d: impl Fn(f64) -> f64, band: usize) -> f64 {
-    let b = band as i64;
-    let dq = 2.0 * PI;
-    let mut sum = 0.0;
-    for i in -b..=b {
-        for j in -b..=b {
-            let k2 = (i * i + j * j) as f64;
-            if k2 > 0.0 && k2 <= (b * b) as f64 {
-                let q = dq * k2.sqrt();
-                sum += dq * dq * c2d(q) * q * q;
-            }
-        }
-    }
-    sum.sqrt()
-}
-
 impl TangentialStiffness3d {
-    fn spectrum(&self, hurst: f64) -> Result<SelfAffine> {
-        let q0 = 2.0 * PI;
-        SelfAffine::new(hurst, q0, q0, q0 * (self.bandwidth as f64 + 2.0)).ctx("spectrum")
-    }
-
     fn run_3d(&self, hurst: f64, cells: usize, r: u64, e_star: f64) -> Result<Run> {
         let n = cells * self.bandwidth;
-        let sa = self.spectrum(hurst)?;
-        let c2d = |q: f64| sa.c2d(q);
-        let z = nested::surface(&c2d, self.bandwidth, &Grid::square(n, 1.0), self.seed, r)
-            .ctx("3D surface")?;
-        let slope = rms_slope(c2d, self.bandwidth);
+        let Patch {
+            heights: z,
+            rms_slope: slope,
+        } = patch(hurst, self.bandwidth, n, self.seed, r)?;
         let op = PeriodicHalfSpace::new(n, n, 1.0, 1.0, e_star);
         let mut solver = ContactSolver::new(op, &z, None).ctx("3D solver set-up")?;
         let opts = SolverOptions {
