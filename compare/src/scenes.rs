@@ -38,6 +38,10 @@ pub const EMBEDDED: &[(&str, &str)] = &[
         include_str!("../../cases/rough-partial-slip-3d-ci.toml"),
     ),
     (
+        "rough-partial-slip-3d",
+        include_str!("../../cases/rough-partial-slip-3d.toml"),
+    ),
+    (
         "tangential-stiffness-3d-ci",
         include_str!("../../cases/tangential-stiffness-3d-ci.toml"),
     ),

@@ -9,6 +9,7 @@ mod contact;
 mod errors;
 mod rough;
 mod scene;
+mod tangential;
 mod transient;
 
 use pyo3::prelude::*;
@@ -28,6 +29,9 @@ fn _mrdw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<transient::TransientStep>()?;
     m.add_class::<adhesive::AdhesiveContact>()?;
     m.add_class::<adhesive::AdhesiveStep>()?;
+    m.add_class::<tangential::PartialSlip>()?;
+    m.add_class::<tangential::TangentialStep>()?;
+    m.add_function(wrap_pyfunction!(tangential::stick_stiffness, m)?)?;
     // roughness
     m.add_function(wrap_pyfunction!(rough::spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(rough::line_spectrum, m)?)?;

@@ -585,7 +585,9 @@ mod tests {
         let mut ps = PartialSlip::new(op, &sol.pressure, mu).unwrap();
         for x in [0.2, 0.5, 0.8] {
             let s = ps.load(x * mu * f, 1e-10).unwrap();
-            let reduced = solver.solve(Load::Force((1.0 - x) * f), &opts, None).unwrap();
+            let reduced = solver
+                .solve(Load::Force((1.0 - x) * f), &opts, None)
+                .unwrap();
             let mapped = mu * (sol.approach - reduced.approach);
             assert!(
                 (s.shift / mapped - 1.0).abs() < 1e-6,
@@ -603,7 +605,12 @@ mod tests {
         let op = CerrutiPeriodic::new(32, 32, 1.0, 1.0, 1.0, 0.5).unwrap();
         let mut ps = PartialSlip::new(op, &p, 0.5).unwrap();
         let limit = ps.friction_limit();
-        for (amp, steps) in [(limit, 4), (-0.1 * limit, 4), (f64::NAN, 4), (0.5 * limit, 0)] {
+        for (amp, steps) in [
+            (limit, 4),
+            (-0.1 * limit, 4),
+            (f64::NAN, 4),
+            (0.5 * limit, 0),
+        ] {
             assert!(matches!(
                 ps.cycle(amp, steps, 1, 1e-8),
                 Err(BemError::InvalidInput(_))

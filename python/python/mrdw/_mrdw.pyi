@@ -298,6 +298,68 @@ class AdhesiveContact:
     @property
     def periodic(self) -> bool: ...
 
+class TangentialStep:
+    """The state after a step of PartialSlip.load."""
+
+    @property
+    def force(self) -> float:
+        """The tangential force reached [stress x length^2]."""
+    @property
+    def shift(self) -> float:
+        """Rigid shift along x from the mean surface displacement [length] (NaN sliding)."""
+    @property
+    def stick_cells(self) -> int: ...
+    @property
+    def slip_cells(self) -> int: ...
+    @property
+    def dissipated(self) -> float:
+        """Energy dissipated by slip in this step [stress x length^3]."""
+    @property
+    def iterations(self) -> int: ...
+    @property
+    def residual(self) -> float: ...
+    @property
+    def sliding(self) -> bool:
+        """The force reached mu P: the body slides as a whole."""
+
+class PartialSlip:
+    """Partial slip of a held normal contact under a tangential force along x (3D,
+    periodic, Coulomb's law with Cerruti's operator; Sections 6-7 in 3D)."""
+
+    def __init__(
+        self,
+        pressure: ArrayLike,
+        mu: float,
+        size: Tuple[float, float] = (1.0, 1.0),
+        e_star: float = 1.0,
+        poisson: float = 0.5,
+    ) -> None: ...
+    def load(self, force: float, *, tolerance: float = 1e-8) -> TangentialStep:
+        """Loads to the tangential force [stress x length^2] from the last state."""
+    def cycle(
+        self, amplitude: float, steps: int = 10, cycles: int = 2, *, tolerance: float = 1e-8
+    ) -> Tuple[float, float]:
+        """The last cycle's dissipated energy and loop area [stress x length^3]."""
+    @property
+    def friction_limit(self) -> float:
+        """mu P [stress x length^2]."""
+    @property
+    def traction(self) -> F64:
+        """The traction of the last step, shape (ny, nx) [stress]."""
+    @property
+    def slip(self) -> F64:
+        """The accumulated slip of each cell, shape (ny, nx) [length]."""
+
+def stick_stiffness(
+    contact: ArrayLike,
+    size: Tuple[float, float] = (1.0, 1.0),
+    e_star: float = 1.0,
+    poisson: float = 0.5,
+    *,
+    tolerance: float = 1e-10,
+) -> Tuple[float, float, float]:
+    """(k_x, k_y, k_x with q_y = 0) [stress x length] of cells held in full stick."""
+
 def spectrum(
     q: ArrayLike,
     hurst: float,

@@ -1,0 +1,224 @@
+//! Tangential contact in 3D (`bem3d::tangential`): partial slip under Coulomb's law with
+//! Cerruti's operator on the periodic half-space, and the stick stiffness of a contact
+//! set, on numpy arrays.
+
+use crate::contact::{bem_err, grid_array};
+use crate::errors::value_error;
+use bem3d::tangential::{CerrutiPeriodic, PartialSlip as Slip, TangentialStep as Step};
+use numpy::{AllowTypeChange, PyArray2, PyArrayLike2, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+
+/// The Cerruti operator of a substrate of modulus E* and Poisson's ratio nu under a
+/// rigid body: G = E* (1 - nu) / 2.
+fn cerruti(
+    (ny, nx): (usize, usize),
+    (lx, ly): (f64, f64),
+    e_star: f64,
+    poisson: f64,
+) -> PyResult<CerrutiPeriodic> {
+    if !(e_star.is_finite() && e_star > 0.0) {
+        return Err(value_error(format!(
+            "e_star = {e_star} must be finite and > 0"
+        )));
+    }
+    if !(0.0..=0.5).contains(&poisson) {
+        return Err(value_error(format!(
+            "poisson = {poisson} must lie in [0, 0.5]"
+        )));
+    }
+    sysmem::check_estimate(
+        8.0 * 12.0 * (nx * ny) as f64,
+        &format!("a tangential {ny} x {nx} contact"),
+    )
+    .map_err(|e| pyo3::exceptions::PyMemoryError::new_err(e.to_string()))?;
+    CerrutiPeriodic::new(nx, ny, lx, ly, e_star * (1.0 - poisson) / 2.0, poisson)
+        .map_err(|e| value_error(e.to_string()))
+}
+
+/// A 2D float64 array as (values, (ny, nx)).
+fn grid_of(
+    a: PyArrayLike2<'_, f64, AllowTypeChange>,
+    name: &str,
+) -> PyResult<(Vec<f64>, (usize, usize))> {
+    let shape = (a.shape()[0], a.shape()[1]);
+    let v = a
+        .to_vec()
+        .map_err(|_| value_error(format!("{name} must be a 2D array")))?;
+    Ok((v, shape))
+}
+
+/// The state after a step of `PartialSlip.load`.
+#[pyclass(module = "mrdw._mrdw", frozen)]
+pub struct TangentialStep {
+    step: Step,
+}
+
+#[pymethods]
+impl TangentialStep {
+    /// The tangential force reached [stress x length^2].
+    #[getter]
+    fn force(&self) -> f64 {
+        self.step.force
+    }
+    /// Rigid shift of the body along x from the mean surface displacement [length]
+    /// (NaN when sliding).
+    #[getter]
+    fn shift(&self) -> f64 {
+        self.step.shift
+    }
+    /// Cells that stick (|q| < mu p) and cells that slip.
+    #[getter]
+    fn stick_cells(&self) -> usize {
+        self.step.stick_cells
+    }
+    #[getter]
+    fn slip_cells(&self) -> usize {
+        self.step.slip_cells
+    }
+    /// Energy dissipated by slip in this step [stress x length^3].
+    #[getter]
+    fn dissipated(&self) -> f64 {
+        self.step.dissipated
+    }
+    #[getter]
+    fn iterations(&self) -> usize {
+        self.step.iterations
+    }
+    #[getter]
+    fn residual(&self) -> f64 {
+        self.step.residual
+    }
+    /// The force reached the total friction mu P: the body slides as a whole.
+    #[getter]
+    fn sliding(&self) -> bool {
+        self.step.sliding
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "TangentialStep(force={:.6e}, shift={:.6e}, stick_cells={}, sliding={})",
+            self.step.force, self.step.shift, self.step.stick_cells, self.step.sliding
+        )
+    }
+}
+
+/// Partial slip of a held normal contact under a tangential force history along x
+/// (3D FFT boundary elements, periodic; Sections 6 and 7 of the MRD review in 3D).
+///
+/// PartialSlip(pressure, mu, size=(1.0, 1.0), e_star=1.0, poisson=0.5)
+///
+/// `pressure` (ny, nx) [stress] is held (e.g. ContactResult.pressure of a periodic
+/// Contact); Coulomb's law with friction coefficient `mu` cell by cell; the traction acts
+/// along x only (q_y = 0, Mindlin's model). The substrate has modulus `e_star` and
+/// Poisson's ratio `poisson` (shear modulus E* (1 - nu) / 2 under a rigid body); nu = 0.5
+/// uncouples normal and tangential contact exactly. Each load() starts from the last
+/// state (friction is path dependent).
+#[pyclass(module = "mrdw._mrdw")]
+pub struct PartialSlip {
+    slip: Slip,
+    shape: (usize, usize),
+}
+
+#[pymethods]
+impl PartialSlip {
+    #[new]
+    #[pyo3(signature = (pressure, mu, size = (1.0, 1.0), e_star = 1.0, poisson = 0.5))]
+    fn new(
+        pressure: PyArrayLike2<'_, f64, AllowTypeChange>,
+        mu: f64,
+        size: (f64, f64),
+        e_star: f64,
+        poisson: f64,
+    ) -> PyResult<Self> {
+        let (p, shape) = grid_of(pressure, "pressure")?;
+        let op = cerruti(shape, size, e_star, poisson)?;
+        let slip = Slip::new(op, &p, mu).map_err(|e| value_error(e.to_string()))?;
+        Ok(Self { slip, shape })
+    }
+
+    /// load(force, *, tolerance=1e-8) -> TangentialStep
+    ///
+    /// Loads to the tangential force `force` [stress x length^2] from the last state. At
+    /// or beyond mu P the body slides (TangentialStep.sliding, not an error). Raises
+    /// ValueError for bad input, ConvergenceError if the iteration does not settle.
+    #[pyo3(signature = (force, *, tolerance = 1e-8))]
+    fn load(&mut self, py: Python<'_>, force: f64, tolerance: f64) -> PyResult<TangentialStep> {
+        let slip = &mut self.slip;
+        let out = py.detach(|| slip.load(force, tolerance));
+        let step = out.map_err(|e| bem_err(py, e, self.shape, 1.0))?;
+        Ok(TangentialStep { step })
+    }
+
+    /// cycle(amplitude, steps=10, cycles=2, *, tolerance=1e-8) -> (dissipated, loop_area)
+    ///
+    /// An oscillating force of `amplitude` (below mu P) from the current state: a ramp
+    /// of `steps` steps, then `cycles` cycles to -amplitude and back; returns the last
+    /// cycle's dissipated energy and the area of its force-shift loop [stress x length^3].
+    #[pyo3(signature = (amplitude, steps = 10, cycles = 2, *, tolerance = 1e-8))]
+    fn cycle(
+        &mut self,
+        py: Python<'_>,
+        amplitude: f64,
+        steps: usize,
+        cycles: usize,
+        tolerance: f64,
+    ) -> PyResult<(f64, f64)> {
+        let slip = &mut self.slip;
+        let out = py.detach(|| slip.cycle(amplitude, steps, cycles, tolerance));
+        let c = out.map_err(|e| bem_err(py, e, self.shape, 1.0))?;
+        Ok((c.dissipated, c.loop_area))
+    }
+
+    /// The largest tangential force without sliding, mu P [stress x length^2].
+    #[getter]
+    fn friction_limit(&self) -> f64 {
+        self.slip.friction_limit()
+    }
+    /// The traction of the last step, shape (ny, nx) [stress].
+    #[getter]
+    fn traction<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        grid_array(py, self.slip.traction(), self.shape)
+    }
+    /// The accumulated slip of each cell, shape (ny, nx) [length].
+    #[getter]
+    fn slip<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        grid_array(py, self.slip.slip(), self.shape)
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "PartialSlip(shape={:?}, friction_limit={:.6e})",
+            self.shape,
+            self.slip.friction_limit()
+        )
+    }
+}
+
+/// stick_stiffness(contact, size=(1.0, 1.0), e_star=1.0, poisson=0.5, *, tolerance=1e-10)
+///     -> (k_x, k_y, k_x_along_only)
+///
+/// Tangential stiffness [stress x length] of the cells `contact` (ny, nx, bool) held in
+/// full stick on the periodic half-space, from Cerruti's whole tensor: displaced along
+/// x (k_x) or y (k_y) and held in the other direction, and along x with the traction
+/// along x only (q_y = 0). Measured from the mean surface displacement, as
+/// ContactResult.stiffness measures the normal one: k_x / k_n is 2 (1 - nu) / (2 - nu)
+/// for a circle (Mindlin) and MRD's G* / E* for any contact.
+#[pyfunction]
+#[pyo3(signature = (contact, size = (1.0, 1.0), e_star = 1.0, poisson = 0.5, *, tolerance = 1e-10))]
+pub fn stick_stiffness(
+    py: Python<'_>,
+    contact: PyArrayLike2<'_, bool, AllowTypeChange>,
+    size: (f64, f64),
+    e_star: f64,
+    poisson: f64,
+    tolerance: f64,
+) -> PyResult<(f64, f64, f64)> {
+    let shape = (contact.shape()[0], contact.shape()[1]);
+    let c = contact
+        .to_vec()
+        .map_err(|_| value_error("contact must be a 2D boolean array"))?;
+    let mut op = cerruti(shape, size, e_star, poisson)?;
+    let limit = 20 * shape.0.max(shape.1) + 2000;
+    let k = py
+        .detach(|| op.stick_stiffness(&c, tolerance, limit))
+        .map_err(|e| bem_err(py, e, shape, 1.0))?;
+    Ok((k.x, k.y, k.x_along_only))
+}

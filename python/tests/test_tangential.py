@@ -1,0 +1,80 @@
+"""Tangential contact in 3D from numpy: partial slip and the stick stiffness."""
+
+import math
+
+import numpy as np
+import pytest
+
+import mrdw
+
+
+def waves(n):
+    """A periodic surface with several contact spots."""
+    x = np.arange(n) / n
+    X, Y = np.meshgrid(x, x)
+    t = 2 * math.pi
+    return 0.01 * (np.cos(3 * t * X) + np.cos(2 * t * Y)) + 0.004 * np.cos(t * (5 * X + 3 * Y))
+
+
+def test_at_nu_zero_partial_slip_is_the_normal_curve_shifted():
+    # Ciavarella-Jaeger, exact on the grid when Cerruti's operator is the normal one:
+    # the shift at Q is mu (d - d'), with F_N(d') = F_N(d) - Q / mu.
+    c = mrdw.Contact(waves(64), size=(1.0, 1.0), e_star=1.0, periodic=True)
+    f, mu = 0.002, 0.4
+    r = c.solve(force=f, tolerance=1e-12)
+    ps = mrdw.PartialSlip(r.pressure, mu, poisson=0.0)
+    assert ps.friction_limit == pytest.approx(mu * f, rel=1e-9)
+    for x in (0.2, 0.5, 0.8):
+        s = ps.load(x * mu * f, tolerance=1e-10)
+        reduced = c.solve(force=(1 - x) * f, tolerance=1e-12)
+        assert s.shift == pytest.approx(mu * (r.approach - reduced.approach), rel=1e-6)
+        assert s.stick_cells == int((reduced.pressure > 0).sum())
+    assert ps.load(ps.friction_limit).sliding and ps.load(-1.5 * ps.friction_limit).sliding
+
+
+def test_a_circle_held_in_stick_has_mindlins_ratio():
+    n = 128
+    x = (np.arange(n) + 0.5) / n
+    X, Y = np.meshgrid(x, x)
+    disc = (X - 0.5) ** 2 + (Y - 0.5) ** 2 < (1 / 16) ** 2
+    kx, ky, along = mrdw.stick_stiffness(disc, poisson=0.5)
+    kn, _, _ = mrdw.stick_stiffness(disc, poisson=0.0, e_star=1.0)  # nu = 0: the normal one
+    assert kx / kn == pytest.approx(2 / 3, rel=2e-3)
+    assert ky == pytest.approx(kx, rel=1e-12)
+    assert along < kx
+
+
+def test_a_cycle_dissipates_its_loop():
+    c = mrdw.Contact(waves(64), periodic=True)
+    r = c.solve(force=0.002)
+    ps = mrdw.PartialSlip(r.pressure, 0.5)
+    w, area = ps.cycle(0.5 * ps.friction_limit, steps=8)
+    assert w > 0 and area == pytest.approx(w, rel=0.05)
+
+
+@pytest.mark.parametrize(
+    "kwargs",
+    [
+        {"mu": 0.0},
+        {"mu": float("nan")},
+        {"mu": 0.5, "poisson": 0.7},
+        {"mu": 0.5, "e_star": -1.0},
+    ],
+)
+def test_bad_input_is_a_value_error(kwargs):
+    p = np.zeros((16, 16))
+    p[4:8, 4:8] = 1.0
+    with pytest.raises(ValueError):
+        mrdw.PartialSlip(p, **kwargs)
+
+
+def test_no_contact_and_bad_cycles_are_value_errors():
+    with pytest.raises(ValueError, match="no cell is in contact"):
+        mrdw.PartialSlip(np.zeros((16, 16)), 0.5)
+    p = np.zeros((16, 16))
+    p[4:8, 4:8] = 1.0
+    ps = mrdw.PartialSlip(p, 0.5)
+    with pytest.raises(ValueError, match="slides"):
+        ps.cycle(ps.friction_limit)
+    with pytest.raises(ValueError):
+        ps.load(float("nan"))
