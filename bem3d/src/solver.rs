@@ -190,12 +190,27 @@ mod window;
 pub use crate::solution::{Path, Solution};
 pub use options::{Choice, Interrupt, Load, Paths, SolverOptions, MAX_LOAD, MAX_TOLERANCE};
 
-/// Solver for one height map on one operator; buffers are allocated once.
+/// Solver for one height map on one operator; buffers are allocated once. Its state
+/// by job: the operator, the problem (heights, mask and their statistics), the work
+/// buffers of the iteration, the tuning knobs, and the coarse solver of nested starts.
 pub struct ContactSolver<K: SolverOperator> {
     op: K,
+    problem: Problem,
+    work: Work,
+    tuning: Tuning,
+    /// The solver on the grid coarsened 2 x 2, for nested starts (built on first use;
+    /// dropped with the heights).
+    coarse: Option<Box<ContactSolver<K>>>,
+}
+
+/// The problem a solver holds: the heights, the cells that may touch, and the
+/// statistics the solve reads.
+struct Problem {
+    /// The gap at zero approach: the highest height minus the heights.
     z: Vec<f64>,
     /// The cells that may touch, read as 1 or 0 (numbers: the sweeps are branch-free).
     mask: domain::Domain,
+    /// Rms of z over the domain (the length scale of the convergence criterion).
     h_rms: f64,
     /// Number of domain cells and the mean of z over them (complete-contact approach of
     /// an unmasked periodic surface).
@@ -203,8 +218,13 @@ pub struct ContactSolver<K: SolverOperator> {
     z_mean: f64,
     /// Rms slope of the heights over the domain (for the cold start under force control).
     slope_rms: f64,
-    /// Converts an overlap into a pressure [pressure / length] (see [`Self::solve`]).
+    /// Converts an overlap into a pressure [pressure / length] (see
+    /// [`ContactSolver::solve`]).
     overlap_stiffness: f64,
+}
+
+/// The work buffers of the iteration (allocated once per solver).
+struct Work {
     /// `K p + z`: the gap at zero approach, kept up to date incrementally.
     w: Vec<f64>,
     /// The conjugate direction `t` and Polak-Ribiere+'s `y_prev` (the previous
@@ -235,12 +255,13 @@ pub struct ContactSolver<K: SolverOperator> {
     loads: Vec<(usize, f64)>,
     /// Input and output of fused applications of an operator without a spectral form.
     fallback: [Vec<f64>; 2],
+}
+
+/// The tuning knobs of the strategies (tests set others).
+struct Tuning {
     /// Largest contact set, as a fraction of the grid's cells, on which M is applied by
     /// its stencil: [`iteration::LOCAL_MAX_FRACTION`] (tests set others).
     local_max_fraction: f64,
-    /// The solver on the grid coarsened 2 x 2, for nested starts (built on first use;
-    /// dropped with the heights).
-    coarse: Option<Box<ContactSolver<K>>>,
     /// Grids with more cells than this run memory-lean: [`LARGE_GRID_CELLS`] (tests set
     /// others).
     large_grid_cells: usize,
@@ -335,31 +356,37 @@ impl<K: SolverOperator> ContactSolver<K> {
             None => domain::Domain::all(n, chunk_cells(nx).max(crate::fft::ROWS_PER_CHUNK * nx)),
         };
         Self {
-            overlap_stiffness,
             op,
-            w: vec![0.0; n],
-            z: vec![0.0; n],
-            h_rms: 0.0,
-            domain_cells: mask.count(),
-            z_mean: 0.0,
-            slope_rms: 0.0,
-            directions: stored::Directions::zeros(
-                n,
-                crate::fft::ROWS_PER_CHUNK * nx,
-                n > LARGE_GRID_CELLS,
-            ),
-            changes: vec![Vec::new(); ny.div_ceil(crate::fft::ROWS_PER_CHUNK)],
-            active: vec![0; n],
-            rows_on: vec![false; ny],
-            rows_p: vec![true; ny],
-            rows_t: vec![false; ny],
-            loads: Vec::new(),
-            fallback: [Vec::new(), Vec::new()],
-            local_max_fraction: iteration::LOCAL_MAX_FRACTION,
-            large_grid_cells: LARGE_GRID_CELLS,
-            mask,
+            problem: Problem {
+                z: vec![0.0; n],
+                domain_cells: mask.count(),
+                mask,
+                h_rms: 0.0,
+                z_mean: 0.0,
+                slope_rms: 0.0,
+                overlap_stiffness,
+            },
+            work: Work {
+                w: vec![0.0; n],
+                directions: stored::Directions::zeros(
+                    n,
+                    crate::fft::ROWS_PER_CHUNK * nx,
+                    n > LARGE_GRID_CELLS,
+                ),
+                changes: vec![Vec::new(); ny.div_ceil(crate::fft::ROWS_PER_CHUNK)],
+                active: vec![0; n],
+                rows_on: vec![false; ny],
+                rows_p: vec![true; ny],
+                rows_t: vec![false; ny],
+                loads: Vec::new(),
+                fallback: [Vec::new(), Vec::new()],
+            },
+            tuning: Tuning {
+                local_max_fraction: iteration::LOCAL_MAX_FRACTION,
+                large_grid_cells: LARGE_GRID_CELLS,
+                nested_min: start::NESTED_MIN,
+            },
             coarse: None,
-            nested_min: start::NESTED_MIN,
         }
     }
 
@@ -386,23 +413,29 @@ impl<K: SolverOperator> ContactSolver<K> {
                 i % nx
             )));
         }
-        let on = || heights.iter().zip(self.mask.iter()).filter(|(_, &m)| m > 0);
+        let on = || {
+            heights
+                .iter()
+                .zip(self.problem.mask.iter())
+                .filter(|(_, &m)| m > 0)
+        };
         let hmax = on().map(|(&h, _)| h).fold(f64::NEG_INFINITY, f64::max);
-        let nm = self.domain_cells as f64;
+        let nm = self.problem.domain_cells as f64;
         let mean = on().map(|(&h, _)| h).sum::<f64>() / nm;
         let var = on().map(|(&h, _)| (h - mean).powi(2)).sum::<f64>() / nm;
         // Flat faces (e.g. a flat punch under a mask) have no rms height: the gap is then
         // measured against the grid diagonal.
-        self.h_rms = if var > 0.0 {
+        self.problem.h_rms = if var > 0.0 {
             var.sqrt()
         } else {
             (self.op.lx() * self.op.lx() + self.op.ly() * self.op.ly()).sqrt()
         };
-        self.z_mean = hmax - mean;
-        self.slope_rms = self.rms_slope(heights);
-        self.z
+        self.problem.z_mean = hmax - mean;
+        self.problem.slope_rms = self.rms_slope(heights);
+        self.problem
+            .z
             .par_iter_mut()
-            .zip(self.w.par_iter_mut())
+            .zip(self.work.w.par_iter_mut())
             .zip(heights)
             .for_each(|((z, w), h)| {
                 *z = hmax - h;
@@ -418,7 +451,7 @@ impl<K: SolverOperator> ContactSolver<K> {
         let (nx, ny) = (self.op.nx(), self.op.ny());
         let wrap = self.op.is_periodic();
         let (dx, dy) = (self.op.lx() / nx as f64, self.op.ly() / ny as f64);
-        let mask = &self.mask;
+        let mask = &self.problem.mask;
         // Sum of squared slopes and count over the pairs (a, b) of domain cells.
         let add = |(sum, pairs): &mut (f64, usize), a: usize, b: usize, step: f64| {
             if mask.holds(a) && mask.holds(b) {
@@ -466,7 +499,7 @@ impl<K: SolverOperator> ContactSolver<K> {
         crate::pool::on_pool(|| self.op.apply(p, u))
     }
     pub fn h_rms(&self) -> f64 {
-        self.h_rms
+        self.problem.h_rms
     }
 
     /// Cells per sweep chunk: whole rows, about [`CHUNK`] cells.
@@ -550,7 +583,7 @@ impl<K: SolverOperator> ContactSolver<K> {
         match (warm, load) {
             (Some(w), _) => p
                 .par_iter_mut()
-                .zip(self.mask.par_iter())
+                .zip(self.problem.mask.par_iter())
                 .zip(&w.pressure)
                 .for_each(|((p, &m), w)| *p = m as f64 * w.max(0.0)),
             (None, Load::Approach(_)) if paths.nested_start.forced() => {
@@ -665,12 +698,12 @@ impl<K: SolverOperator> ContactSolver<K> {
         }
         opts.validate()?;
         if let Load::Approach(d) = load {
-            if self.op.is_periodic() && self.domain_cells == n && d >= self.z_mean {
+            if self.op.is_periodic() && self.problem.domain_cells == n && d >= self.problem.z_mean {
                 return Err(BemError::Infeasible(format!(
                     "approach {d:e} reaches complete contact of a periodic surface \
                      (at max(h) - mean(h) = {:e} the force is unbounded); prescribe a \
                      force or mean pressure instead",
-                    self.z_mean
+                    self.problem.z_mean
                 )));
             }
         }
@@ -733,8 +766,8 @@ mod tests {
                 let op = PeriodicHalfSpace::new(nx, ny, 1.0, 1.0, 1.0);
                 let s = ContactSolver::new(op, &h, mask).unwrap();
                 let mut zs: Vec<f64> = (0..nx * ny)
-                    .filter(|&i| s.mask.holds(i))
-                    .map(|i| s.z[i])
+                    .filter(|&i| s.problem.mask.holds(i))
+                    .map(|i| s.problem.z[i])
                     .collect();
                 zs.sort_by(f64::total_cmp);
                 let step = (zs.len() / 200).max(1);
@@ -760,9 +793,9 @@ mod tests {
         // (h[i+1] - h[i])^2 = 4 sin^2(pi/nx) cos^2(2 pi (i + 1/2)/nx): mean 2 sin^2(pi/nx).
         let want = 2f64.sqrt() * (std::f64::consts::PI / nx as f64).sin() / dx;
         assert!(
-            (s.slope_rms - want).abs() < 1e-12 * want,
+            (s.problem.slope_rms - want).abs() < 1e-12 * want,
             "{} {want}",
-            s.slope_rms
+            s.problem.slope_rms
         );
 
         let parabola: Vec<f64> = (0..nx * ny)
@@ -776,9 +809,9 @@ mod tests {
         let m = (nx / 2 - 1) as f64;
         let want = dx * ((4.0 * m * m - 1.0) / 3.0).sqrt();
         assert!(
-            (s.slope_rms - want).abs() < 1e-12 * want,
+            (s.problem.slope_rms - want).abs() < 1e-12 * want,
             "{} {want}",
-            s.slope_rms
+            s.problem.slope_rms
         );
     }
 
@@ -825,7 +858,7 @@ mod tests {
         let run = |large: usize| {
             let op = PeriodicHalfSpace::with_symbols(n, n, (1.0, 1.0), 1.0, large == 0);
             let mut s = ContactSolver::new(op, h, None).unwrap();
-            s.large_grid_cells = large;
+            s.tuning.large_grid_cells = large;
             let first = s.solve(Load::MeanPressure(2e-3), &opts, None).unwrap();
             let kept = s.coarse.is_some();
             let again = s.solve(Load::MeanPressure(2e-3), &opts, None).unwrap();
@@ -887,7 +920,7 @@ mod tests {
                 .unwrap();
             pool.install(|| {
                 let mut s = ContactSolver::new(op, h, None).unwrap();
-                s.local_max_fraction = fraction;
+                s.tuning.local_max_fraction = fraction;
                 let opts = SolverOptions {
                     tolerance: 1e-12,
                     max_iterations: 5_000,

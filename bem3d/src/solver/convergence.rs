@@ -20,7 +20,7 @@ pub(super) const STALL_ITERATIONS: usize = 10;
 impl<K: SolverOperator> ContactSolver<K> {
     /// The solution without contact: w = z (no pressure), approach `d`.
     pub(super) fn finish_unloaded(&mut self, d: f64) -> Solution {
-        self.w.copy_from_slice(&self.z);
+        self.work.w.copy_from_slice(&self.problem.z);
         let n = self.op.cells();
         self.finish(vec![0.0; n], d, 0, 0.0)
     }
@@ -30,9 +30,9 @@ impl<K: SolverOperator> ContactSolver<K> {
     /// displacement scale of the mean pressure, `p_mean sqrt(lx ly) / E*`, over the rms
     /// height if that is larger. `pressure_sum`: the sum of p over the domain cells.
     pub(super) fn complete_contact_tolerance(&self, tolerance: f64, pressure_sum: f64) -> f64 {
-        let mean = pressure_sum / self.domain_cells as f64;
+        let mean = pressure_sum / self.problem.domain_cells as f64;
         let scale = mean * (self.op.lx() * self.op.ly()).sqrt() / self.op.e_star();
-        tolerance.max(COMPLETE_CONTACT_FLOOR * f64::EPSILON * scale / self.h_rms)
+        tolerance.max(COMPLETE_CONTACT_FLOOR * f64::EPSILON * scale / self.problem.h_rms)
     }
 
     /// The duality (Frank-Wolfe) gap of `p` over the pressures carrying its force,
@@ -46,14 +46,14 @@ impl<K: SolverOperator> ContactSolver<K> {
         let [pg, ps, low] = reduce(
             (
                 p.par_chunks(ch),
-                self.w.par_chunks(ch),
-                self.mask.par_chunks(ch),
+                self.work.w.par_chunks(ch),
+                self.problem.mask.par_chunks(ch),
             ),
             |(p, w, m)| sweeps::certificate_terms(p, w, m, approach),
             Some(2),
         );
         if ps > 0.0 {
-            (pg / ps + low.max(0.0)) / self.h_rms
+            (pg / ps + low.max(0.0)) / self.problem.h_rms
         } else {
             0.0
         }
@@ -72,17 +72,17 @@ impl<K: SolverOperator> ContactSolver<K> {
         let contact_cells = p.iter().filter(|&&v| v > 0.0).count();
         let certificate = self.certificate(&p, d);
         let gap_of = |w: f64, m: u8| if m > 0 { (w - d).max(0.0) } else { 0.0 };
-        let gap: Vec<f64> = if p.len() > self.large_grid_cells {
+        let gap: Vec<f64> = if p.len() > self.tuning.large_grid_cells {
             // Written over w (a solve recomputes w from its start), the solver's w
             // replaced by zeroed pages that cost no memory until the next solve writes
             // them: the same values without a third grid alive.
-            let mut gap = std::mem::replace(&mut self.w, vec![0.0; p.len()]);
+            let mut gap = std::mem::replace(&mut self.work.w, vec![0.0; p.len()]);
             gap.par_iter_mut()
-                .zip(self.mask.par_iter())
+                .zip(self.problem.mask.par_iter())
                 .for_each(|(w, &m)| *w = gap_of(*w, m));
             gap
         } else {
-            let w = self.w.par_iter().zip(self.mask.par_iter());
+            let w = self.work.w.par_iter().zip(self.problem.mask.par_iter());
             w.map(|(&w, &m)| gap_of(w, m)).collect()
         };
         Solution {
@@ -90,13 +90,13 @@ impl<K: SolverOperator> ContactSolver<K> {
             force: p.iter().sum::<f64>() * area,
             contact_cells,
             contact_area: contact_cells as f64 * area,
-            mean_gap: gap.iter().sum::<f64>() / self.domain_cells as f64,
+            mean_gap: gap.iter().sum::<f64>() / self.problem.domain_cells as f64,
             gap,
             pressure: p,
             approach,
             iterations,
             residual,
-            domain_cells: self.domain_cells,
+            domain_cells: self.problem.domain_cells,
             warm_started: false,
             path: Path::FullGrid,
             nested_start: false,
@@ -112,13 +112,13 @@ impl<K: SolverOperator> ContactSolver<K> {
         let [pg, ps, worst] = reduce(
             (
                 p.par_chunks(ch),
-                self.w.par_chunks(ch),
-                self.mask.par_chunks(ch),
+                self.work.w.par_chunks(ch),
+                self.problem.mask.par_chunks(ch),
             ),
             |(p, w, m)| sweeps::criterion_terms(p, w, m, approach),
             Some(2),
         );
-        let h_rms = self.h_rms;
+        let h_rms = self.problem.h_rms;
         (if ps > 0.0 { pg / (ps * h_rms) } else { 0.0 }).max(worst / h_rms)
     }
 }

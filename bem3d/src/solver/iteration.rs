@@ -72,11 +72,11 @@ impl<K: SolverOperator> ContactSolver<K> {
             // transforms (the same chunks, the same sums).
             let local = match opts.paths.stencil {
                 Choice::Forbid => false,
-                Choice::Allow => nc <= self.local_max_fraction * self.op.cells() as f64,
+                Choice::Allow => nc <= self.tuning.local_max_fraction * self.op.cells() as f64,
                 Choice::Force => true,
             } && self.op.local_stiffness().is_some();
             let [pg, ps, worst, sum_q] = self.criterion_pass(&p, approach, local);
-            let h_rms = self.h_rms;
+            let h_rms = self.problem.h_rms;
             residual = (if ps > 0.0 { pg / (ps * h_rms) } else { 0.0 }).max(worst / h_rms);
             if !residual.is_finite() {
                 return Err(BemError::Breakdown {
@@ -89,7 +89,7 @@ impl<K: SolverOperator> ContactSolver<K> {
             match self.stop_test(&p, approach, (residual, nc, ps), &mut st, opts) {
                 Next::Recompute => continue,
                 Next::Converged => {
-                    self.loads = std::mem::take(&mut st.loads);
+                    self.work.loads = std::mem::take(&mut st.loads);
                     let sol = self.finish(p, approach, st.it, residual);
                     return Ok(st.report(sol));
                 }
@@ -136,20 +136,20 @@ impl<K: SolverOperator> ContactSolver<K> {
         let n = self.op.cells();
         let scaled = match opts.paths.scaled_directions {
             Choice::Forbid => false,
-            Choice::Allow => n > self.large_grid_cells,
+            Choice::Allow => n > self.tuning.large_grid_cells,
             Choice::Force => true,
         };
         let chunk = ROWS_PER_CHUNK * self.op.nx();
-        self.directions.reset(n, chunk, scaled);
-        if n > self.large_grid_cells {
+        self.work.directions.reset(n, chunk, scaled);
+        if n > self.tuning.large_grid_cells {
             // The buffers freed before (a nested start's coarse solver, directions of
             // another format) would otherwise stay resident beside this solve's
             // (measured: 1.3-2.3 bytes per cell at 8192^2, docs/performance.md).
             sysmem::release_freed();
         }
-        self.rows_t.fill(false);
-        self.rows_p.fill(true);
-        self.op.apply(p, &mut self.w);
+        self.work.rows_t.fill(false);
+        self.work.rows_p.fill(true);
+        self.op.apply(p, &mut self.work.w);
         State {
             target_force,
             fixed_approach,
@@ -167,7 +167,7 @@ impl<K: SolverOperator> ContactSolver<K> {
             refresh_z: true,
             exact: true,
             stall: (f64::INFINITY, 0),
-            loads: std::mem::take(&mut self.loads),
+            loads: std::mem::take(&mut self.work.loads),
             changed_last: if start.warm { 0.0 } else { f64::INFINITY },
             skips: self.op.spectral(Operand::Compliance).is_some(),
             start,
@@ -207,9 +207,9 @@ impl<K: SolverOperator> ContactSolver<K> {
             |(p, w, m, on), q: &mut [f64]| sweeps::residual(p, w, m, q, (on, nx), approach);
         let chunks = (
             p.par_chunks(fc),
-            self.w.par_chunks(fc),
-            self.mask.par_chunks(fc),
-            self.rows_on.par_chunks(ROWS_PER_CHUNK),
+            self.work.w.par_chunks(fc),
+            self.problem.mask.par_chunks(fc),
+            self.work.rows_on.par_chunks(ROWS_PER_CHUNK),
         );
         let parts = if local {
             // The stencil reads q from the gap and the contact set: the chunk's q goes
@@ -222,7 +222,7 @@ impl<K: SolverOperator> ContactSolver<K> {
             load_fused(
                 &mut self.op,
                 Operand::Preconditioner,
-                &mut self.fallback,
+                &mut self.work.fallback,
                 chunks,
                 residual_of,
             )
@@ -259,11 +259,12 @@ impl<K: SolverOperator> ContactSolver<K> {
         } else {
             st.stall.1 += 1;
         }
-        let tolerance = if nc as usize == self.domain_cells && st.stall.1 >= STALL_ITERATIONS {
-            self.complete_contact_tolerance(opts.tolerance, ps)
-        } else {
-            opts.tolerance
-        };
+        let tolerance =
+            if nc as usize == self.problem.domain_cells && st.stall.1 >= STALL_ITERATIONS {
+                self.complete_contact_tolerance(opts.tolerance, ps)
+            } else {
+                opts.tolerance
+            };
         if residual > tolerance {
             return Next::Iterate;
         }
@@ -283,7 +284,7 @@ impl<K: SolverOperator> ContactSolver<K> {
 
     /// `w = K p` in double precision, from scratch (pass A adds z).
     fn recompute_w(&mut self, p: &[f64], st: &mut State) {
-        self.op.apply(p, &mut self.w);
+        self.op.apply(p, &mut self.work.w);
         st.refresh_z = true;
         st.exact = true;
     }
@@ -300,12 +301,12 @@ impl<K: SolverOperator> ContactSolver<K> {
         } else {
             None
         };
-        let parts: Vec<[f64; 3]> = with_directions!(&mut self.directions, |_t, y_prev| {
+        let parts: Vec<[f64; 3]> = with_directions!(&mut self.work.directions, |_t, y_prev| {
             let chunks = (
-                self.active.par_chunks(fc),
-                self.w.par_chunks(fc),
+                self.work.active.par_chunks(fc),
+                self.work.w.par_chunks(fc),
                 y_prev.chunks_mut(),
-                self.rows_on.par_chunks(ROWS_PER_CHUNK),
+                self.work.rows_on.par_chunks(ROWS_PER_CHUNK),
             );
             let sums_of = |(act, w, y_prev, on), y: &[f64]| {
                 sweeps::preconditioned(act, w, y_prev, y, (on, nx), approach)
@@ -314,7 +315,7 @@ impl<K: SolverOperator> ContactSolver<K> {
                 Some(stencil) => {
                     // y = M q on the contact cells of each chunk's rows (in a scratch
                     // buffer), then its sums.
-                    let grid = (&self.active[..], &self.w[..], approach);
+                    let grid = (&self.work.active[..], &self.work.w[..], approach);
                     chunks
                         .into_par_iter()
                         .enumerate()
@@ -330,10 +331,10 @@ impl<K: SolverOperator> ContactSolver<K> {
                 _ => finish_fused(
                     &mut self.op,
                     Operand::Preconditioner,
-                    &mut self.fallback,
+                    &mut self.work.fallback,
                     chunks,
                     sums_of,
-                    Some(&self.rows_on),
+                    Some(&self.work.rows_on),
                 ),
             }
         });
@@ -379,23 +380,23 @@ impl<K: SolverOperator> ContactSolver<K> {
             approach,
         };
         let (nx, fc) = (self.op.nx(), ROWS_PER_CHUNK * self.op.nx());
-        let parts = with_directions!(&mut self.directions, |t, y_prev| load_fused(
+        let parts = with_directions!(&mut self.work.directions, |t, y_prev| load_fused(
             &mut self.op,
             st.kt_op,
-            &mut self.fallback,
+            &mut self.work.fallback,
             (
-                self.active.par_chunks(fc),
-                self.w.par_chunks(fc),
+                self.work.active.par_chunks(fc),
+                self.work.w.par_chunks(fc),
                 t.chunks_mut(),
                 y_prev.chunks_mut(),
-                self.rows_on.par_chunks(ROWS_PER_CHUNK),
-                self.rows_t.par_chunks(ROWS_PER_CHUNK),
+                self.work.rows_on.par_chunks(ROWS_PER_CHUNK),
+                self.work.rows_t.par_chunks(ROWS_PER_CHUNK),
             ),
             |(act, w, t, y_prev, on, was), out| {
                 sweeps::direction(act, w, t, y_prev, out, (on, was, nx), dir)
             },
         ));
-        self.rows_t.copy_from_slice(&self.rows_on);
+        self.work.rows_t.copy_from_slice(&self.work.rows_on);
         let [num] = sum_parts(&parts, None);
         num
     }
@@ -407,9 +408,9 @@ impl<K: SolverOperator> ContactSolver<K> {
     /// mean.
     fn step_length(&mut self, num: f64, fresh: bool, kt_op: Operand) -> f64 {
         let tkt = if fresh {
-            energy_fused(&mut self.op, kt_op, &mut self.fallback)
+            energy_fused(&mut self.op, kt_op, &mut self.work.fallback)
         } else {
-            apply_fused(&mut self.op, kt_op, &mut self.fallback, true)
+            apply_fused(&mut self.op, kt_op, &mut self.work.fallback, true)
         };
         if tkt > 0.0 && num.is_finite() {
             num / tkt
@@ -430,11 +431,11 @@ impl<K: SolverOperator> ContactSolver<K> {
         // measured on the benchmark surfaces: the preconditioner's diagonal or the
         // inverse self-compliance as the scale cost 5-9 % more iterations). With unit E*
         // and size this is Polonsky & Keer's -tau g.
-        let step = self.overlap_stiffness
+        let step = self.problem.overlap_stiffness
             * if tau > 0.0 {
                 tau
             } else {
-                1.0 / self.domain_cells as f64
+                1.0 / self.problem.domain_cells as f64
             };
         let upd = sweeps::Update {
             tau,
@@ -474,19 +475,19 @@ impl<K: SolverOperator> ContactSolver<K> {
         kp_op: Operand,
     ) -> Vec<[f64; 3]> {
         let (nx, fc) = (self.op.nx(), ROWS_PER_CHUNK * self.op.nx());
-        if kp_op == Operand::Compliance && self.op.cells() > self.large_grid_cells {
+        if kp_op == Operand::Compliance && self.op.cells() > self.tuning.large_grid_cells {
             return self.update_then_kp(p, upd);
         }
-        let parts = with_directions!(&self.directions, |t, _y| load_fused(
+        let parts = with_directions!(&self.work.directions, |t, _y| load_fused(
             &mut self.op,
             kp_op,
-            &mut self.fallback,
+            &mut self.work.fallback,
             (
                 p.par_chunks_mut(fc),
                 t.chunks(),
-                self.w.par_chunks(fc),
-                self.mask.par_chunks(fc),
-                self.rows_p.par_chunks_mut(ROWS_PER_CHUNK),
+                self.work.w.par_chunks(fc),
+                self.problem.mask.par_chunks(fc),
+                self.work.rows_p.par_chunks_mut(ROWS_PER_CHUNK),
             ),
             |(p, t, w, m, with_p), values| sweeps::advance(p, t, w, m, values, (with_p, nx), upd),
         ));
@@ -502,12 +503,12 @@ impl<K: SolverOperator> ContactSolver<K> {
     /// `K p` bit for bit.
     fn update_then_kp(&mut self, p: &mut [f64], upd: sweeps::Update) -> Vec<[f64; 3]> {
         let (nx, fc) = (self.op.nx(), ROWS_PER_CHUNK * self.op.nx());
-        let parts = with_directions!(&self.directions, |t, _y| (
+        let parts = with_directions!(&self.work.directions, |t, _y| (
             p.par_chunks_mut(fc),
             t.chunks(),
-            self.w.par_chunks(fc),
-            self.mask.par_chunks(fc),
-            self.rows_p.par_chunks_mut(ROWS_PER_CHUNK),
+            self.work.w.par_chunks(fc),
+            self.problem.mask.par_chunks(fc),
+            self.work.rows_p.par_chunks_mut(ROWS_PER_CHUNK),
         )
             .into_par_iter()
             .map(|(p, t, w, m, with_p)| {
@@ -517,7 +518,7 @@ impl<K: SolverOperator> ContactSolver<K> {
                 })
             })
             .collect());
-        self.op.apply(p, &mut self.w);
+        self.op.apply(p, &mut self.work.w);
         parts
     }
 
@@ -536,17 +537,17 @@ impl<K: SolverOperator> ContactSolver<K> {
         // A chunk's list stops at the limit: more changes than that in all go to a
         // fresh K p, not to point loads.
         let cap = self.op.point_load_limit() + 1;
-        let parts = with_directions!(&self.directions, |t, _y| store_fused(
+        let parts = with_directions!(&self.work.directions, |t, _y| store_fused(
             &mut self.op,
             st.kt_op,
-            &mut self.fallback,
+            &mut self.work.fallback,
             (
                 p.par_chunks_mut(fc),
                 t.chunks(),
-                self.changes.par_iter_mut().enumerate(),
-                self.w.par_chunks_mut(fc),
-                self.mask.par_chunks(fc),
-                self.rows_p.par_chunks_mut(ROWS_PER_CHUNK),
+                self.work.changes.par_iter_mut().enumerate(),
+                self.work.w.par_chunks_mut(fc),
+                self.problem.mask.par_chunks(fc),
+                self.work.rows_p.par_chunks_mut(ROWS_PER_CHUNK),
             ),
             |(p, t, (b, changes), w, m, with_p), kt| {
                 sweeps::update(p, t, (changes, b * fc, cap), (w, kt), m, (with_p, nx), upd)
@@ -563,13 +564,13 @@ impl<K: SolverOperator> ContactSolver<K> {
                 load_fused(
                     &mut self.op,
                     kp_op,
-                    &mut self.fallback,
+                    &mut self.work.fallback,
                     p.par_chunks(fc),
                     copy_in,
                 );
                 self.finish_into_w(kp_op);
             } else {
-                self.op.apply(p, &mut self.w);
+                self.op.apply(p, &mut self.work.w);
             }
             st.refresh_z = true;
             st.exact = !st.single;
@@ -596,18 +597,18 @@ impl<K: SolverOperator> ContactSolver<K> {
             Refresh::AddZ => (&[][..], 1.0),
         };
         if !loads.is_empty() {
-            self.op.add_point_loads(loads, &mut self.w);
+            self.op.add_point_loads(loads, &mut self.work.w);
         }
         // w = K p + z before, scale K p + z after (with add_z: w = K p before).
         let zf = 1.0 - scale * (1.0 - add_z);
         reduce(
             (
                 p.par_chunks_mut(ch),
-                self.z.par_chunks(ch),
-                self.w.par_chunks_mut(ch),
-                self.active.par_chunks_mut(ch),
-                self.rows_p.par_chunks(ch / nx),
-                self.rows_on.par_chunks_mut(ch / nx),
+                self.problem.z.par_chunks(ch),
+                self.work.w.par_chunks_mut(ch),
+                self.work.active.par_chunks_mut(ch),
+                self.work.rows_p.par_chunks(ch / nx),
+                self.work.rows_on.par_chunks_mut(ch / nx),
             ),
             |(p, z, w, act, with_p, on)| {
                 sweeps::rescale(p, z, w, act, (with_p, on, nx), (scale, zf), offset)
@@ -623,8 +624,8 @@ impl<K: SolverOperator> ContactSolver<K> {
         finish_fused(
             &mut self.op,
             k_op,
-            &mut self.fallback,
-            self.w.par_chunks_mut(fc),
+            &mut self.work.fallback,
+            self.work.w.par_chunks_mut(fc),
             copy_out,
             None,
         );
@@ -633,7 +634,7 @@ impl<K: SolverOperator> ContactSolver<K> {
     /// Appends the changes pass D listed, chunk by chunk in cell order, to `loads` when
     /// given, and empties the lists (keeping their storage).
     fn take_changes(&mut self, mut loads: Option<&mut Vec<(usize, f64)>>) {
-        for list in &mut self.changes {
+        for list in &mut self.work.changes {
             if let Some(l) = loads.as_deref_mut() {
                 l.extend_from_slice(list);
             }
@@ -652,12 +653,12 @@ impl<K: SolverOperator> ContactSolver<K> {
         opts: &SolverOptions,
     ) -> Result<Solution> {
         p.iter_mut().for_each(|v| *v *= st.scale);
-        self.op.apply(&p, &mut self.w);
+        self.op.apply(&p, &mut self.work.w);
         let [sum_g, nc] = self.pass_a(&mut p, 1.0, Refresh::AddZ, st.fixed_approach);
         if st.target_force.is_some() && nc > 0.0 {
             approach = sum_g / nc;
         }
-        self.loads = std::mem::take(&mut st.loads);
+        self.work.loads = std::mem::take(&mut st.loads);
         let last = self.finish(p, approach, opts.max_iterations, residual);
         let last = st.report(last);
         Err(BemError::NoConvergence {

@@ -105,7 +105,7 @@ impl<K: SolverOperator> ContactSolver<K> {
         let limit = if opts.paths.candidate_set.forced() {
             MAX_CELLS
         } else {
-            ((CELLS_PER_ROOT * (self.domain_cells as f64).sqrt()) as usize).min(MAX_CELLS)
+            ((CELLS_PER_ROOT * (self.problem.domain_cells as f64).sqrt()) as usize).min(MAX_CELLS)
         };
         let too_many =
             |cells: usize| format!("a set of {cells} cells exceeds the limit of {limit}");
@@ -136,8 +136,8 @@ impl<K: SolverOperator> ContactSolver<K> {
                 let e_star = self.op.e_star();
                 let dense =
                     DenseCompliance::from_matrix(cells.len(), (hx, hy), e_star, matrix, single);
-                let z = cells.iter().map(|&i| self.z[i]).collect();
-                let (h_rms, stiffness) = (self.h_rms, self.overlap_stiffness);
+                let z = cells.iter().map(|&i| self.problem.z[i]).collect();
+                let (h_rms, stiffness) = (self.problem.h_rms, self.problem.overlap_stiffness);
                 inner = Some(ContactSolver::on_part(dense, None, z, h_rms, stiffness));
             }
             let Some(solver) = inner.as_mut() else {
@@ -172,7 +172,7 @@ impl<K: SolverOperator> ContactSolver<K> {
                 Ok(sol) => return Ok(sol),
                 Err(found) => found,
             };
-            let (w, mask) = (&self.w, &self.mask);
+            let (w, mask) = (&self.work.w, &self.problem.mask);
             let mut entering: Vec<(f64, usize)> = (0..n)
                 .into_par_iter()
                 .filter(|&i| mask.holds(i) && !member[i] && w[i] - approach < 0.0)
@@ -233,13 +233,13 @@ impl<K: SolverOperator> ContactSolver<K> {
             Some(f) => {
                 let fraction = self.start_fraction(f, CANDIDATE_START_AREA);
                 if fraction.is_finite() && fraction < 1.0 {
-                    (fraction * self.domain_cells as f64).ceil() as usize
+                    (fraction * self.problem.domain_cells as f64).ceil() as usize
                 } else {
-                    self.domain_cells
+                    self.problem.domain_cells
                 }
             }
             None => {
-                let (mask, z) = (&self.mask, &self.z);
+                let (mask, z) = (&self.problem.mask, &self.problem.z);
                 (0..n)
                     .into_par_iter()
                     .filter(|&i| mask.holds(i) && z[i] < fixed_approach)
@@ -286,9 +286,9 @@ impl<K: SolverOperator> ContactSolver<K> {
         overlap_stiffness: f64,
     ) -> Self {
         let mut solver = Self::with_buffers(op, mask, overlap_stiffness);
-        solver.w.copy_from_slice(&z);
-        solver.z = z;
-        solver.h_rms = h_rms;
+        solver.work.w.copy_from_slice(&z);
+        solver.problem.z = z;
+        solver.problem.h_rms = h_rms;
         solver
     }
 
@@ -305,8 +305,8 @@ impl<K: SolverOperator> ContactSolver<K> {
         (tally, path): (&Tally, Path),
         opts: &SolverOptions,
     ) -> std::result::Result<Solution, (f64, f64)> {
-        self.op.apply(p, &mut self.w);
-        self.rows_p.fill(true);
+        self.op.apply(p, &mut self.work.w);
+        self.work.rows_p.fill(true);
         let [sum_g, nc] = self.pass_a(p, 1.0, Refresh::AddZ, fixed_approach);
         let approach = match target_force {
             Some(_) if nc > 0.0 => fixed_approach + sum_g / nc,

@@ -36,14 +36,14 @@ impl<K: SolverOperator> ContactSolver<K> {
     /// for the full iteration); the rescale to the force follows. Uniform pressure when
     /// the heights have no slope.
     pub(super) fn cold_start(&self, p: &mut [f64], force: f64, start_area: f64) {
-        let nm = self.domain_cells;
+        let nm = self.problem.domain_cells;
         let fraction = self.start_fraction(force, start_area);
         if nm >= 2 && fraction.is_finite() && fraction < 1.0 {
             let k = ((fraction * nm as f64).ceil() as usize).clamp(1, nm - 1);
             let d = self.kth_height(k);
             p.par_iter_mut()
-                .zip(self.mask.par_iter())
-                .zip(&self.z)
+                .zip(self.problem.mask.par_iter())
+                .zip(&self.problem.z)
                 .for_each(|((v, &m), z)| *v = m as f64 * (d - z).max(0.0));
         }
         if p.iter().all(|&v| v == 0.0) {
@@ -60,7 +60,11 @@ impl<K: SolverOperator> ContactSolver<K> {
         let ch = self.chunk();
         // The domain's heights, a chunk at a time in parallel.
         let domain = || {
-            let chunks = self.z.par_chunks(ch).zip(self.mask.par_chunks(ch));
+            let chunks = self
+                .problem
+                .z
+                .par_chunks(ch)
+                .zip(self.problem.mask.par_chunks(ch));
             chunks.map(|(z, m)| z.iter().zip(m).filter(|(_, &m)| m > 0).map(|(&v, _)| v))
         };
         let wide = (f64::INFINITY, f64::NEG_INFINITY);
@@ -103,7 +107,7 @@ impl<K: SolverOperator> ContactSolver<K> {
     /// Uniform pressure (one per domain cell; the load's rescale follows).
     pub(super) fn uniform_start(&self, p: &mut [f64]) {
         p.par_iter_mut()
-            .zip(self.mask.par_iter())
+            .zip(self.problem.mask.par_iter())
             .for_each(|(v, &m)| *v = m as f64);
     }
 
@@ -124,7 +128,7 @@ impl<K: SolverOperator> ContactSolver<K> {
         let min = if opts.paths.nested_start.forced() {
             2
         } else {
-            self.nested_min
+            self.tuning.nested_min
         };
         if !opts.paths.nested_start.allowed() {
             return Err("forbidden".into());
@@ -134,7 +138,7 @@ impl<K: SolverOperator> ContactSolver<K> {
                 "the grid is {nx} x {ny} (both sides must be even and at least {min})"
             ));
         }
-        if self.domain_cells != self.op.cells() {
+        if self.problem.domain_cells != self.op.cells() {
             return Err("a mask restricts the domain".into());
         }
         if self.coarse.is_none() {
@@ -168,7 +172,7 @@ impl<K: SolverOperator> ContactSolver<K> {
                     }
                 }
             });
-        if self.op.cells() > self.large_grid_cells {
+        if self.op.cells() > self.tuning.large_grid_cells {
             self.coarse = None;
         }
         Ok(())
@@ -180,7 +184,7 @@ impl<K: SolverOperator> ContactSolver<K> {
     pub(super) fn coarse_solver(&self) -> Option<ContactSolver<K>> {
         let op = self.op.coarse()?;
         let (nx, cx) = (self.op.nx(), op.nx());
-        let z = &self.z;
+        let z = &self.problem.z;
         let heights: Vec<f64> = (0..op.cells())
             .into_par_iter()
             .map(|k| {
@@ -189,15 +193,15 @@ impl<K: SolverOperator> ContactSolver<K> {
             })
             .collect();
         let mut s = ContactSolver::new(op, &heights, None).ok()?;
-        s.nested_min = COARSE_NESTED_MIN;
+        s.tuning.nested_min = COARSE_NESTED_MIN;
         Some(s)
     }
 
     /// The fraction of the domain the cold start's overlap covers (may be >= 1 or not
     /// finite: then the start is uniform).
     pub(super) fn start_fraction(&self, force: f64, start_area: f64) -> f64 {
-        let mean_pressure = force / (self.domain_cells as f64 * self.op.cell_area());
-        start_area * mean_pressure / (self.op.e_star() * self.slope_rms)
+        let mean_pressure = force / (self.problem.domain_cells as f64 * self.op.cell_area());
+        start_area * mean_pressure / (self.op.e_star() * self.problem.slope_rms)
     }
 
     /// Start at the approach `d`: the overlap `(d - z)+` times the stiffness of the
@@ -205,8 +209,8 @@ impl<K: SolverOperator> ContactSolver<K> {
     pub(super) fn overlap_start(&self, p: &mut [f64], d: f64) {
         let scale = self.op.e_star() / (self.op.lx() * self.op.ly()).sqrt();
         p.par_iter_mut()
-            .zip(self.mask.par_iter())
-            .zip(&self.z)
+            .zip(self.problem.mask.par_iter())
+            .zip(&self.problem.z)
             .for_each(|((v, &m), z)| *v = m as f64 * (d - z).max(0.0) * scale);
     }
 }

@@ -169,7 +169,7 @@ impl<K: SolverOperator> ContactSolver<K> {
                     let cells = gaps.iter().filter(|&&(_, g)| g < 0.0).map(|&(i, _)| i);
                     (
                         bounding_box(nx, cells),
-                        sol.residual.max(worst / self.h_rms),
+                        sol.residual.max(worst / self.problem.h_rms),
                     )
                 }
                 // None: a loose round goes on to the tight one without the grid's check.
@@ -185,7 +185,7 @@ impl<K: SolverOperator> ContactSolver<K> {
                         Ok(sol) => return Ok(sol),
                         Err(found) => found,
                     };
-                    let (w, mask) = (&self.w, &self.mask);
+                    let (w, mask) = (&self.work.w, &self.problem.mask);
                     let outside = bounding_box_where(nx, n, |i| {
                         mask.holds(i) && w[i] - approach < 0.0 && !win.holds(i % nx, i / nx)
                     });
@@ -225,7 +225,7 @@ impl<K: SolverOperator> ContactSolver<K> {
     /// operator has no real-space table.
     fn gaps_outside(&self, p: &[f64], win: Window, approach: f64) -> Option<Vec<(usize, f64)>> {
         let nx = self.op.nx();
-        let (mask, z) = (&self.mask, &self.z);
+        let (mask, z) = (&self.problem.mask, &self.problem.z);
         // Rows in parallel, cells in index order.
         let at: Vec<usize> = (0..p.len() / nx)
             .into_par_iter()
@@ -252,7 +252,7 @@ impl<K: SolverOperator> ContactSolver<K> {
         Some(
             at.into_iter()
                 .zip(u)
-                .map(|(i, u)| (i, u + self.z[i] - approach))
+                .map(|(i, u)| (i, u + self.problem.z[i] - approach))
                 .collect(),
         )
     }
@@ -266,9 +266,15 @@ impl<K: SolverOperator> ContactSolver<K> {
         win: Window,
     ) -> ContactSolver<NonPeriodicHalfSpace> {
         let nx = self.op.nx();
-        let mask = self.mask.cells().map(|m| gather(m, nx, win));
-        let z = gather(&self.z, nx, win);
-        ContactSolver::on_part(op, mask, z, self.h_rms, self.overlap_stiffness)
+        let mask = self.problem.mask.cells().map(|m| gather(m, nx, win));
+        let z = gather(&self.problem.z, nx, win);
+        ContactSolver::on_part(
+            op,
+            mask,
+            z,
+            self.problem.h_rms,
+            self.problem.overlap_stiffness,
+        )
     }
 }
 
