@@ -33,7 +33,7 @@ const EXAMPLES: &str = "Examples:
   mrdw show jkr > my.toml       start a new scene from an embedded one
   mrdw run fig6-full --shard 0/4 --out shards/0    one machine's share of a sweep
   mrdw merge shards/0 shards/1 shards/2 shards/3   combine the shares into one report
-  mrdw bench mrd | rough | bem | sliding | sliding3d | viscoelastic | adhesion
+  mrdw bench mrd | rough | bem | sliding | sliding3d | viscoelastic | adhesion | tangential
                                                      run time (and error) of the solvers
   mrdw bench report [--quick]   run time against error as a report folder, reports/bench/
 
@@ -168,6 +168,10 @@ enum BenchTarget {
     /// cycle (bem3d::adhesion) against warm-started non-adhesive solves at the same
     /// approaches, free grids 128^2 .. (--max-n)^2 (default up to 512).
     Adhesion,
+    /// Tangential contact: seconds per partial-slip load step of a sphere (bem3d::tangential,
+    /// a ramp and a cycle) against a normal solve of the same periodic grid, 128^2 ..
+    /// (--max-n)^2 (default up to 512).
+    Tangential,
     /// Run time against error as a report folder (CSV + PNG): axisymmetric cases with
     /// closed forms (MRD semi-analytic, springs, 3D), rough contacts (alpha against a
     /// reference, 3D and MRD), scaling with fitted exponents.
@@ -187,7 +191,10 @@ impl BenchTarget {
     /// `--max-n` as given, else this target's default.
     fn max_n(self, given: Option<u64>) -> usize {
         let default = match self {
-            BenchTarget::Sliding3d | BenchTarget::Viscoelastic | BenchTarget::Adhesion => 512,
+            BenchTarget::Sliding3d
+            | BenchTarget::Viscoelastic
+            | BenchTarget::Adhesion
+            | BenchTarget::Tangential => 512,
             BenchTarget::Large => 16384,
             _ => 1024,
         };
@@ -217,8 +224,12 @@ fn bench_options_apply(
         ),
         (
             "--max-n",
-            max_n.is_some() && !matches!(target, Bem | Sliding3d | Viscoelastic | Adhesion | Large),
-            "bem, sliding3d, viscoelastic, adhesion and large",
+            max_n.is_some()
+                && !matches!(
+                    target,
+                    Bem | Sliding3d | Viscoelastic | Adhesion | Tangential | Large
+                ),
+            "bem, sliding3d, viscoelastic, adhesion, tangential and large",
         ),
         (
             "--write-surfaces",
@@ -418,6 +429,7 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
                 BenchTarget::Sliding3d => bench::run_sliding_3d(&mut out.0, side)?,
                 BenchTarget::Viscoelastic => bench::run_viscoelastic(&mut out.0, side)?,
                 BenchTarget::Adhesion => bench::run_adhesion(&mut out.0, side)?,
+                BenchTarget::Tangential => bench::run_tangential(&mut out.0, side)?,
                 BenchTarget::Large => bench::run_large(&mut out.0, side)?,
                 BenchTarget::Bem => bench::run_bem(&mut out.0, side, write_surfaces.as_deref())?,
                 BenchTarget::Report => {

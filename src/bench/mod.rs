@@ -6,9 +6,11 @@ pub mod common;
 mod large;
 pub mod report;
 mod rough_ladder;
+mod tangential;
 mod viscoelastic;
 pub use adhesion::run_adhesion;
 pub use large::{run_large, run_large_case};
+pub use tangential::run_tangential;
 pub use viscoelastic::run_viscoelastic;
 
 use common::{child_error, field, peak_memory_mib, reference_surface};
