@@ -4,9 +4,11 @@
 //! patch's rms slope h' (the same for every realisation: the modes' amplitudes are fixed,
 //! their phases random), the scale of the reduced pressure p / (E* h').
 
+use crate::checks::{bad, count_in, MAX_REALISATIONS};
 use crate::error::{Context as _, Result};
 use mrd::roughness::synthesis::Grid;
 use mrd::roughness::{nested, SelfAffine};
+use rayon::prelude::*;
 use std::f64::consts::PI;
 
 /// One realisation: heights (`n x n`, row-major) and the rms slope of the band.
@@ -26,6 +28,69 @@ pub fn patch(hurst: f64, bandwidth: usize, n: usize, seed: u64, r: u64) -> Resul
         heights,
         rms_slope: rms_slope(c2d, bandwidth),
     })
+}
+
+/// The ensembles of a study on periodic patches: Hurst exponents, the substrates'
+/// Poisson's ratios, the band, a ladder of cells per shortest wavelength (the same
+/// surfaces on each grid) and the realisations of each.
+pub struct Ladder<'a> {
+    pub hurst: &'a [f64],
+    pub poisson: &'a [f64],
+    pub bandwidth: usize,
+    pub cells: &'a [usize],
+    pub realisations: u64,
+}
+
+/// One ensemble of a ladder: (Hurst exponent, cells per shortest wavelength, the runs
+/// of its realisations in order).
+pub type Ensemble<R> = (f64, usize, Vec<R>);
+
+impl Ladder<'_> {
+    /// Checks the keys (ranges named as the scene spells them); returns the finest
+    /// grid's side.
+    pub fn check(&self) -> Result<usize> {
+        if self.hurst.is_empty() || self.poisson.is_empty() {
+            return bad("hurst and poisson need at least one entry each");
+        }
+        if let Some(h) = self.hurst.iter().find(|h| !(0.0..=1.0).contains(*h)) {
+            return bad(format!("hurst = {h} must lie in [0, 1]"));
+        }
+        if let Some(nu) = self.poisson.iter().find(|n| !(0.0..=0.5).contains(*n)) {
+            return bad(format!("poisson = {nu} must lie in [0, 0.5]"));
+        }
+        count_in("bandwidth", self.bandwidth as u64, 2..=512)?;
+        if self.cells.is_empty() || self.cells.windows(2).any(|w| w[1] <= w[0]) {
+            return bad(format!(
+                "cells = {:?}: give increasing cells per shortest wavelength",
+                self.cells
+            ));
+        }
+        for &c in self.cells {
+            count_in("cells", c as u64, 2..=256)?;
+            count_in("cells x bandwidth", (c * self.bandwidth) as u64, 8..=4096)?;
+        }
+        count_in("realisations", self.realisations, 2..=MAX_REALISATIONS)?;
+        Ok(self.cells.last().copied().unwrap_or(2) * self.bandwidth)
+    }
+
+    /// `run(hurst, cells, realisation)` over every ensemble, realisations in parallel
+    /// (collected in order: the same results for any thread count).
+    pub fn run<R: Send>(
+        &self,
+        run: impl Fn(f64, usize, u64) -> Result<R> + Sync,
+    ) -> Result<Vec<Ensemble<R>>> {
+        let mut all = Vec::new();
+        for &h in self.hurst {
+            for &cells in self.cells {
+                let ens = (0..self.realisations)
+                    .into_par_iter()
+                    .map(|r| run(h, cells, r))
+                    .collect::<Result<Vec<_>>>()?;
+                all.push((h, cells, ens));
+            }
+        }
+        Ok(all)
+    }
 }
 
 /// The rms slope of the nested surfaces of `c2d` cut at `band`: the sum over the wave

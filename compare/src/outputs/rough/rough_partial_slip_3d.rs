@@ -24,11 +24,11 @@
 //! nu > 0 the traction is held along x (q_y = 0; 0.6-2.6 % softer than the full tensor at
 //! nu = 0.5, `tangential_stiffness_3d`).
 
+use crate::checks::BYTES_PER_CELL_PERIODIC;
 use crate::checks::{bad, check_memory, check_tolerance, count_in, positive};
-use crate::checks::{BYTES_PER_CELL_PERIODIC, MAX_REALISATIONS};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
-use crate::experiment::periodic::patch;
+use crate::experiment::periodic::{patch, Ensemble, Ladder};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
@@ -36,7 +36,6 @@ use bem3d::tangential::{CerrutiPeriodic, PartialSlip};
 use bem3d::{ContactSolver, Load, PeriodicHalfSpace, SolverOptions};
 use mrd::numerics::gauss::legendre;
 use mrd::rough_contact::Stat;
-use rayon::prelude::*;
 use serde::Deserialize;
 
 #[derive(Debug, Clone, Deserialize)]
@@ -89,15 +88,7 @@ struct Run {
 
 impl Output for RoughPartialSlip3d {
     fn validate(&self, _: &Context) -> Result<()> {
-        if self.hurst.is_empty() || self.poisson.is_empty() {
-            return bad("hurst and poisson need at least one entry each");
-        }
-        if let Some(h) = self.hurst.iter().find(|h| !(0.0..=1.0).contains(*h)) {
-            return bad(format!("hurst = {h} must lie in [0, 1]"));
-        }
-        if let Some(nu) = self.poisson.iter().find(|n| !(0.0..=0.5).contains(*n)) {
-            return bad(format!("poisson = {nu} must lie in [0, 0.5]"));
-        }
+        let n = self.ladder().check()?;
         let fractions = |name: &str, v: &[f64], increasing: bool| -> Result<()> {
             if v.is_empty()
                 || v.iter().any(|x| !(*x > 0.0 && *x < 1.0))
@@ -121,20 +112,7 @@ impl Output for RoughPartialSlip3d {
         if !(positive(self.mu) && self.mu <= 10.0) {
             return bad(format!("mu = {} must lie in (0, 10]", self.mu));
         }
-        count_in("bandwidth", self.bandwidth as u64, 2..=512)?;
-        if self.cells.is_empty() || self.cells.windows(2).any(|w| w[1] <= w[0]) {
-            return bad(format!(
-                "cells = {:?}: give increasing cells per shortest wavelength",
-                self.cells
-            ));
-        }
-        for &c in &self.cells {
-            count_in("cells", c as u64, 2..=256)?;
-            count_in("cells x bandwidth", (c * self.bandwidth) as u64, 8..=4096)?;
-        }
-        let n = self.cells.last().copied().unwrap_or(2) * self.bandwidth;
         count_in("steps", self.steps as u64, 2..=1000)?;
-        count_in("realisations", self.realisations, 2..=MAX_REALISATIONS)?;
         check_tolerance(self.tolerance)?;
         // The normal solver and a partial-slip state (a dozen double arrays), per thread.
         check_memory(
@@ -169,17 +147,8 @@ impl Output for RoughPartialSlip3d {
             Stage::Tangential3d,
         ];
         let runs = out.stages_together(&stages, || {
-            let mut all = Vec::new();
-            for &h in &self.hurst {
-                for &cells in &self.cells {
-                    let ens = (0..self.realisations)
-                        .into_par_iter()
-                        .map(|r| self.run_one(h, cells, r, e_star))
-                        .collect::<Result<Vec<_>>>()?;
-                    all.push((h, cells, ens));
-                }
-            }
-            Ok::<_, crate::error::CompareError>(all)
+            self.ladder()
+                .run(|h, cells, r| self.run_one(h, cells, r, e_star))
         })?;
         self.report(env, out, &runs);
         Ok(())
@@ -187,6 +156,16 @@ impl Output for RoughPartialSlip3d {
 }
 
 impl RoughPartialSlip3d {
+    fn ladder(&self) -> Ladder<'_> {
+        Ladder {
+            hurst: &self.hurst,
+            poisson: &self.poisson,
+            bandwidth: self.bandwidth,
+            cells: &self.cells,
+            realisations: self.realisations,
+        }
+    }
+
     fn run_one(&self, hurst: f64, cells: usize, r: u64, e_star: f64) -> Result<Run> {
         let n = cells * self.bandwidth;
         let p = patch(hurst, self.bandwidth, n, self.seed, r)?;
@@ -273,7 +252,7 @@ impl RoughPartialSlip3d {
         Ok(run)
     }
 
-    fn report(&self, env: &Env, out: &mut Section, runs: &[(f64, usize, Vec<Run>)]) {
+    fn report(&self, env: &Env, out: &mut Section, runs: &[Ensemble<Run>]) {
         let units = &env.ctx.units;
         let (length, energy) = (units.length.clone(), units.energy());
         let note = format!(
@@ -331,51 +310,43 @@ impl RoughPartialSlip3d {
                 let exact = (nu == 0.0) as usize;
                 let stat =
                     |f: &dyn Fn(&Run) -> f64| Stat::of(&ens.iter().map(f).collect::<Vec<_>>());
+                // 3D, MRD and their ratio with its interval; the ratio's deviation and
+                // change from the grid before feed the scalars (finest grid only).
+                let mut compared = |three: &dyn Fn(&Run) -> f64,
+                                    mrd: &dyn Fn(&Run) -> f64,
+                                    dev: &mut f64|
+                 -> [f64; 5] {
+                    let f = |run: &Run| three(run) / mrd(run);
+                    let r = stat(&f);
+                    if fine {
+                        *dev = dev.max((r.mean - 1.0).abs());
+                        if let Some(c) = previous.and_then(|c| ratio_of(*h, c, &f)) {
+                            change = change.max((r.mean / c - 1.0).abs());
+                        }
+                    }
+                    let (m3, mm) = (stat(three).mean, stat(mrd).mean);
+                    [m3, mm, r.mean, r.mean - r.ci95, r.mean + r.ci95]
+                };
                 for (j, x) in self.fractions.iter().enumerate() {
-                    let f = |run: &Run| run.shift_3d[k][j] / run.shift_mrd[k][j];
-                    let r = stat(&f);
-                    if fine {
-                        dev[exact] = dev[exact].max((r.mean - 1.0).abs());
-                        if let Some(c) = previous.and_then(|c| ratio_of(*h, c, &f)) {
-                            change = change.max((r.mean / c - 1.0).abs());
-                        }
-                    }
-                    curve.push(vec![
-                        *h,
-                        nu,
-                        grid,
-                        *x,
-                        stat(&|run| run.shift_3d[k][j]).mean,
-                        stat(&|run| run.shift_mrd[k][j]).mean,
-                        r.mean,
-                        r.mean - r.ci95,
-                        r.mean + r.ci95,
-                    ]);
+                    let c = compared(
+                        &|run| run.shift_3d[k][j],
+                        &|run| run.shift_mrd[k][j],
+                        &mut dev[exact],
+                    );
+                    curve.push([[*h, nu, grid, *x].as_slice(), &c].concat());
                 }
+                let scaled = |e: f64, run: &Run| e * run.kn / (self.mu * run.force).powi(2);
                 for (j, a) in self.amplitudes.iter().enumerate() {
-                    let f = |run: &Run| run.energy_3d[k][j] / run.energy_mrd[k][j];
-                    let r = stat(&f);
-                    if fine {
-                        dev_w[exact] = dev_w[exact].max((r.mean - 1.0).abs());
-                        if let Some(c) = previous.and_then(|c| ratio_of(*h, c, &f)) {
-                            change = change.max((r.mean / c - 1.0).abs());
-                        }
-                    }
-                    cycles.push(vec![
-                        *h,
-                        nu,
-                        grid,
-                        *a,
-                        stat(&|run| run.energy_3d[k][j]).mean,
-                        stat(&|run| run.energy_mrd[k][j]).mean,
-                        r.mean,
-                        r.mean - r.ci95,
-                        r.mean + r.ci95,
-                        stat(&|run| run.energy_3d[k][j] * run.kn / (self.mu * run.force).powi(2))
-                            .mean,
-                        stat(&|run| run.energy_mrd[k][j] * run.kn / (self.mu * run.force).powi(2))
-                            .mean,
-                    ]);
+                    let c = compared(
+                        &|run| run.energy_3d[k][j],
+                        &|run| run.energy_mrd[k][j],
+                        &mut dev_w[exact],
+                    );
+                    let scale = [
+                        stat(&|run| scaled(run.energy_3d[k][j], run)).mean,
+                        stat(&|run| scaled(run.energy_mrd[k][j], run)).mean,
+                    ];
+                    cycles.push([[*h, nu, grid, *a].as_slice(), &c, &scale].concat());
                 }
             }
         }

@@ -23,11 +23,11 @@
 //! interval of that mean (normal approximation); each grid of the `cells` ladder is a
 //! refinement of the same surfaces.
 
-use crate::checks::{bad, check_memory, check_tolerance, count_in, positive};
-use crate::checks::{BYTES_PER_CELL_PERIODIC, MAX_REALISATIONS};
+use crate::checks::BYTES_PER_CELL_PERIODIC;
+use crate::checks::{bad, check_memory, check_tolerance, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
-use crate::experiment::periodic::{patch, Patch};
+use crate::experiment::periodic::{patch, Ensemble, Ladder, Patch};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
@@ -35,7 +35,6 @@ use bem3d::tangential::CerrutiPeriodic;
 use bem3d::{ContactSolver, Load, PeriodicHalfSpace, SolverOptions};
 use mrd::material::{ElasticBody, Material};
 use mrd::rough_contact::Stat;
-use rayon::prelude::*;
 use serde::Deserialize;
 
 #[derive(Debug, Clone, Deserialize)]
@@ -69,14 +68,9 @@ struct Run {
 
 impl Output for TangentialStiffness3d {
     fn validate(&self, _: &Context) -> Result<()> {
-        if self.hurst.is_empty() || self.poisson.is_empty() || self.pressures.is_empty() {
-            return bad("hurst, poisson and pressures need at least one entry each");
-        }
-        if let Some(h) = self.hurst.iter().find(|h| !(0.0..=1.0).contains(*h)) {
-            return bad(format!("hurst = {h} must lie in [0, 1]"));
-        }
-        if let Some(nu) = self.poisson.iter().find(|n| !(0.0..=0.5).contains(*n)) {
-            return bad(format!("poisson = {nu} must lie in [0, 0.5]"));
+        let n = self.ladder().check()?;
+        if self.pressures.is_empty() {
+            return bad("pressures needs at least one entry");
         }
         if self.pressures.iter().any(|p| !(positive(*p) && *p <= 10.0))
             || self.pressures.windows(2).any(|w| w[1] <= w[0])
@@ -86,20 +80,8 @@ impl Output for TangentialStiffness3d {
                 self.pressures
             ));
         }
-        count_in("bandwidth", self.bandwidth as u64, 2..=512)?;
-        if self.cells.is_empty() || self.cells.windows(2).any(|w| w[1] <= w[0]) {
-            return bad(format!(
-                "cells = {:?}: give increasing cells per shortest wavelength",
-                self.cells
-            ));
-        }
-        for &c in &self.cells {
-            count_in("cells", c as u64, 2..=256)?;
-            count_in("cells x bandwidth", (c * self.bandwidth) as u64, 8..=4096)?;
-        }
-        count_in("realisations", self.realisations, 2..=MAX_REALISATIONS)?;
         check_tolerance(self.tolerance)?;
-        let n = (self.cells.last().copied().unwrap_or(2) * self.bandwidth) as f64;
+        let n = n as f64;
         // The normal solver and the Cerruti tensor (14 double arrays of n^2), per thread.
         check_memory(
             n * n * (BYTES_PER_CELL_PERIODIC + 112.0) * rayon::current_num_threads() as f64,
@@ -124,17 +106,8 @@ impl Output for TangentialStiffness3d {
         let e_star = env.ctx.material.e_star;
         let stages = [Stage::RoughSynthesis, Stage::Bem3d, Stage::Bem3dStiffness];
         let runs = out.stages_together(&stages, || {
-            let mut all = Vec::new();
-            for &h in &self.hurst {
-                for &cells in &self.cells {
-                    let ens = (0..self.realisations)
-                        .into_par_iter()
-                        .map(|r| self.run_3d(h, cells, r, e_star))
-                        .collect::<Result<Vec<_>>>()?;
-                    all.push((h, cells, ens));
-                }
-            }
-            Ok::<_, crate::error::CompareError>(all)
+            self.ladder()
+                .run(|h, cells, r| self.run_3d(h, cells, r, e_star))
         })?;
         let mrd = out.stage(Stage::Tangential, || {
             self.poisson
@@ -156,6 +129,16 @@ fn mrd_ratio(e_star: f64, nu: f64) -> Result<f64> {
 }
 
 impl TangentialStiffness3d {
+    fn ladder(&self) -> Ladder<'_> {
+        Ladder {
+            hurst: &self.hurst,
+            poisson: &self.poisson,
+            bandwidth: self.bandwidth,
+            cells: &self.cells,
+            realisations: self.realisations,
+        }
+    }
+
     fn run_3d(&self, hurst: f64, cells: usize, r: u64, e_star: f64) -> Result<Run> {
         let n = cells * self.bandwidth;
         let Patch {
@@ -206,7 +189,7 @@ impl TangentialStiffness3d {
         Ok(run)
     }
 
-    fn report(&self, out: &mut Section, runs: &[(f64, usize, Vec<Run>)], mrd: &[f64]) {
+    fn report(&self, out: &mut Section, runs: &[Ensemble<Run>], mrd: &[f64]) {
         let cols = [
             "hurst [1]",
             "poisson [1]",
