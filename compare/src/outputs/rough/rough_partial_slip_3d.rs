@@ -369,6 +369,7 @@ impl RoughPartialSlip3d {
             (
                 "shift_ratio",
                 "Rough partial slip: the 3D shift over MRD's at each tangential force",
+                "tangential force over mu F_N [1]",
             ),
             grid,
         ));
@@ -378,6 +379,7 @@ impl RoughPartialSlip3d {
             (
                 "dissipation_ratio",
                 "Rough partial slip: the 3D energy per cycle over MRD's (Masing)",
+                "force amplitude over mu F_N [1]",
             ),
             grid,
         ));
@@ -392,15 +394,10 @@ impl RoughPartialSlip3d {
         &self,
         t: &Table,
         stem: &str,
-        (name, title): (&str, &str),
+        (name, title, x_label): (&str, &str, &str),
         grid: f64,
     ) -> Figure {
-        let mut fig = Figure::new(
-            name,
-            title,
-            &t.columns[3].replace(" [1]", "").replace('_', " "),
-            "3D over MRD [1]",
-        );
+        let mut fig = Figure::new(name, title, x_label, "3D over MRD [1]");
         fig = fig.with(Series::new(
             "MRD (Ciavarella-Jaeger; Masing's rule for the cycles)",
             vec![(0.0, 1.0), (1.0, 1.0)],
