@@ -779,6 +779,50 @@ fn tabor_3d_bad_input_names_the_key() {
     refuses_each(tmp.path(), &base, &cases);
 }
 
+#[test]
+fn periodic_patch_studies_bad_input_names_the_key() {
+    let tmp = tempfile::tempdir().unwrap();
+    let read = |name: &str| {
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(name)).unwrap()
+    };
+    let base = read("cases/rough-partial-slip-3d-ci.toml");
+    let cases = [
+        (
+            base.replace("poisson = [0.5, 0.0]", "poisson = [0.6]"),
+            "poisson",
+        ),
+        (base.replace("hurst = [0.5]", "hurst = []"), "hurst"),
+        (base.replace("cells = [4, 8]", "cells = [8, 4]"), "cells"),
+        (base.replace("mu = 0.5", "mu = 0.0"), "mu"),
+        (
+            base.replace("pressure = 0.05", "pressure = 0.0"),
+            "pressure",
+        ),
+        (
+            base.replace("fractions = [0.2, 0.5, 0.8]", "fractions = [0.5, 1.0]"),
+            "fractions",
+        ),
+        (
+            base.replace("amplitudes = [0.3, 0.6]", "amplitudes = [1.2]"),
+            "amplitudes",
+        ),
+        (
+            base.replace("realisations = 3", "realisations = 1"),
+            "realisations",
+        ),
+    ];
+    refuses_each(tmp.path(), &base, &cases);
+    let base = read("cases/tangential-stiffness-3d-ci.toml");
+    let cases = [
+        (
+            base.replace("pressures = [0.02, 0.1]", "pressures = [0.1, 0.02]"),
+            "pressures",
+        ),
+        (base.replace("bandwidth = 8", "bandwidth = 1"), "bandwidth"),
+    ];
+    refuses_each(tmp.path(), &base, &cases);
+}
+
 /// Runs each edited scene and checks it is refused with its message (edits must change
 /// the scene).
 fn refuses_each(dir: &Path, base: &str, cases: &[(String, &str)]) {
