@@ -4,7 +4,7 @@
 //! patch's rms slope h' (the same for every realisation: the modes' amplitudes are fixed,
 //! their phases random), the scale of the reduced pressure p / (E* h').
 
-use crate::checks::{bad, count_in, MAX_REALISATIONS};
+use crate::checks::{bad, check_memory, count_in, BYTES_PER_CELL_PERIODIC, MAX_REALISATIONS};
 use crate::error::{Context as _, Result};
 use mrd::roughness::synthesis::Grid;
 use mrd::roughness::{nested, SelfAffine};
@@ -46,9 +46,10 @@ pub struct Ladder<'a> {
 pub type Ensemble<R> = (f64, usize, Vec<R>);
 
 impl Ladder<'_> {
-    /// Checks the keys (ranges named as the scene spells them); returns the finest
-    /// grid's side.
-    pub fn check(&self) -> Result<usize> {
+    /// Checks the keys (ranges named as the scene spells them) and the memory of one
+    /// finest grid per thread: the periodic normal solver and `bytes_per_cell` more of
+    /// the study's own arrays. Returns the finest grid's side.
+    pub fn check(&self, bytes_per_cell: f64) -> Result<usize> {
         if self.hurst.is_empty() || self.poisson.is_empty() {
             return bad("hurst and poisson need at least one entry each");
         }
@@ -70,7 +71,14 @@ impl Ladder<'_> {
             count_in("cells x bandwidth", (c * self.bandwidth) as u64, 8..=4096)?;
         }
         count_in("realisations", self.realisations, 2..=MAX_REALISATIONS)?;
-        Ok(self.cells.last().copied().unwrap_or(2) * self.bandwidth)
+        let n = self.cells.last().copied().unwrap_or(2) * self.bandwidth;
+        check_memory(
+            (n * n) as f64
+                * (BYTES_PER_CELL_PERIODIC + bytes_per_cell)
+                * rayon::current_num_threads() as f64,
+            &format!("3D grids of {n}^2 cells, one per thread"),
+        )?;
+        Ok(n)
     }
 
     /// `run(hurst, cells, realisation)` over every ensemble, realisations in parallel

@@ -24,8 +24,7 @@
 //! nu > 0 the traction is held along x (q_y = 0; 0.6-2.6 % softer than the full tensor at
 //! nu = 0.5, `tangential_stiffness_3d`).
 
-use crate::checks::BYTES_PER_CELL_PERIODIC;
-use crate::checks::{bad, check_memory, check_tolerance, count_in, positive};
+use crate::checks::{bad, check_tolerance, count_in, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::periodic::{patch, Ensemble, Ladder};
@@ -88,7 +87,8 @@ struct Run {
 
 impl Output for RoughPartialSlip3d {
     fn validate(&self, _: &Context) -> Result<()> {
-        let n = self.ladder().check()?;
+        // Beside the normal solver: a partial-slip state (a dozen double arrays).
+        self.ladder().check(100.0)?;
         let fractions = |name: &str, v: &[f64], increasing: bool| -> Result<()> {
             if v.is_empty()
                 || v.iter().any(|x| !(*x > 0.0 && *x < 1.0))
@@ -114,13 +114,7 @@ impl Output for RoughPartialSlip3d {
         }
         count_in("steps", self.steps as u64, 2..=1000)?;
         check_tolerance(self.tolerance)?;
-        // The normal solver and a partial-slip state (a dozen double arrays), per thread.
-        check_memory(
-            (n * n) as f64
-                * (BYTES_PER_CELL_PERIODIC + 100.0)
-                * rayon::current_num_threads() as f64,
-            &format!("3D grids of {n}^2 cells, one per thread"),
-        )
+        Ok(())
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
