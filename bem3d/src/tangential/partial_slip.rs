@@ -378,38 +378,26 @@ mod tests {
 
     /// Hertz pressure of radius `a` at the centre of an `n x n` unit cell, cell centres.
     fn hertz(n: usize, a: f64, p0: f64) -> Vec<f64> {
-        let h = 1.0 / n as f64;
-        (0..n * n)
-            .map(|k| {
-                let (i, j) = (k % n, k / n);
-                let x = (i as f64 + 0.5) * h - 0.5;
-                let y = (j as f64 + 0.5) * h - 0.5;
-                let s = 1.0 - (x * x + y * y) / (a * a);
-                if s > 0.0 {
-                    p0 * s.sqrt()
-                } else {
-                    0.0
-                }
-            })
-            .collect()
+        crate::mask::centred(n, 1.0, |x, y| {
+            let s = 1.0 - (x * x + y * y) / (a * a);
+            if s > 0.0 {
+                p0 * s.sqrt()
+            } else {
+                0.0
+            }
+        })
     }
 
     /// Cattaneo's traction for a Hertz pressure of peak `p0` and radius `a` at the
     /// force ratio `Q / (mu P)`, at the cell centres of the grid of [`hertz`].
     fn cattaneo(n: usize, a: f64, p0: f64, mu: f64, ratio: f64) -> Vec<f64> {
         let c = a * (1.0 - ratio).cbrt();
-        let h = 1.0 / n as f64;
-        (0..n * n)
-            .map(|k| {
-                let (i, j) = (k % n, k / n);
-                let x = (i as f64 + 0.5) * h - 0.5;
-                let y = (j as f64 + 0.5) * h - 0.5;
-                let r2 = x * x + y * y;
-                let outer = (1.0 - r2 / (a * a)).max(0.0).sqrt();
-                let inner = (1.0 - r2 / (c * c)).max(0.0).sqrt();
-                mu * p0 * (outer - c / a * inner)
-            })
-            .collect()
+        crate::mask::centred(n, 1.0, |x, y| {
+            let r2 = x * x + y * y;
+            let outer = (1.0 - r2 / (a * a)).max(0.0).sqrt();
+            let inner = (1.0 - r2 / (c * c)).max(0.0).sqrt();
+            mu * p0 * (outer - c / a * inner)
+        })
     }
 
     /// Bad input gets an error naming it; a force at or beyond `mu P` is gross sliding,
