@@ -115,6 +115,10 @@ pub const KINDS: &[Kind] = &[
         "contact_area",
         "real contact area and mean gap against force, 3D against MRD (Section 11)",
     ),
+    Kind::of::<rough::rough_adhesion_3d::RoughAdhesion3d>(
+        "rough_adhesion_3d",
+        "adhesion of rough spheres, 3D (Pohrt-Popov) against MRD's rule of Hess on a rough line: pull-off, adhesion coefficient and loop energy against roughness (Section 5 on rough surfaces)",
+    ),
     Kind::of::<rough::rough_sphere::RoughSphere>(
         "rough_sphere",
         "a sphere with self-affine roughness, 3D against MRD (Hess + Eq. 76), smooth to rough (Section 9)",

@@ -34,6 +34,18 @@ pub const EMBEDDED: &[(&str, &str)] = &[
         include_str!("../../cases/tangential-3d-cone.toml"),
     ),
     (
+        "rough-adhesion-3d-ci",
+        include_str!("../../cases/rough-adhesion-3d-ci.toml"),
+    ),
+    (
+        "rough-adhesion-3d",
+        include_str!("../../cases/rough-adhesion-3d.toml"),
+    ),
+    (
+        "rough-adhesion-3d-punch",
+        include_str!("../../cases/rough-adhesion-3d-punch.toml"),
+    ),
+    (
         "rough-partial-slip-3d-ci",
         include_str!("../../cases/rough-partial-slip-3d-ci.toml"),
     ),

@@ -23,6 +23,7 @@ pub use error::{MrdError, Result};
 pub use material::{ElasticBody, Material};
 pub use profile::{Profile, Shape, TabulatedProfile};
 pub mod adhesion;
+pub mod adhesive_row;
 pub mod discrete;
 pub mod foundation;
 pub mod friction;

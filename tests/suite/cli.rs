@@ -114,6 +114,8 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             || *name == "viscoelastic-rough"
             || *name == "tangential-stiffness-3d"
             || *name == "rough-partial-slip-3d"
+            || *name == "rough-adhesion-3d"
+            || *name == "rough-adhesion-3d-punch"
         {
             continue; // sweeps: tests/suite/sweep.rs (fig6-ci); the others are long runs
         }
@@ -250,6 +252,20 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             if k == "tabor_3d.rel_error_mrd_vs_maugis_at_largest_lambda" {
                 assert!(v.abs() < 0.02, "{name}: {k} = {v}");
             }
+            // Rough adhesive spheres (`rough-adhesion-3d-ci`, 64^2 and 128^2 cells, 15 and
+            // 30 cells per JKR pull-off radius): the smooth sphere's pull-off against JKR's
+            // 3/2 pi R w within 5 % in 3D (measured 3.7 %) and 1 % on MRD's 512 springs
+            // (measured 0.78 %, 120 springs per pull-off radius); every adhesive cycle
+            // loses energy.
+            if k == "rough_adhesion_3d.smooth_pull_off_over_closed_form_3d" {
+                assert!((v - 1.0).abs() < 0.05, "{name}: {k} = {v}");
+            }
+            if k == "rough_adhesion_3d.smooth_pull_off_over_closed_form_mrd" {
+                assert!((v - 1.0).abs() < 0.01, "{name}: {k} = {v}");
+            }
+            if k == "rough_adhesion_3d.loop_energy_min_over_smooth_3d" {
+                assert!(v > 0.0, "{name}: {k} = {v}");
+            }
             // Adhesive pull-off on springs is first order in dx (quantised radius): 2e-3.
             if k == "adhesion.pull_off_rel_dev_discrete_vs_semi_analytic" {
                 assert!(v < 2e-3, "{name}: {k} = {v}");
@@ -282,6 +298,20 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             // approach step of JKR's (measured 3.2 %, a step 6.1 %).
             let step = result(&s, "adhesion_3d.approach_step_over_jump_out_depth");
             assert!(result(&s, "adhesion_3d.jump_out_depth_rel_error_3d") < step);
+            continue;
+        }
+        if *name == "rough-adhesion-3d-ci" {
+            for k in [
+                "smooth_pull_off_over_closed_form_3d",
+                "smooth_pull_off_over_closed_form_mrd",
+                "loop_energy_min_over_smooth_3d",
+                "pull_off_over_smooth_max_abs_change_last_refinement_3d",
+                "pull_off_over_smooth_max_abs_dev_mrd_outer_0_vs_3d",
+                "pull_off_over_smooth_max_abs_dev_mrd_cluster_2_vs_3d",
+            ] {
+                let key = format!("rough_adhesion_3d.{k}");
+                assert!(result(&s, &key).is_finite(), "{k}");
+            }
             continue;
         }
         if *name == "rough-partial-slip-3d-ci" {

@@ -823,6 +823,48 @@ fn periodic_patch_studies_bad_input_names_the_key() {
     refuses_each(tmp.path(), &base, &cases);
 }
 
+#[test]
+fn rough_adhesion_bad_input_names_the_key() {
+    let tmp = tempfile::tempdir().unwrap();
+    let base = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/rough-adhesion-3d-ci.toml"),
+    )
+    .unwrap();
+    let cases = [
+        (base.replace("work = 0.002", "work = 0.0"), "work"),
+        (base.replace("work = 0.002", "work = -1.0"), "work"),
+        (
+            base.replace("radius = 1.0", "radius = 1.0\npunch_radius = 0.2"),
+            "punch_radius",
+        ),
+        (
+            base.replace("roughness = [0.2, 1.0]", "roughness = [0.0]"),
+            "roughness",
+        ),
+        (base.replace("hurst = [0.8]", "hurst = [1.5]"), "hurst"),
+        (
+            base.replace("cells = [64, 128]", "cells = [128, 64]"),
+            "cells",
+        ),
+        (base.replace("side = 0.8", "side = 0.3"), "side"),
+        (base.replace("bandwidth = 6", "bandwidth = 40"), "bandwidth"),
+        (
+            base.replace("depth_max = 0.06", "depth_max = 0.5"),
+            "depth_max",
+        ),
+        (base.replace("steps = 30", "steps = 2"), "steps"),
+        (
+            base.replace("seed = 3", "seed = 3\nmrd_rule = [\"inner\"]"),
+            "mrd_rule",
+        ),
+        (
+            base.replace("seed = 3", "seed = 3\nmrd_rule = []"),
+            "mrd_rule",
+        ),
+    ];
+    refuses_each(tmp.path(), &base, &cases);
+}
+
 /// Runs each edited scene and checks it is refused with its message (edits must change
 /// the scene).
 fn refuses_each(dir: &Path, base: &str, cases: &[(String, &str)]) {

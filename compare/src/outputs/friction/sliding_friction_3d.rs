@@ -21,6 +21,7 @@ use super::sliding_friction::{AtVelocity, LineSpec, SlidingFriction};
 use crate::checks::{bad, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
+use crate::experiment::progress::Progress;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
@@ -211,7 +212,7 @@ impl SlidingFriction3d {
     /// One surface on one grid over all velocities, in increasing order, each solve
     /// warm-started from the previous velocity's solution (deterministic: one surface is
     /// one sequential task).
-    fn sweep(&self, h: &[f64], n: usize, pressure: f64, bar: &Bar) -> Result<Vec<Run>> {
+    fn sweep(&self, h: &[f64], n: usize, pressure: f64, bar: &Progress) -> Result<Vec<Run>> {
         let opts = SolverOptions {
             tolerance: self.tolerance,
             max_iterations: self.max_iterations,
@@ -261,10 +262,11 @@ impl SlidingFriction3d {
                 .collect::<Result<_>>()
         })?;
         let nv = self.velocities;
-        let bar = Bar::new(
+        let bar = Progress::new(
             env.control.progress,
             surfaces.len() * grids.len() * nv,
             "3D sliding (surface x grid x velocity)",
+            "solves",
         );
         let jobs: Vec<(usize, usize)> = (0..grids.len())
             .flat_map(|g| (0..surfaces.len()).map(move |r| (g, r)))
@@ -314,36 +316,6 @@ impl SlidingFriction3d {
             tolerance: m.tolerance,
             max_passes: m.max_passes,
             error_limit: self.error_limit,
-        }
-    }
-}
-
-/// A progress bar shared by parallel tasks (hidden when progress is off).
-struct Bar(Option<indicatif::ProgressBar>);
-
-impl Bar {
-    fn new(show: bool, len: usize, msg: &'static str) -> Self {
-        Self(show.then(|| {
-            let b = indicatif::ProgressBar::new(len as u64);
-            b.set_style(
-                indicatif::ProgressStyle::with_template(
-                    "{msg} [{bar:30}] {pos}/{len} solves, {elapsed} elapsed, ETA {eta}",
-                )
-                .expect("valid template")
-                .progress_chars("=> "),
-            );
-            b.set_message(msg);
-            b
-        }))
-    }
-    fn inc(&self) {
-        if let Some(b) = &self.0 {
-            b.inc(1);
-        }
-    }
-    fn finish(&self) {
-        if let Some(b) = &self.0 {
-            b.finish_and_clear();
         }
     }
 }

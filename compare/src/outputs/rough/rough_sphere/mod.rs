@@ -84,6 +84,16 @@ impl RoughSphere {
         let f_h = mrd::reference::hertz::force(1.0, self.radius, self.hertz_depth);
         mrd::friction::log_space(1e-2 * f_h, f_h, self.loads)
     }
+    fn geometry(&self) -> crate::experiment::rough_sphere::RoughSphereGeometry {
+        crate::experiment::rough_sphere::RoughSphereGeometry {
+            radius: self.radius,
+            hurst: self.hurst,
+            side: self.side_length(),
+            grid: self.grid,
+            bandwidth: self.bandwidth,
+            seed: self.seed,
+        }
+    }
     fn rms_height(&self, alpha: f64) -> f64 {
         alpha * self.a_hertz().powi(2) / self.radius
     }

@@ -5,9 +5,6 @@ use super::RoughSphere;
 use crate::error::{Context as _, Result};
 use bem3d::{BemError, ContactSolver, Load, NonPeriodicHalfSpace, SolverOptions};
 use mrd::foundation::Foundation;
-use mrd::roughness::synthesis::Grid;
-use mrd::roughness::{nested, SelfAffine};
-use std::f64::consts::PI;
 
 /// The contact at one force.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -37,51 +34,18 @@ pub struct Run {
     pub unconverged: usize,
 }
 
-fn spectrum(spec: &RoughSphere) -> Result<SelfAffine> {
-    let q0 = 2.0 * PI / spec.side_length();
-    SelfAffine::new(spec.hurst, q0, q0, q0 * (spec.bandwidth as f64 + 1.0)).ctx("spectrum")
-}
-
-fn surface(spec: &RoughSphere, r: u64) -> Result<Vec<f64>> {
-    let sa = spectrum(spec)?;
-    let grid = Grid::square(spec.grid, spec.side_length());
-    nested::surface(&|q| sa.c2d(q), spec.bandwidth, &grid, spec.seed, r).ctx("3D roughness")
-}
-
-/// The factor that gives the surfaces unit rms height over the square (the same for
-/// every realisation: their mode amplitudes are fixed, only the phases are random). The
-/// MRD lines take the same factor, so both sides carry the same C2D.
+/// The factor that gives the surfaces unit rms height over the square; the MRD lines
+/// take the same factor, so both sides carry the same C2D.
 pub fn roughness_scale(spec: &RoughSphere) -> Result<f64> {
-    let z = surface(spec, 0)?;
-    let n = z.len() as f64;
-    let mean = z.iter().sum::<f64>() / n;
-    let rms = (z.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt();
-    if rms.is_nan() || rms <= 0.0 {
-        return Err(crate::error::CompareError::Scene(
-            "rough_sphere: the roughness band is empty".into(),
-        ));
-    }
-    Ok(1.0 / rms)
-}
-
-/// Cell-centre coordinate of index i of `n` across `side`, centred on the axis.
-fn centre(i: usize, n: usize, side: f64) -> f64 {
-    (i as f64 + 0.5) * side / n as f64 - 0.5 * side
+    spec.geometry().unit_rms_factor()
 }
 
 /// Realisation `r` of the rough sphere with alpha `alpha` in 3D.
 pub fn press_3d(spec: &RoughSphere, alpha: f64, scale: f64, r: u64) -> Result<Run> {
     let (n, side) = (spec.grid, spec.side_length());
-    let h = spec.rms_height(alpha);
-    let rough = if alpha > 0.0 {
-        surface(spec, r)?
-    } else {
-        vec![0.0; n * n]
-    };
-    let r2 = |c: usize| centre(c % n, n, side).powi(2) + centre(c / n, n, side).powi(2);
-    let z: Vec<f64> = (0..n * n)
-        .map(|c| -r2(c) / (2.0 * spec.radius) + h * scale * rough[c])
-        .collect();
+    let geometry = spec.geometry();
+    let z = geometry.heights(spec.rms_height(alpha), scale, r)?;
+    let r2 = |c: usize| geometry.r2(c);
     let top = z.iter().fold(f64::NEG_INFINITY, |m, &v| m.max(v));
     let op = NonPeriodicHalfSpace::new(n, n, side, side, 1.0);
     let mut solver = ContactSolver::new(op, &z, None).ctx("3D solver set-up")?;
@@ -144,17 +108,9 @@ pub fn press_3d(spec: &RoughSphere, alpha: f64, scale: f64, r: u64) -> Result<Ru
 pub fn press_1d(spec: &RoughSphere, alpha: f64, scale: f64, lambda: f64, r: u64) -> Result<Run> {
     let side = spec.side_length();
     let n1 = spec.points_1d_factor * spec.grid;
-    let h = spec.rms_height(alpha);
-    let rough = if alpha > 0.0 {
-        let line = spectrum(spec)?.to_line(lambda); // Eq. (76)
-        nested::line(&|q| line.c1d(q), spec.bandwidth, n1, side, spec.seed, r).ctx("1D line")?
-    } else {
-        vec![0.0; n1]
-    };
-    let x: Vec<f64> = (0..n1).map(|i| centre(i, n1, side)).collect();
-    let w: Vec<f64> = (0..n1)
-        .map(|i| -x[i] * x[i] / spec.radius + h * scale * rough[i])
-        .collect();
+    let (x, w) = spec
+        .geometry()
+        .line(spec.rms_height(alpha), scale, lambda, n1, r)?;
     let top = w.iter().fold(f64::NEG_INFINITY, |m, &v| m.max(v));
     let gaps: Vec<f64> = w.iter().map(|v| top - v).collect();
     let dx = side / n1 as f64;

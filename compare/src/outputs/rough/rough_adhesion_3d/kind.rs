@@ -1,0 +1,189 @@
+//! `RoughAdhesion3d` as an output kind: its checks, its declared stages and its run.
+
+use super::cycles::{cycle_1d, cycle_3d, Cases};
+use super::{report, RoughAdhesion3d, Variant};
+use crate::checks::{bad, check_memory, check_tolerance, count_in, positive};
+use crate::checks::{check_ensembles, BYTES_PER_CELL_NON_PERIODIC};
+use crate::context::Context;
+use crate::error::{Context as _, Result};
+use crate::experiment::lambda::LambdaSpec;
+use crate::experiment::progress::Progress;
+use crate::output::{Env, Output};
+use crate::plan::Stage;
+use crate::report::Section;
+use rayon::prelude::*;
+
+/// Peak bytes per cell of one 3D cycle: the non-periodic operator and a dozen grids.
+const BYTES_PER_CELL: f64 = BYTES_PER_CELL_NON_PERIODIC + 100.0;
+
+impl Output for RoughAdhesion3d {
+    fn validate(&self, ctx: &Context) -> Result<()> {
+        let (lo, hi) = mrd::error::MAGNITUDE_RANGE;
+        let size = match (self.radius, self.punch_radius) {
+            (Some(r), None) => r,
+            (None, Some(a)) => a,
+            _ => return bad("give radius (a sphere) or punch_radius (a flat punch), not both"),
+        };
+        for (name, v) in [
+            ("radius or punch_radius", size),
+            ("work", self.work),
+            ("depth_max", self.depth_max),
+            ("side", self.side),
+        ] {
+            if !(lo..=hi).contains(&v) {
+                return bad(format!("{name} = {v:e} must lie in [{lo:e}, {hi:e}]"));
+            }
+        }
+        if self.depth_max > 0.1 * size {
+            return bad("depth_max must be <= 0.1 of the body's radius (small slopes)");
+        }
+        if self.hurst.is_empty() || self.hurst.iter().any(|h| !(0.0..=1.0).contains(h)) {
+            return bad(format!(
+                "hurst = {:?}: give at least one Hurst exponent in [0, 1]",
+                self.hurst
+            ));
+        }
+        if self.roughness.is_empty()
+            || self
+                .roughness
+                .iter()
+                .any(|r| !(positive(*r) && *r <= 100.0))
+        {
+            return bad(format!(
+                "roughness = {:?}: give rms heights over the body's adhesion length in (0, 100] (the smooth body is always run)",
+                self.roughness
+            ));
+        }
+        if self.cells.is_empty() || self.cells.windows(2).any(|w| w[1] <= w[0]) {
+            return bad(format!(
+                "cells = {:?}: give increasing grid sizes (a refinement ladder)",
+                self.cells
+            ));
+        }
+        for &n in &self.cells {
+            count_in("cells", n as u64, 16..=2048)?;
+            count_in("bandwidth", self.bandwidth as u64, 1..=(n as u64 - 1) / 2)?;
+        }
+        // The contact's radius: Hertz's sqrt(R depth_max), or the punch's.
+        let a = match self.body() {
+            super::Body::Sphere(r) => (r * self.depth_max).sqrt(),
+            super::Body::Punch(a) => a,
+        };
+        if self.side < 2.2 * a {
+            return bad(format!(
+                "side = {} must be at least 2.2 contact radii (sqrt(R depth_max) or the punch's) = {:.4e}: the contact stays inside the map",
+                self.side,
+                2.2 * a
+            ));
+        }
+        check_ensembles(self.realisations_3d, self.realisations_1d)?;
+        count_in("points_1d_factor", self.points_1d_factor as u64, 1..=64)?;
+        count_in("steps", self.steps as u64, 4..=10_000)?;
+        check_tolerance(self.tolerance)?;
+        if self.mrd_rule.is_empty() || self.rules().len() != self.mrd_rule.len() {
+            return bad(format!(
+                "mrd_rule = {:?}: give \"outer\", \"cluster\" or both",
+                self.mrd_rule
+            ));
+        }
+        LambdaSpec::check_all(&self.lambda, ctx, &self.hurst)?;
+        let n = *self.cells.last().unwrap_or(&16) as f64;
+        check_memory(
+            n * n * BYTES_PER_CELL * rayon::current_num_threads() as f64,
+            &format!("3D grids of {n}^2 cells, one per thread"),
+        )
+    }
+
+    fn stages(&self, _: &Context) -> Vec<Stage> {
+        vec![
+            Stage::RoughSynthesis,
+            Stage::Adhesion3d,
+            Stage::AdhesionDiscrete,
+        ]
+    }
+
+    fn seed(&self) -> Option<u64> {
+        Some(self.seed)
+    }
+
+    fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
+        let e_star = env.ctx.material.e_star;
+        let lambdas: Vec<Vec<f64>> = self
+            .lambda
+            .iter()
+            .map(|l| {
+                let law = l.build(env.ctx)?;
+                self.hurst
+                    .iter()
+                    .map(|&h| law.at(h).ctx("lambda"))
+                    .collect()
+            })
+            .collect::<Result<_>>()?;
+        let variants: Vec<Variant> = self
+            .rules()
+            .into_iter()
+            .flat_map(|rule| {
+                lambdas.iter().map(move |l| Variant {
+                    rule,
+                    lambda: l.clone(),
+                })
+            })
+            .collect();
+        let cases = self.cases();
+        let total: u64 = cases
+            .iter()
+            .map(|&(_, rough)| self.realisations(rough, self.realisations_3d))
+            .sum::<u64>()
+            * self.cells.len() as u64;
+        let bar = Progress::new(
+            env.control.progress,
+            total as usize,
+            "3D adhesive cycles (case x grid x surface)",
+            "cycles",
+        );
+        let all_3d: Cases =
+            out.stages_together(&[Stage::RoughSynthesis, Stage::Adhesion3d], || {
+                cases
+                    .iter()
+                    .map(|&(h, rough)| {
+                        let per_grid = self
+                            .cells
+                            .iter()
+                            .map(|&n| {
+                                (0..self.realisations(rough, self.realisations_3d))
+                                    .into_par_iter()
+                                    .map(|r| {
+                                        let c = cycle_3d(self, h, rough, n, r, e_star);
+                                        bar.inc();
+                                        c
+                                    })
+                                    .collect::<Result<Vec<_>>>()
+                            })
+                            .collect::<Result<Vec<_>>>()?;
+                        Ok(((h, rough), per_grid))
+                    })
+                    .collect::<Result<_>>()
+            })?;
+        bar.finish();
+        let all_1d: Cases = out.stage(Stage::AdhesionDiscrete, || {
+            cases
+                .iter()
+                .map(|&(h, rough)| {
+                    let hi = self.hurst.iter().position(|&x| x == h).unwrap_or(0);
+                    let per_variant = variants
+                        .iter()
+                        .map(|v| {
+                            let how = (v.rule.edge(), v.lambda[hi]);
+                            (0..self.realisations(rough, self.realisations_1d))
+                                .into_par_iter()
+                                .map(|r| cycle_1d(self, (h, rough), how, r, e_star))
+                                .collect::<Result<Vec<_>>>()
+                        })
+                        .collect::<Result<Vec<_>>>()?;
+                    Ok(((h, rough), per_variant))
+                })
+                .collect::<Result<_>>()
+        })?;
+        report::report(self, env, &variants, &all_3d, &all_1d, out)
+    }
+}
