@@ -5,6 +5,7 @@
 
 mod adhesive;
 mod axisym;
+mod cohesive;
 mod contact;
 mod errors;
 mod rough;
@@ -29,6 +30,8 @@ fn _mrdw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<transient::TransientStep>()?;
     m.add_class::<adhesive::AdhesiveContact>()?;
     m.add_class::<adhesive::AdhesiveStep>()?;
+    m.add_class::<cohesive::CohesiveContact>()?;
+    m.add_class::<cohesive::CohesiveStep>()?;
     m.add_class::<tangential::PartialSlip>()?;
     m.add_class::<tangential::TangentialStep>()?;
     m.add_function(wrap_pyfunction!(tangential::stick_stiffness, m)?)?;

@@ -23,6 +23,12 @@ Adhesive contact along a history (JKR limit; w the work of adhesion)::
     s = a.step(approach=d)                   # or force=..., mean_pressure=...; < 0 pulls
     s.force, s.contact_area, s.separated, s.pressure
 
+Finite-range (Maugis-Dugdale) adhesion, sigma0 the cohesive stress::
+
+    c = mrdw.CohesiveContact(heights, work=w, sigma0=s0, size=(lx, ly))
+    s = c.step(d)                            # approach from first contact; < 0 pulls
+    s.force, s.contact_cells, s.cohesive_cells, c.resolved
+
 Roughness: spectrum, line_spectrum, calibrated_lambda (lambda(H) of Eq. 76; the
 table with its provenance: calibrated_lambda_table), surface, line, psd, moments,
 read_topography (a Topography: heights, physical size, undefined cells).
@@ -45,6 +51,8 @@ from ._mrdw import (
     TransientStep,
     AdhesiveContact,
     AdhesiveStep,
+    CohesiveContact,
+    CohesiveStep,
     PartialSlip,
     TangentialStep,
     stick_stiffness,
@@ -80,6 +88,8 @@ __all__ = [
     "TransientStep",
     "AdhesiveContact",
     "AdhesiveStep",
+    "CohesiveContact",
+    "CohesiveStep",
     "PartialSlip",
     "TangentialStep",
     "stick_stiffness",

@@ -298,6 +298,64 @@ class AdhesiveContact:
     @property
     def periodic(self) -> bool: ...
 
+class CohesiveStep:
+    """The state after a step of CohesiveContact.step."""
+
+    @property
+    def approach(self) -> float:
+        """Approach from first contact [length] (negative: retracted past it)."""
+    @property
+    def force(self) -> float:
+        """Total normal force [stress x length^2], negative in tension."""
+    @property
+    def contact_area(self) -> float:
+        """Contact cells (gap 0) times cell area [length^2]."""
+    @property
+    def contact_cells(self) -> int: ...
+    @property
+    def cohesive_cells(self) -> int:
+        """Cells in the cohesive zone (0 < gap < w / sigma0)."""
+    @property
+    def rounds(self) -> int: ...
+    @property
+    def iterations(self) -> int: ...
+    @property
+    def residual(self) -> float: ...
+    @property
+    def pressure(self) -> F64:
+        """Cell pressures, shape (ny, nx) [stress], negative in tension (>= -sigma0)."""
+
+class CohesiveContact:
+    """A rigid surface in Maugis-Dugdale adhesive contact with a free elastic
+    half-space, loaded along an approach history: a tension sigma0 wherever the gap lies
+    below the range w / sigma0 (Bradley's to JKR's limit with the Tabor parameter)."""
+
+    def __init__(
+        self,
+        heights: Union[ArrayLike, Any],
+        work: float,
+        sigma0: float,
+        size: Optional[Tuple[float, float]] = None,
+        e_star: float = 1.0,
+        mask: Optional[ArrayLike] = None,
+    ) -> None:
+        """work: the work of adhesion w [stress x length], > 0; sigma0: the cohesive
+        stress [stress], > 0; heights, size, e_star, mask as for Contact (the half-space
+        is free). Starts out of contact."""
+    def step(self, approach: float, *, tolerance: float = 1e-8) -> CohesiveStep:
+        """Load from the last state to the approach [length] from first contact
+        (negative: retracted). Releases the GIL."""
+    @property
+    def dugdale_length(self) -> float:
+        """E* w / sigma0^2 [length]: the cohesive zone's width scale."""
+    @property
+    def resolved(self) -> bool:
+        """Whether the Dugdale length spans at least 10 cells."""
+    @property
+    def shape(self) -> Tuple[int, int]: ...
+    @property
+    def size(self) -> Tuple[float, float]: ...
+
 class TangentialStep:
     """The state after a step of PartialSlip.load."""
 

@@ -1,0 +1,183 @@
+//! Adhesive normal contact in 3D with a finite-range cohesive law (`bem3d::cohesive`:
+//! Maugis-Dugdale) on numpy height maps, under a prescribed approach.
+
+use crate::contact::bem_err;
+use crate::contact::{grid_array, Grid};
+use crate::errors::value_error;
+use bem3d::cohesive::{CohesiveContact as Cohesive, CohesiveStep as Step};
+use bem3d::NonPeriodicHalfSpace;
+use numpy::{AllowTypeChange, PyArray2, PyArrayLike2};
+use pyo3::prelude::*;
+
+/// The state after a step of `CohesiveContact.step`.
+#[pyclass(module = "mrdw._mrdw", frozen)]
+pub struct CohesiveStep {
+    step: Step,
+    pressure: Vec<f64>,
+    shape: (usize, usize),
+}
+
+#[pymethods]
+impl CohesiveStep {
+    /// Approach from first contact [length] (negative: retracted past it).
+    #[getter]
+    fn approach(&self) -> f64 {
+        self.step.approach
+    }
+    /// Total normal force [stress x length^2], negative in tension.
+    #[getter]
+    fn force(&self) -> f64 {
+        self.step.force
+    }
+    /// Contact cells (gap 0) times cell area [length^2].
+    #[getter]
+    fn contact_area(&self) -> f64 {
+        self.step.contact_area
+    }
+    /// Cells in contact (gap 0).
+    #[getter]
+    fn contact_cells(&self) -> usize {
+        self.step.contact_cells
+    }
+    /// Cells in the cohesive zone (0 < gap < w / sigma0).
+    #[getter]
+    fn cohesive_cells(&self) -> usize {
+        self.step.cohesive_cells
+    }
+    /// Set-update rounds, and conjugate-gradient iterations summed over them.
+    #[getter]
+    fn rounds(&self) -> usize {
+        self.step.rounds
+    }
+    #[getter]
+    fn iterations(&self) -> usize {
+        self.step.iterations
+    }
+    /// The last round's criterion value (bem3d/src/cohesive.rs).
+    #[getter]
+    fn residual(&self) -> f64 {
+        self.step.residual
+    }
+    /// Cell pressures, shape (ny, nx) [stress], negative in tension (>= -sigma0).
+    #[getter]
+    fn pressure<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        grid_array(py, &self.pressure, self.shape)
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "CohesiveStep(approach={:.6e}, force={:.6e}, contact_cells={}, cohesive_cells={})",
+            self.step.approach, self.step.force, self.step.contact_cells, self.step.cohesive_cells
+        )
+    }
+}
+
+/// A rigid surface in Maugis-Dugdale adhesive contact with a free elastic half-space,
+/// loaded along an approach history (3D FFT boundary elements).
+///
+/// CohesiveContact(heights, work, sigma0, size=None, e_star=1.0, mask=None)
+///
+/// Finite-range adhesion: a constant tension sigma0 [stress] wherever the gap lies below
+/// the range w / sigma0, w = `work` the work of adhesion [stress x length]; with the
+/// Tabor-Maugis parameter it spans Bradley's rigid limit to JKR's (the JKR limit is
+/// AdhesiveContact). The cohesive zone must span cells: `resolved` says whether the
+/// Dugdale length E* w / sigma0^2 spans 10 of them (coarser grids overestimate the
+/// pull-off; bem3d/src/cohesive.rs has the measured errors). heights, size, e_star and
+/// mask as for Contact; the half-space is free (non-periodic): the approach is
+/// prescribed. Starts out of contact; each step() loads from the last state.
+#[pyclass(module = "mrdw._mrdw")]
+pub struct CohesiveContact {
+    contact: Cohesive<NonPeriodicHalfSpace>,
+    shape: (usize, usize),
+    size: (f64, f64),
+}
+
+#[pymethods]
+impl CohesiveContact {
+    #[new]
+    #[pyo3(signature = (heights, work, sigma0, size = None, e_star = 1.0, mask = None))]
+    fn new(
+        py: Python<'_>,
+        heights: &Bound<'_, PyAny>,
+        work: f64,
+        sigma0: f64,
+        size: Option<(f64, f64)>,
+        e_star: f64,
+        mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
+    ) -> PyResult<Self> {
+        for (name, v) in [("work", work), ("sigma0", sigma0)] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(value_error(format!(
+                    "{name} = {v} must be finite and > 0 (without adhesion use Contact; the JKR limit is AdhesiveContact)"
+                )));
+            }
+        }
+        let grid = Grid::new(py, heights, size, Some(false), mask, e_star)?;
+        let ((ny, nx), (lx, ly)) = (grid.shape, grid.size);
+        sysmem::check_estimate(
+            8.0 * 9.0 * (nx * ny) as f64,
+            &format!("a cohesive {ny} x {nx} contact"),
+        )
+        .map_err(|e| pyo3::exceptions::PyMemoryError::new_err(e.to_string()))?;
+        let (h, mask) = (grid.heights, grid.mask);
+        let built = py.detach(|| -> bem3d::Result<_> {
+            let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
+            Cohesive::new(op, &h, mask.as_deref(), work, sigma0)
+        });
+        let contact = built.map_err(|e| bem_err(py, e, (ny, nx), lx * ly))?;
+        Ok(Self {
+            contact,
+            shape: (ny, nx),
+            size: grid.size,
+        })
+    }
+
+    /// step(approach, *, tolerance=1e-8) -> CohesiveStep
+    ///
+    /// Loads from the last state to the approach [length] from first contact (negative:
+    /// retracted). Raises ValueError for bad input, ConvergenceError if the cohesive set
+    /// or a solve does not settle. The GIL is released while solving.
+    #[pyo3(signature = (approach, *, tolerance = 1e-8))]
+    fn step(&mut self, py: Python<'_>, approach: f64, tolerance: f64) -> PyResult<CohesiveStep> {
+        if !approach.is_finite() {
+            return Err(value_error(format!("approach = {approach} must be finite")));
+        }
+        let contact = &mut self.contact;
+        let out = py.detach(|| contact.step(approach, tolerance));
+        let (ny, nx) = self.shape;
+        let step = out.map_err(|e| bem_err(py, e, (ny, nx), self.size.0 * self.size.1))?;
+        Ok(CohesiveStep {
+            step,
+            pressure: self.contact.pressure().to_vec(),
+            shape: self.shape,
+        })
+    }
+
+    /// The Dugdale length E* w / sigma0^2 [length].
+    #[getter]
+    fn dugdale_length(&self) -> f64 {
+        self.contact.dugdale_length()
+    }
+    /// Whether the Dugdale length spans at least 10 cells.
+    #[getter]
+    fn resolved(&self) -> bool {
+        self.contact.resolved()
+    }
+    /// (ny, nx)
+    #[getter]
+    fn shape(&self) -> (usize, usize) {
+        self.shape
+    }
+    /// (lx, ly) [length]
+    #[getter]
+    fn size(&self) -> (f64, f64) {
+        self.size
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "CohesiveContact(shape={:?}, size={:?}, dugdale_length={:.4e})",
+            self.shape,
+            self.size,
+            self.contact.dugdale_length()
+        )
+    }
+}
