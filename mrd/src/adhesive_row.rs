@@ -63,7 +63,7 @@ pub struct RowStep {
 }
 
 impl AdhesiveRow {
-    /// `x` spring centres (increasing, uniform spacing `dx`), `heights` the line's
+    /// `x` spring centres (increasing by `dx`), `heights` the line's
     /// heights at them (peaks up, finite), `e_star` and the work of adhesion `work` > 0,
     /// and the radius `rule` of Eq. 33. Starts detached.
     pub fn new(
@@ -88,6 +88,15 @@ impl AdhesiveRow {
             return Err(MrdError::InvalidData(format!(
                 "spring {} has a position or height that is not finite",
                 i % x.len()
+            )));
+        }
+        // The cluster rule takes neighbours in the array as neighbours on the line.
+        let uneven = x
+            .windows(2)
+            .any(|p| ((p[1] - p[0]) / dx - 1.0).abs() > 1e-6);
+        if uneven {
+            return Err(MrdError::InvalidData(format!(
+                "spring positions must increase by dx = {dx} from one spring to the next"
             )));
         }
         let top = heights.iter().fold(f64::NEG_INFINITY, |m, &v| m.max(v));
@@ -311,6 +320,9 @@ mod tests {
         let e =
             AdhesiveRow::new(&[0.0], &[f64::NAN], 0.1, 1.0, 1.0, EdgeRadius::Cluster).unwrap_err();
         assert!(e.to_string().contains("not finite"), "{e}");
+        let e = AdhesiveRow::new(&[0.0, 0.2], &[0.0, 0.0], 0.1, 1.0, 1.0, EdgeRadius::Cluster)
+            .unwrap_err();
+        assert!(e.to_string().contains("increase by dx"), "{e}");
         let mut row = sphere_row(8, 1.0, 0.1);
         assert!(row.step(f64::NAN).is_err());
     }

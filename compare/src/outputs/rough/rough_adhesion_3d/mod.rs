@@ -11,22 +11,22 @@
 //!   detachment criterion, the 3D counterpart of Eq. 33), on a ladder of grids that
 //!   sample the same surfaces (nested synthesis).
 //! - MRD: the body's 1D profile (x^2 / R for the sphere, flat on |x| < a for the punch,
-//!   Eq. 11) plus a rough line of C1D = lambda q
-//!   C2D (Eq. 76), its springs detaching by the rule of Hess with, as the radius of
-//!   Eq. 33, either the contact's outer radius or the half-length of each spring's
-//!   cluster ([`mrd::adhesive_row`], which states why these two rules for a rough line).
+//!   Eq. 11) plus a rough line of C1D = lambda q C2D (Eq. 76), its springs detaching by
+//!   the rule of Hess with, as the radius of Eq. 33, either the contact's outer radius
+//!   or the half-length of each spring's cluster ([`mrd::adhesive_row`], which states
+//!   why these two rules for a rough line).
 //!
 //! Both load without adhesion at a distance (cells and springs join on touching) along
-//! the same approach steps of the mean sphere and unload until the body separates.
+//! the same approach steps of the mean body and unload until the body separates.
 //! Per case: the pull-off force under force control (the smallest force of the
 //! approach-controlled unloading, as for JKR's sphere), over the smooth body's closed
 //! form (JKR's 3/2 pi R w; Kendall's sqrt(8 pi a^3 E* w), Eq. 34); the adhesion
 //! coefficient (pull-off over the force at `depth_max`); the energy lost in the cycle
 //! (the loop's area). Roughness is given as h over the body's adhesion length: JKR's
 //! (pi^2 w^2 R / E*^2)^(1/3) for the sphere, the punch's critical opening
-//! sqrt(2 pi a w / E*) (Eq. 33 at its rim); each case also states the rms slope and a Johnson-type
-//! parameter sqrt(w / (2 pi U)), U the elastic energy per area that flattens the
-//! roughness (for one sinusoid this is Johnson's alpha; Ciavarella & Papangelo's
+//! sqrt(2 pi a w / E*) (Eq. 33 at its rim); each case also states the rms slope and a
+//! Johnson-type parameter sqrt(w / (2 pi U)), U the elastic energy per area that
+//! flattens the roughness (for one sinusoid this is Johnson's alpha; Ciavarella & Papangelo's
 //! generalised Johnson parameter for multiscale roughness is of this kind).
 
 mod cycles;
@@ -65,8 +65,9 @@ pub struct RoughAdhesion3d {
     /// MRD springs per cell of the finest 3D grid.
     #[serde(default = "four")]
     points_1d_factor: usize,
-    /// Approach steps from first contact to `depth_max` for the smooth sphere; the
-    /// unloading goes down by the same step until the body separates.
+    /// Approach steps from the smooth body's first contact to `depth_max`; the loading
+    /// starts at each body's own first contact and the unloading goes down by the same
+    /// step until the body separates.
     #[serde(default = "sixty")]
     steps: usize,
     #[serde(default = "crate::experiment::lambda::default_lambdas")]
