@@ -74,6 +74,17 @@ fn drive(spec: &RoughAdhesion3d, top: f64, step: &mut Step) -> Result<Cycle> {
     )))
 }
 
+/// The factor that gives the MRD lines of a case the surfaces' C2D: the unit-rms
+/// factor of the finest 3D grid (1 for the smooth body).
+pub fn unit_rms_scale(spec: &RoughAdhesion3d, hurst: f64, roughness: f64) -> Result<f64> {
+    if roughness > 0.0 {
+        spec.geometry(hurst, *spec.cells.last().unwrap_or(&16))
+            .unit_rms_factor()
+    } else {
+        Ok(1.0)
+    }
+}
+
 /// Realisation `r` of the case (hurst, roughness) on an `n`^2 grid in 3D.
 pub fn cycle_3d(
     spec: &RoughAdhesion3d,
@@ -113,22 +124,17 @@ pub fn cycle_3d(
     Ok(cycle)
 }
 
-/// MRD line `r` of the case with factor `lambda` and the radius `rule` of Eq. 33.
+/// MRD line `r` of the case with factor `lambda` and the radius `rule` of Eq. 33;
+/// `scale` the case's unit-rms factor ([`unit_rms_scale`]), computed once per case.
 pub fn cycle_1d(
     spec: &RoughAdhesion3d,
-    (hurst, roughness): (f64, f64),
+    (hurst, roughness, scale): (f64, f64, f64),
     (rule, lambda): (EdgeRadius, f64),
     r: u64,
     e_star: f64,
 ) -> Result<Cycle> {
-    // The 3D grid only sets the scale factor's sampling: take the finest.
     let geometry = spec.geometry(hurst, *spec.cells.last().unwrap_or(&16));
     let h = roughness * spec.adhesion_length(e_star);
-    let scale = if h > 0.0 {
-        geometry.unit_rms_factor()?
-    } else {
-        1.0
-    };
     let n1 = spec.springs();
     let (x, w) = geometry.line(h, scale, lambda, n1, r)?;
     // The springs under the body (all of them for the sphere).

@@ -1,6 +1,6 @@
 //! `RoughAdhesion3d` as an output kind: its checks, its declared stages and its run.
 
-use super::cycles::{cycle_1d, cycle_3d, Cases};
+use super::cycles::{cycle_1d, cycle_3d, unit_rms_scale, Cases};
 use super::{report, RoughAdhesion3d, Variant};
 use crate::checks::{bad, check_memory, check_tolerance, count_in, positive};
 use crate::checks::{check_ensembles, BYTES_PER_CELL_NON_PERIODIC};
@@ -170,13 +170,14 @@ impl Output for RoughAdhesion3d {
                 .iter()
                 .map(|&(h, rough)| {
                     let hi = self.hurst.iter().position(|&x| x == h).unwrap_or(0);
+                    let scale = unit_rms_scale(self, h, rough)?;
                     let per_variant = variants
                         .iter()
                         .map(|v| {
                             let how = (v.rule.edge(), v.lambda[hi]);
                             (0..self.realisations(rough, self.realisations_1d))
                                 .into_par_iter()
-                                .map(|r| cycle_1d(self, (h, rough), how, r, e_star))
+                                .map(|r| cycle_1d(self, (h, rough, scale), how, r, e_star))
                                 .collect::<Result<Vec<_>>>()
                         })
                         .collect::<Result<Vec<_>>>()?;
