@@ -36,9 +36,43 @@
 //! force reaches the total friction `mu sum p` is gross sliding, reported as such.
 
 mod cerruti;
+mod cerruti_free;
 mod partial_slip;
 mod stick;
 
 pub use cerruti::CerrutiPeriodic;
+pub use cerruti_free::CerrutiFree;
 pub use partial_slip::{Cycle, PartialSlip, TangentialStep};
 pub use stick::StickStiffness;
+
+/// The tangential compliance (x traction to x displacement) that [`PartialSlip`] iterates
+/// with: [`CerrutiPeriodic`] (a periodic surface; displacements about their mean) or
+/// [`CerrutiFree`] (the free half-space; absolute displacements, so the shift is the
+/// body's rigid displacement).
+pub trait TangentialCompliance: Send {
+    /// Cells of the grid.
+    fn cells(&self) -> usize;
+    /// Area of one cell.
+    fn cell_area(&self) -> f64;
+    /// Whether the surface is periodic (the shift is then measured from the mean surface
+    /// displacement).
+    fn is_periodic(&self) -> bool;
+    /// `u = K_t q`.
+    fn apply(&mut self, q: &[f64], u: &mut [f64]);
+}
+
+/// A boxed operator, for callers that choose the half-space at run time.
+impl<T: TangentialCompliance + ?Sized> TangentialCompliance for Box<T> {
+    fn cells(&self) -> usize {
+        (**self).cells()
+    }
+    fn cell_area(&self) -> f64 {
+        (**self).cell_area()
+    }
+    fn is_periodic(&self) -> bool {
+        (**self).is_periodic()
+    }
+    fn apply(&mut self, q: &[f64], u: &mut [f64]) {
+        (**self).apply(q, u)
+    }
+}

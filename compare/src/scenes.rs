@@ -30,6 +30,10 @@ pub const EMBEDDED: &[(&str, &str)] = &[
         include_str!("../../cases/tangential-3d.toml"),
     ),
     (
+        "tangential-3d-free",
+        include_str!("../../cases/tangential-3d-free.toml"),
+    ),
+    (
         "tangential-3d-cone",
         include_str!("../../cases/tangential-3d-cone.toml"),
     ),

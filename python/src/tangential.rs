@@ -1,21 +1,23 @@
 //! Tangential contact in 3D (`bem3d::tangential`): partial slip under Coulomb's law with
-//! Cerruti's operator on the periodic half-space, and the stick stiffness of a contact
-//! set, on numpy arrays.
+//! Cerruti's operator on the periodic or the free half-space, and the stick stiffness of
+//! a contact set (periodic), on numpy arrays.
 
 use crate::contact::{bem_err, grid_array};
 use crate::errors::value_error;
-use bem3d::tangential::{CerrutiPeriodic, PartialSlip as Slip, TangentialStep as Step};
+use bem3d::tangential::{
+    CerrutiFree, CerrutiPeriodic, PartialSlip as Slip, TangentialCompliance, TangentialStep as Step,
+};
 use numpy::{AllowTypeChange, PyArray2, PyArrayLike2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
-/// The Cerruti operator of a substrate of modulus E* and Poisson's ratio nu under a
-/// rigid body: G = E* (1 - nu) / 2.
-fn cerruti(
+/// The substrate's shear modulus G = E* (1 - nu) / 2 under a rigid body, with E*, nu
+/// and the memory of `bytes_per_cell` on the grid checked.
+fn shear_modulus(
     (ny, nx): (usize, usize),
-    (lx, ly): (f64, f64),
     e_star: f64,
     poisson: f64,
-) -> PyResult<CerrutiPeriodic> {
+    bytes_per_cell: f64,
+) -> PyResult<f64> {
     if !(e_star.is_finite() && e_star > 0.0) {
         return Err(value_error(format!(
             "e_star = {e_star} must be finite and > 0"
@@ -27,12 +29,42 @@ fn cerruti(
         )));
     }
     sysmem::check_estimate(
-        8.0 * 12.0 * (nx * ny) as f64,
+        bytes_per_cell * (nx * ny) as f64,
         &format!("a tangential {ny} x {nx} contact"),
     )
     .map_err(|e| pyo3::exceptions::PyMemoryError::new_err(e.to_string()))?;
-    CerrutiPeriodic::new(nx, ny, lx, ly, e_star * (1.0 - poisson) / 2.0, poisson)
+    Ok(e_star * (1.0 - poisson) / 2.0)
+}
+
+/// The periodic Cerruti operator of a substrate of modulus E* and Poisson's ratio nu
+/// under a rigid body (a dozen grids).
+fn cerruti(
+    shape: (usize, usize),
+    (lx, ly): (f64, f64),
+    e_star: f64,
+    poisson: f64,
+) -> PyResult<CerrutiPeriodic> {
+    let g = shear_modulus(shape, e_star, poisson, 8.0 * 12.0)?;
+    CerrutiPeriodic::new(shape.1, shape.0, lx, ly, g, poisson)
         .map_err(|e| value_error(e.to_string()))
+}
+
+/// The periodic or the free Cerruti operator (the free one convolves on a grid padded
+/// to four times the cells: about 20 grids).
+fn cerruti_on(
+    shape: (usize, usize),
+    (lx, ly): (f64, f64),
+    e_star: f64,
+    poisson: f64,
+    periodic: bool,
+) -> PyResult<Box<dyn TangentialCompliance + Sync>> {
+    if periodic {
+        return Ok(Box::new(cerruti(shape, (lx, ly), e_star, poisson)?));
+    }
+    let g = shear_modulus(shape, e_star, poisson, 8.0 * 20.0)?;
+    let op = CerrutiFree::new(shape.1, shape.0, lx, ly, g, poisson)
+        .map_err(|e| value_error(e.to_string()))?;
+    Ok(Box::new(op))
 }
 
 /// A 2D float64 array as (values, (ny, nx)).
@@ -60,8 +92,8 @@ impl TangentialStep {
     fn force(&self) -> f64 {
         self.step.force
     }
-    /// Rigid shift of the body along x from the mean surface displacement [length]
-    /// (NaN when sliding).
+    /// Rigid shift of the body along x [length]: from the mean surface displacement on
+    /// the periodic half-space, absolute on the free one (NaN when sliding).
     #[getter]
     fn shift(&self) -> f64 {
         self.step.shift
@@ -102,35 +134,38 @@ impl TangentialStep {
 }
 
 /// Partial slip of a held normal contact under a tangential force history along x
-/// (3D FFT boundary elements, periodic; Sections 6 and 7 of the MRD review in 3D).
+/// (3D FFT boundary elements; Sections 6 and 7 of the MRD review in 3D).
 ///
-/// PartialSlip(pressure, mu, size=(1.0, 1.0), e_star=1.0, poisson=0.5)
+/// PartialSlip(pressure, mu, size=(1.0, 1.0), e_star=1.0, poisson=0.5, *, periodic=True)
 ///
-/// `pressure` (ny, nx) [stress] is held (e.g. ContactResult.pressure of a periodic
-/// Contact); Coulomb's law with friction coefficient `mu` cell by cell; the traction acts
+/// `pressure` (ny, nx) [stress] is held (e.g. ContactResult.pressure of a Contact with
+/// the same `periodic`); `periodic=False` solves on the free half-space (the traction
+/// vanishes outside the map; the shift is then the body's absolute displacement, as in
+/// Mindlin's solution); Coulomb's law with friction coefficient `mu` cell by cell; the traction acts
 /// along x only (q_y = 0, Mindlin's model). The substrate has modulus `e_star` and
 /// Poisson's ratio `poisson` (shear modulus E* (1 - nu) / 2 under a rigid body); nu = 0.5
 /// uncouples normal and tangential contact exactly. Each load() starts from the last
 /// state (friction is path dependent).
 #[pyclass(module = "mrdw._mrdw")]
 pub struct PartialSlip {
-    slip: Slip,
+    slip: Slip<Box<dyn TangentialCompliance + Sync>>,
     shape: (usize, usize),
 }
 
 #[pymethods]
 impl PartialSlip {
     #[new]
-    #[pyo3(signature = (pressure, mu, size = (1.0, 1.0), e_star = 1.0, poisson = 0.5))]
+    #[pyo3(signature = (pressure, mu, size = (1.0, 1.0), e_star = 1.0, poisson = 0.5, *, periodic = true))]
     fn new(
         pressure: PyArrayLike2<'_, f64, AllowTypeChange>,
         mu: f64,
         size: (f64, f64),
         e_star: f64,
         poisson: f64,
+        periodic: bool,
     ) -> PyResult<Self> {
         let (p, shape) = grid_of(pressure, "pressure")?;
-        let op = cerruti(shape, size, e_star, poisson)?;
+        let op = cerruti_on(shape, size, e_star, poisson, periodic)?;
         let slip = Slip::new(op, &p, mu).map_err(|e| value_error(e.to_string()))?;
         Ok(Self { slip, shape })
     }

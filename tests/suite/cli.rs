@@ -348,6 +348,16 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             }
             continue;
         }
+        if *name == "tangential-3d-free" {
+            // The free half-space at 64 cells per contact radius (no periodic images):
+            // the stick radius within 1 % of Cattaneo-Mindlin (measured 0.57 %, a count
+            // of cells), the energy per cycle within 0.3 % of Mindlin-Deresiewicz
+            // (measured 0.07 %).
+            let c = result(&s, "tangential_3d.stick_radius_max_rel_error_3d");
+            let w = result(&s, "tangential_3d.dissipation_max_rel_error_3d");
+            assert!(c < 0.01 && w < 0.003, "c/a {c}, W {w}");
+            continue;
+        }
         if *name == "tangential-3d" {
             // The keys the checks above read are present (a renamed key fails here).
             for k in [

@@ -682,7 +682,7 @@ fn spring_memory_estimates_hold() {
 /// `tangential_3d` refuses what it cannot compare, naming the key: a flat punch (no
 /// partial slip), fractions out of (0, 1) or not increasing (they are
 /// read along one monotonic loading), G*/E* outside what one elastic body can have, a
-/// grid too coarse.
+/// grid too coarse, a free grid that does not hold the contact.
 #[test]
 fn tangential_3d_bad_input_names_the_key() {
     let tmp = tempfile::tempdir().unwrap();
@@ -702,6 +702,10 @@ fn tangential_3d_bad_input_names_the_key() {
         (base.clone() + "fractions = [0.5, 0.2]\n", "must increase"),
         (base.clone() + "amplitudes = [0.5, 1.0]\n", "amplitudes"),
         (base.replace("cells = 256", "cells = 8"), "cells = 8"),
+        (
+            base.replace("period = 10.0", "period = 2.0\nperiodic = false"),
+            "on the free half-space",
+        ),
         (
             base.replace(
                 "[material.indenter]\nyoungs_modulus = inf\npoisson_ratio = 0.5\n\n[material.substrate]\nyoungs_modulus = 3.0\npoisson_ratio = 0.5",

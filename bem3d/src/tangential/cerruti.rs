@@ -1,5 +1,6 @@
 //! The Cerruti compliance of the periodic half-space (the tangential operator).
 
+use super::TangentialCompliance;
 use crate::error::{BemError, Result};
 use crate::fft::Fft2;
 use crate::operator::spectral_grid;
@@ -27,26 +28,7 @@ impl CerrutiPeriodic {
         shear_modulus: f64,
         poisson: f64,
     ) -> Result<Self> {
-        if nx < 2 || ny < 2 {
-            return Err(BemError::InvalidInput(format!(
-                "tangential grid {nx} x {ny}: at least 2 x 2 cells"
-            )));
-        }
-        if !(lx.is_finite() && ly.is_finite() && lx > 0.0 && ly > 0.0) {
-            return Err(BemError::InvalidInput(format!(
-                "tangential grid size {lx} x {ly} must be finite and > 0"
-            )));
-        }
-        if !(shear_modulus.is_finite() && shear_modulus > 0.0) {
-            return Err(BemError::InvalidInput(format!(
-                "shear modulus G = {shear_modulus} must be finite and > 0"
-            )));
-        }
-        if !(0.0..=0.5).contains(&poisson) {
-            return Err(BemError::InvalidInput(format!(
-                "Poisson's ratio nu = {poisson} must lie in [0, 0.5]"
-            )));
-        }
+        check_grid(nx, ny, lx, ly, shear_modulus, poisson)?;
         let g = shear_modulus;
         let symbol = spectral_grid(nx, ny, lx, ly, |kx, ky| {
             let k2 = kx * kx + ky * ky;
@@ -67,19 +49,55 @@ impl CerrutiPeriodic {
             symbol,
         })
     }
+}
 
-    /// Cells of the grid.
-    pub fn cells(&self) -> usize {
+impl TangentialCompliance for CerrutiPeriodic {
+    fn cells(&self) -> usize {
         self.nx * self.ny
     }
 
-    /// Area of one cell.
-    pub fn cell_area(&self) -> f64 {
+    fn cell_area(&self) -> f64 {
         self.lx * self.ly / (self.nx * self.ny) as f64
     }
 
+    fn is_periodic(&self) -> bool {
+        true
+    }
+
     /// `u = K_t q` (zero mean).
-    pub fn apply(&mut self, q: &[f64], u: &mut [f64]) {
+    fn apply(&mut self, q: &[f64], u: &mut [f64]) {
         self.fft.convolve(q, (self.nx, self.ny), &self.symbol, u);
     }
+}
+
+/// The grid, shear modulus and Poisson's ratio of a tangential operator, checked.
+pub(super) fn check_grid(
+    nx: usize,
+    ny: usize,
+    lx: f64,
+    ly: f64,
+    shear_modulus: f64,
+    poisson: f64,
+) -> Result<()> {
+    if nx < 2 || ny < 2 {
+        return Err(BemError::InvalidInput(format!(
+            "tangential grid {nx} x {ny}: at least 2 x 2 cells"
+        )));
+    }
+    if !(lx.is_finite() && ly.is_finite() && lx > 0.0 && ly > 0.0) {
+        return Err(BemError::InvalidInput(format!(
+            "tangential grid size {lx} x {ly} must be finite and > 0"
+        )));
+    }
+    if !(shear_modulus.is_finite() && shear_modulus > 0.0) {
+        return Err(BemError::InvalidInput(format!(
+            "shear modulus G = {shear_modulus} must be finite and > 0"
+        )));
+    }
+    if !(0.0..=0.5).contains(&poisson) {
+        return Err(BemError::InvalidInput(format!(
+            "Poisson's ratio nu = {poisson} must lie in [0, 0.5]"
+        )));
+    }
+    Ok(())
 }

@@ -2,6 +2,7 @@
 //! and the iteration: module docs of [`super`]).
 
 use super::cerruti::CerrutiPeriodic;
+use super::TangentialCompliance;
 use crate::error::{BemError, Result};
 
 /// The energy of one cycle of an oscillating tangential force (Section 7).
@@ -19,7 +20,8 @@ pub struct Cycle {
 pub struct TangentialStep {
     /// The tangential force reached [force].
     pub force: f64,
-    /// The rigid shift of the body along x, from the mean surface displacement [length].
+    /// The rigid shift of the body along x [length]: from the mean surface displacement
+    /// on a periodic surface, absolute on the free half-space.
     pub shift: f64,
     /// Cells that stick (`|q| < mu p`) and cells that slip, of the cells in contact.
     pub stick_cells: usize,
@@ -36,8 +38,8 @@ pub struct TangentialStep {
 }
 
 /// Partial slip of a held normal contact under a tangential load history.
-pub struct PartialSlip {
-    op: CerrutiPeriodic,
+pub struct PartialSlip<C = CerrutiPeriodic> {
+    op: C,
     /// `mu p` per cell [pressure].
     bound: Vec<f64>,
     /// Accumulated slip per cell [length].
@@ -51,9 +53,9 @@ pub struct PartialSlip {
 /// Iteration limit of a step.
 const MAX_ITERATIONS: usize = 20_000;
 
-impl PartialSlip {
+impl<C: TangentialCompliance> PartialSlip<C> {
     /// `pressure` (`ny x nx`, >= 0, finite) held, friction coefficient `mu > 0`.
-    pub fn new(op: CerrutiPeriodic, pressure: &[f64], mu: f64) -> Result<Self> {
+    pub fn new(op: C, pressure: &[f64], mu: f64) -> Result<Self> {
         if pressure.len() != op.cells() {
             return Err(BemError::InvalidInput(format!(
                 "pressure has {} values for a grid of {} cells",

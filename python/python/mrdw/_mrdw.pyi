@@ -364,7 +364,8 @@ class TangentialStep:
         """The tangential force reached [stress x length^2]."""
     @property
     def shift(self) -> float:
-        """Rigid shift along x from the mean surface displacement [length] (NaN sliding)."""
+        """Rigid shift along x [length]: from the mean surface displacement (periodic),
+        absolute (free); NaN when sliding."""
     @property
     def stick_cells(self) -> int: ...
     @property
@@ -382,7 +383,8 @@ class TangentialStep:
 
 class PartialSlip:
     """Partial slip of a held normal contact under a tangential force along x (3D,
-    periodic, Coulomb's law with Cerruti's operator; Sections 6-7 in 3D)."""
+    Coulomb's law with Cerruti's operator, periodic or free (`periodic=False`: the
+    shift is then absolute); Sections 6-7 in 3D)."""
 
     def __init__(
         self,
@@ -391,6 +393,8 @@ class PartialSlip:
         size: Tuple[float, float] = (1.0, 1.0),
         e_star: float = 1.0,
         poisson: float = 0.5,
+        *,
+        periodic: bool = True,
     ) -> None: ...
     def load(self, force: float, *, tolerance: float = 1e-8) -> TangentialStep:
         """Loads to the tangential force [stress x length^2] from the last state."""

@@ -5,8 +5,10 @@
 //! for other bodies (a cone, a power law) against MRD's exact springs (Jaeger).
 //!
 //! The 3D side solves the normal contact on a periodic half-space (the sphere at the
-//! centre of a cell of `period` contact radii) and then partial slip under that pressure
-//! (`bem3d::tangential`); the MRD side is the exact tangential springs of the rule of
+//! centre of a cell of `period` contact radii) or, with `periodic = false`, on the free
+//! half-space (a grid of side `period` contact radii, no images), and then partial slip
+//! under that pressure (`bem3d::tangential`, the operator of the same half-space); the
+//! MRD side is the exact tangential springs of the rule of
 //! Hess. The 3D tangential operator takes the shear modulus G and Poisson's ratio nu of
 //! one body equivalent to the scene's E* and G* (rigid indenter: E* = 2G/(1 - nu),
 //! G* = 4G/(2 - nu)); for two elastic bodies that is the uncoupled approximation.
@@ -18,8 +20,8 @@ use crate::error::{Context as _, Result};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
-use bem3d::tangential::{CerrutiPeriodic, PartialSlip};
-use bem3d::{ContactSolver, Load, PeriodicHalfSpace, SolverOptions};
+use bem3d::tangential::{CerrutiFree, CerrutiPeriodic, PartialSlip, TangentialCompliance};
+use bem3d::{ContactSolver, Load, NonPeriodicHalfSpace, PeriodicHalfSpace, SolverOptions};
 use mrd::oscillation::dissipation_semi_analytic;
 use mrd::reference::for_profile;
 use mrd::tangential::TangentialContact;
@@ -34,10 +36,15 @@ pub struct Tangential3d {
     /// Cells per side of the 3D grid.
     #[serde(default = "default_cells")]
     cells: usize,
-    /// The period of the 3D grid in contact radii (>= 10 keeps the periodic images'
-    /// effect on the dissipation under 1 %).
+    /// The side of the 3D grid in contact radii: its period on the periodic half-space
+    /// (>= 10 keeps the periodic images' effect on the dissipation under 1 %), the
+    /// extent of the free one (> 2: the contact fits with a margin).
     #[serde(default = "default_period")]
     period: f64,
+    /// The periodic half-space (default) or the free one (`false`: no periodic images,
+    /// the shift absolute).
+    #[serde(default = "default_periodic")]
+    periodic: bool,
     /// Tangential forces of the stick-radius table, as fractions of mu F_N.
     #[serde(default = "default_fractions")]
     fractions: Vec<f64>,
@@ -57,6 +64,9 @@ fn default_cells() -> usize {
 fn default_period() -> f64 {
     10.0
 }
+fn default_periodic() -> bool {
+    true
+}
 fn default_fractions() -> Vec<f64> {
     (1..10).map(|k| k as f64 / 10.0).collect()
 }
@@ -68,8 +78,15 @@ fn default_steps() -> usize {
 }
 
 /// Peak bytes per cell of the 3D side: the normal solver's and the partial slip's
-/// buffers (a dozen grids).
-const BYTES_PER_CELL: f64 = crate::checks::BYTES_PER_CELL_PERIODIC + 120.0;
+/// buffers (a dozen grids; the free operator's transforms on the padded grid, four
+/// times the cells, eight more).
+fn bytes_per_cell(periodic: bool) -> f64 {
+    if periodic {
+        crate::checks::BYTES_PER_CELL_PERIODIC + 120.0
+    } else {
+        crate::checks::BYTES_PER_CELL_NON_PERIODIC + 184.0
+    }
+}
 
 /// Poisson's ratio and shear modulus of the one body with these E* and G*.
 fn equivalent_body(e_star: f64, g_star: f64) -> (f64, f64) {
@@ -108,13 +125,15 @@ impl Output for Tangential3d {
             return bad(format!("cells = {} must lie in 16..=4096", self.cells));
         }
         check_memory(
-            (self.cells * self.cells) as f64 * BYTES_PER_CELL,
+            (self.cells * self.cells) as f64 * bytes_per_cell(self.periodic),
             &format!("cells = {}", self.cells),
         )?;
-        if !(self.period.is_finite() && (3.0..=1000.0).contains(&self.period)) {
+        let least = if self.periodic { 3.0 } else { 2.2 };
+        if !(self.period.is_finite() && (least..=1000.0).contains(&self.period)) {
             return bad(format!(
-                "period = {} contact radii must lie in [3, 1000]",
-                self.period
+                "period = {} contact radii must lie in [{least}, 1000] on the {} half-space",
+                self.period,
+                if self.periodic { "periodic" } else { "free" }
             ));
         }
         for (key, v) in [
@@ -232,7 +251,7 @@ type Dissipations<'a> = (&'a [f64], Option<&'a [f64]>, &'a [(f64, f64)]);
 type Results3d = (Vec<f64>, Vec<(f64, f64)>);
 
 impl Tangential3d {
-    /// The sphere's pressure on the periodic grid at the normal force.
+    /// The sphere's pressure on the grid at the normal force.
     fn normal_3d(&self, env: &Env, out: &mut Section, a: f64) -> Result<Vec<f64>> {
         let ctx = env.ctx;
         let profile = ctx.profile()?;
@@ -268,8 +287,14 @@ impl Tangential3d {
         let opts = SolverOptions::new(self.tolerance, 10_000);
         let sol = out
             .stage(Stage::Bem3d, || {
-                let op = PeriodicHalfSpace::new(n, n, l, l, ctx.material.e_star);
-                ContactSolver::new(op, &z, mask)?.solve(Load::Force(self.normal_force), &opts, None)
+                let (e, load) = (ctx.material.e_star, Load::Force(self.normal_force));
+                if self.periodic {
+                    let op = PeriodicHalfSpace::new(n, n, l, l, e);
+                    ContactSolver::new(op, &z, mask)?.solve(load, &opts, None)
+                } else {
+                    let op = NonPeriodicHalfSpace::try_new(n, n, l, l, e)?;
+                    ContactSolver::new(op, &z, mask)?.solve(load, &opts, None)
+                }
             })
             .ctx("3D normal contact")?;
         out.scalar("contact_radius_3d", (sol.contact_area / PI).sqrt());
@@ -282,8 +307,13 @@ impl Tangential3d {
     fn partial_slip(&self, p: &[f64], a: f64, e: f64, g_star: f64) -> bem3d::Result<Results3d> {
         let (nu, g) = equivalent_body(e, g_star);
         let (n, l) = (self.cells, self.period * a);
-        let fresh = || -> bem3d::Result<PartialSlip> {
-            PartialSlip::new(CerrutiPeriodic::new(n, n, l, l, g, nu)?, p, self.mu)
+        let fresh = || -> bem3d::Result<PartialSlip<Box<dyn TangentialCompliance>>> {
+            let op: Box<dyn TangentialCompliance> = if self.periodic {
+                Box::new(CerrutiPeriodic::new(n, n, l, l, g, nu)?)
+            } else {
+                Box::new(CerrutiFree::new(n, n, l, l, g, nu)?)
+            };
+            PartialSlip::new(op, p, self.mu)
         };
         let cell = (l / n as f64).powi(2);
         let tol = self.tolerance;
@@ -324,9 +354,10 @@ impl Tangential3d {
         cols.push("stick_radius_over_a_3d [1]".to_string());
         let mut t = Table::new("stick", &cols);
         t.notes.push(format!(
-            "{}MRD: exact tangential springs; 3D: {1}^2 periodic cells, period {2} contact radii, {3:.1} cells per radius (stick radius from the count of stick cells)",
+            "{}MRD: exact tangential springs; 3D: {1}^2 cells, {4} {2} contact radii, {3:.1} cells per radius (stick radius from the count of stick cells)",
             if c_cf.is_some() { "Cattaneo-Mindlin c/a = (1 - F_x/(mu F_N))^(1/3); " } else { "" },
-            self.cells, self.period, a * self.cells as f64 / (self.period * a)
+            self.cells, self.period, a * self.cells as f64 / (self.period * a),
+            if self.periodic { "periodic, period" } else { "free half-space, side" }
         ));
         let (mut dev_mrd, mut dev_3d, mut dev_3d_mrd) = (0.0f64, 0.0f64, 0.0f64);
         for (k, f) in self.fractions.iter().enumerate() {
