@@ -2,9 +2,10 @@
 //!
 //! Frictionless, non-adhesive normal contact of a rigid body with an arbitrary height
 //! map against a linear elastic half-space of modulus E* ([`solver`]); partial slip
-//! with Coulomb friction under a held normal pressure and the stiffness of a contact
-//! held in full stick ([`tangential`]: solvers beside the normal one, on the same
-//! transforms, with Cerruti's tensor); adhesive normal contact in the JKR limit
+//! with Coulomb friction under a held normal pressure, on the periodic or the free
+//! half-space, elastic or viscoelastic under a prescribed shift, and the stiffness of a
+//! contact held in full stick ([`tangential`]: solvers beside the normal one, on the
+//! same transforms, with Cerruti's tensor); adhesive normal contact in the JKR limit
 //! ([`adhesion`]: a solver beside the normal one, generic over the same operators) and
 //! with the finite-range Maugis-Dugdale law ([`cohesive`]). Knows nothing of MRD: it
 //! takes plain height arrays (row-major `ny x nx`). Operators ([`operator`]) are apart

@@ -1,6 +1,10 @@
-//! Partial slip under a held normal pressure: Coulomb friction on a periodic elastic
-//! half-space, loaded by a tangential force along x (Sections 6 and 7 of the review in
-//! 3D; Cattaneo-Mindlin for a sphere).
+//! Partial slip under a held normal pressure: Coulomb friction on an elastic half-space,
+//! periodic ([`CerrutiPeriodic`]) or free ([`CerrutiFree`]), loaded by a tangential force
+//! along x (Sections 6 and 7 of the review in 3D; Cattaneo-Mindlin for a sphere); on a
+//! viscoelastic half-space under a prescribed shift ([`ViscoelasticSlip`], Section 8,
+//! Eqs. 64-65); and the stiffness of a contact held in full stick ([`StickStiffness`]).
+//! The model and iteration below are the periodic operator's; the free one differs only
+//! in its kernel (its module docs) and in measuring the shift absolutely.
 //!
 //! **Model.** The normal pressure `p` is given (from [`crate::ContactSolver`] or a closed
 //! form) and held: the normal-tangential coupling vanishes for nu = 0.5 or elastically
@@ -37,42 +41,14 @@
 
 mod cerruti;
 mod cerruti_free;
+mod compliance;
 mod partial_slip;
 mod stick;
+mod viscoelastic;
 
 pub use cerruti::CerrutiPeriodic;
 pub use cerruti_free::CerrutiFree;
+pub use compliance::TangentialCompliance;
 pub use partial_slip::{Cycle, PartialSlip, TangentialStep};
 pub use stick::StickStiffness;
-
-/// The tangential compliance (x traction to x displacement) that [`PartialSlip`] iterates
-/// with: [`CerrutiPeriodic`] (a periodic surface; displacements about their mean) or
-/// [`CerrutiFree`] (the free half-space; absolute displacements, so the shift is the
-/// body's rigid displacement).
-pub trait TangentialCompliance: Send {
-    /// Cells of the grid.
-    fn cells(&self) -> usize;
-    /// Area of one cell.
-    fn cell_area(&self) -> f64;
-    /// Whether the surface is periodic (the shift is then measured from the mean surface
-    /// displacement).
-    fn is_periodic(&self) -> bool;
-    /// `u = K_t q`.
-    fn apply(&mut self, q: &[f64], u: &mut [f64]);
-}
-
-/// A boxed operator, for callers that choose the half-space at run time.
-impl<T: TangentialCompliance + ?Sized> TangentialCompliance for Box<T> {
-    fn cells(&self) -> usize {
-        (**self).cells()
-    }
-    fn cell_area(&self) -> f64 {
-        (**self).cell_area()
-    }
-    fn is_periodic(&self) -> bool {
-        (**self).is_periodic()
-    }
-    fn apply(&mut self, q: &[f64], u: &mut [f64]) {
-        (**self).apply(q, u)
-    }
-}
+pub use viscoelastic::{ViscoelasticSlip, ViscoelasticStep};

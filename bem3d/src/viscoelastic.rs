@@ -83,7 +83,7 @@ impl Relaxation {
     }
 
     /// (a_k, b_k) of a step dt (module docs).
-    fn step_factors(&self, dt: f64) -> Vec<(f64, f64)> {
+    pub(crate) fn step_factors(&self, dt: f64) -> Vec<(f64, f64)> {
         self.terms
             .iter()
             .map(|&(_, tau)| {

@@ -103,6 +103,10 @@ pub const EMBEDDED: &[(&str, &str)] = &[
         include_str!("../../cases/tangential-viscoelastic.toml"),
     ),
     (
+        "tangential-viscoelastic-3d",
+        include_str!("../../cases/tangential-viscoelastic-3d.toml"),
+    ),
+    (
         "viscoelastic-rough",
         include_str!("../../cases/viscoelastic-rough.toml"),
     ),

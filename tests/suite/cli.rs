@@ -494,6 +494,24 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             assert!(stages(&s).contains(&"bem3d".to_string()));
             continue;
         }
+        if *name == "tangential-viscoelastic-3d" {
+            // Eqs. 64-65 in 3D: on a viscoelastic half-space (free, 25.6 cells per contact
+            // radius) the force history of ramp, hold and cycle follows MRD's springs
+            // within 1e-3 of the peak (measured 1.5e-4), the cycle's energy within 0.5 %
+            // (measured 0.006 %), the stick radius within 3 % of a (measured 0.84 %).
+            let k = "tangential_viscoelastic";
+            let f = result(&s, &format!("{k}.force_max_abs_dev_3d_vs_mrd_over_peak"));
+            let w = result(&s, &format!("{k}.cycle_dissipation_3d_over_mrd"));
+            let c = result(
+                &s,
+                &format!("{k}.stick_radius_max_abs_dev_3d_vs_mrd_over_a"),
+            );
+            assert!(
+                f < 1e-3 && (w - 1.0).abs() < 5e-3 && c < 0.03,
+                "{f} {w} {c}"
+            );
+            continue;
+        }
         if *name == "tangential-viscoelastic" {
             // Work = stored + viscous + friction dissipation to trapezoid accuracy; the
             // viscoelastic loop dissipates more than the relaxed elastic one (its

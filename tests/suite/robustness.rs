@@ -717,6 +717,30 @@ fn tangential_3d_bad_input_names_the_key() {
     refuses_each(tmp.path(), &base, &cases);
 }
 
+/// `tangential_viscoelastic`'s 3D side refuses what it cannot run, naming the key: a grid
+/// too coarse, a free grid that does not hold the contact, a G*_inf / E* that no
+/// elastic body has.
+#[test]
+fn tangential_viscoelastic_3d_bad_input_names_the_key() {
+    let tmp = tempfile::tempdir().unwrap();
+    let base = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/tangential-viscoelastic-3d.toml"),
+    )
+    .unwrap();
+    let cases = [
+        (
+            base.replace("cells_3d = 64", "cells_3d = 8"),
+            "cells_3d = 8",
+        ),
+        (base.replace("side_3d = 2.5", "side_3d = 2.0"), "side_3d"),
+        (
+            base.replace("g_inf = 0.6666666666666666", "g_inf = 0.5"),
+            "Poisson's ratio",
+        ),
+    ];
+    refuses_each(tmp.path(), &base, &cases);
+}
+
 /// `adhesion_3d` refuses what it cannot run, naming the key: no work of adhesion, a
 /// ladder that does not refine, a grid too coarse, a domain that cuts the contact.
 #[test]

@@ -1,6 +1,6 @@
 //! The Cerruti compliance of the periodic half-space (the tangential operator).
 
-use super::TangentialCompliance;
+use super::compliance::TangentialCompliance;
 use crate::error::{BemError, Result};
 use crate::fft::Fft2;
 use crate::operator::spectral_grid;

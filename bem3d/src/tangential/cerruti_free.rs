@@ -20,7 +20,7 @@
 //! tolerances.
 
 use super::cerruti::check_grid;
-use super::TangentialCompliance;
+use super::compliance::TangentialCompliance;
 use crate::error::Result;
 use crate::fft::Fft2;
 use crate::symbol::halve_if_even;

@@ -2,7 +2,7 @@
 //! and the iteration: module docs of [`super`]).
 
 use super::cerruti::CerrutiPeriodic;
-use super::TangentialCompliance;
+use super::compliance::TangentialCompliance;
 use crate::error::{BemError, Result};
 
 /// The energy of one cycle of an oscillating tangential force (Section 7).
@@ -39,13 +39,13 @@ pub struct TangentialStep {
 
 /// Partial slip of a held normal contact under a tangential load history.
 pub struct PartialSlip<C = CerrutiPeriodic> {
-    op: C,
+    pub(super) op: C,
     /// `mu p` per cell [pressure].
-    bound: Vec<f64>,
+    pub(super) bound: Vec<f64>,
     /// Accumulated slip per cell [length].
-    slip: Vec<f64>,
+    pub(super) slip: Vec<f64>,
     /// The traction of the last step [pressure].
-    q: Vec<f64>,
+    pub(super) q: Vec<f64>,
     /// The tractions' bound `mu sum p` times the cell area [force].
     friction: f64,
 }

@@ -15,7 +15,7 @@
 //! (2011), which Mindlin's circle and MRD's springs put at 2 (1 - nu) / (2 - nu).
 
 use super::cerruti::CerrutiPeriodic;
-use super::TangentialCompliance;
+use super::compliance::TangentialCompliance;
 use crate::error::{BemError, Result};
 use crate::fft::Fft2;
 use crate::operator::spectral_grid;

@@ -2,9 +2,11 @@
 //! lambda as scenes give it and its calibrated table ([`lambda`]), its one meaning
 //! ([`lambda_meaning`]), the fits and intervals of ensemble curves ([`fit`]), the
 //! periodic self-affine patches of the 3D rough studies ([`periodic`]), and the rough
-//! sphere with its MRD line ([`rough_sphere`]), and the progress bar of long stages
+//! sphere with its MRD line ([`rough_sphere`]), a body of revolution pressed on the 3D
+//! grid for the tangential outputs ([`axisym_3d`]), and the progress bar of long stages
 //! ([`progress`]).
 
+pub mod axisym_3d;
 pub mod fit;
 pub mod lambda;
 pub mod lambda_meaning;

@@ -17,11 +17,12 @@ use super::hess;
 use crate::checks::{bad, check_memory, check_tolerance, default_tolerance, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
+use crate::experiment::axisym_3d::{equivalent_body, AxisymGrid};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
 use bem3d::tangential::{CerrutiFree, CerrutiPeriodic, PartialSlip, TangentialCompliance};
-use bem3d::{ContactSolver, Load, NonPeriodicHalfSpace, PeriodicHalfSpace, SolverOptions};
+use bem3d::SolverOptions;
 use mrd::oscillation::dissipation_semi_analytic;
 use mrd::reference::for_profile;
 use mrd::tangential::TangentialContact;
@@ -86,13 +87,6 @@ fn bytes_per_cell(periodic: bool) -> f64 {
     } else {
         crate::checks::BYTES_PER_CELL_NON_PERIODIC + 184.0
     }
-}
-
-/// Poisson's ratio and shear modulus of the one body with these E* and G*.
-fn equivalent_body(e_star: f64, g_star: f64) -> (f64, f64) {
-    let rho = g_star / e_star;
-    let nu = (2.0 - 2.0 * rho) / (2.0 - rho);
-    (nu, e_star * (1.0 - nu) / 2.0)
 }
 
 /// Mindlin-Deresiewicz: the energy dissipated per cycle of a force amplitude x mu P
@@ -257,44 +251,15 @@ impl Tangential3d {
         let profile = ctx.profile()?;
         let (n, l) = (self.cells, self.period * a);
         let h = l / n as f64;
-        let at = |k: usize| {
-            let x = ((k % n) as f64 + 0.5) * h - 0.5 * l;
-            let y = ((k / n) as f64 + 0.5) * h - 0.5 * l;
-            (x, y)
-        };
-        // The sphere in its own arithmetic; other bodies from the profile, cells beyond
-        // a rim (a punch) or a table masked out.
-        let (z, mask): (Vec<f64>, Option<Vec<bool>>) = match for_profile::sphere_radius(profile) {
-            Some(radius) => (
-                (0..n * n)
-                    .map(|k| {
-                        let (x, y) = at(k);
-                        -(x * x + y * y) / (2.0 * radius)
-                    })
-                    .collect(),
-                None,
-            ),
-            None => {
-                let reach = profile.max_contact_radius();
-                let r = |k: usize| at(k).0.hypot(at(k).1);
-                let mask: Vec<bool> = (0..n * n).map(|k| r(k) < reach).collect();
-                let z = (0..n * n)
-                    .map(|k| if mask[k] { -profile.z(r(k)) } else { 0.0 })
-                    .collect();
-                (z, Some(mask))
-            }
+        let grid = AxisymGrid {
+            cells: n,
+            side: l,
+            periodic: self.periodic,
         };
         let opts = SolverOptions::new(self.tolerance, 10_000);
         let sol = out
             .stage(Stage::Bem3d, || {
-                let (e, load) = (ctx.material.e_star, Load::Force(self.normal_force));
-                if self.periodic {
-                    let op = PeriodicHalfSpace::new(n, n, l, l, e);
-                    ContactSolver::new(op, &z, mask)?.solve(load, &opts, None)
-                } else {
-                    let op = NonPeriodicHalfSpace::try_new(n, n, l, l, e)?;
-                    ContactSolver::new(op, &z, mask)?.solve(load, &opts, None)
-                }
+                grid.press(profile, ctx.material.e_star, self.normal_force, &opts)
             })
             .ctx("3D normal contact")?;
         out.scalar("contact_radius_3d", (sol.contact_area / PI).sqrt());
@@ -406,6 +371,7 @@ impl Tangential3d {
                 t.xy(x, "stick_radius_over_a_3d"),
                 Style::Crosses,
             ));
+        fig.title.push_str(self.half_space_note());
         out.tables.push(t);
         out.figures.push(fig);
         self.report_dissipation(out, &energy, (w_mrd, w_cf, w_3d));
@@ -482,7 +448,17 @@ impl Tangential3d {
                 Style::Crosses,
             ))
             .log_log();
+        fig.title.push_str(self.half_space_note());
         out.tables.push(t);
         out.figures.push(fig);
+    }
+
+    /// What a figure's title adds on the free half-space (the periodic one is the default).
+    fn half_space_note(&self) -> &'static str {
+        if self.periodic {
+            ""
+        } else {
+            " (3D on the free half-space)"
+        }
     }
 }

@@ -10,14 +10,25 @@
 //! energy: external work Int F dux = stored + viscous + friction dissipation, and the same
 //! loop with the relaxed modulus held constant (the elastic Cattaneo-Mindlin /
 //! Mindlin-Deresiewicz loop) beside it.
+//!
+//! With `cells_3d` the same history runs in 3D beside it: the body pressed on the free
+//! half-space (E*, a grid of `side_3d` contact radii) and moved tangentially on a
+//! viscoelastic half-space of the same G*(t) (`bem3d::tangential::ViscoelasticSlip`:
+//! Cerruti's operator, Coulomb's law, the hereditary integral cell by cell; Poisson's
+//! ratio from G*_inf / E*, held in time), in a table of its own with MRD's force and
+//! stick radius beside the 3D ones.
 
 use crate::checks::{bad, check_springs, default_springs, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
+use crate::experiment::axisym_3d::{equivalent_body, AxisymGrid};
 use crate::output::{Env, Output};
 use crate::outputs::axisym::hess;
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
+use bem3d::tangential::{CerrutiFree, ViscoelasticSlip};
+use bem3d::viscoelastic::Relaxation;
+use bem3d::SolverOptions;
 use mrd::tangential::TangentialContact;
 use mrd::viscoelastic::{Prony, TangentialRow, TangentialRowState};
 use serde::Deserialize;
@@ -40,6 +51,19 @@ pub struct TangentialViscoelastic {
     steps: usize,
     #[serde(default = "default_springs")]
     springs: usize,
+    /// Cells per side of the 3D side on the free half-space (absent: MRD only).
+    #[serde(default)]
+    cells_3d: Option<usize>,
+    /// The side of the 3D grid in contact radii (> 2: the contact fits).
+    #[serde(default = "default_side_3d")]
+    side_3d: f64,
+    /// The 3D solves' tolerance (relative: the partial-slip law and the shift).
+    #[serde(default = "crate::checks::default_tolerance")]
+    tolerance: f64,
+}
+
+fn default_side_3d() -> f64 {
+    2.5
 }
 
 fn hundred() -> usize {
@@ -106,6 +130,29 @@ impl Output for TangentialViscoelastic {
         if (self.hold_time / self.ramp_time + 5.0) * self.steps as f64 > 1e6 {
             return bad("the history has more than 1e6 steps (hold_time / (ramp_time / steps))");
         }
+        if let Some(n) = self.cells_3d {
+            if !(16..=2048).contains(&n) {
+                return bad(format!("cells_3d = {n} must lie in 16..=2048"));
+            }
+            if !(self.side_3d.is_finite() && (2.2..=100.0).contains(&self.side_3d)) {
+                return bad(format!(
+                    "side_3d = {} contact radii must lie in [2.2, 100]",
+                    self.side_3d
+                ));
+            }
+            let (nu, _) = equivalent_body(ctx.material.e_star, self.g_inf);
+            if !(0.0..=0.5).contains(&nu) {
+                return bad(format!(
+                    "g_inf / E* = {} gives Poisson's ratio {nu:.3} outside [0, 0.5] for the 3D side: it must lie in [2/3, 1]",
+                    self.g_inf / ctx.material.e_star
+                ));
+            }
+            crate::checks::check_memory(
+                (n * n) as f64 * (crate::checks::BYTES_PER_CELL_NON_PERIODIC + 200.0),
+                &format!("cells_3d = {n}"),
+            )?;
+            crate::checks::check_tolerance(self.tolerance)?;
+        }
         check_springs(
             self.springs,
             crate::checks::spring_bytes::tangential_viscoelastic(self.prony.len()),
@@ -113,11 +160,15 @@ impl Output for TangentialViscoelastic {
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
-        vec![
+        let mut s = vec![
             Stage::HessTransform,
             Stage::NormalSemiAnalytic,
             Stage::Viscoelastic,
-        ]
+        ];
+        if self.cells_3d.is_some() {
+            s.extend([Stage::Bem3d, Stage::Tangential3d]);
+        }
+        s
     }
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
@@ -158,8 +209,149 @@ impl Output for TangentialViscoelastic {
             force: units.force(),
         };
         report(self, &setup, &path, &ve, &el, out);
+        if let Some(cells) = self.cells_3d {
+            let three = self.run_3d(env, out, cells, a, scale, &path)?;
+            report_3d(self, &setup, a, &path, &ve, &three, out);
+        }
         Ok(())
     }
+}
+
+/// Per step of the 3D side: the force, the stick radius and the energy dissipated.
+type Track3d = Vec<(f64, f64, f64)>;
+
+impl TangentialViscoelastic {
+    /// The 3D side: the body pressed on the free half-space, then the history.
+    fn run_3d(
+        &self,
+        env: &Env,
+        out: &mut Section,
+        cells: usize,
+        a: f64,
+        scale: f64,
+        path: &[f64],
+    ) -> Result<Track3d> {
+        let e = env.ctx.material.e_star;
+        let grid = AxisymGrid {
+            cells,
+            side: self.side_3d * a,
+            periodic: false,
+        };
+        let opts = SolverOptions::new(self.tolerance, 10_000);
+        let profile = env.ctx.profile()?;
+        let sol = out
+            .stage(Stage::Bem3d, || {
+                grid.press(profile, e, self.normal_force, &opts)
+            })
+            .ctx("3D normal contact")?;
+        out.scalar("cells_per_contact_radius_3d", cells as f64 / self.side_3d);
+        // G = G* (2 - nu) / 4 for every term (nu held in time).
+        let (nu, _) = equivalent_body(e, self.g_inf);
+        let c = (2.0 - nu) / 4.0;
+        let dt = self.ramp_time / self.steps as f64;
+        let l = grid.side;
+        let cell = (l / cells as f64).powi(2);
+        out.stage(Stage::Tangential3d, || -> bem3d::Result<Track3d> {
+            let modulus = Relaxation::new(
+                c * self.g_inf,
+                self.prony.iter().map(|t| (c * t[0], t[1])).collect(),
+            )?;
+            let op = CerrutiFree::new(cells, cells, l, l, 1.0, nu)?;
+            let mut slip = ViscoelasticSlip::new(op, &sol.pressure, self.mu, modulus)?;
+            path.iter()
+                .map(|u| {
+                    let s = slip.step(dt, u * scale, self.tolerance)?;
+                    let radius = (s.stick_cells as f64 * cell / std::f64::consts::PI).sqrt();
+                    Ok((s.force, radius, s.dissipated))
+                })
+                .collect()
+        })
+        .ctx("3D viscoelastic partial slip")
+    }
+}
+
+/// The 3D table beside MRD's force and stick radius, its figure and agreement scalars.
+fn report_3d(
+    spec: &TangentialViscoelastic,
+    setup: &Setup,
+    a: f64,
+    path: &[f64],
+    ve: &Track,
+    three: &Track3d,
+    out: &mut Section,
+) {
+    let (len, force) = (&setup.len, &setup.force);
+    let mut t = Table::new(
+        "tangential_viscoelastic_3d",
+        &[
+            "time [s]".to_string(),
+            format!("ux [{len}]"),
+            format!("fx_mrd [{force}]"),
+            format!("fx_3d [{force}]"),
+            format!("stick_radius_mrd [{len}]"),
+            format!("stick_radius_3d [{len}]"),
+            format!("friction_dissipation_3d [{force} {len}]"),
+        ],
+    );
+    t.notes.push(format!("3D: the body pressed on the free half-space ({0}^2 cells over {1} contact radii, {2:.1} cells per radius), moved along the same history on a viscoelastic half-space of the same G*(t) (Cerruti's operator with Poisson's ratio from G*_inf / E*, Coulomb mu = {3}, tolerance {4:e}); MRD: the springs of the table tangential_viscoelastic; stick radius 3D from the count of stick cells, sqrt(cells x cell area / pi); friction dissipation summed over steps from t = 0", spec.cells_3d.unwrap_or(0), spec.side_3d, spec.cells_3d.unwrap_or(0) as f64 / spec.side_3d, spec.mu, spec.tolerance));
+    let (mut peak, mut dev, mut dev_c, mut fric) = (0.0f64, 0.0f64, 0.0f64, 0.0);
+    let cycle_start = path.len() - 4 * spec.steps;
+    let (mut w3, mut wm, mut f3_old, mut fm_old, mut u_old) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    let (mut force_mrd, mut force_3d, mut diff) = (Vec::new(), Vec::new(), Vec::new());
+    for (k, ((s, _, _), (f3, c3, d3))) in ve.iter().zip(three).enumerate() {
+        let time = setup.dt * (k + 1) as f64;
+        let (fm, ux) = (2.0 * s.force, s.displacement);
+        let cm = s.stick_edge.map_or(0.0, |i| (i as f64 + 0.5) * setup.dx);
+        fric += d3;
+        peak = peak.max(fm.abs());
+        dev = dev.max((f3 - fm).abs());
+        dev_c = dev_c.max((c3 - cm).abs() / a);
+        if k >= cycle_start {
+            w3 += 0.5 * (f3 + f3_old) * (ux - u_old);
+            wm += 0.5 * (fm + fm_old) * (ux - u_old);
+        }
+        (f3_old, fm_old, u_old) = (*f3, fm, ux);
+        force_mrd.push((time, fm));
+        // Every fourth 3D step marked, so that MRD's line shows between the marks.
+        if k % 4 == 3 {
+            force_3d.push((time, *f3));
+        }
+        diff.push((time, f3 - fm));
+        t.push(vec![time, ux, fm, *f3, cm, *c3, fric]);
+    }
+    let peak = peak.max(f64::MIN_POSITIVE);
+    out.scalar("force_max_abs_dev_3d_vs_mrd_over_peak", dev / peak);
+    let diff = diff.into_iter().map(|(t, d)| (t, d / peak)).collect();
+    out.scalar("stick_radius_max_abs_dev_3d_vs_mrd_over_a", dev_c);
+    out.scalar("cycle_dissipation_3d", w3);
+    out.scalar("cycle_dissipation_3d_over_mrd", w3 / wm);
+    out.tables.push(t);
+    out.figures.push(
+        Figure::new(
+            "tangential_viscoelastic_3d_force",
+            "Tangential force in time (ramp, hold, cycle): 3D viscoelastic half-space and MRD",
+            "time t [s]",
+            &format!("tangential force Fx [{force}]"),
+        )
+        .with(Series::new("MRD (Eqs. 64-65)", force_mrd, Style::Line).colored(0))
+        .with(
+            Series::new(
+                "3D boundary elements (every 4th step)",
+                force_3d,
+                Style::Crosses,
+            )
+            .colored(2),
+        ),
+    );
+    out.figures.push(
+        Figure::new(
+            "tangential_viscoelastic_3d_difference",
+            "3D force minus MRD's, over MRD's peak force",
+            "time t [s]",
+            "(Fx 3D - Fx MRD) / max |Fx MRD| [1]",
+        )
+        .with(Series::new("3D minus MRD", diff, Style::Line).colored(2)),
+    );
 }
 
 /// What the report needs besides the tracks.

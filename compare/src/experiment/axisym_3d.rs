@@ -1,0 +1,82 @@
+//! A body of revolution pressed on the 3D grid: the held normal pressure that the 3D
+//! tangential outputs (elastic and viscoelastic partial slip) load tangentially.
+
+use bem3d::{
+    ContactSolver, Load, NonPeriodicHalfSpace, PeriodicHalfSpace, Solution, SolverOptions,
+};
+use mrd::reference::for_profile;
+use mrd::Profile;
+
+/// Poisson's ratio and shear modulus of the one body (under a rigid indenter) with
+/// these E* and G*: E* = 2G/(1 - nu), G* = 4G/(2 - nu).
+pub fn equivalent_body(e_star: f64, g_star: f64) -> (f64, f64) {
+    let rho = g_star / e_star;
+    let nu = (2.0 - 2.0 * rho) / (2.0 - rho);
+    (nu, e_star * (1.0 - nu) / 2.0)
+}
+
+/// The grid of an axisymmetric 3D contact: `cells` per side over `side` (a length), on
+/// the periodic half-space (the side its period) or the free one.
+#[derive(Debug, Clone, Copy)]
+pub struct AxisymGrid {
+    pub cells: usize,
+    pub side: f64,
+    pub periodic: bool,
+}
+
+impl AxisymGrid {
+    /// Cell centre `k` (row-major), from the grid's centre.
+    fn at(&self, k: usize) -> (f64, f64) {
+        let (n, l) = (self.cells, self.side);
+        let h = l / n as f64;
+        let x = ((k % n) as f64 + 0.5) * h - 0.5 * l;
+        let y = ((k / n) as f64 + 0.5) * h - 0.5 * l;
+        (x, y)
+    }
+
+    /// The profile's heights on the grid, centred: a sphere in its own arithmetic, other
+    /// bodies from the profile with cells beyond its reach (a punch's rim, a table's
+    /// end) masked out.
+    pub fn heights(&self, profile: &Profile) -> (Vec<f64>, Option<Vec<bool>>) {
+        let n = self.cells;
+        match for_profile::sphere_radius(profile) {
+            Some(radius) => (
+                (0..n * n)
+                    .map(|k| {
+                        let (x, y) = self.at(k);
+                        -(x * x + y * y) / (2.0 * radius)
+                    })
+                    .collect(),
+                None,
+            ),
+            None => {
+                let reach = profile.max_contact_radius();
+                let r = |k: usize| self.at(k).0.hypot(self.at(k).1);
+                let mask: Vec<bool> = (0..n * n).map(|k| r(k) < reach).collect();
+                let z = (0..n * n)
+                    .map(|k| if mask[k] { -profile.z(r(k)) } else { 0.0 })
+                    .collect();
+                (z, Some(mask))
+            }
+        }
+    }
+
+    /// The profile pressed to `force` on a half-space of modulus `e_star`.
+    pub fn press(
+        &self,
+        profile: &Profile,
+        e_star: f64,
+        force: f64,
+        opts: &SolverOptions,
+    ) -> bem3d::Result<Solution> {
+        let (z, mask) = self.heights(profile);
+        let (n, l) = (self.cells, self.side);
+        if self.periodic {
+            let op = PeriodicHalfSpace::new(n, n, l, l, e_star);
+            ContactSolver::new(op, &z, mask)?.solve(Load::Force(force), opts, None)
+        } else {
+            let op = NonPeriodicHalfSpace::try_new(n, n, l, l, e_star)?;
+            ContactSolver::new(op, &z, mask)?.solve(Load::Force(force), opts, None)
+        }
+    }
+}
