@@ -34,6 +34,8 @@ fn _mrdw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<cohesive::CohesiveStep>()?;
     m.add_class::<tangential::PartialSlip>()?;
     m.add_class::<tangential::TangentialStep>()?;
+    m.add_class::<tangential::ViscoelasticSlip>()?;
+    m.add_class::<tangential::ViscoelasticStep>()?;
     m.add_function(wrap_pyfunction!(tangential::stick_stiffness, m)?)?;
     // roughness
     m.add_function(wrap_pyfunction!(rough::spectrum, m)?)?;

@@ -5,35 +5,41 @@
 use crate::contact::{bem_err, grid_array};
 use crate::errors::value_error;
 use bem3d::tangential::{
-    CerrutiFree, CerrutiPeriodic, PartialSlip as Slip, TangentialCompliance, TangentialStep as Step,
+    CerrutiFree, CerrutiPeriodic, PartialSlip as Slip, TangentialCompliance,
+    TangentialStep as Step, ViscoelasticSlip as VeSlip, ViscoelasticStep as VeStep,
 };
+use bem3d::viscoelastic::Relaxation;
 use numpy::{AllowTypeChange, PyArray2, PyArrayLike2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
-/// The substrate's shear modulus G = E* (1 - nu) / 2 under a rigid body, with E*, nu
-/// and the memory of `bytes_per_cell` on the grid checked.
-fn shear_modulus(
-    (ny, nx): (usize, usize),
-    e_star: f64,
-    poisson: f64,
-    bytes_per_cell: f64,
-) -> PyResult<f64> {
+/// The substrate's shear modulus G = E* (1 - nu) / 2 under a rigid body, with E* and
+/// nu checked.
+fn shear_modulus(e_star: f64, poisson: f64) -> PyResult<f64> {
     if !(e_star.is_finite() && e_star > 0.0) {
         return Err(value_error(format!(
             "e_star = {e_star} must be finite and > 0"
         )));
     }
+    check_poisson(poisson)?;
+    Ok(e_star * (1.0 - poisson) / 2.0)
+}
+
+fn check_poisson(poisson: f64) -> PyResult<()> {
     if !(0.0..=0.5).contains(&poisson) {
         return Err(value_error(format!(
             "poisson = {poisson} must lie in [0, 0.5]"
         )));
     }
+    Ok(())
+}
+
+/// The memory of `bytes_per_cell` on the grid, checked.
+fn check_memory((ny, nx): (usize, usize), bytes_per_cell: f64) -> PyResult<()> {
     sysmem::check_estimate(
         bytes_per_cell * (nx * ny) as f64,
         &format!("a tangential {ny} x {nx} contact"),
     )
-    .map_err(|e| pyo3::exceptions::PyMemoryError::new_err(e.to_string()))?;
-    Ok(e_star * (1.0 - poisson) / 2.0)
+    .map_err(|e| pyo3::exceptions::PyMemoryError::new_err(e.to_string()))
 }
 
 /// The periodic Cerruti operator of a substrate of modulus E* and Poisson's ratio nu
@@ -44,27 +50,35 @@ fn cerruti(
     e_star: f64,
     poisson: f64,
 ) -> PyResult<CerrutiPeriodic> {
-    let g = shear_modulus(shape, e_star, poisson, 8.0 * 12.0)?;
+    let g = shear_modulus(e_star, poisson)?;
+    check_memory(shape, 8.0 * 12.0)?;
     CerrutiPeriodic::new(shape.1, shape.0, lx, ly, g, poisson)
         .map_err(|e| value_error(e.to_string()))
 }
 
-/// The periodic or the free Cerruti operator (the free one convolves on a grid padded
-/// to four times the cells: about 20 grids).
+/// The periodic or the free Cerruti operator of shear modulus `g` (the free one
+/// convolves on a grid padded to four times the cells: about 20 grids).
 fn cerruti_on(
     shape: (usize, usize),
     (lx, ly): (f64, f64),
-    e_star: f64,
+    g: f64,
     poisson: f64,
     periodic: bool,
 ) -> PyResult<Box<dyn TangentialCompliance + Sync>> {
-    if periodic {
-        return Ok(Box::new(cerruti(shape, (lx, ly), e_star, poisson)?));
-    }
-    let g = shear_modulus(shape, e_star, poisson, 8.0 * 20.0)?;
-    let op = CerrutiFree::new(shape.1, shape.0, lx, ly, g, poisson)
-        .map_err(|e| value_error(e.to_string()))?;
-    Ok(Box::new(op))
+    check_poisson(poisson)?;
+    check_memory(shape, if periodic { 8.0 * 12.0 } else { 8.0 * 20.0 })?;
+    let (nx, ny) = (shape.1, shape.0);
+    let op: Box<dyn TangentialCompliance + Sync> = if periodic {
+        Box::new(
+            CerrutiPeriodic::new(nx, ny, lx, ly, g, poisson)
+                .map_err(|e| value_error(e.to_string()))?,
+        )
+    } else {
+        Box::new(
+            CerrutiFree::new(nx, ny, lx, ly, g, poisson).map_err(|e| value_error(e.to_string()))?,
+        )
+    };
+    Ok(op)
 }
 
 /// A 2D float64 array as (values, (ny, nx)).
@@ -165,7 +179,8 @@ impl PartialSlip {
         periodic: bool,
     ) -> PyResult<Self> {
         let (p, shape) = grid_of(pressure, "pressure")?;
-        let op = cerruti_on(shape, size, e_star, poisson, periodic)?;
+        let g = shear_modulus(e_star, poisson)?;
+        let op = cerruti_on(shape, size, g, poisson, periodic)?;
         let slip = Slip::new(op, &p, mu).map_err(|e| value_error(e.to_string()))?;
         Ok(Self { slip, shape })
     }
@@ -256,4 +271,133 @@ pub fn stick_stiffness(
         .detach(|| op.stick_stiffness(&c, tolerance, limit))
         .map_err(|e| bem_err(py, e, shape, 1.0))?;
     Ok((k.x, k.y, k.x_along_only))
+}
+
+/// The state after a step of `ViscoelasticSlip.step`.
+#[pyclass(module = "mrdw._mrdw", frozen)]
+pub struct ViscoelasticStep {
+    step: VeStep,
+}
+
+#[pymethods]
+impl ViscoelasticStep {
+    /// Time at the end of the step [time].
+    #[getter]
+    fn time(&self) -> f64 {
+        self.step.time
+    }
+    /// The prescribed shift [length].
+    #[getter]
+    fn shift(&self) -> f64 {
+        self.step.shift
+    }
+    /// The tangential force it takes [stress x length^2].
+    #[getter]
+    fn force(&self) -> f64 {
+        self.step.force
+    }
+    #[getter]
+    fn stick_cells(&self) -> usize {
+        self.step.stick_cells
+    }
+    #[getter]
+    fn slip_cells(&self) -> usize {
+        self.step.slip_cells
+    }
+    /// Energy dissipated by slip in this step [stress x length^3].
+    #[getter]
+    fn dissipated(&self) -> f64 {
+        self.step.dissipated
+    }
+    /// Partial-slip solves the step took (trials of the force).
+    #[getter]
+    fn solves(&self) -> usize {
+        self.step.solves
+    }
+    /// The body slides: every contact cell at its bound.
+    #[getter]
+    fn sliding(&self) -> bool {
+        self.step.sliding
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "ViscoelasticStep(time={:.6e}, shift={:.6e}, force={:.6e}, stick_cells={}, sliding={})",
+            self.step.time,
+            self.step.shift,
+            self.step.force,
+            self.step.stick_cells,
+            self.step.sliding
+        )
+    }
+}
+
+/// Partial slip of a held normal contact on a viscoelastic half-space under a
+/// prescribed tangential shift history along x (3D; Section 8, Eqs. 64-65 in 3D).
+///
+/// ViscoelasticSlip(pressure, mu, relaxed, terms=(), size=(1.0, 1.0), poisson=0.5, *,
+///                  periodic=False)
+///
+/// `pressure` (ny, nx) [stress] is held (the relaxed normal contact); the substrate's
+/// shear modulus relaxes as G(t) = relaxed + sum G_k exp(-t / tau_k) [stress] with
+/// `terms` = [(G_k, tau_k), ...] and Poisson's ratio `poisson` held in time; Coulomb's
+/// law with `mu` cell by cell, the traction along x (q_y = 0). Each step() moves the
+/// body linearly in time to the given shift (exact time integration for that) and
+/// returns the force it takes; beyond the friction limit the body slides (reported).
+#[pyclass(module = "mrdw._mrdw")]
+pub struct ViscoelasticSlip {
+    slip: VeSlip<Box<dyn TangentialCompliance + Sync>>,
+    shape: (usize, usize),
+}
+
+#[pymethods]
+impl ViscoelasticSlip {
+    #[new]
+    #[pyo3(signature = (pressure, mu, relaxed, terms = Vec::new(), size = (1.0, 1.0), poisson = 0.5, *, periodic = false))]
+    fn new(
+        pressure: PyArrayLike2<'_, f64, AllowTypeChange>,
+        mu: f64,
+        relaxed: f64,
+        terms: Vec<(f64, f64)>,
+        size: (f64, f64),
+        poisson: f64,
+        periodic: bool,
+    ) -> PyResult<Self> {
+        let (p, shape) = grid_of(pressure, "pressure")?;
+        let modulus = Relaxation::new(relaxed, terms).map_err(|e| value_error(e.to_string()))?;
+        // The operator of unit shear modulus; the moduli live in the relaxation.
+        let op = cerruti_on(shape, size, 1.0, poisson, periodic)?;
+        let slip = VeSlip::new(op, &p, mu, modulus).map_err(|e| value_error(e.to_string()))?;
+        Ok(Self { slip, shape })
+    }
+
+    /// step(dt, shift, *, tolerance=1e-8) -> ViscoelasticStep
+    ///
+    /// Moves the body to `shift` [length] over `dt` [time]. Raises ValueError for bad
+    /// input, ConvergenceError if the force of the shift is not found.
+    #[pyo3(signature = (dt, shift, *, tolerance = 1e-8))]
+    fn step(
+        &mut self,
+        py: Python<'_>,
+        dt: f64,
+        shift: f64,
+        tolerance: f64,
+    ) -> PyResult<ViscoelasticStep> {
+        let slip = &mut self.slip;
+        let out = py.detach(|| slip.step(dt, shift, tolerance));
+        let step = out.map_err(|e| bem_err(py, e, self.shape, 1.0))?;
+        Ok(ViscoelasticStep { step })
+    }
+
+    /// The largest tangential force without sliding, mu P [stress x length^2].
+    #[getter]
+    fn friction_limit(&self) -> f64 {
+        self.slip.friction_limit()
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "ViscoelasticSlip(shape={:?}, friction_limit={:.6e})",
+            self.shape,
+            self.slip.friction_limit()
+        )
+    }
 }

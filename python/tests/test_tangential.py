@@ -99,3 +99,52 @@ def test_no_contact_and_bad_cycles_are_value_errors():
         ps.cycle(ps.friction_limit)
     with pytest.raises(ValueError):
         ps.load(float("nan"))
+
+
+def test_viscoelastic_slip_in_full_stick_is_the_hereditary_integral():
+    # Q(t) = k0 Int G(t - t') d delta(t'): a ramp and a hold, one Maxwell term.
+    n, a = 32, 0.4
+    x = (np.arange(n) + 0.5) / n - 0.5
+    X, Y = np.meshgrid(x, x)
+    p = np.sqrt(np.maximum(1 - (X**2 + Y**2) / a**2, 0))
+    mu = 1e6
+    k0 = 1e-3 / mrdw.PartialSlip(p, mu, e_star=4.0, periodic=False).load(1e-3, tolerance=1e-12).shift
+    g_inf, g1, tau, rate, dt = 0.5, 1.5, 0.3, 1e-3, 0.05
+    ve = mrdw.ViscoelasticSlip(p, mu, g_inf, [(g1, tau)])
+    for k in range(1, 41):
+        t = k * dt
+        s = ve.step(dt, rate * min(t, 1.0), tolerance=1e-12)
+        memory = rate * tau * (1 - math.exp(-min(t, 1.0) / tau)) * math.exp(-max(t - 1.0, 0) / tau)
+        assert s.force == pytest.approx(k0 * (g_inf * rate * min(t, 1.0) + g1 * memory), rel=1e-7)
+        assert s.slip_cells == 0 and not s.sliding
+
+
+def test_viscoelastic_slip_matches_the_cli_scene(mrdw_bin, tmp_path):
+    from conftest import run_cli
+
+    out = run_cli(mrdw_bin, "run", "tangential-viscoelastic-3d", "--out", str(tmp_path / "t"))
+    assert out.returncode == 0, out.stderr
+    rows = [r for r in open(tmp_path / "t" / "tangential_viscoelastic_3d.csv") if not r.startswith("#")]
+    data = np.loadtxt(rows[1:], delimiter=",")
+    # The scene: a sphere R = 5 pressed with 0.1 on E* = 1, 64^2 cells over 2.5 contact
+    # radii (the side from the summary) on the free half-space; G*(t) = 2/3 + 2
+    # exp(-t / 0.5), mu = 0.3: the same forces bit for bit.
+    import json
+
+    summary = json.load(open(tmp_path / "t" / "summary.json"))
+    side = summary["results"]["tangential_viscoelastic.grid_side_3d"]
+    r, f, n = 5.0, 0.1, 64
+    h = side / n
+    x = (np.arange(n) + 0.5) * h - 0.5 * side
+    X, Y = np.meshgrid(x, x)
+    sol = mrdw.Contact(-(X**2 + Y**2) / (2 * r), size=(side, side), periodic=False).solve(
+        force=f, tolerance=1e-8
+    )
+    g_star_inf = 0.6666666666666666
+    rho = g_star_inf / 1.0
+    nu = (2 - 2 * rho) / (2 - rho)
+    c = (2 - nu) / 4
+    ve = mrdw.ViscoelasticSlip(sol.pressure, 0.3, c * g_star_inf, [(c * 2.0, 0.5)], size=(side, side), poisson=nu)
+    dt = data[0, 0]
+    forces = np.array([ve.step(dt, ux).force for ux in data[:, 1]])
+    assert np.array_equal(forces, data[:, 3])

@@ -412,6 +412,54 @@ class PartialSlip:
     def slip(self) -> F64:
         """The accumulated slip of each cell, shape (ny, nx) [length]."""
 
+class ViscoelasticStep:
+    """The state after ViscoelasticSlip.step."""
+
+    @property
+    def time(self) -> float:
+        """Time at the end of the step [time]."""
+    @property
+    def shift(self) -> float:
+        """The prescribed shift [length]."""
+    @property
+    def force(self) -> float:
+        """The tangential force it takes [stress x length^2]."""
+    @property
+    def stick_cells(self) -> int: ...
+    @property
+    def slip_cells(self) -> int: ...
+    @property
+    def dissipated(self) -> float:
+        """Energy dissipated by slip in this step [stress x length^3]."""
+    @property
+    def solves(self) -> int:
+        """Partial-slip solves the step took."""
+    @property
+    def sliding(self) -> bool: ...
+
+class ViscoelasticSlip:
+    """Partial slip of a held normal contact on a viscoelastic half-space (shear modulus
+    G(t) = relaxed + sum G_k exp(-t / tau_k) [stress], Poisson's ratio held) under a
+    prescribed tangential shift history along x (3D; Eqs. 64-65 in 3D). Free
+    half-space by default."""
+
+    def __init__(
+        self,
+        pressure: ArrayLike,
+        mu: float,
+        relaxed: float,
+        terms: Sequence[Tuple[float, float]] = (),
+        size: Tuple[float, float] = (1.0, 1.0),
+        poisson: float = 0.5,
+        *,
+        periodic: bool = False,
+    ) -> None: ...
+    def step(self, dt: float, shift: float, *, tolerance: float = 1e-8) -> ViscoelasticStep:
+        """Moves the body to `shift` [length] over `dt` [time], linearly in time."""
+    @property
+    def friction_limit(self) -> float:
+        """mu P [stress x length^2]."""
+
 def stick_stiffness(
     contact: ArrayLike,
     size: Tuple[float, float] = (1.0, 1.0),

@@ -319,10 +319,10 @@ impl Tangential3d {
         cols.push("stick_radius_over_a_3d [1]".to_string());
         let mut t = Table::new("stick", &cols);
         t.notes.push(format!(
-            "{}MRD: exact tangential springs; 3D: {1}^2 cells, {4} {2} contact radii, {3:.1} cells per radius (stick radius from the count of stick cells)",
+            "{}MRD: exact tangential springs; 3D: {1}^2 {4} {2} contact radii, {3:.1} cells per radius (stick radius from the count of stick cells)",
             if c_cf.is_some() { "Cattaneo-Mindlin c/a = (1 - F_x/(mu F_N))^(1/3); " } else { "" },
             self.cells, self.period, a * self.cells as f64 / (self.period * a),
-            if self.periodic { "periodic, period" } else { "free half-space, side" }
+            if self.periodic { "periodic cells, period" } else { "cells on the free half-space, side" }
         ));
         let (mut dev_mrd, mut dev_3d, mut dev_3d_mrd) = (0.0f64, 0.0f64, 0.0f64);
         for (k, f) in self.fractions.iter().enumerate() {

@@ -245,6 +245,9 @@ impl TangentialViscoelastic {
             })
             .ctx("3D normal contact")?;
         out.scalar("cells_per_contact_radius_3d", cells as f64 / self.side_3d);
+        // The grid's side (side_3d times MRD's contact radius), so that the 3D side can be
+        // rebuilt elsewhere (the Python test does, bit for bit).
+        out.scalar("grid_side_3d", grid.side);
         // G = G* (2 - nu) / 4 for every term (nu held in time).
         let (nu, _) = equivalent_body(e, self.g_inf);
         let c = (2.0 - nu) / 4.0;
