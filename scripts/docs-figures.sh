@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet --bin mrdw
-scenes=(adhesion-3d adhesion-tabor rough-adhesion-3d rough-adhesion-3d-punch tangential-3d tangential-3d-free tangential-stiffness-3d rough-partial-slip-3d)
+scenes=(adhesion-3d adhesion-tabor rough-adhesion-3d rough-adhesion-3d-punch tangential-3d tangential-3d-free tangential-viscoelastic-3d tangential-stiffness-3d rough-partial-slip-3d)
 for scene in "${scenes[@]}"; do
   target/release/mrdw run "$scene" --out "reports/$scene" >/dev/null
   mkdir -p "docs/figures/$scene"
