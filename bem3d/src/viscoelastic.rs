@@ -82,6 +82,18 @@ impl Relaxation {
         self.relaxed + self.terms.iter().map(|t| t.0).sum::<f64>()
     }
 
+    /// The effective modulus of a step with the factors `(a_k, b_k)`:
+    /// `E_inf + sum_k E_k b_k` (module docs).
+    pub(crate) fn effective(&self, factors: &[(f64, f64)]) -> f64 {
+        self.relaxed
+            + self
+                .terms
+                .iter()
+                .zip(factors)
+                .map(|(&(e, _), &(_, b))| e * b)
+                .sum::<f64>()
+    }
+
     /// (a_k, b_k) of a step dt (module docs).
     pub(crate) fn step_factors(&self, dt: f64) -> Vec<(f64, f64)> {
         self.terms
@@ -178,14 +190,7 @@ impl<K: SolverOperator> TransientContact<K> {
             )));
         }
         let factors = self.modulus.step_factors(dt);
-        let e_eff = self.modulus.relaxed
-            + self
-                .modulus
-                .terms
-                .iter()
-                .zip(&factors)
-                .map(|(&(e, _), &(_, b))| e * b)
-                .sum::<f64>();
+        let e_eff = self.modulus.effective(&factors);
         // H_n / E_eff: the history's displacement, raising the heights it acts on.
         let n = self.u.len();
         let mut lift = vec![0.0; n];
