@@ -169,8 +169,8 @@ enum BenchTarget {
     /// approaches, free grids 128^2 .. (--max-n)^2 (default up to 512).
     Adhesion,
     /// Tangential contact: seconds per partial-slip load step of a sphere (bem3d::tangential,
-    /// a ramp and a cycle) against a normal solve of the same periodic grid, 128^2 ..
-    /// (--max-n)^2 (default up to 512).
+    /// a ramp and a cycle) against a normal solve of the same grid, periodic and free,
+    /// 128^2 .. (--max-n)^2 (default up to 512).
     Tangential,
     /// Run time against error as a report folder (CSV + PNG): axisymmetric cases with
     /// closed forms (MRD semi-analytic, springs, 3D), rough contacts (alpha against a

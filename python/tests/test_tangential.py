@@ -148,3 +148,26 @@ def test_viscoelastic_slip_matches_the_cli_scene(mrdw_bin, tmp_path):
     dt = data[0, 0]
     forces = np.array([ve.step(dt, ux).force for ux in data[:, 1]])
     assert np.array_equal(forces, data[:, 3])
+
+
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        ({"mu": 0.0, "relaxed": 1.0}, "mu"),
+        ({"mu": 0.3, "relaxed": float("nan")}, "relaxed"),
+        ({"mu": 0.3, "relaxed": 1.0, "terms": [(1.0, -0.5)]}, "Prony"),
+        ({"mu": 0.3, "relaxed": 0.0}, "vanishes"),
+        ({"mu": 0.3, "relaxed": 1.0, "poisson": 0.7}, "poisson"),
+    ],
+)
+def test_viscoelastic_slip_bad_input_is_a_value_error(kwargs, match):
+    p = np.zeros((16, 16))
+    p[4:8, 4:8] = 1.0
+    with pytest.raises(ValueError, match=match):
+        mrdw.ViscoelasticSlip(p, **kwargs)
+    ve = mrdw.ViscoelasticSlip(p, 0.3, 1.0, [(1.0, 0.5)])
+    for dt, shift, key in [(0.0, 0.1, "dt"), (0.1, float("inf"), "shift")]:
+        with pytest.raises(ValueError, match=key):
+            ve.step(dt, shift)
+    with pytest.raises(ValueError, match="no cell is in contact"):
+        mrdw.ViscoelasticSlip(np.zeros((16, 16)), 0.3, 1.0)
