@@ -719,7 +719,7 @@ fn tangential_3d_bad_input_names_the_key() {
 
 /// `tangential_viscoelastic`'s 3D side refuses what it cannot run, naming the key: a grid
 /// too coarse, a free grid that does not hold the contact, a G*_inf / E* that no
-/// elastic body has.
+/// elastic body has, a key of the 3D side given without it.
 #[test]
 fn tangential_viscoelastic_3d_bad_input_names_the_key() {
     let tmp = tempfile::tempdir().unwrap();
@@ -733,6 +733,8 @@ fn tangential_viscoelastic_3d_bad_input_names_the_key() {
             "cells_3d = 8",
         ),
         (base.replace("side_3d = 2.5", "side_3d = 2.0"), "side_3d"),
+        // A key of the 3D side without the 3D side is refused, not ignored.
+        (base.replace("cells_3d = 64\n", ""), "give cells_3d"),
         (
             base.replace("g_inf = 0.6666666666666666", "g_inf = 0.5"),
             "Poisson's ratio",

@@ -54,16 +54,13 @@ pub struct TangentialViscoelastic {
     /// Cells per side of the 3D side on the free half-space (absent: MRD only).
     #[serde(default)]
     cells_3d: Option<usize>,
-    /// The side of the 3D grid in contact radii (> 2: the contact fits).
-    #[serde(default = "default_side_3d")]
-    side_3d: f64,
-    /// The 3D solves' tolerance (relative: the partial-slip law and the shift).
-    #[serde(default = "crate::checks::default_tolerance")]
-    tolerance: f64,
-}
-
-fn default_side_3d() -> f64 {
-    2.5
+    /// The side of the 3D grid in contact radii (> 2: the contact fits; default 2.5).
+    #[serde(default)]
+    side_3d: Option<f64>,
+    /// The 3D solves' tolerance (relative: the partial-slip law and the shift; default
+    /// the solvers').
+    #[serde(default)]
+    tolerance: Option<f64>,
 }
 
 fn hundred() -> usize {
@@ -71,6 +68,15 @@ fn hundred() -> usize {
 }
 
 impl TangentialViscoelastic {
+    fn side_3d(&self) -> f64 {
+        self.side_3d.unwrap_or(2.5)
+    }
+
+    fn tolerance(&self) -> f64 {
+        self.tolerance
+            .unwrap_or_else(crate::checks::default_tolerance)
+    }
+
     fn modulus(&self) -> mrd::Result<Prony> {
         Prony::new(
             self.g_inf,
@@ -130,14 +136,17 @@ impl Output for TangentialViscoelastic {
         if (self.hold_time / self.ramp_time + 5.0) * self.steps as f64 > 1e6 {
             return bad("the history has more than 1e6 steps (hold_time / (ramp_time / steps))");
         }
+        if self.cells_3d.is_none() && (self.side_3d.is_some() || self.tolerance.is_some()) {
+            return bad("side_3d and tolerance set the 3D side: give cells_3d too");
+        }
         if let Some(n) = self.cells_3d {
             if !(16..=2048).contains(&n) {
                 return bad(format!("cells_3d = {n} must lie in 16..=2048"));
             }
-            if !(self.side_3d.is_finite() && (2.2..=100.0).contains(&self.side_3d)) {
+            let side = self.side_3d();
+            if !(side.is_finite() && (2.2..=100.0).contains(&side)) {
                 return bad(format!(
-                    "side_3d = {} contact radii must lie in [2.2, 100]",
-                    self.side_3d
+                    "side_3d = {side} contact radii must lie in [2.2, 100]"
                 ));
             }
             let (nu, _) = equivalent_body(ctx.material.e_star, self.g_inf);
@@ -151,7 +160,7 @@ impl Output for TangentialViscoelastic {
                 (n * n) as f64 * (crate::checks::BYTES_PER_CELL_NON_PERIODIC + 200.0),
                 &format!("cells_3d = {n}"),
             )?;
-            crate::checks::check_tolerance(self.tolerance)?;
+            crate::checks::check_tolerance(self.tolerance())?;
         }
         check_springs(
             self.springs,
@@ -234,17 +243,17 @@ impl TangentialViscoelastic {
         let e = env.ctx.material.e_star;
         let grid = AxisymGrid {
             cells,
-            side: self.side_3d * a,
+            side: self.side_3d() * a,
             periodic: false,
         };
-        let opts = SolverOptions::new(self.tolerance, 10_000);
+        let opts = SolverOptions::new(self.tolerance(), 10_000);
         let profile = env.ctx.profile()?;
         let sol = out
             .stage(Stage::Bem3d, || {
                 grid.press(profile, e, self.normal_force, &opts)
             })
             .ctx("3D normal contact")?;
-        out.scalar("cells_per_contact_radius_3d", cells as f64 / self.side_3d);
+        out.scalar("cells_per_contact_radius_3d", cells as f64 / self.side_3d());
         // The grid's side (side_3d times MRD's contact radius), so that the 3D side can be
         // rebuilt elsewhere (the Python test does, bit for bit).
         out.scalar("grid_side_3d", grid.side);
@@ -263,7 +272,7 @@ impl TangentialViscoelastic {
             let mut slip = ViscoelasticSlip::new(op, &sol.pressure, self.mu, modulus)?;
             path.iter()
                 .map(|u| {
-                    let s = slip.step(dt, u * scale, self.tolerance)?;
+                    let s = slip.step(dt, u * scale, self.tolerance())?;
                     let radius = (s.stick_cells as f64 * cell / std::f64::consts::PI).sqrt();
                     Ok((s.force, radius, s.dissipated))
                 })
@@ -296,7 +305,7 @@ fn report_3d(
             format!("friction_dissipation_3d [{force} {len}]"),
         ],
     );
-    t.notes.push(format!("3D: the body pressed on the free half-space ({0}^2 cells over {1} contact radii, {2:.1} cells per radius), moved along the same history on a viscoelastic half-space of the same G*(t) (Cerruti's operator with Poisson's ratio from G*_inf / E*, Coulomb mu = {3}, tolerance {4:e}); MRD: the springs of the table tangential_viscoelastic; stick radius 3D from the count of stick cells, sqrt(cells x cell area / pi); friction dissipation summed over steps from t = 0", spec.cells_3d.unwrap_or(0), spec.side_3d, spec.cells_3d.unwrap_or(0) as f64 / spec.side_3d, spec.mu, spec.tolerance));
+    t.notes.push(format!("3D: the body pressed on the free half-space ({0}^2 cells over {1} contact radii, {2:.1} cells per radius), moved along the same history on a viscoelastic half-space of the same G*(t) (Cerruti's operator with Poisson's ratio from G*_inf / E*, Coulomb mu = {3}, tolerance {4:e}); MRD: the springs of the table tangential_viscoelastic; stick radius 3D from the count of stick cells, sqrt(cells x cell area / pi); friction dissipation summed over steps from t = 0", spec.cells_3d.unwrap_or(0), spec.side_3d(), spec.cells_3d.unwrap_or(0) as f64 / spec.side_3d(), spec.mu, spec.tolerance()));
     let (mut peak, mut dev, mut dev_c, mut fric) = (0.0f64, 0.0f64, 0.0f64, 0.0);
     let cycle_start = path.len() - 4 * spec.steps;
     let (mut w3, mut wm, mut f3_old, mut fm_old, mut u_old) = (0.0, 0.0, 0.0, 0.0, 0.0);
