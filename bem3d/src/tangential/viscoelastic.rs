@@ -234,6 +234,9 @@ impl<C: TangentialCompliance> ViscoelasticSlip<C> {
             Some(k) => f0 + k * (shift - self.last_shift()),
             None => f0,
         };
+        // The smallest miss of the shift over the largest shift so far, reported if the
+        // trials run out.
+        let mut best = f64::INFINITY;
         for solves in 1..=MAX_TRIALS {
             if !(trial > lo.0 && trial < hi.0) {
                 trial = 0.5 * (lo.0 + hi.0);
@@ -242,6 +245,7 @@ impl<C: TangentialCompliance> ViscoelasticSlip<C> {
             self.slip.q.clone_from(&start.1);
             let s = self.slip.load(trial, tolerance)?;
             let miss = s.shift - shift;
+            best = best.min(miss.abs() / self.reach);
             if miss.abs() <= goal || hi.0 - lo.0 <= 1e-13 * limit {
                 return Ok((s.force, solves, false, s.dissipated));
             }
@@ -266,7 +270,7 @@ impl<C: TangentialCompliance> ViscoelasticSlip<C> {
         Err(BemError::Breakdown {
             what: "viscoelastic partial slip",
             iterations: MAX_TRIALS,
-            residual: f64::NAN,
+            residual: best,
             reason: "the force of the prescribed shift was not found within the trials",
         })
     }
