@@ -52,12 +52,8 @@ impl CerrutiPeriodic {
 }
 
 impl TangentialCompliance for CerrutiPeriodic {
-    fn cells(&self) -> usize {
-        self.nx * self.ny
-    }
-
-    fn cell_area(&self) -> f64 {
-        self.lx * self.ly / (self.nx * self.ny) as f64
+    fn grid(&self) -> (usize, usize, f64, f64) {
+        (self.nx, self.ny, self.lx, self.ly)
     }
 
     fn is_periodic(&self) -> bool {

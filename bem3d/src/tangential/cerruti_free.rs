@@ -115,12 +115,8 @@ impl CerrutiFree {
 }
 
 impl TangentialCompliance for CerrutiFree {
-    fn cells(&self) -> usize {
-        self.nx * self.ny
-    }
-
-    fn cell_area(&self) -> f64 {
-        self.lx * self.ly / (self.nx * self.ny) as f64
+    fn grid(&self) -> (usize, usize, f64, f64) {
+        (self.nx, self.ny, self.lx, self.ly)
     }
 
     fn is_periodic(&self) -> bool {

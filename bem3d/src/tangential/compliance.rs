@@ -5,10 +5,18 @@
 /// [`super::CerrutiFree`] (the free half-space; absolute displacements, so the shift is the
 /// body's rigid displacement).
 pub trait TangentialCompliance: Send {
+    /// The grid: `(nx, ny, lx, ly)`, cells along x and y and the sizes they span.
+    fn grid(&self) -> (usize, usize, f64, f64);
     /// Cells of the grid.
-    fn cells(&self) -> usize;
+    fn cells(&self) -> usize {
+        let (nx, ny, _, _) = self.grid();
+        nx * ny
+    }
     /// Area of one cell.
-    fn cell_area(&self) -> f64;
+    fn cell_area(&self) -> f64 {
+        let (nx, ny, lx, ly) = self.grid();
+        lx * ly / (nx * ny) as f64
+    }
     /// Whether the surface is periodic (the shift is then measured from the mean surface
     /// displacement).
     fn is_periodic(&self) -> bool;
@@ -18,11 +26,8 @@ pub trait TangentialCompliance: Send {
 
 /// A boxed operator, for callers that choose the half-space at run time.
 impl<T: TangentialCompliance + ?Sized> TangentialCompliance for Box<T> {
-    fn cells(&self) -> usize {
-        (**self).cells()
-    }
-    fn cell_area(&self) -> f64 {
-        (**self).cell_area()
+    fn grid(&self) -> (usize, usize, f64, f64) {
+        (**self).grid()
     }
     fn is_periodic(&self) -> bool {
         (**self).is_periodic()

@@ -37,11 +37,8 @@ pub(super) struct Scaled<C> {
 }
 
 impl<C: TangentialCompliance> TangentialCompliance for Scaled<C> {
-    fn cells(&self) -> usize {
-        self.op.cells()
-    }
-    fn cell_area(&self) -> f64 {
-        self.op.cell_area()
+    fn grid(&self) -> (usize, usize, f64, f64) {
+        self.op.grid()
     }
     fn is_periodic(&self) -> bool {
         self.op.is_periodic()
@@ -195,18 +192,21 @@ impl<C: TangentialCompliance> ViscoelasticSlip<C> {
         })
     }
 
-    /// The shift at which the contact slides in the direction `sign`, from the slip
+    /// The shifts at which the contact slides forward and backward, from the slip
     /// `start`: with every contact cell at its bound the last cell to stick is the one
-    /// with the largest (smallest) `u + s`.
-    fn sliding_shift(&mut self, sign: f64, start: &[f64]) -> f64 {
-        let q: Vec<f64> = self.slip.bound.iter().map(|b| sign * b).collect();
-        let mut u = vec![0.0; q.len()];
-        self.slip.op.apply(&q, &mut u);
-        let reach = (0..q.len())
-            .filter(|&i| self.slip.bound[i] > 0.0)
-            .map(|i| sign * (u[i] + start[i]))
-            .fold(f64::NEG_INFINITY, f64::max);
-        sign * reach
+    /// with the largest (smallest) `u + s`. One application serves both directions (the
+    /// operator is linear: the backward bound's displacement is `-u`).
+    fn sliding_shifts(&mut self, start: &[f64]) -> (f64, f64) {
+        let mut u = vec![0.0; start.len()];
+        self.slip.op.apply(&self.slip.bound, &mut u);
+        let (mut up, mut down) = (f64::NEG_INFINITY, f64::INFINITY);
+        for i in 0..u.len() {
+            if self.slip.bound[i] > 0.0 {
+                up = up.max(u[i] + start[i]);
+                down = down.min(-u[i] + start[i]);
+            }
+        }
+        (up, down)
     }
 
     /// The force whose partial-slip shift is `shift`, from the state `start` (slip with
@@ -219,10 +219,7 @@ impl<C: TangentialCompliance> ViscoelasticSlip<C> {
         start: &(Vec<f64>, Vec<f64>),
     ) -> Result<(f64, usize, bool, f64)> {
         let limit = self.slip.friction_limit();
-        let (up, down) = (
-            self.sliding_shift(1.0, &start.0),
-            self.sliding_shift(-1.0, &start.0),
-        );
+        let (up, down) = self.sliding_shifts(&start.0);
         if shift >= up || shift <= down {
             return Ok(self.slide(shift, start));
         }
