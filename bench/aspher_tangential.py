@@ -29,6 +29,11 @@ two solvers solve the same discrete problem (Cerruti's xy coupling vanishes, so
 ASPHER's traction along y is zero as ours is by model); for nu > 0 ASPHER also
 solves for q_y, mrdw holds it at zero (Mindlin's model), and the difference measures
 that model.
+
+`--roughness R --hurst H` adds self-affine roughness to the sphere (C2D ~ q^(-2H-2),
+wavelengths from the side down to side / 16, random phases of `--seed`, rms height R
+times the Hertz approach a^2 / radius; the same heights go to both codes): the rough
+sphere of `mrdw run rough-slip-3d` on the peer's grid.
 """
 
 import argparse
@@ -55,11 +60,32 @@ def cpu_model():
     return platform.processor() or "unknown"
 
 
-def case(n, nu, mu=0.3, a=0.4, radius=1.0):
+def roughness(n, hurst, rms, seed, band=16):
+    """Self-affine heights on the unit square, modes 1 <= |k| <= band (units of 2 pi),
+    C2D ~ |k|^(-2H-2), random phases; rms height `rms`. The same modes on every grid."""
+    rng = np.random.default_rng(seed)
+    spec = np.zeros((n, n), complex)
+    for i in range(-band, band + 1):
+        for j in range(-band, band + 1):
+            k2 = i * i + j * j
+            phase = rng.uniform(0, 2 * np.pi)
+            if 0 < k2 <= band * band:
+                spec[i % n, j % n] = k2 ** (-(hurst + 1) / 2) * np.exp(1j * phase)
+    z = np.fft.ifft2(spec).real
+    z -= z.mean()
+    return z * rms / np.sqrt((z**2).mean())
+
+
+def case(n, nu, mu=0.3, a=0.4, radius=1.0, rough=None):
     h = 1.0 / n
     x = (np.arange(n) + 0.5) * h - 0.5
     xx, yy = np.meshgrid(x, x)
     gap = (xx**2 + yy**2) / (2 * radius)
+    if rough is not None:
+        r, hurst, seed = rough
+        z = roughness(n, hurst, r * a * a / radius, seed)
+        gap = gap - z
+        gap -= gap.min()
     force = 4 * a**3 / (3 * radius)
     return gap, force, h
 
@@ -117,14 +143,20 @@ def main():
                     help="ASPHER's tol_tangential (its default is 1e-5)")
     ap.add_argument("--aspher-max-iterations", type=int, default=20000,
                     help="ASPHER's max_iter (its default is 20000)")
+    ap.add_argument("--roughness", type=float, default=0.0,
+                    help="rms height of added roughness over the Hertz approach (0: smooth)")
+    ap.add_argument("--hurst", type=float, default=0.8)
+    ap.add_argument("--seed", type=int, default=1)
     args = ap.parse_args()
     mu, a, nu = 0.3, 0.4, args.poisson
+    rough = (args.roughness, args.hurst, args.seed) if args.roughness > 0 else None
     print(f"# CPU: {cpu_model()}; OMP_NUM_THREADS={os.environ.get('OMP_NUM_THREADS')}, "
           f"RAYON_NUM_THREADS={os.environ.get('RAYON_NUM_THREADS')}; nu = {nu}; "
-          f"ASPHER tol_tangential {args.aspher_tolerance:g}")
+          f"ASPHER tol_tangential {args.aspher_tolerance:g}; roughness {args.roughness} "
+          f"(H = {args.hurst}, seed {args.seed})")
     rows = []
     for n in args.cells:
-        gap, force, h = case(n, nu)
+        gap, force, h = case(n, nu, rough=rough)
         times = {"aspher": [], "mrdw": []}
         for _ in range(args.rounds):
             ra = run_aspher(gap, force, h, n, nu, mu, args.aspher_tolerance,
@@ -153,7 +185,8 @@ def main():
         rows.append(row)
         print(", ".join(f"{k} = {v:.6g}" if isinstance(v, float) else f"{k} = {v}"
                         for k, v in row.items()), flush=True)
-    print("# closed form c/a = 0.793701")
+    if rough is None:
+        print("# closed form c/a = 0.793701")
     if args.csv:
         with open(args.csv, "w", newline="") as f:
             w = csv.DictWriter(f, fieldnames=list(rows[0]))

@@ -95,6 +95,10 @@ pub const KINDS: &[Kind] = &[
         "rough_partial_slip_3d",
         "partial slip of rough contacts: the 3D shift against the force and the energy per cycle against MRD's tangential mapping of each surface's normal curve (Ciavarella-Jaeger, Masing; Sections 6-7 on rough surfaces)",
     ),
+    Kind::of::<rough::rough_slip_3d::RoughSlip3d>(
+        "rough_slip_3d",
+        "partial slip of a rough sphere or rough flat punch on the free half-space, 3D against MRD's rough line (lambda) and against MRD's law on the 3D normal curve: force-shift to gross slip, energy per cycle, k_t / k_n (Sections 6-7 on rough bodies)",
+    ),
     Kind::of::<rough::rough_stiffness::RoughStiffness>(
         "rough_stiffness",
         "ensemble stiffness-force law of MRD rough lines (Eq. 77)",

@@ -99,6 +99,18 @@ pub const EMBEDDED: &[(&str, &str)] = &[
         include_str!("../../cases/rough-sphere-ci.toml"),
     ),
     (
+        "rough-slip-3d",
+        include_str!("../../cases/rough-slip-3d.toml"),
+    ),
+    (
+        "rough-slip-3d-ci",
+        include_str!("../../cases/rough-slip-3d-ci.toml"),
+    ),
+    (
+        "rough-slip-3d-punch",
+        include_str!("../../cases/rough-slip-3d-punch.toml"),
+    ),
+    (
         "tangential-viscoelastic",
         include_str!("../../cases/tangential-viscoelastic.toml"),
     ),

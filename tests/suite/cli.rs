@@ -114,6 +114,8 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             || *name == "viscoelastic-rough"
             || *name == "tangential-stiffness-3d"
             || *name == "rough-partial-slip-3d"
+            || *name == "rough-slip-3d"
+            || *name == "rough-slip-3d-punch"
             || *name == "rough-adhesion-3d"
             || *name == "rough-adhesion-3d-punch"
         {
@@ -223,6 +225,32 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             {
                 assert!(v > 0.005 && v < 0.15, "{name}: {k} = {v}");
             }
+            // A rough sphere in partial slip (`rough-slip-3d-ci`, 64^2 and 128^2 cells):
+            // at nu = 0 the 3D shift equals MRD's law on the 3D normal curve to the
+            // solvers' tolerance (measured 8.5e-10), the energy per cycle to the loop's
+            // steps (1.4e-4) and k_t = k_n (9e-9); the smooth sphere's shift and energy
+            // equal MRD's (5.8e-5, 1.7e-3); at nu = 0.5 the law is off by a few per cent
+            // on the rough sphere (4.3 %), k_t / k_n within 0.3 % of G*/E*, and the last
+            // refinement moves the 3D values by under 6 % (2.7 %).
+            if k.starts_with("rough_slip_3d.") {
+                let bound = match k.trim_start_matches("rough_slip_3d.") {
+                    "shift_rough_max_rel_dev_3d_vs_law_nu_0"
+                    | "kt_over_kn_max_rel_dev_3d_vs_mrd_nu_0" => 1e-6,
+                    "dissipation_rough_max_rel_dev_3d_vs_law_nu_0" => 2e-3,
+                    "shift_smooth_max_rel_dev_3d_vs_mrd_nu_0"
+                    | "shift_smooth_max_rel_dev_3d_vs_mrd_nu_0p5" => 1e-3,
+                    "dissipation_smooth_max_rel_dev_3d_vs_mrd_nu_0"
+                    | "dissipation_smooth_max_rel_dev_3d_vs_mrd_nu_0p5" => 5e-3,
+                    "kt_over_kn_max_rel_dev_3d_vs_mrd_nu_0p5" => 0.03,
+                    "shift_max_rel_change_3d_last_refinement"
+                    | "dissipation_max_rel_change_3d_last_refinement" => 0.06,
+                    _ => f64::INFINITY,
+                };
+                assert!(v < bound, "{name}: {k} = {v}");
+                if k == "rough_slip_3d.shift_rough_max_rel_dev_3d_vs_law_nu_0p5" {
+                    assert!(v > 0.005 && v < 0.1, "{name}: {k} = {v}");
+                }
+            }
             // Adhesion in 3D (`adhesion-3d*`): MRD's pull-off against JKR, Kendall and
             // Eq. 37 to rounding; the 3D pull-off against MRD's on the finest grid (measured
             // 1.7 % for the sphere at 50 cells per pull-off radius, 0.21 % for the punch at
@@ -324,6 +352,28 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             ] {
                 let key = format!("rough_partial_slip_3d.{k}");
                 assert!(result(&s, &key).is_finite(), "{k}");
+            }
+            continue;
+        }
+        if *name == "rough-slip-3d-ci" {
+            for nu in ["nu_0", "nu_0p5"] {
+                for k in [
+                    "shift_smooth_max_rel_dev_3d_vs_mrd",
+                    "dissipation_smooth_max_rel_dev_3d_vs_mrd",
+                    "shift_rough_max_rel_dev_3d_vs_law",
+                    "dissipation_rough_max_rel_dev_3d_vs_law",
+                    "shift_rough_max_rel_dev_3d_vs_mrd_0",
+                    "shift_rough_max_rel_dev_3d_vs_mrd_1",
+                    "dissipation_rough_max_rel_dev_3d_vs_mrd_1",
+                    "kt_over_kn_max_rel_dev_3d_vs_mrd",
+                ] {
+                    let key = format!("rough_slip_3d.{k}_{nu}");
+                    assert!(result(&s, &key).is_finite(), "{key}");
+                }
+            }
+            for k in ["shift", "dissipation"] {
+                let key = format!("rough_slip_3d.{k}_max_rel_change_3d_last_refinement");
+                assert!(result(&s, &key).is_finite(), "{key}");
             }
             continue;
         }

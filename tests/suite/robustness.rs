@@ -854,6 +854,53 @@ fn periodic_patch_studies_bad_input_names_the_key() {
 }
 
 #[test]
+fn rough_slip_bad_input_names_the_key() {
+    let tmp = tempfile::tempdir().unwrap();
+    let base = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/rough-slip-3d-ci.toml"),
+    )
+    .unwrap();
+    let cases = [
+        (
+            base.replace("radius = 1.0", "radius = 1.0\npunch_radius = 0.03"),
+            "punch_radius",
+        ),
+        (base.replace("mu = 0.5", "mu = -1.0"), "mu"),
+        (base.replace("mu = 0.5", "mu = nan"), "mu"),
+        (base.replace("force = 4.2164e-5", "force = 1.0"), "force"),
+        (base.replace("side = 0.13", "side = 0.05"), "side"),
+        (
+            base.replace("poisson = [0.0, 0.5]", "poisson = [0.7]"),
+            "poisson",
+        ),
+        (
+            base.replace("roughness = [1.0]", "roughness = [0.0]"),
+            "roughness",
+        ),
+        (
+            base.replace(
+                "fractions = [0.2, 0.5, 0.8, 0.95]",
+                "fractions = [0.5, 1.0]",
+            ),
+            "fractions",
+        ),
+        (
+            base.replace("amplitudes = [0.25, 0.9]", "amplitudes = []"),
+            "amplitudes",
+        ),
+        (
+            base.replace("cells = [64, 128]", "cells = [128, 64]"),
+            "cells",
+        ),
+        (
+            base.replace("lambda = [\"pi\", \"calibrated\"]", "lambda = [-2.0]"),
+            "lambda",
+        ),
+    ];
+    refuses_each(tmp.path(), &base, &cases);
+}
+
+#[test]
 fn rough_adhesion_bad_input_names_the_key() {
     let tmp = tempfile::tempdir().unwrap();
     let base = std::fs::read_to_string(

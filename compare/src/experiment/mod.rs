@@ -3,7 +3,8 @@
 //! ([`lambda_meaning`]), the fits and intervals of ensemble curves ([`fit`]), the
 //! periodic self-affine patches of the 3D rough studies ([`periodic`]), and the rough
 //! sphere with its MRD line ([`rough_sphere`]), a body of revolution pressed on the 3D
-//! grid for the tangential outputs ([`axisym_3d`]), and the progress bar of long stages
+//! grid for the tangential outputs ([`axisym_3d`]), MRD's tangential law on any normal
+//! curve ([`tangential_map`]), and the progress bar of long stages
 //! ([`progress`]).
 
 pub mod axisym_3d;
@@ -13,3 +14,4 @@ pub mod lambda_meaning;
 pub mod periodic;
 pub mod progress;
 pub mod rough_sphere;
+pub mod tangential_map;

@@ -7,6 +7,7 @@ pub mod hurst_sweep;
 pub mod lambda_study;
 pub mod rough_adhesion_3d;
 pub mod rough_partial_slip_3d;
+pub mod rough_slip_3d;
 pub mod rough_sphere;
 pub mod rough_stiffness;
 pub mod tangential_stiffness_3d;

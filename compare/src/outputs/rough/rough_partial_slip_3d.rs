@@ -28,12 +28,12 @@ use crate::checks::{bad, check_tolerance, count_in, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::periodic::{patch, Ensemble, Ladder};
+use crate::experiment::tangential_map::{e_over_g, Mapping, NODES};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
 use bem3d::tangential::{CerrutiPeriodic, PartialSlip};
 use bem3d::{ContactSolver, Load, PeriodicHalfSpace, SolverOptions};
-use mrd::numerics::gauss::legendre;
 use mrd::rough_contact::Stat;
 use serde::Deserialize;
 
@@ -70,9 +70,6 @@ pub struct RoughPartialSlip3d {
 fn default_steps() -> usize {
     10
 }
-
-/// Gauss-Legendre nodes of the integral of Masing's rule.
-const NODES: usize = 12;
 
 /// One realisation: the normal force and stiffness, and per Poisson's ratio the 3D and
 /// mapped shifts at the fractions and energies per cycle at the amplitudes.
@@ -177,30 +174,15 @@ impl RoughPartialSlip3d {
         let kn = solver
             .tangent_stiffness(&sol, &opts)
             .ctx("3D normal stiffness")?;
-        // mu (d - d'(Q)) for every force the mapping needs: the fractions and the Gauss
-        // nodes of each amplitude's integral (times E* / G* per Poisson's ratio below).
+        // b(Q) = mu (d - d'(Q)) at every force the mapping needs (times E* / G* per
+        // Poisson's ratio below).
         let mu_fn = self.mu * force;
-        let mut reduced = |q: f64| -> Result<f64> {
+        let mapping = Mapping::new(mu_fn, &self.fractions, &self.amplitudes, |q| {
             let s = solver
                 .solve(Load::Force(force - q / self.mu), &opts, None)
                 .ctx("3D normal solve at a reduced force")?;
             Ok(self.mu * (sol.approach - s.approach))
-        };
-        let base: Vec<f64> = self
-            .fractions
-            .iter()
-            .map(|x| reduced(x * mu_fn))
-            .collect::<Result<_>>()?;
-        let (xg, wg) = legendre(NODES);
-        let mut masing = Vec::with_capacity(self.amplitudes.len());
-        for a in &self.amplitudes {
-            let amp = a * mu_fn;
-            let mut integral = 0.0;
-            for (x, w) in xg.iter().zip(&wg) {
-                integral += 0.5 * amp * w * reduced(0.5 * amp * (1.0 + x))?;
-            }
-            masing.push((amp, reduced(amp)?, integral));
-        }
+        })?;
         let mut run = Run {
             force,
             kn,
@@ -210,8 +192,7 @@ impl RoughPartialSlip3d {
             energy_mrd: Vec::new(),
         };
         for &nu in &self.poisson {
-            // E* / G* = (2 - nu) / (2 (1 - nu)) for a rigid indenter (Eqs. 2 and 5).
-            let ratio = (2.0 - nu) / (2.0 * (1.0 - nu));
+            let ratio = e_over_g(nu);
             let g = e_star * (1.0 - nu) / 2.0;
             let fresh = || -> bem3d::Result<PartialSlip> {
                 PartialSlip::new(
@@ -234,14 +215,9 @@ impl RoughPartialSlip3d {
                 energies.push(c.dissipated);
             }
             run.shift_3d.push(shifts);
-            run.shift_mrd.push(base.iter().map(|u| u * ratio).collect());
+            run.shift_mrd.push(mapping.shifts(ratio));
             run.energy_3d.push(energies);
-            run.energy_mrd.push(
-                masing
-                    .iter()
-                    .map(|(amp, u, int)| 4.0 * ratio * (amp * u - 2.0 * int))
-                    .collect(),
-            );
+            run.energy_mrd.push(mapping.energies(ratio));
         }
         Ok(run)
     }

@@ -1,0 +1,218 @@
+//! `RoughSlip3d` as an output kind: its checks, its declared stages and its run.
+
+use super::runs::{run_1d, run_3d, unit_rms_scale, Case};
+use super::{report, RoughSlip3d};
+use crate::checks::{bad, check_memory, check_tolerance, count_in, positive};
+use crate::checks::{check_ensembles, BYTES_PER_CELL_NON_PERIODIC};
+use crate::context::Context;
+use crate::error::{Context as _, Result};
+use crate::experiment::lambda::LambdaSpec;
+use crate::experiment::progress::Progress;
+use crate::output::{Env, Output};
+use crate::plan::Stage;
+use crate::report::Section;
+use rayon::prelude::*;
+
+/// Peak bytes per cell of one 3D realisation: the normal solver, and a partial-slip
+/// state on a padded grid beside it.
+const BYTES_PER_CELL: f64 = BYTES_PER_CELL_NON_PERIODIC + 200.0;
+
+/// `name` = `v`: fractions of mu F_N in (0, 1), increasing if asked.
+fn check_fractions(name: &str, v: &[f64], increasing: bool) -> Result<()> {
+    if v.is_empty()
+        || v.iter().any(|x| !(*x > 0.0 && *x < 1.0))
+        || (increasing && v.windows(2).any(|w| w[1] <= w[0]))
+    {
+        return bad(format!(
+            "{name} = {v:?}: give{} fractions of mu F_N in (0, 1) (at 1 the body slides)",
+            if increasing { " increasing" } else { "" }
+        ));
+    }
+    Ok(())
+}
+
+impl Output for RoughSlip3d {
+    fn validate(&self, ctx: &Context) -> Result<()> {
+        let (lo, hi) = mrd::error::MAGNITUDE_RANGE;
+        let size = match (self.radius, self.punch_radius) {
+            (Some(r), None) => r,
+            (None, Some(a)) => a,
+            _ => return bad("give radius (a sphere) or punch_radius (a flat punch), not both"),
+        };
+        for (name, v) in [
+            ("radius or punch_radius", size),
+            ("force", self.force),
+            ("side", self.side),
+        ] {
+            if !(lo..=hi).contains(&v) {
+                return bad(format!("{name} = {v:e} must lie in [{lo:e}, {hi:e}]"));
+            }
+        }
+        let e_star = ctx.material.e_star;
+        if self.smooth_approach(e_star) > 0.1 * size {
+            return bad(format!(
+                "force = {:e} presses the smooth body by {:.3e} > 0.1 of its radius: give a smaller force (small slopes)",
+                self.force,
+                self.smooth_approach(e_star)
+            ));
+        }
+        if !(positive(self.mu) && self.mu <= 10.0) {
+            return bad(format!("mu = {} must lie in (0, 10]", self.mu));
+        }
+        if self.poisson.is_empty() || self.poisson.iter().any(|nu| !(0.0..=0.5).contains(nu)) {
+            return bad(format!(
+                "poisson = {:?}: give Poisson's ratios in [0, 0.5]",
+                self.poisson
+            ));
+        }
+        if self.hurst.is_empty() || self.hurst.iter().any(|h| !(0.0..=1.0).contains(h)) {
+            return bad(format!(
+                "hurst = {:?}: give at least one Hurst exponent in [0, 1]",
+                self.hurst
+            ));
+        }
+        if self.roughness.is_empty()
+            || self
+                .roughness
+                .iter()
+                .any(|r| !(positive(*r) && *r <= 100.0))
+        {
+            return bad(format!(
+                "roughness = {:?}: give rms heights over the smooth approach d_0 in (0, 100] (the smooth body is always run)",
+                self.roughness
+            ));
+        }
+        if self.cells.is_empty() || self.cells.windows(2).any(|w| w[1] <= w[0]) {
+            return bad(format!(
+                "cells = {:?}: give increasing grid sizes (a refinement ladder)",
+                self.cells
+            ));
+        }
+        for &n in &self.cells {
+            count_in("cells", n as u64, 16..=2048)?;
+            count_in("bandwidth", self.bandwidth as u64, 1..=(n as u64 - 1) / 2)?;
+        }
+        let a = self.contact_radius(e_star);
+        if self.side < 2.2 * a {
+            return bad(format!(
+                "side = {} must be at least 2.2 contact radii (the smooth body's at F_N) = {:.4e}: the contact stays inside the map",
+                self.side,
+                2.2 * a
+            ));
+        }
+        check_fractions("fractions", &self.fractions, true)?;
+        check_fractions("amplitudes", &self.amplitudes, false)?;
+        check_ensembles(self.realisations_3d, self.realisations_1d)?;
+        count_in("points_1d_factor", self.points_1d_factor as u64, 1..=64)?;
+        count_in("steps", self.steps as u64, 2..=1000)?;
+        check_tolerance(self.tolerance)?;
+        LambdaSpec::check_all(&self.lambda, ctx, &self.hurst)?;
+        let n = *self.cells.last().unwrap_or(&16) as f64;
+        check_memory(
+            n * n * BYTES_PER_CELL * rayon::current_num_threads() as f64,
+            &format!("3D grids of {n}^2 cells, one per thread"),
+        )
+    }
+
+    fn stages(&self, _: &Context) -> Vec<Stage> {
+        vec![
+            Stage::RoughSynthesis,
+            Stage::Bem3d,
+            Stage::Bem3dStiffness,
+            Stage::Tangential3d,
+            Stage::RoughContact,
+            Stage::Tangential,
+        ]
+    }
+
+    fn seed(&self) -> Option<u64> {
+        Some(self.seed)
+    }
+
+    fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
+        let e_star = env.ctx.material.e_star;
+        // lambda per scene entry, per Hurst exponent.
+        let lambdas: Vec<Vec<f64>> = self
+            .lambda
+            .iter()
+            .map(|l| {
+                let law = l.build(env.ctx)?;
+                self.hurst
+                    .iter()
+                    .map(|&h| law.at(h).ctx("lambda"))
+                    .collect()
+            })
+            .collect::<Result<_>>()?;
+        let cases = self.cases();
+        let total: u64 = cases
+            .iter()
+            .map(|&(_, rough)| self.realisations(rough, self.realisations_3d))
+            .sum::<u64>()
+            * self.cells.len() as u64;
+        let bar = Progress::new(
+            env.control.progress,
+            total as usize,
+            "3D partial slip (case x grid x surface)",
+            "surfaces",
+        );
+        let stages_3d = [
+            Stage::RoughSynthesis,
+            Stage::Bem3d,
+            Stage::Bem3dStiffness,
+            Stage::Tangential3d,
+        ];
+        let mut all: Vec<Case> = out.stages_together(&stages_3d, || {
+            cases
+                .iter()
+                .map(|&(hurst, roughness)| {
+                    let how = (hurst, roughness, unit_rms_scale(self, hurst, roughness)?);
+                    let runs_3d = self
+                        .cells
+                        .iter()
+                        .map(|&n| {
+                            (0..self.realisations(roughness, self.realisations_3d))
+                                .into_par_iter()
+                                .map(|r| {
+                                    let run = run_3d(self, how, n, r, e_star);
+                                    bar.inc();
+                                    run
+                                })
+                                .collect::<Result<Vec<_>>>()
+                        })
+                        .collect::<Result<Vec<_>>>()?;
+                    Ok(Case {
+                        hurst,
+                        roughness,
+                        runs_3d,
+                        runs_1d: Vec::new(),
+                    })
+                })
+                .collect::<Result<_>>()
+        })?;
+        bar.finish();
+        out.stages_together(&[Stage::RoughContact, Stage::Tangential], || {
+            for case in all.iter_mut() {
+                let hi = self.hurst.iter().position(|&x| x == case.hurst);
+                let how = (
+                    case.hurst,
+                    case.roughness,
+                    unit_rms_scale(self, case.hurst, case.roughness)?,
+                );
+                case.runs_1d = lambdas
+                    .iter()
+                    .map(|l| {
+                        // The smooth body has no line: any lambda gives it.
+                        let lambda = hi.map_or(1.0, |i| l[i]);
+                        (0..self.realisations(case.roughness, self.realisations_1d))
+                            .into_par_iter()
+                            .map(|r| run_1d(self, how, lambda, r, e_star))
+                            .collect::<Result<Vec<_>>>()
+                    })
+                    .collect::<Result<_>>()?;
+            }
+            Ok::<_, crate::error::CompareError>(())
+        })?;
+        report::report(self, env, &lambdas, &all, out);
+        Ok(())
+    }
+}
