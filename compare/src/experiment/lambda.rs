@@ -50,6 +50,17 @@ impl LambdaSpec {
         Ok(())
     }
 
+    /// lambda of each of `specs` at each of `hurst` (`[spec][hurst]`).
+    pub fn per_hurst(specs: &[LambdaSpec], ctx: &Context, hurst: &[f64]) -> Result<Vec<Vec<f64>>> {
+        specs
+            .iter()
+            .map(|l| {
+                let law = l.build(ctx)?;
+                hurst.iter().map(|&h| law.at(h).ctx("lambda")).collect()
+            })
+            .collect()
+    }
+
     /// The lambda law this names (tables are read through the scene's path resolver).
     pub fn build(&self, ctx: &Context) -> Result<Lambda> {
         Ok(match self {

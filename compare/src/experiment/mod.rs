@@ -2,7 +2,8 @@
 //! lambda as scenes give it and its calibrated table ([`lambda`]), its one meaning
 //! ([`lambda_meaning`]), the fits and intervals of ensemble curves ([`fit`]), the
 //! periodic self-affine patches of the 3D rough studies ([`periodic`]), and the rough
-//! sphere with its MRD line ([`rough_sphere`]), a body of revolution pressed on the 3D
+//! sphere with its MRD line ([`rough_sphere`]), a rough sphere or punch as the studies
+//! name it ([`rough_body`]), a body of revolution pressed on the 3D
 //! grid for the tangential outputs ([`axisym_3d`]), MRD's tangential law on any normal
 //! curve ([`tangential_map`]), and the progress bar of long stages
 //! ([`progress`]).
@@ -13,5 +14,6 @@ pub mod lambda;
 pub mod lambda_meaning;
 pub mod periodic;
 pub mod progress;
+pub mod rough_body;
 pub mod rough_sphere;
 pub mod tangential_map;

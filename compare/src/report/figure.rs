@@ -52,6 +52,9 @@ pub struct Figure {
     /// Where the x axis is labelled, when the data sit at a few chosen values (e.g. the
     /// bandwidths of a study); None: evenly by the axis' span.
     pub x_keys: Option<Vec<f64>>,
+    /// One unit of x as long as one unit of y on the page (maps: circles stay round);
+    /// linear axes only.
+    pub equal_axes: bool,
 }
 
 impl Figure {
@@ -65,6 +68,7 @@ impl Figure {
             log_x: false,
             log_y: false,
             x_keys: None,
+            equal_axes: false,
         }
     }
     pub fn with(mut self, s: Series) -> Self {

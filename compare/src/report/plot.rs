@@ -388,9 +388,36 @@ fn log_keys(lo: f64, hi: f64) -> Vec<f64> {
 }
 
 /// Renders one figure to a PNG file.
+/// Width over height of the plotting area of a 1000 x 680 image (its margins and label
+/// areas taken off).
+const PLOT_ASPECT: f64 = 1.6;
+
+/// The ranges widened about their centres so that a unit of x and of y have one length
+/// on the page.
+fn equal_ranges((x0, x1): (f64, f64), (y0, y1): (f64, f64)) -> ((f64, f64), (f64, f64)) {
+    let (dx, dy) = (x1 - x0, y1 - y0);
+    if !(dx > 0.0 && dy > 0.0) {
+        return ((x0, x1), (y0, y1));
+    }
+    let widen = |lo: f64, hi: f64, span: f64| {
+        let c = 0.5 * (lo + hi);
+        (c - 0.5 * span, c + 0.5 * span)
+    };
+    if dx < PLOT_ASPECT * dy {
+        (widen(x0, x1, PLOT_ASPECT * dy), (y0, y1))
+    } else {
+        ((x0, x1), widen(y0, y1, dx / PLOT_ASPECT))
+    }
+}
+
 pub fn render(fig: &Figure, path: &Path) -> Result<()> {
     ensure_font();
     let (((x0, x1), (y0, y1)), corner) = layout(fig);
+    let ((x0, x1), (y0, y1)) = if fig.equal_axes && !fig.log_x && !fig.log_y {
+        equal_ranges((x0, x1), (y0, y1))
+    } else {
+        ((x0, x1), (y0, y1))
+    };
     // A legend beside the plot widens the image (the plot keeps its size) and, if need
     // be, heightens it.
     let (side, rows) = match corner {

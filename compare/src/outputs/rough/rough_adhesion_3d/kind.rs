@@ -2,12 +2,13 @@
 
 use super::cycles::{cycle_1d, cycle_3d, unit_rms_scale, Cases};
 use super::{report, RoughAdhesion3d, Variant};
-use crate::checks::{bad, check_memory, check_tolerance, count_in, positive};
+use crate::checks::{bad, check_memory, check_tolerance, count_in};
 use crate::checks::{check_ensembles, BYTES_PER_CELL_NON_PERIODIC};
 use crate::context::Context;
-use crate::error::{Context as _, Result};
+use crate::error::Result;
 use crate::experiment::lambda::LambdaSpec;
 use crate::experiment::progress::Progress;
+use crate::experiment::rough_body::{check_cases, realisations, Body};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::Section;
@@ -19,11 +20,7 @@ const BYTES_PER_CELL: f64 = BYTES_PER_CELL_NON_PERIODIC + 100.0;
 impl Output for RoughAdhesion3d {
     fn validate(&self, ctx: &Context) -> Result<()> {
         let (lo, hi) = mrd::error::MAGNITUDE_RANGE;
-        let size = match (self.radius, self.punch_radius) {
-            (Some(r), None) => r,
-            (None, Some(a)) => a,
-            _ => return bad("give radius (a sphere) or punch_radius (a flat punch), not both"),
-        };
+        let size = Body::check(self.radius, self.punch_radius)?;
         for (name, v) in [
             ("radius or punch_radius", size),
             ("work", self.work),
@@ -37,37 +34,17 @@ impl Output for RoughAdhesion3d {
         if self.depth_max > 0.1 * size {
             return bad("depth_max must be <= 0.1 of the body's radius (small slopes)");
         }
-        if self.hurst.is_empty() || self.hurst.iter().any(|h| !(0.0..=1.0).contains(h)) {
-            return bad(format!(
-                "hurst = {:?}: give at least one Hurst exponent in [0, 1]",
-                self.hurst
-            ));
-        }
-        if self.roughness.is_empty()
-            || self
-                .roughness
-                .iter()
-                .any(|r| !(positive(*r) && *r <= 100.0))
-        {
-            return bad(format!(
-                "roughness = {:?}: give rms heights over the body's adhesion length in (0, 100] (the smooth body is always run)",
-                self.roughness
-            ));
-        }
-        if self.cells.is_empty() || self.cells.windows(2).any(|w| w[1] <= w[0]) {
-            return bad(format!(
-                "cells = {:?}: give increasing grid sizes (a refinement ladder)",
-                self.cells
-            ));
-        }
-        for &n in &self.cells {
-            count_in("cells", n as u64, 16..=2048)?;
-            count_in("bandwidth", self.bandwidth as u64, 1..=(n as u64 - 1) / 2)?;
-        }
+        check_cases(
+            &self.hurst,
+            &self.roughness,
+            "the body's adhesion length",
+            &self.cells,
+            self.bandwidth,
+        )?;
         // The contact's radius: Hertz's sqrt(R depth_max), or the punch's.
         let a = match self.body() {
-            super::Body::Sphere(r) => (r * self.depth_max).sqrt(),
-            super::Body::Punch(a) => a,
+            Body::Sphere(r) => (r * self.depth_max).sqrt(),
+            Body::Punch(a) => a,
         };
         if self.side < 2.2 * a {
             return bad(format!(
@@ -108,17 +85,7 @@ impl Output for RoughAdhesion3d {
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
         let e_star = env.ctx.material.e_star;
-        let lambdas: Vec<Vec<f64>> = self
-            .lambda
-            .iter()
-            .map(|l| {
-                let law = l.build(env.ctx)?;
-                self.hurst
-                    .iter()
-                    .map(|&h| law.at(h).ctx("lambda"))
-                    .collect()
-            })
-            .collect::<Result<_>>()?;
+        let lambdas = LambdaSpec::per_hurst(&self.lambda, env.ctx, &self.hurst)?;
         let variants: Vec<Variant> = self
             .rules()
             .into_iter()
@@ -132,7 +99,7 @@ impl Output for RoughAdhesion3d {
         let cases = self.cases();
         let total: u64 = cases
             .iter()
-            .map(|&(_, rough)| self.realisations(rough, self.realisations_3d))
+            .map(|&(_, rough)| realisations(rough, self.realisations_3d))
             .sum::<u64>()
             * self.cells.len() as u64;
         let bar = Progress::new(
@@ -150,7 +117,7 @@ impl Output for RoughAdhesion3d {
                             .cells
                             .iter()
                             .map(|&n| {
-                                (0..self.realisations(rough, self.realisations_3d))
+                                (0..realisations(rough, self.realisations_3d))
                                     .into_par_iter()
                                     .map(|r| {
                                         let c = cycle_3d(self, h, rough, n, r, e_star);
@@ -175,7 +142,7 @@ impl Output for RoughAdhesion3d {
                         .iter()
                         .map(|v| {
                             let how = (v.rule.edge(), v.lambda[hi]);
-                            (0..self.realisations(rough, self.realisations_1d))
+                            (0..realisations(rough, self.realisations_1d))
                                 .into_par_iter()
                                 .map(|r| cycle_1d(self, (h, rough, scale), how, r, e_star))
                                 .collect::<Result<Vec<_>>>()

@@ -34,6 +34,7 @@ mod kind;
 mod report;
 
 use crate::experiment::lambda::LambdaSpec;
+use crate::experiment::rough_body::Body;
 use crate::experiment::rough_sphere::RoughSphereGeometry;
 use serde::Deserialize;
 use std::f64::consts::PI;
@@ -135,20 +136,10 @@ fn sixty() -> usize {
     60
 }
 
-/// The indenter under the roughness.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Body {
-    Sphere(f64),
-    Punch(f64),
-}
-
 impl RoughAdhesion3d {
     /// The body (validation checks that exactly one radius is given).
     fn body(&self) -> Body {
-        match (self.radius, self.punch_radius) {
-            (_, Some(a)) => Body::Punch(a),
-            (r, None) => Body::Sphere(r.unwrap_or(f64::NAN)),
-        }
+        Body::of(self.radius, self.punch_radius)
     }
 
     /// The body's adhesion length: JKR's (pi^2 w^2 R / E*^2)^(1/3), the punch's
@@ -172,10 +163,7 @@ impl RoughAdhesion3d {
 
     /// The distance from the axis within which the body can touch.
     fn reach(&self) -> f64 {
-        match self.body() {
-            Body::Sphere(_) => f64::INFINITY,
-            Body::Punch(a) => a,
-        }
+        self.body().reach()
     }
 
     fn step(&self) -> f64 {
@@ -185,10 +173,7 @@ impl RoughAdhesion3d {
     fn geometry(&self, hurst: f64, grid: usize) -> RoughSphereGeometry {
         RoughSphereGeometry {
             // The punch: no curvature.
-            radius: match self.body() {
-                Body::Sphere(r) => r,
-                Body::Punch(_) => f64::INFINITY,
-            },
+            radius: self.body().curvature(),
             hurst,
             side: self.side,
             grid,
@@ -211,20 +196,7 @@ impl RoughAdhesion3d {
 
     /// The cases: (hurst, rms height over the adhesion length), the smooth body (0, 0) first.
     fn cases(&self) -> Vec<(f64, f64)> {
-        let mut c = vec![(0.0, 0.0)];
-        for &h in &self.hurst {
-            c.extend(self.roughness.iter().map(|&r| (h, r)));
-        }
-        c
-    }
-
-    /// Realisations of a case on one side: the smooth sphere is deterministic.
-    fn realisations(&self, roughness: f64, n: u64) -> u64 {
-        if roughness == 0.0 {
-            1
-        } else {
-            n
-        }
+        crate::experiment::rough_body::cases(&self.hurst, &self.roughness)
     }
 }
 

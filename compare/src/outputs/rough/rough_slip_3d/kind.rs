@@ -5,9 +5,10 @@ use super::{report, RoughSlip3d};
 use crate::checks::{bad, check_memory, check_tolerance, count_in, positive};
 use crate::checks::{check_ensembles, BYTES_PER_CELL_NON_PERIODIC};
 use crate::context::Context;
-use crate::error::{Context as _, Result};
+use crate::error::Result;
 use crate::experiment::lambda::LambdaSpec;
 use crate::experiment::progress::Progress;
+use crate::experiment::rough_body::{check_cases, Body};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::Section;
@@ -34,11 +35,7 @@ fn check_fractions(name: &str, v: &[f64], increasing: bool) -> Result<()> {
 impl Output for RoughSlip3d {
     fn validate(&self, ctx: &Context) -> Result<()> {
         let (lo, hi) = mrd::error::MAGNITUDE_RANGE;
-        let size = match (self.radius, self.punch_radius) {
-            (Some(r), None) => r,
-            (None, Some(a)) => a,
-            _ => return bad("give radius (a sphere) or punch_radius (a flat punch), not both"),
-        };
+        let size = Body::check(self.radius, self.punch_radius)?;
         for (name, v) in [
             ("radius or punch_radius", size),
             ("force", self.force),
@@ -65,33 +62,13 @@ impl Output for RoughSlip3d {
                 self.poisson
             ));
         }
-        if self.hurst.is_empty() || self.hurst.iter().any(|h| !(0.0..=1.0).contains(h)) {
-            return bad(format!(
-                "hurst = {:?}: give at least one Hurst exponent in [0, 1]",
-                self.hurst
-            ));
-        }
-        if self.roughness.is_empty()
-            || self
-                .roughness
-                .iter()
-                .any(|r| !(positive(*r) && *r <= 100.0))
-        {
-            return bad(format!(
-                "roughness = {:?}: give rms heights over the smooth approach d_0 in (0, 100] (the smooth body is always run)",
-                self.roughness
-            ));
-        }
-        if self.cells.is_empty() || self.cells.windows(2).any(|w| w[1] <= w[0]) {
-            return bad(format!(
-                "cells = {:?}: give increasing grid sizes (a refinement ladder)",
-                self.cells
-            ));
-        }
-        for &n in &self.cells {
-            count_in("cells", n as u64, 16..=2048)?;
-            count_in("bandwidth", self.bandwidth as u64, 1..=(n as u64 - 1) / 2)?;
-        }
+        check_cases(
+            &self.hurst,
+            &self.roughness,
+            "the smooth approach d_0",
+            &self.cells,
+            self.bandwidth,
+        )?;
         let a = self.contact_radius(e_star);
         if self.side < 2.2 * a {
             return bad(format!(
@@ -132,17 +109,7 @@ impl Output for RoughSlip3d {
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
         let e_star = env.ctx.material.e_star;
         // lambda per scene entry, per Hurst exponent.
-        let lambdas: Vec<Vec<f64>> = self
-            .lambda
-            .iter()
-            .map(|l| {
-                let law = l.build(env.ctx)?;
-                self.hurst
-                    .iter()
-                    .map(|&h| law.at(h).ctx("lambda"))
-                    .collect()
-            })
-            .collect::<Result<_>>()?;
+        let lambdas = LambdaSpec::per_hurst(&self.lambda, env.ctx, &self.hurst)?;
         let cases = self.cases();
         let total: u64 = cases
             .iter()
@@ -170,10 +137,12 @@ impl Output for RoughSlip3d {
                         .cells
                         .iter()
                         .map(|&n| {
+                            // The stick map of the first surface on the finest grid.
+                            let finest = Some(&n) == self.cells.last();
                             (0..self.realisations(roughness, self.realisations_3d))
                                 .into_par_iter()
                                 .map(|r| {
-                                    let run = run_3d(self, how, n, r, e_star);
+                                    let run = run_3d(self, how, (n, finest && r == 0), r, e_star);
                                     bar.inc();
                                     run
                                 })

@@ -34,6 +34,7 @@ mod report;
 mod runs;
 
 use crate::experiment::lambda::LambdaSpec;
+use crate::experiment::rough_body::Body;
 use crate::experiment::rough_sphere::RoughSphereGeometry;
 use serde::Deserialize;
 
@@ -91,20 +92,10 @@ fn eight() -> usize {
     8
 }
 
-/// The indenter under the roughness.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Body {
-    Sphere(f64),
-    Punch(f64),
-}
-
 impl RoughSlip3d {
     /// The body (validation checks that exactly one radius is given).
     fn body(&self) -> Body {
-        match (self.radius, self.punch_radius) {
-            (_, Some(a)) => Body::Punch(a),
-            (r, None) => Body::Sphere(r.unwrap_or(f64::NAN)),
-        }
+        Body::of(self.radius, self.punch_radius)
     }
 
     /// The smooth body's approach at F_N: Hertz's, or the punch's F_N / (2 a E*).
@@ -125,18 +116,12 @@ impl RoughSlip3d {
 
     /// The distance from the axis within which the body can touch.
     fn reach(&self) -> f64 {
-        match self.body() {
-            Body::Sphere(_) => f64::INFINITY,
-            Body::Punch(a) => a,
-        }
+        self.body().reach()
     }
 
     fn geometry(&self, hurst: f64, grid: usize) -> RoughSphereGeometry {
         RoughSphereGeometry {
-            radius: match self.body() {
-                Body::Sphere(r) => r,
-                Body::Punch(_) => f64::INFINITY,
-            },
+            radius: self.body().curvature(),
             hurst,
             side: self.side,
             grid,
@@ -151,20 +136,12 @@ impl RoughSlip3d {
 
     /// The cases: (hurst, rms height over d_0), the smooth body (0, 0) first.
     fn cases(&self) -> Vec<(f64, f64)> {
-        let mut c = vec![(0.0, 0.0)];
-        for &h in &self.hurst {
-            c.extend(self.roughness.iter().map(|&r| (h, r)));
-        }
-        c
+        crate::experiment::rough_body::cases(&self.hurst, &self.roughness)
     }
 
     /// Realisations of a case on one side: the smooth body is deterministic.
     fn realisations(&self, roughness: f64, n: u64) -> u64 {
-        if roughness == 0.0 {
-            1
-        } else {
-            n
-        }
+        crate::experiment::rough_body::realisations(roughness, n)
     }
 
     fn body_name(&self) -> String {

@@ -1,6 +1,7 @@
 //! Ensemble statistics of both sides, the comparison tables, the scalars and figures.
 
 use super::runs::{Case, Run1d, Run3d};
+use super::Body;
 use super::RoughSlip3d;
 use crate::experiment::lambda::LambdaSpec;
 use crate::experiment::tangential_map::{e_over_g, Mapping, NODES};
@@ -357,6 +358,7 @@ pub fn report(
         .push(curve_figure(spec, &t_w, &cycles, grid, true));
     out.figures.push(ratio_figure(spec, &t_curve, &curve, grid));
     out.figures.push(ratio_figure(spec, &t_w, &cycles, grid));
+    out.figures.extend(stick_maps(spec, cases));
     out.tables.extend([t_curve, t_w, t_k]);
 }
 
@@ -557,4 +559,79 @@ fn ratio_figure(spec: &RoughSlip3d, t: &Table, q: &Quantity, grid: f64) -> Figur
     }
     fig.log_y = spread > 5.0;
     fig
+}
+
+/// The stick maps of the first surface on the finest grid at the figures' Poisson's
+/// ratio: the smooth body and each roughness at the last Hurst exponent, with the smooth
+/// body's contact circle and, for the sphere, Cattaneo-Mindlin's stick circle.
+fn stick_maps(spec: &RoughSlip3d, cases: &[Case]) -> Vec<Figure> {
+    let nu = figure_poisson(spec);
+    let k = spec.poisson.iter().position(|&v| v == nu).unwrap_or(0);
+    let last_h = spec.hurst.last().copied().unwrap_or(0.0);
+    let circle = |radius: f64| -> Vec<(f64, f64)> {
+        (0..=120)
+            .map(|i| {
+                let t = std::f64::consts::TAU * i as f64 / 120.0;
+                (radius * t.cos(), radius * t.sin())
+            })
+            .collect()
+    };
+    let mut figs = Vec::new();
+    for (i, case) in cases.iter().enumerate() {
+        if case.roughness > 0.0 && case.hurst != last_h {
+            continue;
+        }
+        let Some(map) = case
+            .runs_3d
+            .last()
+            .and_then(|runs| runs.first())
+            .and_then(|run| run.slips[k].map.as_ref())
+        else {
+            continue;
+        };
+        let x = map.fraction;
+        let mut fig = Figure::new(
+            &format!("stick_map_{i}"),
+            &format!(
+                "Stick and slip at Q = {x} mu F_N: {}, {}, nu = {nu}",
+                spec.body_name(),
+                case_label(case.hurst, case.roughness)
+            ),
+            "x / a (a: the smooth body's contact radius) [1]",
+            "y / a [1]",
+        );
+        fig.equal_axes = true;
+        // The cells first, the reference circles over them.
+        let cells = spec.cells.last().copied().unwrap_or(0);
+        fig = fig
+            .with(
+                Series::new(
+                    format!("stick cells (first surface, {cells}^2 cells)"),
+                    map.stick.clone(),
+                    Style::Markers,
+                )
+                .colored(1),
+            )
+            .with(Series::new("slip cells", map.slip.clone(), Style::Crosses).colored(2))
+            .with(
+                Series::new(
+                    "smooth body's contact circle r = a",
+                    circle(1.0),
+                    Style::Dashed,
+                )
+                .colored(0),
+            );
+        if let Body::Sphere(_) = spec.body() {
+            fig = fig.with(
+                Series::new(
+                    "smooth sphere's stick circle, Cattaneo-Mindlin c = a (1 - Q/(mu F_N))^(1/3)",
+                    circle((1.0 - x).cbrt()),
+                    Style::Line,
+                )
+                .colored(0),
+            );
+        }
+        figs.push(fig);
+    }
+    figs
 }

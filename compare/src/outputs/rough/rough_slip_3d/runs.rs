@@ -23,6 +23,58 @@ pub struct Slip {
     pub energies: Vec<f64>,
     /// Stick stiffness k_t [force / length].
     pub kt: f64,
+    /// Where the contact sticks and slips at the fraction [`StickMap::AT`] (when asked).
+    pub map: Option<StickMap>,
+}
+
+/// The cells in contact at one tangential force, split into stick and slip (cell
+/// centres over the smooth body's contact radius).
+#[derive(Debug, Clone, Default)]
+pub struct StickMap {
+    /// The tangential force over mu F_N.
+    pub fraction: f64,
+    pub stick: Vec<(f64, f64)>,
+    pub slip: Vec<(f64, f64)>,
+}
+
+impl StickMap {
+    /// The map is drawn at the fraction of mu F_N closest to this.
+    pub const AT: f64 = 0.5;
+
+    /// The index of the fraction the map is drawn at.
+    pub fn index(fractions: &[f64]) -> usize {
+        (0..fractions.len())
+            .min_by(|&i, &j| {
+                (fractions[i] - Self::AT)
+                    .abs()
+                    .total_cmp(&(fractions[j] - Self::AT).abs())
+            })
+            .unwrap_or(0)
+    }
+
+    /// Stick (|q| < mu p, the step's own test) and slip among the cells with p > 0.
+    fn of(
+        fraction: f64,
+        pressure: &[f64],
+        q: &[f64],
+        mu: f64,
+        at: impl Fn(usize) -> (f64, f64),
+    ) -> Self {
+        let mut map = StickMap {
+            fraction,
+            ..Default::default()
+        };
+        for (c, (&p, &qc)) in pressure.iter().zip(q).enumerate() {
+            if p > 0.0 {
+                if qc.abs() < mu * p {
+                    map.stick.push(at(c));
+                } else {
+                    map.slip.push(at(c));
+                }
+            }
+        }
+        map
+    }
 }
 
 /// A 3D realisation: the normal stiffness, MRD's law on its normal curve, and the
@@ -61,11 +113,12 @@ pub fn unit_rms_scale(spec: &RoughSlip3d, hurst: f64, roughness: f64) -> Result<
     }
 }
 
-/// Realisation `r` of the case (hurst, roughness, scale) on an `n`^2 grid in 3D.
+/// Realisation `r` of the case (hurst, roughness, scale) on an `n`^2 grid in 3D; with
+/// `keep_map`, the stick map of each Poisson's ratio.
 pub fn run_3d(
     spec: &RoughSlip3d,
     (hurst, roughness, scale): (f64, f64, f64),
-    n: usize,
+    (n, keep_map): (usize, bool),
     r: u64,
     e_star: f64,
 ) -> Result<Run3d> {
@@ -105,11 +158,20 @@ pub fn run_3d(
             .and_then(|mut ps| ps.load(mu_fn, spec.tolerance))
             .ctx("3D stick solve")?;
         let mut ps = fresh(spec.mu).ctx("3D partial slip")?;
-        let (mut shifts, mut sticking) = (Vec::new(), Vec::new());
-        for x in &spec.fractions {
+        let (mut shifts, mut sticking, mut map) = (Vec::new(), Vec::new(), None);
+        let a = spec.contact_radius(e_star);
+        let at = |c: usize| {
+            let x = crate::experiment::rough_sphere::centre(c % n, n, spec.side);
+            let y = crate::experiment::rough_sphere::centre(c / n, n, spec.side);
+            (x / a, y / a)
+        };
+        for (j, x) in spec.fractions.iter().enumerate() {
             let s = ps.load(x * mu_fn, spec.tolerance).ctx("3D partial slip")?;
             shifts.push(s.shift);
             sticking.push(s.stick_cells as f64 / (s.stick_cells + s.slip_cells) as f64);
+            if keep_map && j == StickMap::index(&spec.fractions) {
+                map = Some(StickMap::of(*x, &sol.pressure, ps.traction(), spec.mu, at));
+            }
         }
         let energies = spec
             .amplitudes
@@ -126,6 +188,7 @@ pub fn run_3d(
             stick: sticking,
             energies,
             kt: mu_fn / stick.shift,
+            map,
         });
     }
     Ok(Run3d { kn, mapping, slips })
