@@ -71,8 +71,9 @@ enum Command {
         /// the report is written).
         #[arg(long)]
         work: Option<PathBuf>,
-        /// Compute nothing: report what the checkpoints hold (a lambda_study reports its
-        /// cases with data; other outputs compute as usual).
+        /// Compute no 3D task: report what the checkpoints hold (a lambda_study reports
+        /// its cases with data, computing its MRD ensembles first where they are missing,
+        /// about two CPU-minutes; other outputs compute as usual).
         #[arg(long)]
         report_only: bool,
     },

@@ -2,20 +2,23 @@
 //! (Polonsky & Keer 1999), force- or displacement-controlled, preconditioned.
 //! The measurements behind its strategies and constants: `docs/solver.md`.
 //!
-//! Where to read what, in the order of a solve ([`ContactSolver::solve`]):
+//! Where to read what, in the order of a solve ([`ContactSolver::solve`]). The methods
+//! of [`ContactSolver`] live in three files (`solver.rs`, `solver/iteration.rs`,
+//! `solver/rounds.rs`); the rest are the problem's own (`Problem`: starts, criterion),
+//! the parts' (window, candidate set) and the sweeps' free functions:
 //!
 //! | file | what |
 //! |---|---|
 //! | `solver/options.rs` | the problem's load ([`Load`]) and the [`SolverOptions`] |
-//! | `solver.rs` (here) | the solver's state, the heights, the checks, the choice of path |
-//! | `solver/window.rs`, `solver/restricted.rs` | compact or small contacts: the same iteration on a window or a candidate set, in rounds checked on the grid |
-//! | `solver/start.rs` | the initial pressure: overlap, uniform, nested (coarse grid) |
-//! | `solver/iteration.rs` | the iteration: seven named steps per iteration |
+//! | `solver.rs` (here) | the solver's state by job, the heights, the checks, the choice of path, the nested start, the tangent stiffness |
+//! | `solver/start.rs` | the problem's starts: overlap, uniform |
+//! | `solver/rounds.rs` | compact or small contacts: the one driver of solves on part of the grid, in rounds checked on the grid |
+//! | `solver/window.rs`, `solver/restricted.rs` | the two parts: a window, a candidate set |
+//! | `solver/iteration.rs` | the iteration: seven named steps per iteration, and the [`Solution`] it reports |
 //! | `solver/sweeps.rs` | the cell-by-cell arithmetic of each step (passes A-D) |
 //! | `solver/stored.rs` | how the direction vectors t and y_prev are stored (single precision or scaled to 16 bits) |
 //! | `solver/fused.rs` | operator applications fused with the sweeps, deterministic sums |
-//! | `solver/convergence.rs` | criterion, certificate, complete-contact floor, the [`Solution`] |
-//! | `solver/tangent.rs` | the tangent stiffness dF/dd of a solved contact |
+//! | `solver/convergence.rs` | the problem's criterion, certificate and complete-contact floor |
 //! | `solver/reference.rs` | the published Polonsky-Keer iteration, for tests and comparisons |
 //!
 //! The search direction is built from the preconditioned residual `[p > 0] M g`, with M the
@@ -172,6 +175,7 @@
 
 use crate::error::{BemError, Result};
 use crate::operator::SolverOperator;
+use crate::set_solve::{SetEnd, SetSolve};
 use rayon::prelude::*;
 
 mod convergence;
@@ -181,112 +185,18 @@ mod iteration;
 mod options;
 pub mod reference;
 mod restricted;
+mod rounds;
 mod start;
+mod state;
 mod stored;
 mod sweeps;
-mod tangent;
 mod window;
 
 pub use crate::solution::{Path, Solution};
+use options::Target;
 pub use options::{Choice, Interrupt, Load, Paths, SolverOptions, MAX_LOAD, MAX_TOLERANCE};
-
-/// Solver for one height map on one operator; buffers are allocated once. Its state
-/// by job: the operator, the problem (heights, mask and their statistics), the work
-/// buffers of the iteration, the tuning knobs, and the coarse solver of nested starts.
-pub struct ContactSolver<K: SolverOperator> {
-    op: K,
-    problem: Problem,
-    work: Work,
-    tuning: Tuning,
-    /// The solver on the grid coarsened 2 x 2, for nested starts (built on first use;
-    /// dropped with the heights).
-    coarse: Option<Box<ContactSolver<K>>>,
-}
-
-/// The problem a solver holds: the heights, the cells that may touch, and the
-/// statistics the solve reads.
-struct Problem {
-    /// The gap at zero approach: the highest height minus the heights.
-    z: Vec<f64>,
-    /// The cells that may touch, read as 1 or 0 (numbers: the sweeps are branch-free).
-    mask: domain::Domain,
-    /// Rms of z over the domain (the length scale of the convergence criterion).
-    h_rms: f64,
-    /// Number of domain cells and the mean of z over them (complete-contact approach of
-    /// an unmasked periodic surface).
-    domain_cells: usize,
-    z_mean: f64,
-    /// Rms slope of the heights over the domain (for the cold start under force control).
-    slope_rms: f64,
-    /// Converts an overlap into a pressure [pressure / length] (see
-    /// [`ContactSolver::solve`]).
-    overlap_stiffness: f64,
-}
-
-/// The work buffers of the iteration (allocated once per solver).
-struct Work {
-    /// `K p + z`: the gap at zero approach, kept up to date incrementally.
-    w: Vec<f64>,
-    /// The conjugate direction `t` and Polak-Ribiere+'s `y_prev` (the previous
-    /// iteration's projected preconditioned residual; between M's application and the
-    /// next direction, this iteration's raw `M q`), in single precision or scaled to 16
-    /// bits (module docs, "Scaled directions"); K's input, the update and the sums read
-    /// the stored values.
-    directions: stored::Directions,
-    /// The cells whose projected step departs from `p - tau t` (pass D) and by how much,
-    /// one list per row chunk of the sweeps, read for the point-load corrections of
-    /// `K p`; empty between iterations.
-    changes: Vec<Vec<(usize, f64)>>,
-    /// 1 where p > 0 (the contact set), written by pass A: the sweeps that need only
-    /// the set read one byte per cell instead of p.
-    active: Vec<u8>,
-    /// Per row: whether it holds a cell of the contact set (written by pass A; pass B
-    /// reads p only there, and M's output is read on the set only, so the other rows are
-    /// not computed).
-    rows_on: Vec<bool>,
-    /// Per row: whether p may be positive there (written by pass D; all rows wherever p
-    /// is set otherwise): pass A reads p only in these rows.
-    rows_p: Vec<bool>,
-    /// Per row: whether t and y_prev may be non-zero there (the contact rows of the last
-    /// direction pass): the direction pass skips the rows marked neither here nor in
-    /// `rows_on`.
-    rows_t: Vec<bool>,
-    /// Per-iteration corrections of the projected step (cell, pressure change).
-    loads: Vec<(usize, f64)>,
-    /// Input and output of fused applications of an operator without a spectral form.
-    fallback: [Vec<f64>; 2],
-}
-
-/// The tuning knobs of the strategies (tests set others).
-struct Tuning {
-    /// Largest contact set, as a fraction of the grid's cells, on which M is applied by
-    /// its stencil: [`iteration::LOCAL_MAX_FRACTION`] (tests set others).
-    local_max_fraction: f64,
-    /// Grids with more cells than this run memory-lean: [`LARGE_GRID_CELLS`] (tests set
-    /// others).
-    large_grid_cells: usize,
-    /// Fewest cells per side for a nested start: [`start::NESTED_MIN`], or
-    /// [`start::COARSE_NESTED_MIN`] for a coarse grid's solver.
-    nested_min: usize,
-}
-
-/// Grids with more cells than this (above 2048^2) trade the speed of repeated solves
-/// on one solver for memory: the coarse solver of a nested start is released after the
-/// start (its operator and buffers are about a fifth of the fine solve's memory), the
-/// solution's gap is written over the solver's w (the next solve maps w's pages again),
-/// and a fresh double-precision `K p` after an update is the operator's plain
-/// application, not fused with the update (the periodic half-space then holds its
-/// spectra in w: no double-precision row buffer). The results are the same either way.
-const LARGE_GRID_CELLS: usize = 1 << 22;
-
-/// Sweep chunk, in cells (rounded to whole rows): fixed, so that partial sums (and
-/// results) do not depend on the thread count.
-const CHUNK: usize = 16_384;
-
-/// Sweep chunk of a grid of row length `nx`: [`CHUNK`] cells rounded to whole rows.
-fn chunk_cells(nx: usize) -> usize {
-    (CHUNK / nx).max(1) * nx
-}
+pub use state::ContactSolver;
+use state::{chunk_cells, Problem, Tuning, Work, LARGE_GRID_CELLS};
 
 /// The error of a forced path that cannot run.
 fn unavailable(path: &'static str, reason: String) -> BemError {
@@ -304,15 +214,10 @@ fn forced_ran(sol: &Solution, paths: Paths) -> bool {
 }
 
 /// Whether starting from `warm` pays for `load` (module docs: small load steps only).
-fn warm_pays(warm: &Solution, load: Load, target_force: Option<f64>) -> bool {
-    let ratio = match (load, target_force) {
-        (Load::Approach(d), _) => d / warm.approach,
-        (_, Some(f)) => f / warm.force,
-        _ => return false,
-    };
-    let window = match load {
-        Load::Approach(_) => 1.0..=1.05,
-        _ => 0.9..=1.05,
+fn warm_pays(warm: &Solution, target: Target) -> bool {
+    let (ratio, window) = match target {
+        Target::Approach(d) => (d / warm.approach, 1.0..=1.05),
+        Target::Force(f) => (f / warm.force, 0.9..=1.05),
     };
     warm.force > 0.0 && warm.approach > 0.0 && window.contains(&ratio)
 }
@@ -539,25 +444,27 @@ impl<K: SolverOperator> ContactSolver<K> {
         opts: &SolverOptions,
         warm: Option<&Solution>,
     ) -> Result<Solution> {
-        let target_force = self.check(load, opts, warm)?;
+        let target = self.check(load, opts, warm)?;
         self.check_forced(opts)?;
         let paths = opts.paths;
         // A forced start (window, candidate set, nested) overrides a warm one.
         let forced_start =
             paths.window.forced() || paths.candidate_set.forced() || paths.nested_start.forced();
-        let warm = warm.filter(|w| !forced_start && warm_pays(w, load, target_force));
-        let fixed_approach = match load {
-            Load::Approach(d) => d,
-            _ => 0.0,
-        };
+        let warm = warm.filter(|w| !forced_start && warm_pays(w, target));
         // The paths in order (module docs): a window, a candidate set, the full grid.
-        let loaded = target_force.unwrap_or(fixed_approach) > 0.0;
+        let loaded = match target {
+            Target::Force(v) | Target::Approach(v) => v > 0.0,
+        };
         // A nested start is a start of the full grid: forced, it leaves the restricted
         // paths out (and cannot be forced with one of them).
         let restricted_allowed = !paths.nested_start.forced();
         if warm.is_none() && loaded && restricted_allowed {
             if paths.window.allowed() {
-                match self.solve_windowed(target_force, fixed_approach, opts) {
+                let windowed =
+                    window::WindowPart::start(self, target, opts).and_then(|(part, p, tight)| {
+                        self.solve_in_rounds(part, p, tight, target, opts)
+                    });
+                match windowed {
                     Ok(sol) if paths.window.forced() || forced_ran(&sol, paths) => return Ok(sol),
                     Err(reason) if paths.window.forced() => {
                         return Err(unavailable("window", reason))
@@ -566,7 +473,9 @@ impl<K: SolverOperator> ContactSolver<K> {
                 }
             }
             if paths.candidate_set.allowed() {
-                match self.solve_restricted(target_force, fixed_approach, opts) {
+                let restricted = restricted::CandidateSet::start(self, target, opts)
+                    .and_then(|(part, p)| self.solve_in_rounds(part, p, false, target, opts));
+                match restricted {
                     Ok(sol) if paths.candidate_set.forced() || forced_ran(&sol, paths) => {
                         return Ok(sol)
                     }
@@ -580,21 +489,20 @@ impl<K: SolverOperator> ContactSolver<K> {
         let n = self.op.cells();
         let mut p = vec![0.0; n];
         let mut nested = false;
-        match (warm, load) {
+        match (warm, target) {
             (Some(w), _) => p
                 .par_iter_mut()
                 .zip(self.problem.mask.par_iter())
                 .zip(&w.pressure)
                 .for_each(|((p, &m), w)| *p = m as f64 * w.max(0.0)),
-            (None, Load::Approach(_)) if paths.nested_start.forced() => {
+            (None, Target::Approach(_)) if paths.nested_start.forced() => {
                 return Err(unavailable(
                     "nested_start",
                     "it needs force control (the load is an approach)".into(),
                 ))
             }
-            (None, Load::Approach(d)) => self.overlap_start(&mut p, d),
-            (None, _) => {
-                let force = target_force.unwrap_or(0.0);
+            (None, Target::Approach(d)) => self.problem.overlap_start(&self.op, &mut p, d),
+            (None, Target::Force(force)) => {
                 if force > 0.0 {
                     match self.nested_start(&mut p, force, opts) {
                         Ok(()) => nested = true,
@@ -605,33 +513,178 @@ impl<K: SolverOperator> ContactSolver<K> {
                     }
                 }
                 if !nested {
-                    self.cold_start(&mut p, force, start::FULL_GRID_START_AREA);
+                    let area = start::FULL_GRID_START_AREA;
+                    self.problem.cold_start(&self.op, &mut p, force, area);
                 }
             }
         }
-        if let Some(w) = target_force {
-            if w == 0.0 {
-                return Ok(self.finish_unloaded(0.0));
+        match target {
+            Target::Force(w) => {
+                if w == 0.0 {
+                    return Ok(self.finish_unloaded(0.0));
+                }
+                if p.iter().all(|&v| v == 0.0) {
+                    // A warm start with no pressure on this domain: start from uniform.
+                    self.problem.uniform_start(&mut p);
+                }
+                let s: f64 = p.iter().sum::<f64>() * self.op.cell_area();
+                p.par_iter_mut().for_each(|v| *v *= w / s);
             }
-            if p.iter().all(|&v| v == 0.0) {
-                // A warm start with no pressure on this domain: start from uniform.
-                self.uniform_start(&mut p);
-            }
-            let s: f64 = p.iter().sum::<f64>() * self.op.cell_area();
-            p.par_iter_mut().for_each(|v| *v *= w / s);
-        } else if let Load::Approach(d) = load {
-            if d == 0.0 || p.iter().all(|&v| v == 0.0) {
-                // No overlap anywhere: the first contact is at d = 0.
-                return Ok(self.finish_unloaded(d));
+            Target::Approach(d) => {
+                if d == 0.0 || p.iter().all(|&v| v == 0.0) {
+                    // No overlap anywhere: the first contact is at d = 0.
+                    return Ok(self.finish_unloaded(d));
+                }
             }
         }
         let start = iteration::Start {
             warm: warm.is_some(),
             nested,
         };
-        self.iterate(p, target_force, fixed_approach, opts, start)
+        self.iterate(p, target, opts, start)
     }
 
+    /// Nested start under force control (module docs): the load solved to
+    /// [`start::NESTED_TOLERANCE`] on the grid coarsened 2 x 2 (heights averaged over each
+    /// coarse cell's four cells), each coarse cell's pressure given to its four cells.
+    /// Err, with p untouched, where it does not apply (the reason): nesting forbidden, a
+    /// side below [`start::NESTED_MIN`] ([`start::COARSE_NESTED_MIN`] on a coarse grid; 2 when
+    /// forced) or odd, a mask, an operator without a coarse form, or a coarse solve that
+    /// fails (the cold start then runs as without it, unless nesting is forced).
+    pub(super) fn nested_start(
+        &mut self,
+        p: &mut [f64],
+        force: f64,
+        opts: &SolverOptions,
+    ) -> std::result::Result<(), String> {
+        let (nx, ny) = (self.op.nx(), self.op.ny());
+        let min = if opts.paths.nested_start.forced() {
+            2
+        } else {
+            self.tuning.nested_min
+        };
+        if !opts.paths.nested_start.allowed() {
+            return Err("forbidden".into());
+        }
+        if nx < min || ny < min || nx % 2 == 1 || ny % 2 == 1 {
+            return Err(format!(
+                "the grid is {nx} x {ny} (both sides must be even and at least {min})"
+            ));
+        }
+        if self.problem.domain_cells != self.op.cells() {
+            return Err("a mask restricts the domain".into());
+        }
+        if self.coarse.is_none() {
+            self.coarse = self.coarse_solver().map(Box::new);
+        }
+        let Some(coarse) = self.coarse.as_deref_mut() else {
+            return Err("the operator has no coarse form".into());
+        };
+        // The coarse grid nests by its own rule.
+        let loose = SolverOptions {
+            tolerance: start::NESTED_TOLERANCE.max(opts.tolerance),
+            max_iterations: opts.max_iterations.min(start::NESTED_MAX_ITERATIONS),
+            paths: Paths {
+                nested_start: Choice::Allow,
+                ..opts.paths
+            },
+            ..opts.clone()
+        };
+        let sol = coarse
+            .solve_on_pool(Load::Force(force), &loose, None)
+            .map_err(|e| format!("the coarse solve failed: {e}"))?;
+        // Each coarse cell's value on its 2 x 2 cells (both sides are even), row pairs
+        // in parallel.
+        let cx = nx / 2;
+        p.par_chunks_mut(2 * nx)
+            .zip(sol.pressure.par_chunks(cx))
+            .for_each(|(rows, coarse)| {
+                for row in rows.chunks_mut(nx) {
+                    for (pair, &v) in row.chunks_exact_mut(2).zip(coarse) {
+                        pair.fill(v);
+                    }
+                }
+            });
+        if self.op.cells() > self.tuning.large_grid_cells {
+            self.coarse = None;
+        }
+        Ok(())
+    }
+
+    /// The solver on this grid coarsened 2 x 2 (heights averaged over each coarse
+    /// cell's four cells), nesting again from [`start::COARSE_NESTED_MIN`]; None if the
+    /// operator has no coarse form.
+    pub(super) fn coarse_solver(&self) -> Option<ContactSolver<K>> {
+        let op = self.op.coarse()?;
+        let (nx, cx) = (self.op.nx(), op.nx());
+        let z = &self.problem.z;
+        let heights: Vec<f64> = (0..op.cells())
+            .into_par_iter()
+            .map(|k| {
+                let i = 2 * (k / cx) * nx + 2 * (k % cx);
+                -0.25 * (z[i] + z[i + 1] + z[i + nx] + z[i + nx + 1])
+            })
+            .collect();
+        let mut s = ContactSolver::new(op, &heights, None).ok()?;
+        s.tuning.nested_min = start::COARSE_NESTED_MIN;
+        Some(s)
+    }
+
+    /// Tangent normal stiffness dF/dd with the contact set held fixed: solves
+    /// `K_CC x = 1` on the contact cells C by conjugate gradients (K_CC is symmetric
+    /// positive definite; preconditioned by the operator's M restricted to C) to
+    /// relative residual `opts.tolerance` within `opts.max_iterations`;
+    /// k = sum(x) * cell area.
+    ///
+    /// No contact: k = 0. Complete contact of an unmasked periodic surface: k = +inf
+    /// (K_CC is then K itself, whose mean mode is free: the force grows at a fixed
+    /// approach). A non-finite or vanishing step is a [`BemError::Breakdown`].
+    pub fn tangent_stiffness(&mut self, sol: &Solution, opts: &SolverOptions) -> Result<f64> {
+        crate::pool::on_pool(|| self.tangent_stiffness_on_pool(sol, opts))
+    }
+
+    fn tangent_stiffness_on_pool(&mut self, sol: &Solution, opts: &SolverOptions) -> Result<f64> {
+        const WHAT: &str = "tangent stiffness";
+        let n = self.op.cells();
+        if sol.pressure.len() != n {
+            return Err(BemError::InvalidInput(format!(
+                "solution has {} cells but the grid has {n}",
+                sol.pressure.len()
+            )));
+        }
+        let c: Vec<f64> = sol
+            .pressure
+            .iter()
+            .map(|&p| if p > 0.0 { 1.0 } else { 0.0 })
+            .collect();
+        let nc = c.iter().sum::<f64>() as usize;
+        if nc == 0 {
+            return Ok(0.0);
+        }
+        if self.op.is_periodic() && nc == n {
+            return Ok(f64::INFINITY);
+        }
+        let mut solve = SetSolve {
+            what: WHAT,
+            op: &mut self.op,
+            tolerance: opts.tolerance,
+            max_iterations: opts.max_iterations,
+            interrupted: &|| opts.interrupted(),
+        };
+        match solve.run(&c, &c)? {
+            SetEnd::Converged { x, .. } => Ok(x.iter().sum::<f64>() * self.op.cell_area()),
+            SetEnd::Limit {
+                iterations,
+                residual,
+            } => Err(BemError::NoConvergence {
+                what: WHAT,
+                iterations,
+                residual,
+                tolerance: opts.tolerance,
+                last: Box::new(sol.clone()),
+            }),
+        }
+    }
     /// Refuses a forced stencil or single precision the operator does not have.
     fn check_forced(&mut self, opts: &SolverOptions) -> Result<()> {
         if opts.paths.stencil.forced() && self.op.local_stiffness().is_none() {
@@ -652,18 +705,13 @@ impl<K: SolverOperator> ContactSolver<K> {
     /// Refuses a load, options or warm start this solver cannot take (negative,
     /// non-finite or beyond [`MAX_LOAD`]; an approach at or beyond complete contact of
     /// an unmasked periodic surface; a warm start of another grid); returns the target
-    /// force (None under a prescribed approach).
-    fn check(
-        &self,
-        load: Load,
-        opts: &SolverOptions,
-        warm: Option<&Solution>,
-    ) -> Result<Option<f64>> {
+    /// or approach the solve holds.
+    fn check(&self, load: Load, opts: &SolverOptions, warm: Option<&Solution>) -> Result<Target> {
         let n = self.op.cells();
-        let target_force = match load {
-            Load::Force(f) => Some(f),
-            Load::MeanPressure(pm) => Some(pm * self.op.lx() * self.op.ly()),
-            Load::Approach(_) => None,
+        let target = match load {
+            Load::Force(f) => Target::Force(f),
+            Load::MeanPressure(pm) => Target::Force(pm * self.op.lx() * self.op.ly()),
+            Load::Approach(d) => Target::Approach(d),
         };
         let bad = |v: f64, what: &str| {
             if v.is_finite() && v >= 0.0 {
@@ -681,8 +729,8 @@ impl<K: SolverOperator> ContactSolver<K> {
         // Linear elasticity and double precision both end long before a mean pressure
         // of MAX_LOAD E* or an approach of MAX_LOAD times the map's size.
         let (e, size) = (self.op.e_star(), self.op.lx().max(self.op.ly()));
-        match (load, target_force) {
-            (_, Some(f)) if !(..=MAX_LOAD * e).contains(&(f / (self.op.lx() * self.op.ly()))) => {
+        match (load, target) {
+            (_, Target::Force(f)) if !(..=MAX_LOAD * e).contains(&(f / (self.op.lx() * self.op.ly()))) => {
                 return Err(BemError::InvalidInput(format!(
                     "load: a force of {f:e} is a mean pressure of {:e}, more than {MAX_LOAD:e} E* = {:e}",
                     f / (self.op.lx() * self.op.ly()),
@@ -715,269 +763,9 @@ impl<K: SolverOperator> ContactSolver<K> {
                 )));
             }
         }
-        Ok(target_force)
+        Ok(target)
     }
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::operator::{NonPeriodicHalfSpace, PeriodicHalfSpace};
-
-    /// An iterate the criterion alone accepts and the certificate refuses: every
-    /// pressure cell open by `tol h_rms` (complementarity at the tolerance) and a cell
-    /// without pressure interpenetrating by `tol h_rms` (interpenetration at the
-    /// tolerance): criterion tol, duality gap 2 tol.
-    #[test]
-    fn the_certificate_refuses_what_the_criterion_alone_accepts() {
-        let tol = 1e-6;
-        let p = [1.0, 2.0, 0.0, 0.0];
-        let w = [tol, tol, -tol, 1.0];
-        let mask = [1u8; 4];
-        let [pg, ps, worst] = sweeps::criterion_terms(&p, &w, &mask, 0.0);
-        let criterion = (pg / ps).max(worst);
-        let [pg, ps, low] = sweeps::certificate_terms(&p, &w, &mask, 0.0);
-        let certificate = pg / ps + low.max(0.0);
-        assert!(criterion <= tol * (1.0 + 1e-12), "criterion {criterion:e}");
-        assert!(
-            (certificate - 2.0 * tol).abs() < 1e-18,
-            "certificate {certificate:e}"
-        );
-    }
-
-    /// The cold start's order statistic against a sort of the domain's heights, every
-    /// rank: many ties (heights on 7 levels), both signs of zero, a constant map, a
-    /// mask, and a grid of several chunks; a wrong bin or rank offset shows as a
-    /// different value.
-    #[test]
-    fn kth_height_matches_a_sort() {
-        type Height = fn(usize) -> f64;
-        let cases: [(usize, usize, Height); 5] = [
-            (16, 12, |k| ((k * 7919) % 613) as f64 * 0.37 - 50.0),
-            (16, 12, |k| ((k * 31) % 7) as f64),
-            (8, 8, |k| if k % 2 == 0 { 0.0 } else { -0.0 }),
-            (8, 8, |_| 2.5),
-            (512, 40, |k| ((k * 2654435761) % 100_003) as f64 * 1e-3),
-        ];
-        for (nx, ny, height) in cases {
-            let h: Vec<f64> = (0..nx * ny).map(height).collect();
-            for masked in [false, true] {
-                let mask = masked.then(|| (0..nx * ny).map(|k| k % 3 != 0).collect::<Vec<_>>());
-                let op = PeriodicHalfSpace::new(nx, ny, 1.0, 1.0, 1.0);
-                let s = ContactSolver::new(op, &h, mask).unwrap();
-                let mut zs: Vec<f64> = (0..nx * ny)
-                    .filter(|&i| s.problem.mask.holds(i))
-                    .map(|i| s.problem.z[i])
-                    .collect();
-                zs.sort_by(f64::total_cmp);
-                let step = (zs.len() / 200).max(1);
-                for k in (0..zs.len()).step_by(step).chain([zs.len() - 1]) {
-                    let got = s.kth_height(k);
-                    assert_eq!(got.to_bits(), zs[k].to_bits(), "{nx}x{ny} rank {k}");
-                }
-            }
-        }
-    }
-
-    /// The rms slope against closed forms: a periodic sine (every pair, the wrap-around
-    /// one included) and a parabola whose right half the mask leaves out (only pairs of
-    /// domain cells count).
-    #[test]
-    fn rms_slope_matches_closed_forms() {
-        let (nx, ny, l) = (16, 6, 2.0);
-        let dx = l / nx as f64;
-        let sine: Vec<f64> = (0..nx * ny)
-            .map(|k| (2.0 * std::f64::consts::PI * (k % nx) as f64 / nx as f64).sin())
-            .collect();
-        let s = ContactSolver::new(PeriodicHalfSpace::new(nx, ny, l, l, 1.0), &sine, None).unwrap();
-        // (h[i+1] - h[i])^2 = 4 sin^2(pi/nx) cos^2(2 pi (i + 1/2)/nx): mean 2 sin^2(pi/nx).
-        let want = 2f64.sqrt() * (std::f64::consts::PI / nx as f64).sin() / dx;
-        assert!(
-            (s.problem.slope_rms - want).abs() < 1e-12 * want,
-            "{} {want}",
-            s.problem.slope_rms
-        );
-
-        let parabola: Vec<f64> = (0..nx * ny)
-            .map(|k| ((k % nx) as f64 * dx).powi(2))
-            .collect();
-        let mask: Vec<bool> = (0..nx * ny).map(|k| k % nx < nx / 2).collect();
-        let op = NonPeriodicHalfSpace::new(nx, ny, l, l, 1.0);
-        let s = ContactSolver::new(op, &parabola, Some(mask)).unwrap();
-        // Pairs i, i + 1 < nx/2 along x: slope (2 i + 1) dx, mean square
-        // dx^2 (4 m^2 - 1) / 3 over m = nx/2 - 1 pairs; along y the slope is zero.
-        let m = (nx / 2 - 1) as f64;
-        let want = dx * ((4.0 * m * m - 1.0) / 3.0).sqrt();
-        assert!(
-            (s.problem.slope_rms - want).abs() < 1e-12 * want,
-            "{} {want}",
-            s.problem.slope_rms
-        );
-    }
-
-    /// The memory-lean handling of large grids (coarse solver released after a nested
-    /// start, the gap written over w, the update apart from a fresh double-precision
-    /// K p, the operator's symbols computed and its double-precision spectra held in w)
-    /// against the default on a grid where both run: the same bits through cold,
-    /// repeated and warm solves, under force and approach, and K's row buffer stays
-    /// sized for single precision.
-    #[test]
-    fn lean_large_grid_handling_changes_no_bit() {
-        let n = 512;
-        let h: Vec<f64> = (0..n * n)
-            .map(|k| {
-                let (x, y) = ((k % n) as f64 / n as f64, (k / n) as f64 / n as f64);
-                let phase = |a: f64, b: f64, c: f64| {
-                    (2.0 * std::f64::consts::PI * (a * x + b * y) + c).cos()
-                };
-                0.01 * (phase(1.0, 2.0, 0.3)
-                    + 0.5 * phase(5.0, -3.0, 1.0)
-                    + 0.2 * phase(-11.0, 17.0, 2.0))
-            })
-            .collect();
-        // Without the single-precision phase, every fresh K p is in double precision
-        // (the early ones, while the contact set changes, too), and K t's double-precision
-        // transform grows K's row buffer to its own size.
-        for single_precision in [Choice::Allow, Choice::Forbid] {
-            lean_against_default(n, &h, single_precision);
-        }
-    }
-
-    fn lean_against_default(n: usize, h: &[f64], single_precision: Choice) {
-        let opts = SolverOptions {
-            tolerance: 1e-10,
-            // The same iterates with and without the lean layout: directions in single
-            // precision on both (scaled ones: their own test).
-            paths: Paths {
-                single_precision,
-                scaled_directions: Choice::Forbid,
-                ..Default::default()
-            },
-            ..Default::default()
-        };
-        let run = |large: usize| {
-            let op = PeriodicHalfSpace::with_symbols(n, n, (1.0, 1.0), 1.0, large == 0);
-            let mut s = ContactSolver::new(op, h, None).unwrap();
-            s.tuning.large_grid_cells = large;
-            let first = s.solve(Load::MeanPressure(2e-3), &opts, None).unwrap();
-            let kept = s.coarse.is_some();
-            let again = s.solve(Load::MeanPressure(2e-3), &opts, None).unwrap();
-            let warm = s
-                .solve(Load::MeanPressure(3e-3), &opts, Some(&again))
-                .unwrap();
-            let approach = s.solve(Load::Approach(warm.approach), &opts, None).unwrap();
-            // Single-precision spectra: 8 bytes per complex value, n/2 + 1 per row.
-            let single = 8 * n * (n / 2 + 1);
-            let lean = large == 0 && single_precision == Choice::Allow;
-            assert_eq!(s.op.row_buffer_bytes() == single, lean, "row buffer");
-            (kept, [first, again, warm, approach])
-        };
-        let (kept, default) = run(LARGE_GRID_CELLS);
-        let (kept_lean, lean) = run(0);
-        assert!(
-            kept && !kept_lean,
-            "coarse solver kept: {kept}, {kept_lean}"
-        );
-        assert!(default[0].nested_start && lean[0].nested_start);
-        for (a, b) in default.iter().zip(&lean) {
-            assert!(a.gap.iter().any(|&g| g > 0.0) && a.contact_cells > 0);
-            assert_eq!(
-                (a.iterations, a.approach.to_bits()),
-                (b.iterations, b.approach.to_bits())
-            );
-            let same =
-                |x: &[f64], y: &[f64]| x.iter().zip(y).all(|(u, v)| u.to_bits() == v.to_bits());
-            assert!(same(&a.pressure, &b.pressure) && same(&a.gap, &b.gap));
-        }
-    }
-
-    /// M by its stencil (small contact sets) against M by its transforms: the same
-    /// solution at a tight tolerance, not the same iterates (the stencil path ran),
-    /// and the same bits on one and three threads. Periodic and free, square and not,
-    /// a few per cent of contact, the stencil forced (every contact set counts as
-    /// small) or off.
-    #[test]
-    fn stencil_and_transforms_reach_the_same_solution() {
-        let rough = |nx: usize, ny: usize| -> Vec<f64> {
-            (0..nx * ny)
-                .map(|k| {
-                    let (x, y) = ((k % nx) as f64 / nx as f64, (k / nx) as f64 / ny as f64);
-                    (1..=6)
-                        .map(|m| {
-                            let (a, b) = ((m * 5 % 7) as f64, (m * 3 % 5) as f64 - 2.0);
-                            let phase = 2.0 * std::f64::consts::PI * (a * x + b * y) + m as f64;
-                            phase.cos() / m as f64
-                        })
-                        .sum::<f64>()
-                        * 0.01
-                })
-                .collect()
-        };
-        fn run<K: SolverOperator>(op: K, h: &[f64], fraction: f64, threads: usize) -> Solution {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            pool.install(|| {
-                let mut s = ContactSolver::new(op, h, None).unwrap();
-                s.tuning.local_max_fraction = fraction;
-                let opts = SolverOptions {
-                    tolerance: 1e-12,
-                    max_iterations: 5_000,
-                    ..Default::default()
-                };
-                s.solve(Load::MeanPressure(6e-3), &opts, None).unwrap()
-            })
-        }
-        for (nx, ny, periodic) in [(64, 64, true), (48, 40, false), (40, 56, true)] {
-            let h = rough(nx, ny);
-            let solve = |fraction: f64, threads: usize| {
-                if periodic {
-                    run(
-                        PeriodicHalfSpace::new(nx, ny, 1.0, 1.0, 1.0),
-                        &h,
-                        fraction,
-                        threads,
-                    )
-                } else {
-                    run(
-                        NonPeriodicHalfSpace::new(nx, ny, 1.0, 1.0, 1.0),
-                        &h,
-                        fraction,
-                        threads,
-                    )
-                }
-            };
-            let (by_transforms, by_stencil) = (solve(0.0, 2), solve(1.0, 2));
-            let share = by_stencil.contact_cells as f64 / (nx * ny) as f64;
-            assert!((0.01..0.3).contains(&share), "{nx}x{ny}: contact {share}");
-            assert!(
-                !by_stencil.restricted() && !by_transforms.restricted(),
-                "{nx}x{ny}: {share}"
-            );
-            let peak = by_transforms.pressure.iter().fold(0.0f64, |m, &v| m.max(v));
-            let worst = by_transforms
-                .pressure
-                .iter()
-                .zip(&by_stencil.pressure)
-                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-            assert!(worst <= 1e-9 * peak, "{nx}x{ny}: {worst:e} of {peak:e}");
-            assert_ne!(
-                by_transforms.pressure, by_stencil.pressure,
-                "{nx}x{ny}: the stencil path did not run"
-            );
-            let one = solve(1.0, 1);
-            let three = solve(1.0, 3);
-            assert!(one
-                .pressure
-                .iter()
-                .zip(&three.pressure)
-                .all(|(a, b)| a.to_bits() == b.to_bits()));
-            assert!(one
-                .pressure
-                .iter()
-                .zip(&by_stencil.pressure)
-                .all(|(a, b)| a.to_bits() == b.to_bits()));
-        }
-    }
-}
+mod tests;

@@ -66,7 +66,9 @@ pub struct RunControl {
     pub stop_after: Option<usize>,
     /// Show progress bars on long work.
     pub progress: bool,
-    /// Compute nothing: outputs that can report what their checkpoints hold do so.
+    /// Compute no 3D task: outputs that can report what their checkpoints hold do so
+    /// (a lambda study computes its MRD ensembles first where they are missing: they
+    /// are not committed).
     pub report_only: bool,
 }
 

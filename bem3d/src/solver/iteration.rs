@@ -5,11 +5,14 @@ use super::fused::{
     apply_fused, energy_fused, finish_fused, load_fused, reduce, store_fused, sum_parts,
     with_scratch,
 };
+use super::options::{Choice, SolverOptions, Target};
+use super::state::ContactSolver;
 use super::stored::with_directions;
-use super::{sweeps, Choice, ContactSolver, Solution, SolverOptions};
+use super::sweeps;
 use crate::error::{BemError, Result};
 use crate::fft::{copy_in, copy_out, ROWS_PER_CHUNK};
 use crate::operator::{Operand, SolverOperator};
+use crate::solution::{Path, Solution};
 use rayon::prelude::*;
 
 /// Largest contact set, as a fraction of the grid's cells, on which the iteration applies
@@ -39,8 +42,8 @@ pub(super) enum Refresh<'a> {
 
 impl<K: SolverOperator> ContactSolver<K> {
     /// The projected, preconditioned conjugate-gradient iteration from the pressure `p`
-    /// (on the domain, meeting the load), under force control (`target_force`) or at
-    /// the approach `fixed_approach`. One iteration, in order:
+    /// (on the domain, meeting the load), holding `target` (a force or an approach). One
+    /// iteration, in order:
     ///
     /// 1. [`Self::contact_set`] (pass A): `w = K p + z` brought up to date, the contact
     ///    set marked, the approach (force control: the mean gap over the set);
@@ -58,12 +61,11 @@ impl<K: SolverOperator> ContactSolver<K> {
     pub(super) fn iterate(
         &mut self,
         mut p: Vec<f64>,
-        target_force: Option<f64>,
-        fixed_approach: f64,
+        target: Target,
         opts: &SolverOptions,
         start: Start,
     ) -> Result<Solution> {
-        let mut st = self.begin(&p, target_force, fixed_approach, start, opts);
+        let mut st = self.begin(&p, target, start, opts);
         let (mut approach, mut residual);
         loop {
             let nc;
@@ -120,14 +122,7 @@ impl<K: SolverOperator> ContactSolver<K> {
     }
 
     /// The iteration's state before its first step, with `w = K p` (pass A adds z).
-    fn begin(
-        &mut self,
-        p: &[f64],
-        target_force: Option<f64>,
-        fixed_approach: f64,
-        start: Start,
-        opts: &SolverOptions,
-    ) -> State {
+    fn begin(&mut self, p: &[f64], target: Target, start: Start, opts: &SolverOptions) -> State {
         // t and y_prev start at zero (y_prev is read before it is written; with beta = 0
         // its values do not matter). Written here, in parallel, each page of a fresh
         // buffer gets its own frame now: a page of `vec![0.0; n]` first read maps the
@@ -151,8 +146,7 @@ impl<K: SolverOperator> ContactSolver<K> {
         self.work.rows_p.fill(true);
         self.op.apply(p, &mut self.work.w);
         State {
-            target_force,
-            fixed_approach,
+            target,
             it: 0,
             gy_old: 0.0,
             t_on_set: 0.0,
@@ -186,16 +180,16 @@ impl<K: SolverOperator> ContactSolver<K> {
         } else {
             Refresh::Loads(&st.loads)
         };
-        let [sum_g, nc] = self.pass_a(p, st.scale, refresh, st.fixed_approach);
+        let [sum_g, nc] = self.pass_a(p, st.scale, refresh, st.target.base_approach());
         st.refresh_z = false;
         st.loads.clear();
         st.scale = 1.0;
-        let gbar = if st.target_force.is_some() && nc > 0.0 {
+        let gbar = if st.target.force().is_some() && nc > 0.0 {
             sum_g / nc
         } else {
             0.0
         };
-        (st.fixed_approach + gbar, nc)
+        (st.target.base_approach() + gbar, nc)
     }
 
     /// Step 2 (pass B, fused into M's row pass unless `local`): the gap `g = w -
@@ -261,7 +255,8 @@ impl<K: SolverOperator> ContactSolver<K> {
         }
         let tolerance =
             if nc as usize == self.problem.domain_cells && st.stall.1 >= STALL_ITERATIONS {
-                self.complete_contact_tolerance(opts.tolerance, ps)
+                self.problem
+                    .complete_contact_tolerance(&self.op, opts.tolerance, ps)
             } else {
                 opts.tolerance
             };
@@ -275,7 +270,11 @@ impl<K: SolverOperator> ContactSolver<K> {
         }
         // Converged when the duality gap is within the tolerance too (module docs); it
         // is at most twice the criterion, so this rarely iterates on.
-        if self.certificate(p, approach) <= tolerance {
+        if self
+            .problem
+            .certificate(p, &self.work.w, self.op.nx(), approach)
+            <= tolerance
+        {
             Next::Converged
         } else {
             Next::Iterate
@@ -353,7 +352,7 @@ impl<K: SolverOperator> ContactSolver<K> {
         (nc, sum_q, approach): (f64, f64, f64),
         st: &mut State,
     ) -> f64 {
-        let force_control = st.target_force.is_some();
+        let force_control = st.target.force().is_some();
         let ybar = if force_control && nc > 0.0 {
             sum_y / nc
         } else {
@@ -460,7 +459,7 @@ impl<K: SolverOperator> ContactSolver<K> {
         let [total, changed, t_set] = sum_parts(&parts, None);
         st.t_on_set = t_set;
         st.changed_last = changed;
-        st.scale = match st.target_force {
+        st.scale = match st.target.force() {
             Some(w) if total > 0.0 => w / (total * self.op.cell_area()),
             _ => 1.0,
         };
@@ -642,6 +641,60 @@ impl<K: SolverOperator> ContactSolver<K> {
         }
     }
 
+    /// The solution without contact: w = z (no pressure), approach `d`.
+    pub(super) fn finish_unloaded(&mut self, d: f64) -> Solution {
+        self.work.w.copy_from_slice(&self.problem.z);
+        let n = self.op.cells();
+        self.finish(vec![0.0; n], d, 0, 0.0)
+    }
+
+    /// Collects the solution from p and w = K p + z.
+    pub(super) fn finish(
+        &mut self,
+        p: Vec<f64>,
+        approach: f64,
+        iterations: usize,
+        residual: f64,
+    ) -> Solution {
+        let area = self.op.cell_area();
+        let d = if approach.is_finite() { approach } else { 0.0 };
+        let contact_cells = p.iter().filter(|&&v| v > 0.0).count();
+        let certificate = self.problem.certificate(&p, &self.work.w, self.op.nx(), d);
+        let gap_of = |w: f64, m: u8| if m > 0 { (w - d).max(0.0) } else { 0.0 };
+        let gap: Vec<f64> = if p.len() > self.tuning.large_grid_cells {
+            // Written over w (a solve recomputes w from its start), the solver's w
+            // replaced by zeroed pages that cost no memory until the next solve writes
+            // them: the same values without a third grid alive.
+            let mut gap = std::mem::replace(&mut self.work.w, vec![0.0; p.len()]);
+            gap.par_iter_mut()
+                .zip(self.problem.mask.par_iter())
+                .for_each(|(w, &m)| *w = gap_of(*w, m));
+            gap
+        } else {
+            let w = self.work.w.par_iter().zip(self.problem.mask.par_iter());
+            w.map(|(&w, &m)| gap_of(w, m)).collect()
+        };
+        Solution {
+            certificate,
+            force: p.iter().sum::<f64>() * area,
+            contact_cells,
+            contact_area: contact_cells as f64 * area,
+            mean_gap: gap.iter().sum::<f64>() / self.problem.domain_cells as f64,
+            gap,
+            pressure: p,
+            approach,
+            iterations,
+            residual,
+            domain_cells: self.problem.domain_cells,
+            warm_started: false,
+            path: Path::FullGrid,
+            nested_start: false,
+            single_iterations: 0,
+            stencil_iterations: 0,
+            scaled_directions: false,
+        }
+    }
+
     /// The iteration cap reached: the last iterate, on a fresh `K p`, inside
     /// [`BemError::NoConvergence`].
     fn not_converged(
@@ -654,8 +707,8 @@ impl<K: SolverOperator> ContactSolver<K> {
     ) -> Result<Solution> {
         p.iter_mut().for_each(|v| *v *= st.scale);
         self.op.apply(&p, &mut self.work.w);
-        let [sum_g, nc] = self.pass_a(&mut p, 1.0, Refresh::AddZ, st.fixed_approach);
-        if st.target_force.is_some() && nc > 0.0 {
+        let [sum_g, nc] = self.pass_a(&mut p, 1.0, Refresh::AddZ, st.target.base_approach());
+        if st.target.force().is_some() && nc > 0.0 {
             approach = sum_g / nc;
         }
         self.work.loads = std::mem::take(&mut st.loads);
@@ -673,9 +726,8 @@ impl<K: SolverOperator> ContactSolver<K> {
 
 /// What the iteration carries from one step to the next, besides the solver's buffers.
 struct State {
-    /// Force control's target force (None: the approach `fixed_approach` is prescribed).
-    target_force: Option<f64>,
-    fixed_approach: f64,
+    /// The force or approach the iteration holds.
+    target: Target,
     /// Iterations done.
     it: usize,
     /// `<q, y>` of the previous iteration (0: no direction yet).

@@ -14,6 +14,33 @@ pub enum Load {
     Approach(f64),
 }
 
+/// A [`Load`] resolved on the grid: what an iteration holds fixed, a total force (a
+/// mean pressure times the grid's area) or an approach.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Target {
+    Force(f64),
+    Approach(f64),
+}
+
+impl Target {
+    /// The force held under force control (None: an approach is held).
+    pub(super) fn force(self) -> Option<f64> {
+        match self {
+            Target::Force(f) => Some(f),
+            Target::Approach(_) => None,
+        }
+    }
+
+    /// The approach the gaps are measured from: the prescribed one, or 0 under force
+    /// control (where the approach is the mean gap over the contact measured from it).
+    pub(super) fn base_approach(self) -> f64 {
+        match self {
+            Target::Force(_) => 0.0,
+            Target::Approach(d) => d,
+        }
+    }
+}
+
 #[derive(Debug, Clone)]
 pub struct SolverOptions {
     /// Convergence criterion (module docs), in (0, [`MAX_TOLERANCE`]].

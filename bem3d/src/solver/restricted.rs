@@ -34,293 +34,217 @@
 //! limit. Below the limit the solutions are the same bit for bit (512^2: 1.02x on two
 //! threads, 1.04x on one, with the point loads and the storage).
 
-use super::iteration::{Refresh, Start};
-use super::{ContactSolver, Path, Solution, SolverOptions};
+use super::options::{SolverOptions, Target};
+use super::rounds::{Part, Round, Tally};
+use super::state::ContactSolver;
 use crate::operator::{DenseCompliance, SolverOperator};
+use crate::solution::{Path, Solution};
 use rayon::prelude::*;
 
 /// The restricted start covers this many times `p / (E* h')` of the domain (the full
 /// solve's start covers [`super::start::FULL_GRID_START_AREA`] times; a smaller set is
-/// cheaper here, and
-/// the rounds add what it misses).
+/// cheaper here, and the rounds add what it misses).
 const CANDIDATE_START_AREA: f64 = 4.0;
 /// Largest candidate set: this many times the square root of the domain's cell count
 /// (a dense application then costs at most about 9 domain sweeps) ...
 const CELLS_PER_ROOT: f64 = 3.0;
 /// ... and at most this many cells (a 128 MiB matrix).
 const MAX_CELLS: usize = 4096;
-/// Tolerance of the rounds while C (or a window) may still grow.
-pub(super) const LOOSE: f64 = 1e-4;
-const MAX_ROUNDS: usize = 24;
 /// Cells a round may add at least (else: as many as the set holds).
 const MIN_GROWTH: usize = 64;
 
-/// Options of a round on part of the grid (a candidate set or a window): [`LOOSE`]
-/// while the part may still grow, else half the requested tolerance (the grid's K p
-/// differs from the part's by rounding); the iterations left of `opts` after `spent`.
-pub(super) fn round_options(opts: &SolverOptions, tight: bool, spent: usize) -> SolverOptions {
-    SolverOptions {
-        tolerance: if tight {
-            0.5 * opts.tolerance
-        } else {
-            opts.tolerance.max(LOOSE)
-        },
-        max_iterations: opts.max_iterations.saturating_sub(spent).max(1),
-        ..opts.clone()
-    }
+/// The candidate set C: its cells (ascending), the largest it may grow to, and the
+/// solver on it (kept while the set holds).
+pub(super) struct CandidateSet {
+    cells: Vec<usize>,
+    /// Whether each grid cell is in C.
+    member: Vec<bool>,
+    limit: usize,
+    inner: Option<ContactSolver<DenseCompliance>>,
+    /// Whether C changed since its solver was built (its matrix's storage then serves
+    /// the next one).
+    grown: bool,
 }
 
-/// The iterations of a restricted solve's rounds, summed.
-#[derive(Debug, Default)]
-pub(super) struct Tally {
-    pub(super) iterations: usize,
-    pub(super) single: usize,
-    pub(super) stencil: usize,
-    /// Whether any round stored its directions scaled.
-    pub(super) scaled: bool,
-}
-
-impl Tally {
-    pub(super) fn add(&mut self, sol: &Solution) {
-        self.iterations += sol.iterations;
-        self.single += sol.single_iterations;
-        self.stencil += sol.stencil_iterations;
-        self.scaled |= sol.scaled_directions;
-    }
-}
-
-impl<K: SolverOperator> ContactSolver<K> {
-    /// Restricted solve from a cold start (module docs), under force control
-    /// (`target_force` > 0) or at the approach `fixed_approach` > 0. Err: why it does
-    /// not apply or was given up (the full iteration then runs from its own start,
-    /// unless the candidate set is forced: then its limit is [`MAX_CELLS`] alone and the
-    /// reason is the solve's error).
-    pub(super) fn solve_restricted(
-        &mut self,
-        target_force: Option<f64>,
-        fixed_approach: f64,
+impl CandidateSet {
+    /// The start of a restricted solve from a cold start (module docs), holding
+    /// `target`: the set and the grid's pressure (scaled to the target force). Err: why
+    /// it does not apply (the full iteration then runs from its own start, unless the
+    /// candidate set is forced: then its limit is [`MAX_CELLS`] alone).
+    pub(super) fn start<K: SolverOperator>(
+        grid: &ContactSolver<K>,
+        target: Target,
         opts: &SolverOptions,
-    ) -> Result<Solution, String> {
-        let n = self.op.cells();
+    ) -> Result<(Self, Vec<f64>), String> {
         let limit = if opts.paths.candidate_set.forced() {
             MAX_CELLS
         } else {
-            ((CELLS_PER_ROOT * (self.problem.domain_cells as f64).sqrt()) as usize).min(MAX_CELLS)
+            ((CELLS_PER_ROOT * (grid.problem.domain_cells as f64).sqrt()) as usize).min(MAX_CELLS)
         };
-        let too_many =
-            |cells: usize| format!("a set of {cells} cells exceeds the limit of {limit}");
-        let (mut p, mut cells) = self.candidate_start(target_force, fixed_approach, limit)?;
+        let (p, cells) = candidate_start(grid, target, limit)?;
+        let set = CandidateSet {
+            cells,
+            member: vec![false; grid.op.cells()],
+            limit,
+            inner: None,
+            grown: true,
+        };
+        Ok((set, p))
+    }
+
+    fn too_many(&self, cells: usize) -> String {
+        format!("a set of {cells} cells exceeds the limit of {}", self.limit)
+    }
+}
+
+impl<K: SolverOperator> Part<K> for CandidateSet {
+    type Op = DenseCompliance;
+    const NAME: &'static str = "candidate set";
+    const MAX_ROUNDS: usize = 24;
+
+    fn prepare(&mut self, grid: &ContactSolver<K>) -> Result<(), String> {
+        if !self.grown {
+            return Ok(());
+        }
+        self.grown = false;
+        self.cells.iter().for_each(|&i| self.member[i] = true);
+        let (buffer, single) = self
+            .inner
+            .take()
+            .map(|s| s.op.into_storage())
+            .unwrap_or_default();
+        let matrix = grid
+            .op
+            .restricted(&self.cells, buffer)
+            .ok_or("the operator has no real-space table")?;
         let (hx, hy) = (
-            self.op.lx() / self.op.nx() as f64,
-            self.op.ly() / self.op.ny() as f64,
+            grid.op.lx() / grid.op.nx() as f64,
+            grid.op.ly() / grid.op.ny() as f64,
         );
-        let mut member = vec![false; n];
-        let mut tally = Tally::default();
-        let mut tight = false;
-        // The solver on the current set (kept while the set holds), and whether the set
-        // changed since it was built (its matrix's storage then serves the next one).
-        let mut inner: Option<ContactSolver<DenseCompliance>> = None;
-        let mut grown = true;
-        for _ in 0..MAX_ROUNDS {
-            if grown {
-                grown = false;
-                cells.iter().for_each(|&i| member[i] = true);
-                let (buffer, single) = inner
-                    .take()
-                    .map(|s| s.op.into_storage())
-                    .unwrap_or_default();
-                let matrix = self
-                    .op
-                    .restricted(&cells, buffer)
-                    .ok_or("the operator has no real-space table")?;
-                let e_star = self.op.e_star();
-                let dense =
-                    DenseCompliance::from_matrix(cells.len(), (hx, hy), e_star, matrix, single);
-                let z = cells.iter().map(|&i| self.problem.z[i]).collect();
-                let (h_rms, stiffness) = (self.problem.h_rms, self.problem.overlap_stiffness);
-                inner = Some(ContactSolver::on_part(dense, None, z, h_rms, stiffness));
-            }
-            let Some(solver) = inner.as_mut() else {
-                return Err("no candidate set was built".into());
-            };
-            let inner_opts = round_options(opts, tight, tally.iterations);
-            let start = cells.iter().map(|&i| p[i]).collect();
-            let sol = match solver.iterate(
-                start,
-                target_force,
-                fixed_approach,
-                &inner_opts,
-                Start::default(),
-            ) {
-                Ok(sol) => sol,
-                // The full iteration takes over (and reports its own failure, if any).
-                Err(e) => return Err(format!("a round on the candidate set failed: {e}")),
-            };
-            tally.add(&sol);
-            p.par_iter_mut().for_each(|v| *v = 0.0);
-            cells
-                .iter()
-                .zip(&sol.pressure)
-                .for_each(|(&i, &v)| p[i] = v);
-            let (approach, residual) = match self.on_grid(
-                &mut p,
-                target_force,
-                fixed_approach,
-                (&tally, Path::CandidateSet),
-                opts,
-            ) {
-                Ok(sol) => return Ok(sol),
-                Err(found) => found,
-            };
-            let (w, mask) = (&self.work.w, &self.problem.mask);
-            let mut entering: Vec<(f64, usize)> = (0..n)
-                .into_par_iter()
-                .filter(|&i| mask.holds(i) && !member[i] && w[i] - approach < 0.0)
-                .map(|i| (w[i] - approach, i))
-                .collect();
-            // A set much too small carries the load on too few cells: the approach
-            // overshoots and the overlap spreads far beyond the contact (for a sphere
-            // the overlap at the right approach covers twice the contact already).
-            // Give up when even half the overlap would not fit; else the deepest cells
-            // join first, at most doubling the set per round.
-            if cells.len() + entering.len() / 2 > limit {
-                return Err(too_many(cells.len() + entering.len() / 2));
-            }
-            let room = cells.len().max(MIN_GROWTH);
-            if entering.len() > room {
-                entering
-                    .select_nth_unstable_by(room, |a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-                entering.truncate(room);
-            }
-            if entering.is_empty() {
-                if tight {
-                    return Err(format!(
-                        "a round at the tolerance left the criterion at {residual:.2e} on the grid"
-                    ));
-                }
-                tight = true;
-                continue;
-            }
-            cells.extend(entering.iter().map(|&(_, i)| i));
-            cells.sort_unstable();
-            grown = true;
-            if cells.len() > limit {
-                return Err(too_many(cells.len()));
-            }
-            // Near the answer already: the next rounds solve to the tolerance (a loose
-            // solve would stop at once, the few new cells being shallow).
-            tight |= residual <= LOOSE;
-        }
-        Err(format!(
-            "no candidate set held the contact in {MAX_ROUNDS} rounds"
-        ))
+        let e_star = grid.op.e_star();
+        let dense =
+            DenseCompliance::from_matrix(self.cells.len(), (hx, hy), e_star, matrix, single);
+        let z = self.cells.iter().map(|&i| grid.problem.z[i]).collect();
+        let (h_rms, stiffness) = (grid.problem.h_rms, grid.problem.overlap_stiffness);
+        self.inner = Some(ContactSolver::on_part(dense, None, z, h_rms, stiffness));
+        Ok(())
     }
 
-    /// The candidate set's start: the pressure (scaled to the target force) and its
-    /// cells, or why it does not fit in `limit` cells or the operator has no
-    /// real-space table.
-    fn candidate_start(
-        &self,
-        target_force: Option<f64>,
-        fixed_approach: f64,
-        limit: usize,
-    ) -> Result<(Vec<f64>, Vec<usize>), String> {
-        let n = self.op.cells();
-        let too_many =
-            |cells: usize| format!("a set of {cells} cells exceeds the limit of {limit}");
-        // The start set's size first (a uniform start covers the domain).
-        let estimate = match target_force {
-            Some(f) => {
-                let fraction = self.start_fraction(f, CANDIDATE_START_AREA);
-                if fraction.is_finite() && fraction < 1.0 {
-                    (fraction * self.problem.domain_cells as f64).ceil() as usize
-                } else {
-                    self.problem.domain_cells
-                }
-            }
-            None => {
-                let (mask, z) = (&self.problem.mask, &self.problem.z);
-                (0..n)
-                    .into_par_iter()
-                    .filter(|&i| mask.holds(i) && z[i] < fixed_approach)
-                    .count()
-            }
-        };
-        if estimate == 0 {
-            return Err("the start set is empty".into());
-        }
-        if estimate > limit {
-            return Err(too_many(estimate));
-        }
-        let mut p = vec![0.0; n];
-        match target_force {
-            Some(f) => self.cold_start(&mut p, f, CANDIDATE_START_AREA),
-            None => self.overlap_start(&mut p, fixed_approach),
-        }
-        // In parallel, in cell order (as the window path's scans).
-        let cells: Vec<usize> = (0..n).into_par_iter().filter(|&i| p[i] > 0.0).collect();
-        if cells.is_empty() {
-            return Err("the start set is empty".into());
-        }
-        if cells.len() > limit {
-            return Err(too_many(cells.len()));
-        }
-        if self.op.restricted(&[], Vec::new()).is_none() {
-            return Err("the operator has no real-space table".into());
-        }
-        if let Some(f) = target_force {
-            let s: f64 = p.iter().sum::<f64>() * self.op.cell_area();
-            p.par_iter_mut().for_each(|v| *v *= f / s);
-        }
-        Ok((p, cells))
+    fn solver(&mut self) -> Option<&mut ContactSolver<DenseCompliance>> {
+        self.inner.as_mut()
     }
 
-    /// A solver for the problem restricted to part of the grid: `op` between its cells,
-    /// their mask (None: all) and `z`, and the criterion's and the re-admission's scales
-    /// of the whole domain.
-    pub(super) fn on_part(
-        op: K,
-        mask: Option<Vec<u8>>,
-        z: Vec<f64>,
-        h_rms: f64,
-        overlap_stiffness: f64,
-    ) -> Self {
-        let mut solver = Self::with_buffers(op, mask, overlap_stiffness);
-        solver.work.w.copy_from_slice(&z);
-        solver.problem.z = z;
-        solver.problem.h_rms = h_rms;
-        solver
+    fn gather(&self, p: &[f64]) -> Vec<f64> {
+        self.cells.iter().map(|&i| p[i]).collect()
     }
 
-    /// A pressure solved on part of the grid (`tally`: its rounds' iterations in all, by
-    /// `path`), on the whole
-    /// grid: `w = K p + z` there, the approach (under force control the mean gap over
-    /// the contact) and the criterion (module docs). The restricted solution if the
-    /// criterion meets the tolerance (`p` is taken), else the approach and criterion.
-    pub(super) fn on_grid(
+    fn scatter(&self, p: &mut [f64], values: &[f64]) {
+        p.par_iter_mut().for_each(|v| *v = 0.0);
+        self.cells.iter().zip(values).for_each(|(&i, &v)| p[i] = v);
+    }
+
+    /// Converged on the grid, or the interpenetrating cells outside C join it: the
+    /// deepest first, at most doubling C (module docs).
+    fn judge(
         &mut self,
+        grid: &mut ContactSolver<K>,
         p: &mut Vec<f64>,
-        target_force: Option<f64>,
-        fixed_approach: f64,
-        (tally, path): (&Tally, Path),
-        opts: &SolverOptions,
-    ) -> std::result::Result<Solution, (f64, f64)> {
-        self.op.apply(p, &mut self.work.w);
-        self.work.rows_p.fill(true);
-        let [sum_g, nc] = self.pass_a(p, 1.0, Refresh::AddZ, fixed_approach);
-        let approach = match target_force {
-            Some(_) if nc > 0.0 => fixed_approach + sum_g / nc,
-            _ => fixed_approach,
+        _: &Solution,
+        tally: &Tally,
+        _: bool,
+        (target, opts): (Target, &SolverOptions),
+    ) -> Result<Round, String> {
+        let (approach, residual) = match grid.on_grid(p, target, (tally, Path::CandidateSet), opts)
+        {
+            Ok(sol) => return Ok(Round::Solved(sol)),
+            Err(found) => found,
         };
-        let residual = self.criterion(p, approach);
-        if residual > opts.tolerance || self.certificate(p, approach) > opts.tolerance {
-            return Err((approach, residual));
+        let (w, mask, member) = (&grid.work.w, &grid.problem.mask, &self.member);
+        let mut entering: Vec<(f64, usize)> = (0..grid.op.cells())
+            .into_par_iter()
+            .filter(|&i| mask.holds(i) && !member[i] && w[i] - approach < 0.0)
+            .map(|i| (w[i] - approach, i))
+            .collect();
+        // A set much too small carries the load on too few cells: the approach
+        // overshoots and the overlap spreads far beyond the contact (for a sphere the
+        // overlap at the right approach covers twice the contact already). Give up when
+        // even half the overlap would not fit; else the deepest cells join first, at
+        // most doubling the set per round.
+        if self.cells.len() + entering.len() / 2 > self.limit {
+            return Err(self.too_many(self.cells.len() + entering.len() / 2));
         }
-        let mut sol = self.finish(std::mem::take(p), approach, tally.iterations, residual);
-        sol.path = path;
-        sol.single_iterations = tally.single;
-        sol.stencil_iterations = tally.stencil;
-        sol.scaled_directions = tally.scaled;
-        Ok(sol)
+        let room = self.cells.len().max(MIN_GROWTH);
+        if entering.len() > room {
+            entering.select_nth_unstable_by(room, |a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            entering.truncate(room);
+        }
+        if entering.is_empty() {
+            return Ok(Round::Held(residual));
+        }
+        self.cells.extend(entering.iter().map(|&(_, i)| i));
+        self.cells.sort_unstable();
+        self.grown = true;
+        if self.cells.len() > self.limit {
+            return Err(self.too_many(self.cells.len()));
+        }
+        Ok(Round::Grown(residual))
     }
+}
+
+/// The candidate set's start: the pressure (scaled to the target force) and its
+/// cells, or why it does not fit in `limit` cells or the operator has no real-space
+/// table.
+fn candidate_start<K: SolverOperator>(
+    grid: &ContactSolver<K>,
+    target: Target,
+    limit: usize,
+) -> Result<(Vec<f64>, Vec<usize>), String> {
+    let (op, problem) = (&grid.op, &grid.problem);
+    let n = op.cells();
+    let too_many = |cells: usize| format!("a set of {cells} cells exceeds the limit of {limit}");
+    // The start set's size first (a uniform start covers the domain).
+    let estimate = match target {
+        Target::Force(f) => {
+            let fraction = problem.start_fraction(op, f, CANDIDATE_START_AREA);
+            if fraction.is_finite() && fraction < 1.0 {
+                (fraction * problem.domain_cells as f64).ceil() as usize
+            } else {
+                problem.domain_cells
+            }
+        }
+        Target::Approach(d) => {
+            let (mask, z) = (&problem.mask, &problem.z);
+            (0..n)
+                .into_par_iter()
+                .filter(|&i| mask.holds(i) && z[i] < d)
+                .count()
+        }
+    };
+    if estimate == 0 {
+        return Err("the start set is empty".into());
+    }
+    if estimate > limit {
+        return Err(too_many(estimate));
+    }
+    let mut p = vec![0.0; n];
+    match target {
+        Target::Force(f) => problem.cold_start(op, &mut p, f, CANDIDATE_START_AREA),
+        Target::Approach(d) => problem.overlap_start(op, &mut p, d),
+    }
+    // In parallel, in cell order (as the window path's scans).
+    let cells: Vec<usize> = (0..n).into_par_iter().filter(|&i| p[i] > 0.0).collect();
+    if cells.is_empty() {
+        return Err("the start set is empty".into());
+    }
+    if cells.len() > limit {
+        return Err(too_many(cells.len()));
+    }
+    if op.restricted(&[], Vec::new()).is_none() {
+        return Err("the operator has no real-space table".into());
+    }
+    if let Target::Force(f) = target {
+        let s: f64 = p.iter().sum::<f64>() * op.cell_area();
+        p.par_iter_mut().for_each(|v| *v *= f / s);
+    }
+    Ok((p, cells))
 }

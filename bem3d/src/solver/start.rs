@@ -2,7 +2,7 @@
 //! force control or at an approach), uniform pressure, or the solution of the grid
 //! coarsened 2 x 2 (nested start); solver module docs.
 
-use super::{Choice, ContactSolver, Load, Paths, SolverOptions};
+use super::state::{chunk_cells, Problem};
 use crate::operator::SolverOperator;
 use rayon::prelude::*;
 
@@ -23,27 +23,33 @@ pub(super) const COARSE_NESTED_MIN: usize = 256;
 /// the same residual whether the coarse solve stops at 1e-2, 1e-3 or 1e-10 (the coarse
 /// grid cannot resolve the fine contact set; measured on the 1024^2 benchmark surface
 /// at 1 % contact: 4.0e-2 in each case).
-const NESTED_TOLERANCE: f64 = 1e-3;
+pub(super) const NESTED_TOLERANCE: f64 = 1e-3;
 
 /// Iteration cap of the nested start's coarse solve (it takes 10-30 on the benchmark
 /// surfaces); a coarse solve that does not converge leaves the cold start.
-const NESTED_MAX_ITERATIONS: usize = 200;
+pub(super) const NESTED_MAX_ITERATIONS: usize = 200;
 
-impl<K: SolverOperator> ContactSolver<K> {
+impl Problem {
     /// Cold start under force control (module docs): p = (d - z)+ on the domain, d the
     /// height quantile whose overlap covers `start_area p / (E* h')` of it
     /// ([`FULL_GRID_START_AREA`]
     /// for the full iteration); the rescale to the force follows. Uniform pressure when
     /// the heights have no slope.
-    pub(super) fn cold_start(&self, p: &mut [f64], force: f64, start_area: f64) {
-        let nm = self.problem.domain_cells;
-        let fraction = self.start_fraction(force, start_area);
+    pub(super) fn cold_start<K: SolverOperator>(
+        &self,
+        op: &K,
+        p: &mut [f64],
+        force: f64,
+        start_area: f64,
+    ) {
+        let nm = self.domain_cells;
+        let fraction = self.start_fraction(op, force, start_area);
         if nm >= 2 && fraction.is_finite() && fraction < 1.0 {
             let k = ((fraction * nm as f64).ceil() as usize).clamp(1, nm - 1);
-            let d = self.kth_height(k);
+            let d = self.kth_height(k, chunk_cells(op.nx()));
             p.par_iter_mut()
-                .zip(self.problem.mask.par_iter())
-                .zip(&self.problem.z)
+                .zip(self.mask.par_iter())
+                .zip(&self.z)
                 .for_each(|((v, &m), z)| *v = m as f64 * (d - z).max(0.0));
         }
         if p.iter().all(|&v| v == 0.0) {
@@ -55,16 +61,12 @@ impl<K: SolverOperator> ContactSolver<K> {
     /// (bit for bit): a histogram of the values, made in parallel, finds the bin that
     /// holds rank k (bins are monotone in z), and the selection runs among that bin's
     /// values only (a serial selection over a 1024^2 grid's copy costs about 20 ms).
-    pub(super) fn kth_height(&self, k: usize) -> f64 {
+    /// `ch`: the sweeps' chunk, in cells.
+    pub(super) fn kth_height(&self, k: usize, ch: usize) -> f64 {
         const BINS: usize = 4096;
-        let ch = self.chunk();
         // The domain's heights, a chunk at a time in parallel.
         let domain = || {
-            let chunks = self
-                .problem
-                .z
-                .par_chunks(ch)
-                .zip(self.problem.mask.par_chunks(ch));
+            let chunks = self.z.par_chunks(ch).zip(self.mask.par_chunks(ch));
             chunks.map(|(z, m)| z.iter().zip(m).filter(|(_, &m)| m > 0).map(|(&v, _)| v))
         };
         let wide = (f64::INFINITY, f64::NEG_INFINITY);
@@ -107,110 +109,29 @@ impl<K: SolverOperator> ContactSolver<K> {
     /// Uniform pressure (one per domain cell; the load's rescale follows).
     pub(super) fn uniform_start(&self, p: &mut [f64]) {
         p.par_iter_mut()
-            .zip(self.problem.mask.par_iter())
+            .zip(self.mask.par_iter())
             .for_each(|(v, &m)| *v = m as f64);
-    }
-
-    /// Nested start under force control (module docs): the load solved to
-    /// [`NESTED_TOLERANCE`] on the grid coarsened 2 x 2 (heights averaged over each
-    /// coarse cell's four cells), each coarse cell's pressure given to its four cells.
-    /// Err, with p untouched, where it does not apply (the reason): nesting forbidden, a
-    /// side below [`NESTED_MIN`] ([`COARSE_NESTED_MIN`] on a coarse grid; 2 when
-    /// forced) or odd, a mask, an operator without a coarse form, or a coarse solve that
-    /// fails (the cold start then runs as without it, unless nesting is forced).
-    pub(super) fn nested_start(
-        &mut self,
-        p: &mut [f64],
-        force: f64,
-        opts: &SolverOptions,
-    ) -> Result<(), String> {
-        let (nx, ny) = (self.op.nx(), self.op.ny());
-        let min = if opts.paths.nested_start.forced() {
-            2
-        } else {
-            self.tuning.nested_min
-        };
-        if !opts.paths.nested_start.allowed() {
-            return Err("forbidden".into());
-        }
-        if nx < min || ny < min || nx % 2 == 1 || ny % 2 == 1 {
-            return Err(format!(
-                "the grid is {nx} x {ny} (both sides must be even and at least {min})"
-            ));
-        }
-        if self.problem.domain_cells != self.op.cells() {
-            return Err("a mask restricts the domain".into());
-        }
-        if self.coarse.is_none() {
-            self.coarse = self.coarse_solver().map(Box::new);
-        }
-        let Some(coarse) = self.coarse.as_deref_mut() else {
-            return Err("the operator has no coarse form".into());
-        };
-        // The coarse grid nests by its own rule.
-        let loose = SolverOptions {
-            tolerance: NESTED_TOLERANCE.max(opts.tolerance),
-            max_iterations: opts.max_iterations.min(NESTED_MAX_ITERATIONS),
-            paths: Paths {
-                nested_start: Choice::Allow,
-                ..opts.paths
-            },
-            ..opts.clone()
-        };
-        let sol = coarse
-            .solve_on_pool(Load::Force(force), &loose, None)
-            .map_err(|e| format!("the coarse solve failed: {e}"))?;
-        // Each coarse cell's value on its 2 x 2 cells (both sides are even), row pairs
-        // in parallel.
-        let cx = nx / 2;
-        p.par_chunks_mut(2 * nx)
-            .zip(sol.pressure.par_chunks(cx))
-            .for_each(|(rows, coarse)| {
-                for row in rows.chunks_mut(nx) {
-                    for (pair, &v) in row.chunks_exact_mut(2).zip(coarse) {
-                        pair.fill(v);
-                    }
-                }
-            });
-        if self.op.cells() > self.tuning.large_grid_cells {
-            self.coarse = None;
-        }
-        Ok(())
-    }
-
-    /// The solver on this grid coarsened 2 x 2 (heights averaged over each coarse
-    /// cell's four cells), nesting again from [`COARSE_NESTED_MIN`]; None if the
-    /// operator has no coarse form.
-    pub(super) fn coarse_solver(&self) -> Option<ContactSolver<K>> {
-        let op = self.op.coarse()?;
-        let (nx, cx) = (self.op.nx(), op.nx());
-        let z = &self.problem.z;
-        let heights: Vec<f64> = (0..op.cells())
-            .into_par_iter()
-            .map(|k| {
-                let i = 2 * (k / cx) * nx + 2 * (k % cx);
-                -0.25 * (z[i] + z[i + 1] + z[i + nx] + z[i + nx + 1])
-            })
-            .collect();
-        let mut s = ContactSolver::new(op, &heights, None).ok()?;
-        s.tuning.nested_min = COARSE_NESTED_MIN;
-        Some(s)
     }
 
     /// The fraction of the domain the cold start's overlap covers (may be >= 1 or not
     /// finite: then the start is uniform).
-    pub(super) fn start_fraction(&self, force: f64, start_area: f64) -> f64 {
-        let mean_pressure = force / (self.problem.domain_cells as f64 * self.op.cell_area());
-        start_area * mean_pressure / (self.op.e_star() * self.problem.slope_rms)
+    pub(super) fn start_fraction<K: SolverOperator>(
+        &self,
+        op: &K,
+        force: f64,
+        start_area: f64,
+    ) -> f64 {
+        let mean_pressure = force / (self.domain_cells as f64 * op.cell_area());
+        start_area * mean_pressure / (op.e_star() * self.slope_rms)
     }
 
     /// Start at the approach `d`: the overlap `(d - z)+` times the stiffness of the
     /// longest wavelength.
-    pub(super) fn overlap_start(&self, p: &mut [f64], d: f64) {
-        let scale = self.op.e_star() / (self.op.lx() * self.op.ly()).sqrt();
+    pub(super) fn overlap_start<K: SolverOperator>(&self, op: &K, p: &mut [f64], d: f64) {
+        let scale = op.e_star() / (op.lx() * op.ly()).sqrt();
         p.par_iter_mut()
-            .zip(self.problem.mask.par_iter())
-            .zip(&self.problem.z)
+            .zip(self.mask.par_iter())
+            .zip(&self.z)
             .for_each(|((v, &m), z)| *v = m as f64 * (d - z).max(0.0) * scale);
     }
 }

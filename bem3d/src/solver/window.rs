@@ -22,11 +22,11 @@
 //! would exceed [`MAX_FRACTION`] of the grid's cells, or a round that does not
 //! converge, gives the attempt up (the next path runs from its own start).
 
-use super::iteration::Start;
-use super::restricted::Tally;
-use super::restricted::{round_options, LOOSE};
-use super::{ContactSolver, Path, Solution, SolverOptions};
+use super::options::{SolverOptions, Target};
+use super::rounds::{Part, Round, Tally};
+use super::state::ContactSolver;
 use crate::operator::{NonPeriodicHalfSpace, SolverOperator};
+use crate::solution::{Path, Solution};
 use rayon::prelude::*;
 
 /// The start's overlap covers this many times `p / (E* h')` of the domain under force
@@ -48,7 +48,6 @@ const MAX_FRACTION: f64 = 0.7;
 /// (at least [`MIN_MARGIN`]).
 const MARGIN: f64 = 0.125;
 const MIN_MARGIN: usize = 2;
-const MAX_ROUNDS: usize = 8;
 
 /// A box of cells `[x0, x0 + wx) x [y0, y0 + wy)`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -92,190 +91,214 @@ fn span(lo: usize, hi: usize, len: usize) -> (usize, usize) {
     (start, width)
 }
 
-impl<K: SolverOperator> ContactSolver<K> {
-    /// Windowed solve from a cold start (module docs), under force control
-    /// (`target_force` > 0) or at the approach `fixed_approach` > 0. Err: why it does
-    /// not apply or was given up (the next path then runs from its own start, unless
-    /// the window is forced: then the windows' size limit is lifted and the reason is
-    /// the solve's error).
-    pub(super) fn solve_windowed(
-        &mut self,
-        target_force: Option<f64>,
-        fixed_approach: f64,
+/// The window path's part: the bounding box of the cells to hold (inclusive: x_lo,
+/// x_hi, y_lo, y_hi), the grid's row and column counts, and the window with its solver
+/// (kept while the window holds).
+pub(super) struct WindowPart {
+    bounds: (usize, usize, usize, usize),
+    nx: usize,
+    ny: usize,
+    /// Whether the window is forced (its size limit is then lifted).
+    forced: bool,
+    win: Window,
+    inner: Option<(Window, ContactSolver<NonPeriodicHalfSpace>)>,
+}
+
+impl WindowPart {
+    /// The start of a windowed solve from a cold start (module docs), holding `target`:
+    /// the part, the grid's pressure (scaled to the target force) and whether the first
+    /// round solves to the tolerance. Err: why it does not apply (the next path then
+    /// runs from its own start, unless the window is forced: then the windows' size
+    /// limit is lifted and the reason is the solve's error).
+    pub(super) fn start<K: SolverOperator>(
+        grid: &ContactSolver<K>,
+        target: Target,
         opts: &SolverOptions,
-    ) -> Result<Solution, String> {
-        let (n, nx, ny) = (self.op.cells(), self.op.nx(), self.op.ny());
+    ) -> Result<(Self, Vec<f64>, bool), String> {
+        let (op, problem) = (&grid.op, &grid.problem);
+        let (n, nx, ny) = (op.cells(), op.nx(), op.ny());
         // Operators without windows stop here (a 1 x 1 probe costs next to nothing).
-        if self.op.window(1, 1).is_none() {
+        if op.window(1, 1).is_none() {
             return Err("the operator has no windows (the non-periodic half-space has)".into());
         }
-        let forced = opts.paths.window.forced();
         let mut p = vec![0.0; n];
-        match target_force {
-            Some(f) => self.cold_start(&mut p, f, WINDOW_START_AREA),
-            None => self.overlap_start(&mut p, fixed_approach),
+        match target {
+            Target::Force(f) => problem.cold_start(op, &mut p, f, WINDOW_START_AREA),
+            Target::Approach(d) => problem.overlap_start(op, &mut p, d),
         }
-        // Bounding box of the cells to hold, inclusive: (x_lo, x_hi, y_lo, y_hi).
-        let mut bounds =
-            bounding_box_where(nx, n, |i| p[i] > 0.0).ok_or("the start holds no cell")?;
-        if let Some(f) = target_force {
-            let s: f64 = p.iter().sum::<f64>() * self.op.cell_area();
+        let bounds = bounding_box_where(nx, n, |i| p[i] > 0.0).ok_or("the start holds no cell")?;
+        if let Target::Force(f) = target {
+            let s: f64 = p.iter().sum::<f64>() * op.cell_area();
             p.par_iter_mut().for_each(|v| *v *= f / s);
         }
-        let mut tally = Tally::default();
+        let part = WindowPart {
+            bounds,
+            nx,
+            ny,
+            forced: opts.paths.window.forced(),
+            win: Window {
+                x0: 0,
+                y0: 0,
+                wx: 0,
+                wy: 0,
+            },
+            inner: None,
+        };
         // At a prescribed approach the contact lies inside the start's overlap (K has a
         // positive kernel: no displacement below the surface's level), so the first
         // window holds it and its round solves to the tolerance at once.
-        let mut tight = target_force.is_none();
-        // The solver on the current window (kept while the window holds).
-        let mut inner: Option<(Window, ContactSolver<NonPeriodicHalfSpace>)> = None;
-        for _ in 0..MAX_ROUNDS {
-            let (x0, wx) = span(bounds.0, bounds.1, nx);
-            let (y0, wy) = span(bounds.2, bounds.3, ny);
-            let win = Window { x0, y0, wx, wy };
-            if !forced && (wx * wy) as f64 > MAX_FRACTION * n as f64 {
-                return Err(format!(
-                    "a window of {wx} x {wy} cells exceeds {MAX_FRACTION} of the grid"
-                ));
-            }
-            if inner.as_ref().map(|(w, _)| *w) != Some(win) {
-                let op = self
-                    .op
-                    .window(wx, wy)
-                    .ok_or_else(|| format!("the operator has no {wx} x {wy} window"))?;
-                inner = Some((win, self.on_window(op, win)));
-            }
-            let Some((_, solver)) = inner.as_mut() else {
-                return Err("no window was built".into());
-            };
-            let inner_opts = round_options(opts, tight, tally.iterations);
-            let start = gather(&p, nx, win);
-            let sol = solver
-                .iterate(
-                    start,
-                    target_force,
-                    fixed_approach,
-                    &inner_opts,
-                    Start::default(),
+        Ok((part, p, target.force().is_none()))
+    }
+}
+
+impl<K: SolverOperator> Part<K> for WindowPart {
+    type Op = NonPeriodicHalfSpace;
+    const NAME: &'static str = "window";
+    const MAX_ROUNDS: usize = 8;
+
+    fn prepare(&mut self, grid: &ContactSolver<K>) -> Result<(), String> {
+        let (x0, wx) = span(self.bounds.0, self.bounds.1, self.nx);
+        let (y0, wy) = span(self.bounds.2, self.bounds.3, self.ny);
+        self.win = Window { x0, y0, wx, wy };
+        if !self.forced && (wx * wy) as f64 > MAX_FRACTION * (self.nx * self.ny) as f64 {
+            return Err(format!(
+                "a window of {wx} x {wy} cells exceeds {MAX_FRACTION} of the grid"
+            ));
+        }
+        if self.inner.as_ref().map(|(w, _)| *w) != Some(self.win) {
+            let op = grid
+                .op
+                .window(wx, wy)
+                .ok_or_else(|| format!("the operator has no {wx} x {wy} window"))?;
+            self.inner = Some((self.win, on_window(grid, op, self.win)));
+        }
+        Ok(())
+    }
+
+    fn solver(&mut self) -> Option<&mut ContactSolver<NonPeriodicHalfSpace>> {
+        self.inner.as_mut().map(|(_, s)| s)
+    }
+
+    fn gather(&self, p: &[f64]) -> Vec<f64> {
+        gather(p, self.nx, self.win)
+    }
+
+    fn scatter(&self, p: &mut [f64], values: &[f64]) {
+        scatter(p, self.nx, self.win, values)
+    }
+
+    /// The interpenetrating cells outside the window, and the criterion: by direct sums
+    /// where they pay ([`gaps_outside`]), else on the whole grid; the window grows to
+    /// hold them and the pressure carried so far.
+    fn judge(
+        &mut self,
+        grid: &mut ContactSolver<K>,
+        p: &mut Vec<f64>,
+        sol: &Solution,
+        tally: &Tally,
+        tight: bool,
+        (target, opts): (Target, &SolverOptions),
+    ) -> Result<Round, String> {
+        let (nx, n, win) = (self.nx, p.len(), self.win);
+        let (grow, residual) = match gaps_outside(grid, p, win, sol.approach) {
+            Some(gaps) if gaps.iter().any(|&(_, g)| g < 0.0) => {
+                let worst = gaps.iter().fold(0.0f64, |m, &(_, g)| m.max(-g));
+                let cells = gaps.iter().filter(|&&(_, g)| g < 0.0).map(|&(i, _)| i);
+                (
+                    bounding_box(nx, cells),
+                    sol.residual.max(worst / grid.problem.h_rms),
                 )
-                .map_err(|e| format!("a round on the window failed: {e}"))?;
-            tally.add(&sol);
-            scatter(&mut p, nx, win, &sol.pressure);
-            // The interpenetrating cells outside the window, and the criterion: by direct
-            // sums where they pay (gaps_outside), else on the whole grid.
-            let (grow, residual) = match self.gaps_outside(&p, win, sol.approach) {
-                Some(gaps) if gaps.iter().any(|&(_, g)| g < 0.0) => {
-                    let worst = gaps.iter().fold(0.0f64, |m, &(_, g)| m.max(-g));
-                    let cells = gaps.iter().filter(|&&(_, g)| g < 0.0).map(|&(i, _)| i);
-                    (
-                        bounding_box(nx, cells),
-                        sol.residual.max(worst / self.problem.h_rms),
-                    )
-                }
-                // None: a loose round goes on to the tight one without the grid's check.
-                Some(_) if !tight => (None, sol.residual),
-                _ => {
-                    let (approach, residual) = match self.on_grid(
-                        &mut p,
-                        target_force,
-                        fixed_approach,
-                        (&tally, Path::Window),
-                        opts,
-                    ) {
-                        Ok(sol) => return Ok(sol),
+            }
+            // None: a loose round goes on to the tight one without the grid's check.
+            Some(_) if !tight => (None, sol.residual),
+            _ => {
+                let (approach, residual) =
+                    match grid.on_grid(p, target, (tally, Path::Window), opts) {
+                        Ok(sol) => return Ok(Round::Solved(sol)),
                         Err(found) => found,
                     };
-                    let (w, mask) = (&self.work.w, &self.problem.mask);
-                    let outside = bounding_box_where(nx, n, |i| {
-                        mask.holds(i) && w[i] - approach < 0.0 && !win.holds(i % nx, i / nx)
-                    });
-                    (outside, residual)
-                }
-            };
-            // Interpenetrating cells outside the window join it.
-            let Some(grow) = grow else {
-                if tight {
-                    return Err(format!(
-                        "a round at the tolerance left the criterion at {residual:.2e} on the grid"
-                    ));
-                }
-                tight = true;
-                continue;
-            };
-            // Near the answer already: the next round solves to the tolerance.
-            tight |= residual <= LOOSE;
-            // The next window holds those cells and the pressure carried so far (which
-            // may lie in this window's margin).
-            let held = bounding_box_where(nx, n, |i| p[i] > 0.0).unwrap_or(grow);
-            bounds = (
-                bounds.0.min(grow.0).min(held.0),
-                bounds.1.max(grow.1).max(held.1),
-                bounds.2.min(grow.2).min(held.2),
-                bounds.3.max(grow.3).max(held.3),
-            );
-        }
-        Err(format!("no window held the contact in {MAX_ROUNDS} rounds"))
+                let (w, mask) = (&grid.work.w, &grid.problem.mask);
+                let outside = bounding_box_where(nx, n, |i| {
+                    mask.holds(i) && w[i] - approach < 0.0 && !win.holds(i % nx, i / nx)
+                });
+                (outside, residual)
+            }
+        };
+        // Interpenetrating cells outside the window join it.
+        let Some(grow) = grow else {
+            return Ok(Round::Held(residual));
+        };
+        // The next window holds those cells and the pressure carried so far (which may
+        // lie in this window's margin).
+        let held = bounding_box_where(nx, n, |i| p[i] > 0.0).unwrap_or(grow);
+        let b = self.bounds;
+        self.bounds = (
+            b.0.min(grow.0).min(held.0),
+            b.1.max(grow.1).max(held.1),
+            b.2.min(grow.2).min(held.2),
+            b.3.max(grow.3).max(held.3),
+        );
+        Ok(Round::Grown(residual))
     }
+}
 
-    /// The gaps `(cell, g)` of the cells outside `win` that may interpenetrate at
-    /// `approach` with the pressure `p` (held by the window): those below the approach
-    /// (z < approach; elsewhere g >= z - approach >= 0, Love's kernel being positive),
-    /// K p there by direct sums. None when the sums would cost more than one product
-    /// per grid cell (an application of K on the grid costs several times that) or the
-    /// operator has no real-space table.
-    fn gaps_outside(&self, p: &[f64], win: Window, approach: f64) -> Option<Vec<(usize, f64)>> {
-        let nx = self.op.nx();
-        let (mask, z) = (&self.problem.mask, &self.problem.z);
-        // Rows in parallel, cells in index order.
-        let at: Vec<usize> = (0..p.len() / nx)
-            .into_par_iter()
-            .flat_map_iter(|y| {
-                let below = move |&x: &usize| {
-                    let i = y * nx + x;
-                    mask.holds(i) && z[i] < approach && !win.holds(x, y)
-                };
-                (0..nx).filter(below).map(move |x| y * nx + x)
-            })
-            .collect();
-        let loads: Vec<(usize, f64)> = p
-            .par_chunks(nx)
-            .enumerate()
-            .flat_map_iter(|(y, row)| {
-                let on = row.iter().enumerate().filter(|(_, &v)| v > 0.0);
-                on.map(move |(x, &v)| (y * nx + x, v))
-            })
-            .collect();
-        if at.len().saturating_mul(loads.len()) > p.len() {
-            return None;
-        }
-        let u = self.op.displacements_at(&at, &loads)?;
-        Some(
-            at.into_iter()
-                .zip(u)
-                .map(|(i, u)| (i, u + self.problem.z[i] - approach))
-                .collect(),
-        )
+/// The gaps `(cell, g)` of the cells outside `win` that may interpenetrate at
+/// `approach` with the pressure `p` (held by the window): those below the approach
+/// (z < approach; elsewhere g >= z - approach >= 0, Love's kernel being positive), K p
+/// there by direct sums. None when the sums would cost more than one product per grid
+/// cell (an application of K on the grid costs several times that) or the operator has
+/// no real-space table.
+fn gaps_outside<K: SolverOperator>(
+    grid: &ContactSolver<K>,
+    p: &[f64],
+    win: Window,
+    approach: f64,
+) -> Option<Vec<(usize, f64)>> {
+    let nx = grid.op.nx();
+    let (mask, z) = (&grid.problem.mask, &grid.problem.z);
+    // Rows in parallel, cells in index order.
+    let at: Vec<usize> = (0..p.len() / nx)
+        .into_par_iter()
+        .flat_map_iter(|y| {
+            let below = move |&x: &usize| {
+                let i = y * nx + x;
+                mask.holds(i) && z[i] < approach && !win.holds(x, y)
+            };
+            (0..nx).filter(below).map(move |x| y * nx + x)
+        })
+        .collect();
+    let loads: Vec<(usize, f64)> = p
+        .par_chunks(nx)
+        .enumerate()
+        .flat_map_iter(|(y, row)| {
+            let on = row.iter().enumerate().filter(|(_, &v)| v > 0.0);
+            on.map(move |(x, &v)| (y * nx + x, v))
+        })
+        .collect();
+    if at.len().saturating_mul(loads.len()) > p.len() {
+        return None;
     }
+    let u = grid.op.displacements_at(&at, &loads)?;
+    Some(
+        at.into_iter()
+            .zip(u)
+            .map(|(i, u)| (i, u + z[i] - approach))
+            .collect(),
+    )
+}
 
-    /// A solver for the problem on a window: `op` its half-space, the grid's heights
-    /// and mask there, and the criterion's and the re-admission's scales of the whole
-    /// domain.
-    fn on_window(
-        &self,
-        op: NonPeriodicHalfSpace,
-        win: Window,
-    ) -> ContactSolver<NonPeriodicHalfSpace> {
-        let nx = self.op.nx();
-        let mask = self.problem.mask.cells().map(|m| gather(m, nx, win));
-        let z = gather(&self.problem.z, nx, win);
-        ContactSolver::on_part(
-            op,
-            mask,
-            z,
-            self.problem.h_rms,
-            self.problem.overlap_stiffness,
-        )
-    }
+/// A solver for the problem on a window: `op` its half-space, the grid's heights and
+/// mask there, and the criterion's and the re-admission's scales of the whole domain.
+fn on_window<K: SolverOperator>(
+    grid: &ContactSolver<K>,
+    op: NonPeriodicHalfSpace,
+    win: Window,
+) -> ContactSolver<NonPeriodicHalfSpace> {
+    let nx = grid.op.nx();
+    let problem = &grid.problem;
+    let mask = problem.mask.cells().map(|m| gather(m, nx, win));
+    let z = gather(&problem.z, nx, win);
+    ContactSolver::on_part(op, mask, z, problem.h_rms, problem.overlap_stiffness)
 }
 
 /// The values of a window of a grid of row length `nx`, row-major.

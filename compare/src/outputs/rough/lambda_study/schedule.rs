@@ -170,9 +170,13 @@ pub fn compute(s: &LambdaStudy, work: &Path, control: &RunControl) -> Result<()>
     loop {
         let all = plan(s, work)?;
         let first = all.iter().map(|t| t.priority(s)).min();
+        // Report only: the MRD ensembles alone (priority 0), which are not committed
+        // (deterministic, about two CPU-minutes): the report needs them beside the 3D
+        // checkpoints.
+        let wanted = |t: &Task| !control.report_only || t.priority(s) == 0;
         let todo: Vec<Task> = all
             .into_iter()
-            .filter(|t| Some(t.priority(s)) == first)
+            .filter(|t| Some(t.priority(s)) == first && wanted(t))
             .enumerate()
             .filter(|(i, _)| control.shard.is_none_or(|(k, n)| i % n == k))
             .map(|(_, t)| t)
@@ -183,7 +187,7 @@ pub fn compute(s: &LambdaStudy, work: &Path, control: &RunControl) -> Result<()>
                 format_args!("lambda study: report only; {}\n", summary(&todo)),
             );
         }
-        if todo.is_empty() || control.report_only {
+        if todo.is_empty() {
             return Ok(());
         }
         let bar = control.progress.then(|| {
@@ -225,8 +229,9 @@ pub fn compute(s: &LambdaStudy, work: &Path, control: &RunControl) -> Result<()>
         }
         result?;
         computed = count.into_inner();
-        // A shard computes one round: later rounds depend on every shard's results.
-        if control.shard.is_some() {
+        // A shard computes one round: later rounds depend on every shard's results. A
+        // report only stops after the MRD ensembles.
+        if control.shard.is_some() || control.report_only {
             return Ok(());
         }
     }

@@ -479,13 +479,20 @@ fn ratio_figure(spec: &RoughSlip3d, t: &Table, q: &Quantity, grid: f64) -> Figur
     } else {
         "energy per cycle"
     };
+    let bodies = match spec.body() {
+        Body::Sphere(_) => "Rough spheres",
+        Body::Punch(_) => "Rough flat punches",
+    };
+    // Series at one abscissa side by side: each moved right by a small step, so that
+    // no interval hides another.
+    let step = 0.006;
     let mut fig = Figure::new(
         &format!("{s}_ratio"),
         &format!(
-            "Rough bodies: the 3D {what} over MRD's (nu = {})",
+            "{bodies}: the 3D {what} over MRD's (nu = {})",
             figure_poisson(spec)
         ),
-        q.x_label,
+        &format!("{} (series side by side, {step} apart)", q.x_label),
         "3D over MRD [1]",
     )
     .with(Series::new(
@@ -501,6 +508,7 @@ fn ratio_figure(spec: &RoughSlip3d, t: &Table, q: &Quantity, grid: f64) -> Figur
     // The largest ratio shown: beyond 5 the axis is logarithmic (a ratio to a nearly
     // vanishing MRD energy), and the lower bars are cut at a tenth of the mean.
     let mut spread = 0.0f64;
+    let mut shown = 0usize;
     for (i, ((h, r), rows)) in case_rows(spec, t, grid).into_iter().enumerate() {
         let label = case_label(h, r);
         for j in 0..if r == 0.0 { 1 } else { spec.lambda.len() } {
@@ -519,10 +527,12 @@ fn ratio_figure(spec: &RoughSlip3d, t: &Table, q: &Quantity, grid: f64) -> Figur
             if defined.is_empty() {
                 continue;
             }
+            let dx = step * shown as f64;
+            shown += 1;
             fig = fig.with(
                 Series::new(
                     format!("3D over MRD, {label}{lam}"),
-                    defined.iter().map(|row| (row[4], row[m])).collect(),
+                    defined.iter().map(|row| (row[4] + dx, row[m])).collect(),
                     if j == 0 {
                         Style::Markers
                     } else {
@@ -532,7 +542,10 @@ fn ratio_figure(spec: &RoughSlip3d, t: &Table, q: &Quantity, grid: f64) -> Figur
                 .with_bars(
                     defined
                         .iter()
-                        .map(|row| (row[4], (row[m] - row[c]).max(0.1 * row[m]), row[m] + row[c]))
+                        .map(|row| {
+                            let lo = (row[m] - row[c]).max(0.1 * row[m]);
+                            (row[4] + dx, lo, row[m] + row[c])
+                        })
                         .collect(),
                 )
                 .colored(i + 1),
@@ -540,19 +553,18 @@ fn ratio_figure(spec: &RoughSlip3d, t: &Table, q: &Quantity, grid: f64) -> Figur
             spread = spread.max(defined.iter().map(|row| row[m]).fold(0.0, f64::max));
         }
         if r > 0.0 {
+            let dx = step * shown as f64;
+            shown += 1;
+            let law = || rows.iter().filter(|row| row[lm].is_finite());
             fig = fig.with(
                 Series::new(
                     format!("3D over the law on its own normal curve, {label}"),
-                    rows.iter()
-                        .filter(|row| row[lm].is_finite())
-                        .map(|row| (row[4], row[lm]))
-                        .collect(),
+                    law().map(|row| (row[4] + dx, row[lm])).collect(),
                     Style::Line,
                 )
                 .with_bars(
-                    rows.iter()
-                        .filter(|row| row[lm].is_finite())
-                        .map(|row| (row[4], row[lm] - row[lc], row[lm] + row[lc]))
+                    law()
+                        .map(|row| (row[4] + dx, row[lm] - row[lc], row[lm] + row[lc]))
                         .collect(),
                 )
                 .colored(i + 1),
