@@ -13,12 +13,12 @@ cd "$(dirname "$0")/.."
 cargo build --release --quiet --bin mrdw
 # scene[:figure,figure,...] (no list: every figure of the report).
 all=(
-  fig6-converged:lambda_study_lambda_vs_bandwidth.png,lambda_study_alpha_vs_bandwidth.png,lambda_study_scatter_quantiles.png
-  fig6:alpha.png,lambda.png
-  fig7-3d:fig7_3d.png
-  static-friction-3d:static_friction_3d_xi.png
-  rough-sphere:rough_sphere_force.png,rough_sphere_ratio.png
-  viscoelastic-rough:viscoelastic_rough_history.png,viscoelastic_rough_force.png
+  fig6-converged:lambda_study_lambda_vs_bandwidth.png,lambda_study_scatter_quantiles.png
+  fig6:hurst_sweep_fig6.png,hurst_sweep_lambda.png
+  fig7-3d:sliding_friction_3d.png
+  static-friction-3d:static_friction_3d_periodic.png,static_friction_3d_disc.png
+  rough-sphere:rough_sphere_stiffness.png,rough_sphere_radius.png
+  viscoelastic-rough:viscoelastic_rough_radok.png,viscoelastic_rough_approach.png
   adhesion-3d adhesion-tabor rough-adhesion-3d rough-adhesion-3d-punch tangential-3d
   tangential-3d-free tangential-viscoelastic-3d tangential-stiffness-3d
   rough-partial-slip-3d rough-slip-3d rough-slip-3d-punch

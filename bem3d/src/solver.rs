@@ -551,7 +551,7 @@ impl<K: SolverOperator> ContactSolver<K> {
     /// side below [`start::NESTED_MIN`] ([`start::COARSE_NESTED_MIN`] on a coarse grid; 2 when
     /// forced) or odd, a mask, an operator without a coarse form, or a coarse solve that
     /// fails (the cold start then runs as without it, unless nesting is forced).
-    pub(super) fn nested_start(
+    fn nested_start(
         &mut self,
         p: &mut [f64],
         force: f64,
@@ -614,7 +614,7 @@ impl<K: SolverOperator> ContactSolver<K> {
     /// The solver on this grid coarsened 2 x 2 (heights averaged over each coarse
     /// cell's four cells), nesting again from [`start::COARSE_NESTED_MIN`]; None if the
     /// operator has no coarse form.
-    pub(super) fn coarse_solver(&self) -> Option<ContactSolver<K>> {
+    fn coarse_solver(&self) -> Option<ContactSolver<K>> {
         let op = self.op.coarse()?;
         let (nx, cx) = (self.op.nx(), op.nx());
         let z = &self.problem.z;

@@ -42,78 +42,42 @@ impl State {
     }
 }
 
-/// The state after a step of `AdhesiveContact.step`.
-#[pyclass(module = "mrdw._mrdw", frozen)]
-pub struct AdhesiveStep {
-    step: Step,
-    pressure: Vec<f64>,
-    shape: (usize, usize),
-}
-
-#[pymethods]
-impl AdhesiveStep {
-    /// Approach from first contact [length] (negative: retracted past it).
-    #[getter]
-    fn approach(&self) -> f64 {
-        self.step.approach
+step_class! {
+    /// The state after a step of `AdhesiveContact.step`.
+    AdhesiveStep { step: Step, pressure: Vec<f64>, shape: (usize, usize) }
+    getters {
+        /// Approach from first contact [length] (negative: retracted past it).
+        approach: f64,
+        /// Total normal force [stress x length^2], negative in tension.
+        force: f64,
+        /// Contact cells times cell area [length^2].
+        contact_area: f64,
+        contact_cells: usize,
+        /// Cells that joined (touched) and detached during the step.
+        joined: usize,
+        detached: usize,
+        /// The largest tension of a contact cell over the critical stress (<= 1).
+        tension: f64,
+        /// Set-update rounds, and conjugate-gradient iterations summed over them.
+        rounds: usize,
+        iterations: usize,
+        /// The last round's criterion value (bem3d/src/adhesion.rs).
+        residual: f64,
+        /// No cell is in contact at the end of the step.
+        separated: bool,
     }
-    /// Total normal force [stress x length^2], negative in tension.
-    #[getter]
-    fn force(&self) -> f64 {
-        self.step.force
-    }
-    /// Contact cells times cell area [length^2].
-    #[getter]
-    fn contact_area(&self) -> f64 {
-        self.step.contact_area
-    }
-    #[getter]
-    fn contact_cells(&self) -> usize {
-        self.step.contact_cells
-    }
-    /// Cells that joined (touched) and detached during the step.
-    #[getter]
-    fn joined(&self) -> usize {
-        self.step.joined
-    }
-    #[getter]
-    fn detached(&self) -> usize {
-        self.step.detached
-    }
-    /// The largest tension of a contact cell over the critical stress (<= 1).
-    #[getter]
-    fn tension(&self) -> f64 {
-        self.step.tension
-    }
-    /// Set-update rounds, and conjugate-gradient iterations summed over them.
-    #[getter]
-    fn rounds(&self) -> usize {
-        self.step.rounds
-    }
-    #[getter]
-    fn iterations(&self) -> usize {
-        self.step.iterations
-    }
-    /// The last round's criterion value (bem3d/src/adhesion.rs).
-    #[getter]
-    fn residual(&self) -> f64 {
-        self.step.residual
-    }
-    /// No cell is in contact at the end of the step.
-    #[getter]
-    fn separated(&self) -> bool {
-        self.step.separated
-    }
-    /// Cell pressures, shape (ny, nx) [stress], negative in tension.
-    #[getter]
-    fn pressure<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        grid_array(py, &self.pressure, self.shape)
-    }
-    fn __repr__(&self) -> String {
-        format!(
-            "AdhesiveStep(approach={:.6e}, force={:.6e}, contact_cells={}, separated={})",
-            self.step.approach, self.step.force, self.step.contact_cells, self.step.separated
-        )
+    methods {
+        /// Cell pressures, shape (ny, nx) [stress], negative in tension.
+        #[getter]
+        fn pressure<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+            grid_array(py, &self.pressure, self.shape)
+        }
+        fn __repr__(&self) -> String {
+            format!(
+                "AdhesiveStep(approach={:.6e}, force={:.6e}, contact_cells={}, separated={})",
+                self.step.approach, self.step.force, self.step.contact_cells, self.step.separated
+            )
+        }
     }
 }
 

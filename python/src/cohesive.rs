@@ -9,65 +9,38 @@ use bem3d::NonPeriodicHalfSpace;
 use numpy::{AllowTypeChange, PyArray2, PyArrayLike2};
 use pyo3::prelude::*;
 
-/// The state after a step of `CohesiveContact.step`.
-#[pyclass(module = "mrdw._mrdw", frozen)]
-pub struct CohesiveStep {
-    step: Step,
-    pressure: Vec<f64>,
-    shape: (usize, usize),
-}
-
-#[pymethods]
-impl CohesiveStep {
-    /// Approach from first contact [length] (negative: retracted past it).
-    #[getter]
-    fn approach(&self) -> f64 {
-        self.step.approach
+step_class! {
+    /// The state after a step of `CohesiveContact.step`.
+    CohesiveStep { step: Step, pressure: Vec<f64>, shape: (usize, usize) }
+    getters {
+        /// Approach from first contact [length] (negative: retracted past it).
+        approach: f64,
+        /// Total normal force [stress x length^2], negative in tension.
+        force: f64,
+        /// Contact cells (gap 0) times cell area [length^2].
+        contact_area: f64,
+        /// Cells in contact (gap 0).
+        contact_cells: usize,
+        /// Cells in the cohesive zone (0 < gap < w / sigma0).
+        cohesive_cells: usize,
+        /// Set-update rounds, and conjugate-gradient iterations summed over them.
+        rounds: usize,
+        iterations: usize,
+        /// The last round's criterion value (bem3d/src/cohesive.rs).
+        residual: f64,
     }
-    /// Total normal force [stress x length^2], negative in tension.
-    #[getter]
-    fn force(&self) -> f64 {
-        self.step.force
-    }
-    /// Contact cells (gap 0) times cell area [length^2].
-    #[getter]
-    fn contact_area(&self) -> f64 {
-        self.step.contact_area
-    }
-    /// Cells in contact (gap 0).
-    #[getter]
-    fn contact_cells(&self) -> usize {
-        self.step.contact_cells
-    }
-    /// Cells in the cohesive zone (0 < gap < w / sigma0).
-    #[getter]
-    fn cohesive_cells(&self) -> usize {
-        self.step.cohesive_cells
-    }
-    /// Set-update rounds, and conjugate-gradient iterations summed over them.
-    #[getter]
-    fn rounds(&self) -> usize {
-        self.step.rounds
-    }
-    #[getter]
-    fn iterations(&self) -> usize {
-        self.step.iterations
-    }
-    /// The last round's criterion value (bem3d/src/cohesive.rs).
-    #[getter]
-    fn residual(&self) -> f64 {
-        self.step.residual
-    }
-    /// Cell pressures, shape (ny, nx) [stress], negative in tension (>= -sigma0).
-    #[getter]
-    fn pressure<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        grid_array(py, &self.pressure, self.shape)
-    }
-    fn __repr__(&self) -> String {
-        format!(
-            "CohesiveStep(approach={:.6e}, force={:.6e}, contact_cells={}, cohesive_cells={})",
-            self.step.approach, self.step.force, self.step.contact_cells, self.step.cohesive_cells
-        )
+    methods {
+        /// Cell pressures, shape (ny, nx) [stress], negative in tension (>= -sigma0).
+        #[getter]
+        fn pressure<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+            grid_array(py, &self.pressure, self.shape)
+        }
+        fn __repr__(&self) -> String {
+            format!(
+                "CohesiveStep(approach={:.6e}, force={:.6e}, contact_cells={}, cohesive_cells={})",
+                self.step.approach, self.step.force, self.step.contact_cells, self.step.cohesive_cells
+            )
+        }
     }
 }
 

@@ -3,6 +3,8 @@
 //! results are bit-identical to the CLI's. Arrays come in as numpy (converted once) and
 //! go out as numpy arrays that own their data; long solves release the GIL.
 
+#[macro_use]
+mod step_class;
 mod adhesive;
 mod axisym;
 mod cohesive;

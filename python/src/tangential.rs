@@ -93,57 +93,32 @@ fn grid_of(
     Ok((v, shape))
 }
 
-/// The state after a step of `PartialSlip.load`.
-#[pyclass(module = "mrdw._mrdw", frozen)]
-pub struct TangentialStep {
-    step: Step,
-}
-
-#[pymethods]
-impl TangentialStep {
-    /// The tangential force reached [stress x length^2].
-    #[getter]
-    fn force(&self) -> f64 {
-        self.step.force
+step_class! {
+    /// The state after a step of `PartialSlip.load`.
+    TangentialStep { step: Step }
+    getters {
+        /// The tangential force reached [stress x length^2].
+        force: f64,
+        /// Rigid shift of the body along x [length]: from the mean surface displacement on
+        /// the periodic half-space, absolute on the free one (NaN when sliding).
+        shift: f64,
+        /// Cells that stick (|q| < mu p) and cells that slip.
+        stick_cells: usize,
+        slip_cells: usize,
+        /// Energy dissipated by slip in this step [stress x length^3].
+        dissipated: f64,
+        iterations: usize,
+        residual: f64,
+        /// The force reached the total friction mu P: the body slides as a whole.
+        sliding: bool,
     }
-    /// Rigid shift of the body along x [length]: from the mean surface displacement on
-    /// the periodic half-space, absolute on the free one (NaN when sliding).
-    #[getter]
-    fn shift(&self) -> f64 {
-        self.step.shift
-    }
-    /// Cells that stick (|q| < mu p) and cells that slip.
-    #[getter]
-    fn stick_cells(&self) -> usize {
-        self.step.stick_cells
-    }
-    #[getter]
-    fn slip_cells(&self) -> usize {
-        self.step.slip_cells
-    }
-    /// Energy dissipated by slip in this step [stress x length^3].
-    #[getter]
-    fn dissipated(&self) -> f64 {
-        self.step.dissipated
-    }
-    #[getter]
-    fn iterations(&self) -> usize {
-        self.step.iterations
-    }
-    #[getter]
-    fn residual(&self) -> f64 {
-        self.step.residual
-    }
-    /// The force reached the total friction mu P: the body slides as a whole.
-    #[getter]
-    fn sliding(&self) -> bool {
-        self.step.sliding
-    }
-    fn __repr__(&self) -> String {
-        format!(
-            "TangentialStep(force={:.6e}, shift={:.6e}, stick_cells={}, sliding={})",
-            self.step.force, self.step.shift, self.step.stick_cells, self.step.sliding
-        )
+    methods {
+        fn __repr__(&self) -> String {
+            format!(
+                "TangentialStep(force={:.6e}, shift={:.6e}, stick_cells={}, sliding={})",
+                self.step.force, self.step.shift, self.step.stick_cells, self.step.sliding
+            )
+        }
     }
 }
 
@@ -273,61 +248,36 @@ pub fn stick_stiffness(
     Ok((k.x, k.y, k.x_along_only))
 }
 
-/// The state after a step of `ViscoelasticSlip.step`.
-#[pyclass(module = "mrdw._mrdw", frozen)]
-pub struct ViscoelasticStep {
-    step: VeStep,
-}
-
-#[pymethods]
-impl ViscoelasticStep {
-    /// Time at the end of the step [time].
-    #[getter]
-    fn time(&self) -> f64 {
-        self.step.time
+step_class! {
+    /// The state after a step of `ViscoelasticSlip.step`.
+    ViscoelasticStep { step: VeStep }
+    getters {
+        /// Time at the end of the step [time].
+        time: f64,
+        /// The prescribed shift [length].
+        shift: f64,
+        /// The tangential force it takes [stress x length^2].
+        force: f64,
+        stick_cells: usize,
+        slip_cells: usize,
+        /// Energy dissipated by slip in this step [stress x length^3].
+        dissipated: f64,
+        /// Partial-slip solves the step took (trials of the force).
+        solves: usize,
+        /// The body slides: every contact cell at its bound.
+        sliding: bool,
     }
-    /// The prescribed shift [length].
-    #[getter]
-    fn shift(&self) -> f64 {
-        self.step.shift
-    }
-    /// The tangential force it takes [stress x length^2].
-    #[getter]
-    fn force(&self) -> f64 {
-        self.step.force
-    }
-    #[getter]
-    fn stick_cells(&self) -> usize {
-        self.step.stick_cells
-    }
-    #[getter]
-    fn slip_cells(&self) -> usize {
-        self.step.slip_cells
-    }
-    /// Energy dissipated by slip in this step [stress x length^3].
-    #[getter]
-    fn dissipated(&self) -> f64 {
-        self.step.dissipated
-    }
-    /// Partial-slip solves the step took (trials of the force).
-    #[getter]
-    fn solves(&self) -> usize {
-        self.step.solves
-    }
-    /// The body slides: every contact cell at its bound.
-    #[getter]
-    fn sliding(&self) -> bool {
-        self.step.sliding
-    }
-    fn __repr__(&self) -> String {
-        format!(
-            "ViscoelasticStep(time={:.6e}, shift={:.6e}, force={:.6e}, stick_cells={}, sliding={})",
-            self.step.time,
-            self.step.shift,
-            self.step.force,
-            self.step.stick_cells,
-            self.step.sliding
-        )
+    methods {
+        fn __repr__(&self) -> String {
+            format!(
+                "ViscoelasticStep(time={:.6e}, shift={:.6e}, force={:.6e}, stick_cells={}, sliding={})",
+                self.step.time,
+                self.step.shift,
+                self.step.force,
+                self.step.stick_cells,
+                self.step.sliding
+            )
+        }
     }
 }
 

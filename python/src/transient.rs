@@ -35,75 +35,55 @@ impl History {
     }
 }
 
-/// The state after a step of `TransientContact.step`.
-#[pyclass(module = "mrdw._mrdw", frozen)]
-pub struct TransientStep {
-    step: Step,
-    shape: (usize, usize),
-}
-
-#[pymethods]
-impl TransientStep {
-    /// Time at the step's end [time].
-    #[getter]
-    fn time(&self) -> f64 {
-        self.step.time
+step_class! {
+    /// The state after a step of `TransientContact.step`.
+    TransientStep { step: Step, shape: (usize, usize) }
+    getters {
+        /// Time at the step's end [time].
+        time: f64,
+        /// Rigid-body position from the first contact of the undeformed surface [length].
+        approach: f64,
+        /// Total normal force [stress x length^2].
+        force: f64,
+        /// Real contact area, contact cells times cell area [length^2].
+        contact_area: f64,
+        /// Number of cells carrying pressure.
+        contact_cells: usize,
+        /// The step's effective modulus E_eff [stress] (bem3d::viscoelastic docs).
+        effective_modulus: f64,
     }
-    /// Rigid-body position from the first contact of the undeformed surface [length].
-    #[getter]
-    fn approach(&self) -> f64 {
-        self.step.approach
-    }
-    /// Total normal force [stress x length^2].
-    #[getter]
-    fn force(&self) -> f64 {
-        self.step.force
-    }
-    /// Real contact area, contact cells times cell area [length^2].
-    #[getter]
-    fn contact_area(&self) -> f64 {
-        self.step.contact_area
-    }
-    /// Number of cells carrying pressure.
-    #[getter]
-    fn contact_cells(&self) -> usize {
-        self.step.contact_cells
-    }
-    /// Cell pressures, shape (ny, nx) [stress].
-    #[getter]
-    fn pressure<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        grid_array(py, &self.step.pressure, self.shape)
-    }
-    /// The step's effective modulus E_eff [stress] (bem3d::viscoelastic docs).
-    #[getter]
-    fn effective_modulus(&self) -> f64 {
-        self.step.effective_modulus
-    }
-    /// Iterations of the step's elastic solve (0 when the surface is out of contact and
-    /// no solve ran).
-    #[getter]
-    fn iterations(&self) -> usize {
-        self.step.solve.as_ref().map_or(0, |s| s.iterations)
-    }
-    /// Criterion reached by the step's elastic solve (0 without a solve).
-    #[getter]
-    fn residual(&self) -> f64 {
-        self.step.solve.as_ref().map_or(0.0, |s| s.residual)
-    }
-    /// Certificate of the step's elastic solve (0 without a solve; see Contact).
-    #[getter]
-    fn certificate(&self) -> f64 {
-        self.step.solve.as_ref().map_or(0.0, |s| s.certificate)
-    }
-    fn __repr__(&self) -> String {
-        format!(
-            "TransientStep(time={:.6e}, force={:.6e}, approach={:.6e}, contact_cells={}, iterations={})",
-            self.step.time,
-            self.step.force,
-            self.step.approach,
-            self.step.contact_cells,
-            self.iterations()
-        )
+    methods {
+        /// Cell pressures, shape (ny, nx) [stress].
+        #[getter]
+        fn pressure<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+            grid_array(py, &self.step.pressure, self.shape)
+        }
+        /// Iterations of the step's elastic solve (0 when the surface is out of contact and
+        /// no solve ran).
+        #[getter]
+        fn iterations(&self) -> usize {
+            self.step.solve.as_ref().map_or(0, |s| s.iterations)
+        }
+        /// Criterion reached by the step's elastic solve (0 without a solve).
+        #[getter]
+        fn residual(&self) -> f64 {
+            self.step.solve.as_ref().map_or(0.0, |s| s.residual)
+        }
+        /// Certificate of the step's elastic solve (0 without a solve; see Contact).
+        #[getter]
+        fn certificate(&self) -> f64 {
+            self.step.solve.as_ref().map_or(0.0, |s| s.certificate)
+        }
+        fn __repr__(&self) -> String {
+            format!(
+                "TransientStep(time={:.6e}, force={:.6e}, approach={:.6e}, contact_cells={}, iterations={})",
+                self.step.time,
+                self.step.force,
+                self.step.approach,
+                self.step.contact_cells,
+                self.iterations()
+            )
+        }
     }
 }
 

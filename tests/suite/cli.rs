@@ -195,6 +195,15 @@ fn all_embedded_scenes_run_and_match_closed_forms() {
             if k == "tangential_3d.energy_balance_max_rel_3d" {
                 assert!(v < 0.005, "{name}: {k} = {v}");
             }
+            // The hysteresis loops on the free half-space (`tangential-3d-free`, 64 cells
+            // per contact radius): the 3D shift at every force of the cycle within 1e-3 of
+            // the amplitude's shift from Mindlin-Deresiewicz and from MRD's springs by
+            // Masing's rule (measured 4.4e-5 for both).
+            if k == "tangential_3d.loop_shift_max_rel_error_3d"
+                || k == "tangential_3d.loop_shift_max_rel_dev_3d_vs_mrd"
+            {
+                assert!(v < 1e-3, "{name}: {k} = {v}");
+            }
             // Rough contacts held in stick (`tangential-stiffness-3d-ci`, 32^2 and 64^2
             // cells): the 3D k_t / k_n lies a few per cent above MRD's G*/E* (measured
             // 4.3 % at 21 % contact, nu = 0.5; the report-scale scene 1.3-6.1 %), the

@@ -76,13 +76,13 @@ pub(super) struct Work {
 /// The tuning knobs of the strategies (tests set others).
 pub(super) struct Tuning {
     /// Largest contact set, as a fraction of the grid's cells, on which M is applied by
-    /// its stencil: [`iteration::LOCAL_MAX_FRACTION`] (tests set others).
+    /// its stencil: [`super::iteration::LOCAL_MAX_FRACTION`] (tests set others).
     pub(super) local_max_fraction: f64,
     /// Grids with more cells than this run memory-lean: [`LARGE_GRID_CELLS`] (tests set
     /// others).
     pub(super) large_grid_cells: usize,
-    /// Fewest cells per side for a nested start: [`start::NESTED_MIN`], or
-    /// [`start::COARSE_NESTED_MIN`] for a coarse grid's solver.
+    /// Fewest cells per side for a nested start: [`super::start::NESTED_MIN`], or
+    /// [`super::start::COARSE_NESTED_MIN`] for a coarse grid's solver.
     pub(super) nested_min: usize,
 }
 

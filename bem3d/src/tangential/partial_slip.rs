@@ -6,13 +6,16 @@ use super::compliance::TangentialCompliance;
 use crate::error::{BemError, Result};
 
 /// The energy of one cycle of an oscillating tangential force (Section 7).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Cycle {
     /// The energy dissipated by slip, summed over the cycle's steps [force x length].
     pub dissipated: f64,
     /// The area of the cycle's force-shift loop (trapezoids) [force x length]: equal to
     /// the dissipation where the steps resolve the loop (the energy balance).
     pub loop_area: f64,
+    /// The measured cycle's (force, shift) points: from the amplitude down to its
+    /// negative and back, `2 steps + 1` points.
+    pub points: Vec<(f64, f64)>,
 }
 
 /// The state of one tangential load step.
@@ -135,9 +138,13 @@ impl<C: TangentialCompliance> PartialSlip<C> {
         let mut out = Cycle {
             dissipated: 0.0,
             loop_area: 0.0,
+            points: Vec::new(),
         };
         for cycle in 0..cycles {
             let mut last = self.load(amplitude, tolerance)?;
+            if cycle + 1 == cycles {
+                out.points.push((last.force, last.shift));
+            }
             for k in 1..=2 * steps {
                 // Down to -amplitude in `steps` steps, back up in `steps` more.
                 let f = if k <= steps {
@@ -149,6 +156,7 @@ impl<C: TangentialCompliance> PartialSlip<C> {
                 if cycle + 1 == cycles {
                     out.dissipated += s.dissipated;
                     out.loop_area += 0.5 * (s.force + last.force) * (s.shift - last.shift);
+                    out.points.push((s.force, s.shift));
                 }
                 last = s;
             }
@@ -608,5 +616,16 @@ mod tests {
         }
         let c = ps.cycle(0.5 * limit, 8, 2, 1e-8).unwrap();
         assert!(c.dissipated > 0.0 && (c.loop_area / c.dissipated - 1.0).abs() < 0.05);
+        // The loop's points: the amplitude, down to its negative, back up; their
+        // trapezoids are the loop's area.
+        assert_eq!(c.points.len(), 17);
+        let ends = [c.points[0].0, c.points[8].0, c.points[16].0];
+        assert_eq!(ends, [0.5 * limit, -0.5 * limit, 0.5 * limit]);
+        let area: f64 = c
+            .points
+            .windows(2)
+            .map(|w| 0.5 * (w[0].0 + w[1].0) * (w[1].1 - w[0].1))
+            .sum();
+        assert_eq!(area, c.loop_area);
     }
 }

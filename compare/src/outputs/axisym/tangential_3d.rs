@@ -233,6 +233,13 @@ impl Output for Tangential3d {
             (&mrd.0, closed.as_ref().map(|c| &c.0[..]), &three.0),
             (&mrd.1, closed.as_ref().map(|c| &c.1[..]), &three.1),
         );
+        // Loops where the shift is absolute (the free half-space): a periodic cell's
+        // shift is measured from its mean surface displacement.
+        if !self.periodic {
+            let sphere = closed.is_some().then_some((mu * fn_, g, a));
+            self.report_loops(env, out, &tc, sphere, &three.2)
+                .ctx("MRD's hysteresis loops")?;
+        }
         Ok(())
     }
 }
@@ -241,8 +248,9 @@ impl Output for Tangential3d {
 /// area) per amplitude.
 type Dissipations<'a> = (&'a [f64], Option<&'a [f64]>, &'a [(f64, f64)]);
 
-/// The 3D side: stick radii over a, and per amplitude the dissipation and the loop's area.
-type Results3d = (Vec<f64>, Vec<(f64, f64)>);
+/// The 3D side: stick radii over a, per amplitude the dissipation and the loop's area,
+/// and per amplitude the measured cycle's (force, shift) points.
+type Results3d = (Vec<f64>, Vec<(f64, f64)>, Vec<Vec<(f64, f64)>>);
 
 impl Tangential3d {
     /// The sphere's pressure on the grid at the normal force.
@@ -289,13 +297,14 @@ impl Tangential3d {
             let s = ps.load(f * limit, tol)?;
             stick.push((s.stick_cells as f64 * cell / PI).sqrt() / a);
         }
-        let mut cycles = Vec::new();
+        let (mut cycles, mut loops) = (Vec::new(), Vec::new());
         for x in &self.amplitudes {
             let amp = x * limit;
             let c = fresh()?.cycle(amp, self.steps, 2, tol)?;
             cycles.push((c.dissipated, c.loop_area));
+            loops.push(c.points);
         }
-        Ok((stick, cycles))
+        Ok((stick, cycles, loops))
     }
 
     /// The tables, figures and agreement scalars of both comparisons (the closed-form
@@ -451,6 +460,116 @@ impl Tangential3d {
         fig.title.push_str(self.half_space_note());
         out.tables.push(t);
         out.figures.push(fig);
+    }
+
+    /// The hysteresis loops (force against shift) of the measured cycles: 3D, MRD's
+    /// springs by Masing's rule on their exact loading curve (unloading from F*:
+    /// `u(F*) - 2 u((F* - F) / 2)`, reloading `-u(F*) + 2 u((F* + F) / 2)`), and for a
+    /// sphere Mindlin-Deresiewicz (the same rule on Mindlin's
+    /// `u(F) = 3 mu F_N / (4 G* a) [1 - (1 - F / (mu F_N))^(2/3)]`). `sphere`:
+    /// (mu F_N, G*, a) of the closed form.
+    fn report_loops(
+        &self,
+        env: &Env,
+        out: &mut Section,
+        tc: &TangentialContact,
+        sphere: Option<(f64, f64, f64)>,
+        loops: &[Vec<(f64, f64)>],
+    ) -> mrd::Result<()> {
+        let length = env.ctx.units.length.clone();
+        let mu_fn = self.mu * self.normal_force;
+        let mindlin = |f: f64| {
+            sphere
+                .map(|(mp, g, a)| 3.0 * mp / (4.0 * g * a) * (1.0 - (1.0 - f / mp).powf(2.0 / 3.0)))
+        };
+        // Masing's branches from a loading curve `u`: the cycle's k-th point of 2 steps,
+        // at the force the 3D step reached (the prescribed one to rounding: the curve's
+        // argument is held in [0, amp]).
+        let masing =
+            |u: &dyn Fn(f64) -> mrd::Result<f64>, amp: f64, k: usize, f: f64| -> mrd::Result<f64> {
+                let on = |x: f64| u(x.clamp(0.0, amp));
+                if k <= self.steps {
+                    Ok(on(amp)? - 2.0 * on(0.5 * (amp - f))?)
+                } else {
+                    Ok(-on(amp)? + 2.0 * on(0.5 * (amp + f))?)
+                }
+            };
+        let mut cols = vec![
+            "force_amplitude_over_mu_fn [1]".to_string(),
+            "reloading [1]".to_string(),
+            "tangential_force_over_mu_fn [1]".to_string(),
+        ];
+        if sphere.is_some() {
+            cols.push(format!("shift_closed_form [{length}]"));
+        }
+        cols.push(format!("shift_mrd [{length}]"));
+        cols.push(format!("shift_3d [{length}]"));
+        let mut t = Table::new("loops", &cols);
+        t.notes.push(format!(
+            "the measured (second) cycle of each force amplitude, {} force steps per half cycle, from the amplitude down (reloading = 0) and back up (1); shift of the body, absolute (free half-space); {}MRD: Masing's rule on its springs' exact loading curve",
+            self.steps,
+            if sphere.is_some() { "closed form: Mindlin-Deresiewicz; " } else { "" },
+        ));
+        let mrd_u = |f: f64| tc.at_force(f).map(|s| s.displacement);
+        let cf_u = |f: f64| -> mrd::Result<f64> { Ok(mindlin(f).unwrap_or(f64::NAN)) };
+        let (mut dev_cf, mut dev_mrd) = (0.0f64, 0.0f64);
+        let mut fig = Figure::new(
+            "loops",
+            "Hysteresis loops: 3D, MRD and Mindlin-Deresiewicz",
+            &format!("shift of the body u_x [{length}]"),
+            "tangential force F_x / (mu F_N) [1]",
+        );
+        if sphere.is_none() {
+            fig.title = "Hysteresis loops: 3D and MRD".into();
+        }
+        let mut drawn = Vec::new();
+        for (i, (x, points)) in self.amplitudes.iter().zip(loops).enumerate() {
+            let amp = x * mu_fn;
+            let (mut p3, mut pm, mut pc) = (Vec::new(), Vec::new(), Vec::new());
+            for (k, &(f, u3)) in points.iter().enumerate() {
+                let um = masing(&mrd_u, amp, k, f)?;
+                let mut row = vec![*x, (k > self.steps) as u8 as f64, f / mu_fn];
+                let scale = mrd_u(amp)?;
+                if sphere.is_some() {
+                    let uc = masing(&cf_u, amp, k, f)?;
+                    dev_cf = dev_cf.max((u3 - uc).abs() / scale);
+                    row.push(uc);
+                    pc.push((uc, f / mu_fn));
+                }
+                dev_mrd = dev_mrd.max((u3 - um).abs() / scale);
+                row.extend([um, u3]);
+                t.push(row);
+                p3.push((u3, f / mu_fn));
+                pm.push((um, f / mu_fn));
+            }
+            let mut series = Vec::new();
+            if sphere.is_some() {
+                let label = format!("Mindlin-Deresiewicz, F* = {x} mu F_N");
+                series.push(Series::new(label, pc, Style::Line).colored(i));
+            }
+            let style = if sphere.is_some() {
+                Style::Dashed
+            } else {
+                Style::Line
+            };
+            let label = format!("MRD (springs, Masing), F* = {x} mu F_N");
+            series.push(Series::new(label, pm, style).colored(i));
+            let label = format!("3D boundary elements, F* = {x} mu F_N");
+            series.push(Series::new(label, p3, Style::Crosses).colored(i));
+            drawn.push(series);
+        }
+        // The largest loop drawn first, so that the smaller ones inside it stay visible.
+        for series in drawn.into_iter().rev().flatten() {
+            fig = fig.with(series);
+        }
+        if sphere.is_some() {
+            out.scalar("loop_shift_max_rel_error_3d", dev_cf);
+        }
+        out.scalar("loop_shift_max_rel_dev_3d_vs_mrd", dev_mrd);
+        fig.title.push_str(self.half_space_note());
+        out.tables.push(t);
+        out.figures.push(fig);
+        Ok(())
     }
 
     /// What a figure's title adds on the free half-space (the periodic one is the default).

@@ -459,7 +459,7 @@ fn add_to_figure(
     if let Some([a, b, h]) = spec.paper {
         if h == case.hurst {
             // xi <= 1 far from the bound holds on both sides; the paper's law is drawn
-            // where it stays below XI_DRAWN, and said in the title where it does not.
+            // where it stays below XI_DRAWN, and said under the axis where it does not.
             let law: Vec<(f64, f64)> = fs
                 .iter()
                 .map(|&f| (f, a + b * f.ln()))
@@ -467,8 +467,8 @@ fn add_to_figure(
                 .collect();
             if law.is_empty() {
                 let lowest = a + b * fs[0].ln();
-                fig.title.push_str(&format!(
-                    "; Eq. (92) at H = {h}: > {lowest:.2}, off the plot"
+                fig.x_label.push_str(&format!(
+                    "; the paper's Eq. (92) at H = {h}: xi > {lowest:.2}, off the plot"
                 ));
             } else {
                 fig.series.push(

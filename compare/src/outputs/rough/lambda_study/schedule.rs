@@ -170,23 +170,31 @@ pub fn compute(s: &LambdaStudy, work: &Path, control: &RunControl) -> Result<()>
     loop {
         let all = plan(s, work)?;
         let first = all.iter().map(|t| t.priority(s)).min();
-        // Report only: the MRD ensembles alone (priority 0), which are not committed
-        // (deterministic, about two CPU-minutes): the report needs them beside the 3D
-        // checkpoints.
-        let wanted = |t: &Task| !control.report_only || t.priority(s) == 0;
-        let todo: Vec<Task> = all
+        let round: Vec<Task> = all
             .into_iter()
-            .filter(|t| Some(t.priority(s)) == first && wanted(t))
-            .enumerate()
-            .filter(|(i, _)| control.shard.is_none_or(|(k, n)| i % n == k))
-            .map(|(_, t)| t)
+            .filter(|t| Some(t.priority(s)) == first)
             .collect();
         if control.report_only && control.progress {
             let _ = std::io::Write::write_fmt(
                 &mut std::io::stderr(),
-                format_args!("lambda study: report only; {}\n", summary(&todo)),
+                format_args!(
+                    "lambda study: report only (3D tasks are left to a run without \
+                     --report-only); the plan's next round: {}\n",
+                    summary(&round)
+                ),
             );
         }
+        // Report only: the MRD ensembles alone (priority 0), which are not committed
+        // (deterministic, about two CPU-minutes): the report needs them beside the 3D
+        // checkpoints.
+        let wanted = |t: &Task| !control.report_only || t.priority(s) == 0;
+        let todo: Vec<Task> = round
+            .into_iter()
+            .filter(wanted)
+            .enumerate()
+            .filter(|(i, _)| control.shard.is_none_or(|(k, n)| i % n == k))
+            .map(|(_, t)| t)
+            .collect();
         if todo.is_empty() {
             return Ok(());
         }
