@@ -171,3 +171,37 @@ def test_viscoelastic_slip_bad_input_is_a_value_error(kwargs, match):
             ve.step(dt, shift)
     with pytest.raises(ValueError, match="no cell is in contact"):
         mrdw.ViscoelasticSlip(np.zeros((16, 16)), 0.3, 1.0)
+
+
+def test_partial_slip_loops_match_the_cli_scene(mrdw_bin, tmp_path):
+    from conftest import run_cli
+    import json
+
+    out = run_cli(mrdw_bin, "run", "tangential-3d-free", "--out", str(tmp_path / "t"))
+    assert out.returncode == 0, out.stderr
+    rows = [r for r in open(tmp_path / "t" / "loops.csv") if not r.startswith("#")]
+    data = np.loadtxt(rows[1:], delimiter=",")
+    results = json.load(open(tmp_path / "t" / "summary.json"))["results"]
+    # The scene: a sphere R = 10 pressed with 1 on E* = 4 (E = 3, nu = 0.5 under a rigid
+    # body), 160^2 cells on the free half-space, mu = 0.5, tolerance 1e-8; the first loop
+    # (amplitude 0.2 mu P) after loading in 20 steps and one cycle: the same shifts bit
+    # for bit.
+    side, nu = results["tangential_3d.grid_side_3d"], results["tangential_3d.poisson_3d"]
+    n, h = 160, side / 160
+    x = (np.arange(n) + 0.5) * h - 0.5 * side
+    X, Y = np.meshgrid(x, x)
+    sol = mrdw.Contact(-(X * X + Y * Y) / (2 * 10.0), size=(side, side), e_star=4.0, periodic=False).solve(
+        force=1.0, tolerance=1e-8
+    )
+    slip = mrdw.PartialSlip(sol.pressure, 0.5, size=(side, side), e_star=4.0, poisson=nu, periodic=False)
+    amp, steps = 0.2 * slip.friction_limit, 20
+    for k in range(1, steps + 1):
+        slip.load(amp * k / steps)
+    for _ in range(2):
+        shifts = [slip.load(amp).shift]
+        for k in range(1, 2 * steps + 1):
+            f = amp * (1.0 - 2.0 * k / steps) if k <= steps else amp * (-1.0 + 2.0 * (k - steps) / steps)
+            shifts.append(slip.load(f).shift)
+    first = data[data[:, 0] == 0.2]
+    assert len(first) == 2 * steps + 1
+    assert np.array_equal(np.array(shifts), first[:, -1])

@@ -1,8 +1,9 @@
 //! The shared experiment layer that the studies stand on instead of on each other:
-//! lambda as scenes give it and its calibrated table ([`lambda`]), its one meaning
+//! the rule of Hess's stage of the axisymmetric outputs ([`hess`]), lambda as scenes give it and its calibrated table ([`lambda`]), its one meaning
 //! ([`lambda_meaning`]), the fits and intervals of ensemble curves ([`fit`]), the
-//! periodic self-affine patches of the 3D rough studies ([`periodic`]), and the rough
-//! sphere with its MRD line ([`rough_sphere`]), a rough sphere or punch as the studies
+//! periodic self-affine patches of the 3D rough studies ([`periodic`]), the rough
+//! punch's k(F) ladder and MRD ensemble ([`rough_punch`]), the rough sphere with its MRD
+//! line ([`rough_sphere`]), a rough sphere or punch as the studies
 //! name it ([`rough_body`]), a body of revolution pressed on the 3D
 //! grid for the tangential outputs ([`axisym_3d`]), MRD's tangential law on any normal
 //! curve ([`tangential_map`]), and the progress bar of long stages
@@ -10,10 +11,12 @@
 
 pub mod axisym_3d;
 pub mod fit;
+pub mod hess;
 pub mod lambda;
 pub mod lambda_meaning;
 pub mod periodic;
 pub mod progress;
 pub mod rough_body;
+pub mod rough_punch;
 pub mod rough_sphere;
 pub mod tangential_map;

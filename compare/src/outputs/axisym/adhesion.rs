@@ -2,10 +2,10 @@
 //! pull-off (Eqs. 34-37), optionally on an event-driven row of springs, against JKR,
 //! Eq. 37 (cone) and Eq. 34 (flat punch).
 
-use super::hess;
 use crate::checks::{bad, check_points, check_springs, default_points, positive, rel};
 use crate::context::{Context, ControlSpec};
 use crate::error::{Context as _, Result};
+use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};

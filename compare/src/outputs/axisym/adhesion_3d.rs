@@ -11,10 +11,10 @@
 //! load without adhesion at a distance (cells and springs join on touching) and unload
 //! through the adhesive branch, so their loops are the same construction.
 
-use super::hess;
 use crate::checks::{bad, check_memory, check_tolerance, default_tolerance, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
+use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};

@@ -3,12 +3,12 @@
 //! amplitude, against the semi-analytic MRD result and, for a sphere, Mindlin's Eq. 58,
 //! its small-amplitude limit Eq. 61 and the force form.
 
-use super::hess;
 use crate::checks::{
     bad, check_points, check_springs, default_points, default_springs, positive, rel,
 };
 use crate::context::Context;
 use crate::error::{Context as _, Result};
+use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};

@@ -2,10 +2,10 @@
 //! 24, 25), semi-analytic; optionally on N discrete springs; the closed form where the
 //! profile has one; the electrical conductance for a resistivity sum.
 
-use super::hess;
 use crate::checks::{bad, check_points, check_springs, default_points, rel};
 use crate::context::{Context, Drive};
 use crate::error::{Context as _, Result};
+use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};

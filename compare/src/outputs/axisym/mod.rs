@@ -5,7 +5,6 @@ pub mod adhesion;
 pub mod adhesion_3d;
 pub mod damping;
 pub mod force_depth;
-pub(crate) mod hess;
 pub mod pressure;
 pub mod profile_1d;
 pub mod tabor_3d;

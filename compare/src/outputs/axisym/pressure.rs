@@ -1,10 +1,10 @@
 //! `pressure`: the contact pressure p(r) at one depth by the Abel transform of the 1D
 //! line load (Eq. 26), with its equilibrium check and the closed form where one exists.
 
-use super::hess;
 use crate::checks::{bad, check_points, default_points, positive, rel};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
+use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};

@@ -1,10 +1,10 @@
 //! `profile_1d`: the 3D profile z(r) and its MRD image z1d(x) by the rule of Hess
 //! (Eq. 11), per-shape closed form against independent quadrature.
 
-use super::hess;
 use crate::checks::{bad, check_points, default_points, positive, rel};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
+use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};

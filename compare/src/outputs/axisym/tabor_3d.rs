@@ -9,10 +9,10 @@
 //! the one of `adhesion_3d` (approach steps in, and out until the cohesive zone is
 //! gone); the pull-off is the smallest force of the unloading.
 
-use super::hess;
 use crate::checks::{bad, check_memory, check_tolerance, default_tolerance, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
+use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};

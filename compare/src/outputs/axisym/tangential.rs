@@ -2,10 +2,10 @@
 //! (Cattaneo-Mindlin / Jager, Eqs. 41-50), and the traction distributions at chosen
 //! fractions of mu F_N (Abel transform of Eq. 51); closed forms for a sphere.
 
-use super::hess;
 use crate::checks::{bad, check_points, default_points, positive, rel};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
+use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};

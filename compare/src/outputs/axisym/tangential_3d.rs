@@ -13,11 +13,11 @@
 //! one body equivalent to the scene's E* and G* (rigid indenter: E* = 2G/(1 - nu),
 //! G* = 4G/(2 - nu)); for two elastic bodies that is the uncoupled approximation.
 
-use super::hess;
 use crate::checks::{bad, check_memory, check_tolerance, default_tolerance, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::axisym_3d::{equivalent_body, AxisymGrid};
+use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
@@ -221,6 +221,8 @@ impl Output for Tangential3d {
             })
         });
         let pressure = self.normal_3d(env, out, a)?;
+        // The one elastic body the 3D tangential operator takes (module docs).
+        out.scalar("poisson_3d", equivalent_body(e, g).0);
         let three = out
             .stage(Stage::Tangential3d, || {
                 self.partial_slip(&pressure, a, e, g)
@@ -272,6 +274,7 @@ impl Tangential3d {
             .ctx("3D normal contact")?;
         out.scalar("contact_radius_3d", (sol.contact_area / PI).sqrt());
         out.scalar("cells_per_contact_radius", a / h);
+        out.scalar("grid_side_3d", l);
         Ok(sol.pressure)
     }
 

@@ -5,8 +5,8 @@
 use crate::checks::{bad, check_springs, default_springs, positive, rel};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
+use crate::experiment::hess;
 use crate::output::{Env, Output};
-use crate::outputs::axisym::hess;
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
 use mrd::viscoelastic::{radok_force, simulate, Prony};

@@ -6,13 +6,14 @@
 //! in a fixed order (per H: each grid's 3D resamples, then, on the main grid, the 1D
 //! ones and the paired lambda ones), so results are reproducible bit for bit.
 
-use super::tasks::{load, BemCurve, MrdEnsemble, SolveRecord, Task};
+use super::tasks::{load, Task};
 use super::HurstSweep;
 use crate::error::Result;
 use crate::experiment::fit::{
     calibrate_lambda_at, fit_points, fit_window, interp_loglog, interval, mean_curve, resample,
     window_points,
 };
+use crate::experiment::rough_punch::{BemCurve, MrdEnsemble, SolveRecord};
 use mrd::rough_contact::Stat;
 use mrd::roughness::lambda_cut;
 use rand::SeedableRng;

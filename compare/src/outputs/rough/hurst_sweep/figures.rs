@@ -3,8 +3,8 @@
 //! fit window, the finite-size study, and the lambda table in the form `mrd` loads.
 
 use super::aggregate::{Estimate, PerHurst, Results};
-use super::tasks::SolveRecord;
 use super::HurstSweep;
+use crate::experiment::rough_punch::SolveRecord;
 use crate::report::{Figure, Section, Series, Style, Table};
 use mrd::roughness::lambda_cut;
 use std::f64::consts::PI;

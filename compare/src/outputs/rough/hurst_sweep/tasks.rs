@@ -4,14 +4,14 @@
 
 use super::HurstSweep;
 use crate::error::{io_err, CompareError, Context as _, Result};
+use crate::experiment::rough_punch::{punch_curve, BemCurve, MrdEnsemble};
 use crate::files::write_atomic;
 use crate::output::RunControl;
-use bem3d::{BemError, ContactSolver, Load, NonPeriodicHalfSpace, SolverOptions};
 use mrd::rough_contact::RoughLine;
 use mrd::roughness::synthesis::{line, surface, Amplitudes, Grid};
 use mrd::roughness::SelfAffine;
 use rayon::prelude::*;
-use serde::{Deserialize, Serialize};
+use serde::Deserialize;
 use std::f64::consts::PI;
 use std::path::Path;
 use std::time::Instant;
@@ -33,40 +33,6 @@ impl Task {
             Task::Mrd { h } => format!("mrd_h{h}.json"),
         }
     }
-}
-
-/// One 3D solve of a realisation's load ladder, as recorded in the solves table.
-#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
-pub struct SolveRecord {
-    pub approach: f64,
-    pub force: f64,
-    pub iterations: usize,
-    pub residual: f64,
-    pub converged: bool,
-    pub stiffness_converged: bool,
-}
-
-/// Result of one 3D realisation: F and k at each approach where both converged (E* = 1,
-/// L = 1), and every solve's record.
-#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
-pub struct BemCurve {
-    pub rms_height: f64,
-    pub force: Vec<f64>,
-    pub stiffness: Vec<f64>,
-    pub solves: Vec<SolveRecord>,
-    pub iterations: usize,
-    /// Largest residual reached; above the tolerance when a solve did not converge.
-    pub max_residual: f64,
-    pub unconverged: usize,
-    pub seconds: f64,
-}
-
-/// Result of the 1D ensemble at one H: k/(E* L) per realisation on the f grid.
-#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
-pub struct MrdEnsemble {
-    pub stiffness: Vec<Vec<f64>>,
-    pub seconds: f64,
-    pub points: usize,
 }
 
 /// All tasks of a sweep in a fixed global order (shards take every N-th).
@@ -121,88 +87,6 @@ fn run_bem(spec: &HurstSweep, h: usize, g: usize, r: u64) -> Result<BemCurve> {
     .ctx("3D surface")?;
     let mut out = punch_curve(&heights, g, spec.loads, spec.tolerance)?;
     out.seconds = t0.elapsed().as_secs_f64();
-    Ok(out)
-}
-
-/// The rough punch of the sweeps: the disc inscribed in the `g x g` map `heights` (side
-/// L = 1, E* = 1) pressed on the free half-space at `loads` approaches, log-spaced from
-/// 1e-3 of the full-contact approach to full contact, warm-started; F and the tangent
-/// stiffness k = dF/dd (contact set fixed) at each. `seconds` is left 0 for the caller.
-pub(crate) fn punch_curve(
-    heights: &[f64],
-    g: usize,
-    loads: usize,
-    tolerance: f64,
-) -> Result<BemCurve> {
-    let mask = bem3d::mask::disc(g, g, 1.0, 1.0, 0.5);
-    let (top, bottom) = heights
-        .iter()
-        .zip(&mask)
-        .filter(|(_, &m)| m)
-        .fold((f64::NEG_INFINITY, f64::INFINITY), |(t, b), (&v, _)| {
-            (t.max(v), b.min(v))
-        });
-    let full = top - bottom;
-    let mut solver = ContactSolver::new(
-        NonPeriodicHalfSpace::new(g, g, 1.0, 1.0, 1.0),
-        heights,
-        Some(mask),
-    )
-    .ctx("3D solver set-up")?;
-    let opts = SolverOptions {
-        tolerance,
-        max_iterations: 20 * g + 2000,
-        ..Default::default()
-    };
-    let stiffness_opts = SolverOptions {
-        tolerance: 1e-9,
-        ..opts.clone()
-    };
-    let mut out = BemCurve {
-        rms_height: solver.h_rms(),
-        force: vec![],
-        stiffness: vec![],
-        solves: vec![],
-        iterations: 0,
-        max_residual: 0.0,
-        unconverged: 0,
-        seconds: 0.0,
-    };
-    let mut warm: Option<bem3d::Solution> = None;
-    for k in 0..loads {
-        let d = full * 10f64.powf(-3.0 * (1.0 - k as f64 / (loads - 1) as f64));
-        let (sol, converged) = match solver.solve(Load::Approach(d), &opts, warm.as_ref()) {
-            Ok(s) => (s, true),
-            Err(BemError::NoConvergence { last, .. }) => {
-                out.unconverged += 1;
-                (*last, false)
-            }
-            Err(e) => return Err(e).ctx("3D solve"),
-        };
-        out.iterations += sol.iterations;
-        out.max_residual = out.max_residual.max(sol.residual);
-        // Unconverged iterates are recorded, not used.
-        let kk = match converged.then(|| solver.tangent_stiffness(&sol, &stiffness_opts)) {
-            Some(Ok(v)) => v,
-            Some(Err(e)) if e.progress().is_none() => return Err(e).ctx("3D stiffness"),
-            _ => f64::NAN,
-        };
-        out.solves.push(SolveRecord {
-            approach: d,
-            force: sol.force,
-            iterations: sol.iterations,
-            residual: sol.residual,
-            converged,
-            stiffness_converged: kk.is_finite(),
-        });
-        if sol.force > 0.0 && kk.is_finite() && kk > 0.0 {
-            out.force.push(sol.force);
-            out.stiffness.push(kk);
-        }
-        if converged {
-            warm = Some(sol);
-        }
-    }
     Ok(out)
 }
 

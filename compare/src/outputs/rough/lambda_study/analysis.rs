@@ -14,7 +14,7 @@ use crate::error::Result;
 use crate::experiment::fit::{
     calibrate_lambda_at, fit_points, fit_window, interp_loglog, mean_curve, resample, window_points,
 };
-use crate::outputs::rough::hurst_sweep::tasks::{BemCurve, MrdEnsemble};
+use crate::experiment::rough_punch::{BemCurve, MrdEnsemble};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::path::Path;

@@ -18,7 +18,7 @@ use super::tasks::{approach_file, load, ApproachEnsemble, Case};
 use super::LambdaStudy;
 use crate::error::Result;
 use crate::experiment::fit::interp_loglog;
-use crate::outputs::rough::hurst_sweep::tasks::BemCurve;
+use crate::experiment::rough_punch::BemCurve;
 use crate::report::{Figure, Section, Series, Style, Table};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;

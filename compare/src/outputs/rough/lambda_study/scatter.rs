@@ -15,7 +15,7 @@ use super::estimate::{cv_estimate, Estimate, RESAMPLES};
 use super::tasks::{cases, done, load, mrd_file, Case, Role};
 use super::LambdaStudy;
 use crate::error::Result;
-use crate::outputs::rough::hurst_sweep::tasks::MrdEnsemble;
+use crate::experiment::rough_punch::MrdEnsemble;
 use crate::report::{Figure, Section, Series, Style, Table};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;

@@ -5,7 +5,7 @@
 
 use super::LambdaStudy;
 use crate::error::{io_err, CompareError, Context as _, Result};
-use crate::outputs::rough::hurst_sweep::tasks::{punch_curve, BemCurve, MrdEnsemble};
+use crate::experiment::rough_punch::{punch_curve, BemCurve, MrdEnsemble};
 use mrd::rough_contact::RoughLine;
 use mrd::roughness::nested;
 use mrd::roughness::synthesis::Grid;

@@ -8,7 +8,7 @@ use crate::report::Section;
 use mrd::normal::AxisymmetricContact;
 
 /// The rule-of-Hess stage: the profile's 1D contact (E* springs).
-pub(crate) fn hess(env: &Env, out: &mut Section) -> Result<AxisymmetricContact> {
+pub fn hess(env: &Env, out: &mut Section) -> Result<AxisymmetricContact> {
     let profile = env.ctx.profile()?.clone();
     let e = env.ctx.material.e_star;
     out.stage(Stage::HessTransform, || {

@@ -1,0 +1,119 @@
+//! The rough punch of the Hurst sweep and the lambda study (Section 9, Pohrt & Popov):
+//! a rigid circular punch with a rough face pressed on the free half-space along a
+//! ladder of approaches, its k(F) curve with every solve's record, and the k(f) of an
+//! ensemble of MRD lines on the same f grid, as the studies checkpoint them.
+
+use crate::error::{Context as _, Result};
+use bem3d::{BemError, ContactSolver, Load, NonPeriodicHalfSpace, SolverOptions};
+use serde::{Deserialize, Serialize};
+
+/// One 3D solve of a realisation's load ladder, as recorded in the solves table.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct SolveRecord {
+    pub approach: f64,
+    pub force: f64,
+    pub iterations: usize,
+    pub residual: f64,
+    pub converged: bool,
+    pub stiffness_converged: bool,
+}
+
+/// Result of one 3D realisation: F and k at each approach where both converged (E* = 1,
+/// L = 1), and every solve's record.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct BemCurve {
+    pub rms_height: f64,
+    pub force: Vec<f64>,
+    pub stiffness: Vec<f64>,
+    pub solves: Vec<SolveRecord>,
+    pub iterations: usize,
+    /// Largest residual reached; above the tolerance when a solve did not converge.
+    pub max_residual: f64,
+    pub unconverged: usize,
+    pub seconds: f64,
+}
+
+/// Result of the 1D ensemble at one H: k/(E* L) per realisation on the f grid.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct MrdEnsemble {
+    pub stiffness: Vec<Vec<f64>>,
+    pub seconds: f64,
+    pub points: usize,
+}
+
+/// The rough punch of the studies: the disc inscribed in the `g x g` map `heights` (side
+/// L = 1, E* = 1) pressed on the free half-space at `loads` approaches, log-spaced from
+/// 1e-3 of the full-contact approach to full contact, warm-started; F and the tangent
+/// stiffness k = dF/dd (contact set fixed) at each. `seconds` is left 0 for the caller.
+pub fn punch_curve(heights: &[f64], g: usize, loads: usize, tolerance: f64) -> Result<BemCurve> {
+    let mask = bem3d::mask::disc(g, g, 1.0, 1.0, 0.5);
+    let (top, bottom) = heights
+        .iter()
+        .zip(&mask)
+        .filter(|(_, &m)| m)
+        .fold((f64::NEG_INFINITY, f64::INFINITY), |(t, b), (&v, _)| {
+            (t.max(v), b.min(v))
+        });
+    let full = top - bottom;
+    let mut solver = ContactSolver::new(
+        NonPeriodicHalfSpace::new(g, g, 1.0, 1.0, 1.0),
+        heights,
+        Some(mask),
+    )
+    .ctx("3D solver set-up")?;
+    let opts = SolverOptions {
+        tolerance,
+        max_iterations: 20 * g + 2000,
+        ..Default::default()
+    };
+    let stiffness_opts = SolverOptions {
+        tolerance: 1e-9,
+        ..opts.clone()
+    };
+    let mut out = BemCurve {
+        rms_height: solver.h_rms(),
+        force: vec![],
+        stiffness: vec![],
+        solves: vec![],
+        iterations: 0,
+        max_residual: 0.0,
+        unconverged: 0,
+        seconds: 0.0,
+    };
+    let mut warm: Option<bem3d::Solution> = None;
+    for k in 0..loads {
+        let d = full * 10f64.powf(-3.0 * (1.0 - k as f64 / (loads - 1) as f64));
+        let (sol, converged) = match solver.solve(Load::Approach(d), &opts, warm.as_ref()) {
+            Ok(s) => (s, true),
+            Err(BemError::NoConvergence { last, .. }) => {
+                out.unconverged += 1;
+                (*last, false)
+            }
+            Err(e) => return Err(e).ctx("3D solve"),
+        };
+        out.iterations += sol.iterations;
+        out.max_residual = out.max_residual.max(sol.residual);
+        // Unconverged iterates are recorded, not used.
+        let kk = match converged.then(|| solver.tangent_stiffness(&sol, &stiffness_opts)) {
+            Some(Ok(v)) => v,
+            Some(Err(e)) if e.progress().is_none() => return Err(e).ctx("3D stiffness"),
+            _ => f64::NAN,
+        };
+        out.solves.push(SolveRecord {
+            approach: d,
+            force: sol.force,
+            iterations: sol.iterations,
+            residual: sol.residual,
+            converged,
+            stiffness_converged: kk.is_finite(),
+        });
+        if sol.force > 0.0 && kk.is_finite() && kk > 0.0 {
+            out.force.push(sol.force);
+            out.stiffness.push(kk);
+        }
+        if converged {
+            warm = Some(sol);
+        }
+    }
+    Ok(out)
+}
