@@ -41,11 +41,10 @@ pub struct MrdEnsemble {
     pub points: usize,
 }
 
-/// The rough punch of the studies: the disc inscribed in the `g x g` map `heights` (side
-/// L = 1, E* = 1) pressed on the free half-space at `loads` approaches, log-spaced from
-/// 1e-3 of the full-contact approach to full contact, warm-started; F and the tangent
-/// stiffness k = dF/dd (contact set fixed) at each. `seconds` is left 0 for the caller.
-pub fn punch_curve(heights: &[f64], g: usize, loads: usize, tolerance: f64) -> Result<BemCurve> {
+/// The punch's face on the `g x g` map `heights` (side L = 1): the disc inscribed in
+/// it, and the approach of full contact over that disc (its highest minus its lowest
+/// height).
+pub fn punch_face(heights: &[f64], g: usize) -> (Vec<bool>, f64) {
     let mask = bem3d::mask::disc(g, g, 1.0, 1.0, 0.5);
     let (top, bottom) = heights
         .iter()
@@ -54,7 +53,15 @@ pub fn punch_curve(heights: &[f64], g: usize, loads: usize, tolerance: f64) -> R
         .fold((f64::NEG_INFINITY, f64::INFINITY), |(t, b), (&v, _)| {
             (t.max(v), b.min(v))
         });
-    let full = top - bottom;
+    (mask, top - bottom)
+}
+
+/// The rough punch of the studies: the disc inscribed in the `g x g` map `heights` (side
+/// L = 1, E* = 1) pressed on the free half-space at `loads` approaches, log-spaced from
+/// 1e-3 of the full-contact approach to full contact, warm-started; F and the tangent
+/// stiffness k = dF/dd (contact set fixed) at each. `seconds` is left 0 for the caller.
+pub fn punch_curve(heights: &[f64], g: usize, loads: usize, tolerance: f64) -> Result<BemCurve> {
+    let (mask, full) = punch_face(heights, g);
     let mut solver = ContactSolver::new(
         NonPeriodicHalfSpace::new(g, g, 1.0, 1.0, 1.0),
         heights,

@@ -22,6 +22,7 @@ use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::fit::mean_curve;
 use crate::experiment::lambda::LambdaSpec;
+use crate::experiment::rough_punch::punch_face;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
@@ -153,14 +154,7 @@ impl ContactArea {
             Amplitudes::Deterministic,
         )
         .ctx("3D surface")?;
-        let mask = bem3d::mask::disc(g, g, 1.0, 1.0, 0.5);
-        let (top, bottom) = heights
-            .iter()
-            .zip(&mask)
-            .filter(|(_, &m)| m)
-            .fold((f64::NEG_INFINITY, f64::INFINITY), |(t, b), (&v, _)| {
-                (t.max(v), b.min(v))
-            });
+        let (mask, full) = punch_face(&heights, g);
         let mut solver = ContactSolver::new(
             NonPeriodicHalfSpace::new(g, g, 1.0, 1.0, 1.0),
             &heights,
@@ -176,7 +170,7 @@ impl ContactArea {
         let (mut points, mut failed) = (Vec::new(), 0);
         let mut warm: Option<bem3d::Solution> = None;
         for k in 0..self.loads {
-            let d = (top - bottom) * 10f64.powf(-3.0 * (1.0 - k as f64 / (self.loads - 1) as f64));
+            let d = full * 10f64.powf(-3.0 * (1.0 - k as f64 / (self.loads - 1) as f64));
             let sol = match solver.solve(Load::Approach(d), &opts, warm.as_ref()) {
                 Ok(s) => s,
                 Err(BemError::NoConvergence { .. }) => {
