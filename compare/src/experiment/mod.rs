@@ -6,10 +6,13 @@
 //! line ([`rough_sphere`]), a rough sphere or punch as the studies
 //! name it ([`rough_body`]), a body of revolution pressed on the 3D
 //! grid for the tangential outputs ([`axisym_3d`]), MRD's tangential law on any normal
-//! curve ([`tangential_map`]), and the progress bar of long stages
+//! curve ([`tangential_map`]), the elastomer of the sliding-friction outputs with the fit
+//! of Eq. (82) ([`elastomer`]) and their MRD ensemble of sliding lines
+//! ([`sliding_line`]), and the progress bar of long stages
 //! ([`progress`]).
 
 pub mod axisym_3d;
+pub mod elastomer;
 pub mod fit;
 pub mod hess;
 pub mod lambda;
@@ -19,4 +22,5 @@ pub mod progress;
 pub mod rough_body;
 pub mod rough_punch;
 pub mod rough_sphere;
+pub mod sliding_line;
 pub mod tangential_map;

@@ -16,12 +16,12 @@
 //! `sliding_friction` (G(inf) the relaxed modulus). The half-space's contact modulus is
 //! E*(omega) = 4 G(omega) (incompressible), G(omega) exact for Eq. (84).
 
-use super::elastomer::{self, Material};
-use super::sliding_friction::{AtVelocity, LineSpec, SlidingFriction};
 use crate::checks::{bad, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
+use crate::experiment::elastomer::{self, Material};
 use crate::experiment::progress::Progress;
+use crate::experiment::sliding_line::{AtVelocity, LineSpec, MrdSliding};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
@@ -298,8 +298,8 @@ impl SlidingFriction3d {
 
     /// The MRD counterpart: the same material, spectrum (C1D = pi q C2D), rms height,
     /// reduced force, velocities, realisations and seed.
-    fn mrd_counterpart(&self, m: &MrdSide) -> SlidingFriction {
-        SlidingFriction {
+    fn mrd_counterpart(&self, m: &MrdSide) -> MrdSliding {
+        MrdSliding {
             material: self.material.clone(),
             line: self.surface.clone(),
             length: self.length,
@@ -315,13 +315,12 @@ impl SlidingFriction3d {
             seed: self.seed,
             tolerance: m.tolerance,
             max_passes: m.max_passes,
-            error_limit: self.error_limit,
         }
     }
 }
 
 impl Output for SlidingFriction3d {
-    fn validate(&self, ctx: &Context) -> Result<()> {
+    fn validate(&self, _: &Context) -> Result<()> {
         let shear = self.material.validate()?;
         self.surface.validate("surface")?;
         if matches!(self.surface, LineSpec::Sinusoid { .. }) {
@@ -362,10 +361,10 @@ impl Output for SlidingFriction3d {
         if !(self.error_limit > 0.0 && self.error_limit <= 1.0) {
             return bad("error_limit must lie in (0, 1]");
         }
-        // The MRD side is checked as the `sliding_friction` output it runs.
+        // The MRD side is checked as the `sliding_friction` output's ensemble.
         if let Some(m) = &self.mrd {
             self.mrd_counterpart(m)
-                .validate(ctx)
+                .validate()
                 .map_err(|e| e.within("mrd"))?;
         }
         Ok(())

@@ -12,7 +12,7 @@ use serde::Deserialize;
 /// The elastomer's shear modulus G(t).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
-pub(super) enum Material {
+pub(crate) enum Material {
     /// Eq. (84) with its Prony discretisation into `terms` terms.
     Eq84 {
         g0: f64,
@@ -33,7 +33,7 @@ fn sixteen() -> usize {
 
 impl Material {
     /// G(t) as a Prony series.
-    pub(super) fn shear(&self) -> mrd::Result<Prony> {
+    pub(crate) fn shear(&self) -> mrd::Result<Prony> {
         match self {
             Material::Eq84 {
                 g0,
@@ -50,7 +50,7 @@ impl Material {
     }
 
     /// G(omega) = (G', G''), exact for Eq. (84).
-    pub(super) fn complex(&self, omega: f64) -> mrd::Result<(f64, f64)> {
+    pub(crate) fn complex(&self, omega: f64) -> mrd::Result<(f64, f64)> {
         match self {
             Material::Eq84 {
                 g0,
@@ -70,7 +70,7 @@ impl Material {
     /// [`MAX_MODULUS_RATIO`] (the steady-state iterations slow down with it: rubbers
     /// have 1e2-1e4), relaxation times within [`MAX_TIME_DECADES`] decades, moduli
     /// within 1e-100..1e100.
-    pub(super) fn validate(&self) -> Result<Prony> {
+    pub(crate) fn validate(&self) -> Result<Prony> {
         // The term count first: the discretisation allocates `terms` nodes.
         if let Material::Eq84 {
             terms,
@@ -125,7 +125,7 @@ impl Material {
     }
 
     /// Eq. (82) with xi = 1 at each velocity: grad z G''(c k v) / |G(c k v)|.
-    pub(super) fn eq82_over_xi(&self, c_k: f64, grad_z: f64, vs: &[f64]) -> Result<Vec<f64>> {
+    pub(crate) fn eq82_over_xi(&self, c_k: f64, grad_z: f64, vs: &[f64]) -> Result<Vec<f64>> {
         vs.iter()
             .map(|&v| {
                 let (re, im) = self.complex(c_k * v).ctx("G(omega)")?;
@@ -138,7 +138,7 @@ impl Material {
 /// Ensemble mean per velocity over the surfaces `idx` of `mu[velocity][surface]`;
 /// non-finite entries (runs that failed) are left out, NaN where none is left.
 /// Largest glassy-to-relaxed modulus ratio G(0) / G(inf) the sliding outputs accept.
-pub(super) const MAX_MODULUS_RATIO: f64 = 1e8;
+pub(crate) const MAX_MODULUS_RATIO: f64 = 1e8;
 /// Most decades the relaxation times may span.
 const MAX_TIME_DECADES: i32 = 20;
 /// Frequencies omega tau beyond which a material is elastic to one part in this: below
@@ -158,7 +158,7 @@ fn time_range(shear: &Prony) -> (f64, f64) {
 /// The sliding velocities: `count` values log-spaced on [min, max], validated; the
 /// frequencies q v of the surface's wavenumbers `q_range` must reach the material's
 /// relaxation times (else mu vanishes to rounding at every velocity out of range).
-pub(super) fn velocities(
+pub(crate) fn velocities(
     min: f64,
     max: f64,
     count: usize,
@@ -188,7 +188,7 @@ pub(super) fn velocities(
     Ok(mrd::friction::log_space(min, max, count))
 }
 
-pub(super) fn ensemble_mean(mu: &[Vec<f64>], idx: &[usize]) -> Vec<f64> {
+pub(crate) fn ensemble_mean(mu: &[Vec<f64>], idx: &[usize]) -> Vec<f64> {
     mu.iter()
         .map(|row| {
             let (s, n) = idx
@@ -231,7 +231,7 @@ fn misfit(mean: &[f64], r: &[f64], xi: f64) -> f64 {
 
 /// xi of Eq. (82) and its bootstrap 95 % interval (200 resamples of the surfaces).
 #[derive(Debug, Clone, Copy)]
-pub(super) struct XiFit {
+pub(crate) struct XiFit {
     pub xi: f64,
     pub lo: f64,
     pub hi: f64,
@@ -252,7 +252,7 @@ fn resamples(surfaces: usize, seed: u64) -> Vec<Vec<usize>> {
 }
 
 /// Fits xi of `mu[velocity][surface] ~ xi r[velocity]`.
-pub(super) fn fit_xi(mu: &[Vec<f64>], r: &[f64], seed: u64) -> XiFit {
+pub(crate) fn fit_xi(mu: &[Vec<f64>], r: &[f64], seed: u64) -> XiFit {
     let surfaces = mu.first().map_or(0, Vec::len);
     let all: Vec<usize> = (0..surfaces).collect();
     let mean = ensemble_mean(mu, &all);
@@ -274,7 +274,7 @@ pub(super) fn fit_xi(mu: &[Vec<f64>], r: &[f64], seed: u64) -> XiFit {
 /// 1/100 decade over 1e-2..1e2): whether the form holds with another characteristic
 /// wave vector c k.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct ShiftFit {
+pub(crate) struct ShiftFit {
     pub c: f64,
     pub c_lo: f64,
     pub c_hi: f64,
@@ -282,7 +282,7 @@ pub(super) struct ShiftFit {
     pub misfit: f64,
 }
 
-pub(super) fn fit_shift(
+pub(crate) fn fit_shift(
     mu: &[Vec<f64>],
     material: &Material,
     k: f64,
