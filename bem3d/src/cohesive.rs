@@ -1,6 +1,6 @@
 //! Adhesive normal contact with a finite-range cohesive law: Maugis-Dugdale (a constant
 //! tension `sigma0` wherever the gap lies below the range `delta = w / sigma0`), on the
-//! free half-space under a prescribed approach. The finite-range counterpart of
+//! free or the periodic half-space under a prescribed approach. The finite-range counterpart of
 //! [`crate::adhesion`] (whose zero range is the JKR limit); with the Tabor-Maugis
 //! parameter `lambda = sigma0 (9 R / (2 pi w E*^2))^(1/3)` it spans Bradley's rigid limit
 //! (lambda -> 0) to JKR's (lambda -> infinity), as Maugis' closed form does.
@@ -20,6 +20,12 @@
 //! `max(rms of z, |d|, delta)`; the set update is exact. The whole problem is not
 //! convex (the cohesive energy is not), so the result is the equilibrium reached from
 //! the previous state along the history; a set that keeps changing is an error.
+//!
+//! **Approach on a periodic cell.** The periodic half-space carries no mean displacement
+//! (its k = 0 mode), so the approach `d` fixes the mean gap over the cell at
+//! `mean(z) - d`: the control of Tamaas' gap-formulated adhesive solvers. An approach at
+//! or beyond `mean(z)` on an unmasked cell is complete contact under an unbounded force,
+//! and is refused.
 //!
 //! **Resolution.** The cohesive zone must span cells: its width near a crack tip is of
 //! the order of the Dugdale length `E* w / sigma0^2` ([`CohesiveContact::dugdale_length`]).
@@ -63,6 +69,9 @@ pub struct CohesiveContact<C: Preconditioner> {
     sigma0: f64,
     range: f64,
     rms: f64,
+    /// The mean of z over an unmasked periodic cell: the approach of complete contact
+    /// (module docs); `None` where the approach is not bounded so.
+    complete: Option<f64>,
     /// The cohesive set S.
     cohesive: Vec<bool>,
     p: Vec<f64>,
@@ -71,8 +80,8 @@ pub struct CohesiveContact<C: Preconditioner> {
 
 impl<C: Preconditioner> CohesiveContact<C> {
     /// `heights` (`ny x nx`), an optional mask, the work of adhesion `work` > 0 and the
-    /// cohesive stress `sigma0` > 0 (the range is `work / sigma0`). The operator must be
-    /// non-periodic (the approach is prescribed). Starts out of contact.
+    /// cohesive stress `sigma0` > 0 (the range is `work / sigma0`). On a periodic operator
+    /// the approach fixes the mean gap (module docs). Starts out of contact.
     pub fn new(
         op: C,
         heights: &[f64],
@@ -80,11 +89,6 @@ impl<C: Preconditioner> CohesiveContact<C> {
         work: f64,
         sigma0: f64,
     ) -> Result<Self> {
-        if op.is_periodic() {
-            return Err(BemError::InvalidInput(
-                "the cohesive law is solved under a prescribed approach: use the free (non-periodic) half-space".into(),
-            ));
-        }
         for (name, v) in [
             ("work of adhesion w", work),
             ("cohesive stress sigma0", sigma0),
@@ -97,6 +101,8 @@ impl<C: Preconditioner> CohesiveContact<C> {
         }
         let (z, domain, rms) = rigid_surface(&op, heights, mask)?;
         let n = z.len();
+        let complete = (op.is_periodic() && domain.iter().all(|d| *d))
+            .then(|| z.iter().sum::<f64>() / n as f64);
         Ok(Self {
             op,
             z,
@@ -104,6 +110,7 @@ impl<C: Preconditioner> CohesiveContact<C> {
             sigma0,
             range: work / sigma0,
             rms,
+            complete,
             cohesive: vec![false; n],
             p: vec![0.0; n],
             u: vec![0.0; n],
@@ -138,6 +145,12 @@ impl<C: Preconditioner> CohesiveContact<C> {
         if !(tolerance > 0.0 && tolerance <= 0.01) {
             return Err(BemError::InvalidInput(format!(
                 "tolerance {tolerance} must lie in (0, 0.01]"
+            )));
+        }
+        if let Some(full) = self.complete.filter(|full| d >= *full) {
+            return Err(BemError::InvalidInput(format!(
+                "approach {d} reaches complete contact of the periodic cell (mean gap {} <= 0): the force is unbounded; keep the approach below {full}",
+                full - d
             )));
         }
         crate::pool::on_pool(|| self.settle(d, tolerance))
@@ -374,6 +387,51 @@ mod tests {
         assert!(!c.resolved());
     }
 
+    /// On a periodic cell with a vanishing range the law is the normal contact's: the
+    /// pressures equal the periodic normal solver's at the same approach (the mean gap
+    /// mean(z) - d), and the contact cells are the same.
+    #[test]
+    fn periodic_without_adhesion_is_the_normal_solver() {
+        let n = 32;
+        let heights: Vec<f64> = (0..n * n)
+            .map(|i| {
+                let (x, y) = ((i % n) as f64 / n as f64, (i / n) as f64 / n as f64);
+                0.01 * (2.0 * PI * x).cos() * (2.0 * PI * y).cos() + 0.002 * (6.0 * PI * x).sin()
+            })
+            .collect();
+        let d = 0.006;
+        let op = crate::PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
+        let mut c = CohesiveContact::new(op, &heights, None, 1e-16, 1e-8).unwrap();
+        let s = c.step(d, 1e-10).unwrap();
+        let op = crate::PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
+        let normal = crate::ContactSolver::new(op, &heights, None)
+            .unwrap()
+            .solve(
+                crate::Load::Approach(d),
+                &crate::SolverOptions::new(1e-12, 10_000),
+                None,
+            )
+            .unwrap();
+        let peak = normal.pressure.iter().cloned().fold(0.0, f64::max);
+        let worst = c
+            .pressure()
+            .iter()
+            .zip(&normal.pressure)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            worst < 1e-6 * peak,
+            "largest difference {worst:e}, peak {peak:e}"
+        );
+        assert!(
+            (s.force / normal.force - 1.0).abs() < 1e-7,
+            "{} {}",
+            s.force,
+            normal.force
+        );
+        assert_eq!(s.contact_cells, normal.contact_cells);
+    }
+
     #[test]
     fn bad_input_names_the_parameter() {
         let flat = vec![0.0; 64];
@@ -390,12 +448,17 @@ mod tests {
                 .to_string();
             assert!(e.contains(what), "{e}");
         }
+        // A periodic cell: complete contact at the mean of z is refused, naming it.
+        let wavy: Vec<f64> = (0..64).map(|i| (i as f64).sin()).collect();
         let periodic = crate::PeriodicHalfSpace::new(8, 8, 1.0, 1.0, 1.0);
-        let e = CohesiveContact::new(periodic, &flat, None, 1.0, 1.0)
-            .err()
-            .unwrap()
-            .to_string();
-        assert!(e.contains("non-periodic"), "{e}");
+        let mut c = CohesiveContact::new(periodic, &wavy, None, 0.01, 0.1).unwrap();
+        let full = c.complete.unwrap();
+        let e = c.step(full, 1e-8).unwrap_err().to_string();
+        assert!(
+            e.contains("complete contact") && e.contains("approach"),
+            "{e}"
+        );
+        assert!(c.step(0.5 * full, 1e-8).is_ok());
         let mut c = CohesiveContact::new(op(), &flat, None, 0.01, 0.1).unwrap();
         assert!(c
             .step(f64::NAN, 1e-8)

@@ -1,11 +1,12 @@
 //! Adhesive normal contact in 3D with a finite-range cohesive law (`bem3d::cohesive`:
-//! Maugis-Dugdale) on numpy height maps, under a prescribed approach.
+//! Maugis-Dugdale) on numpy height maps, under a prescribed approach, on the free or the
+//! periodic half-space.
 
 use crate::contact::bem_err;
 use crate::contact::{grid_array, Grid};
 use crate::errors::value_error;
 use bem3d::cohesive::{CohesiveContact as Cohesive, CohesiveStep as Step};
-use bem3d::NonPeriodicHalfSpace;
+use bem3d::{NonPeriodicHalfSpace, PeriodicHalfSpace};
 use numpy::{AllowTypeChange, PyArray2, PyArrayLike2};
 use pyo3::prelude::*;
 
@@ -44,10 +45,43 @@ step_class! {
     }
 }
 
-/// A rigid surface in Maugis-Dugdale adhesive contact with a free elastic half-space,
-/// loaded along an approach history (3D FFT boundary elements).
+/// The solver on the half-space the constructor chose.
+enum Solver {
+    Free(Cohesive<NonPeriodicHalfSpace>),
+    Periodic(Cohesive<PeriodicHalfSpace>),
+}
+
+impl Solver {
+    fn step(&mut self, approach: f64, tolerance: f64) -> bem3d::Result<Step> {
+        match self {
+            Self::Free(c) => c.step(approach, tolerance),
+            Self::Periodic(c) => c.step(approach, tolerance),
+        }
+    }
+    fn pressure(&self) -> &[f64] {
+        match self {
+            Self::Free(c) => c.pressure(),
+            Self::Periodic(c) => c.pressure(),
+        }
+    }
+    fn dugdale_length(&self) -> f64 {
+        match self {
+            Self::Free(c) => c.dugdale_length(),
+            Self::Periodic(c) => c.dugdale_length(),
+        }
+    }
+    fn resolved(&self) -> bool {
+        match self {
+            Self::Free(c) => c.resolved(),
+            Self::Periodic(c) => c.resolved(),
+        }
+    }
+}
+
+/// A rigid surface in Maugis-Dugdale adhesive contact with an elastic half-space, free
+/// or periodic, loaded along an approach history (3D FFT boundary elements).
 ///
-/// CohesiveContact(heights, work, sigma0, size=None, e_star=1.0, mask=None)
+/// CohesiveContact(heights, work, sigma0, size=None, e_star=1.0, mask=None, periodic=False)
 ///
 /// Finite-range adhesion: a constant tension sigma0 [stress] wherever the gap lies below
 /// the range w / sigma0, w = `work` the work of adhesion [stress x length]; with the
@@ -55,11 +89,14 @@ step_class! {
 /// AdhesiveContact). The cohesive zone must span cells: `resolved` says whether the
 /// Dugdale length E* w / sigma0^2 spans 10 of them (coarser grids overestimate the
 /// pull-off; bem3d/src/cohesive.rs has the measured errors). heights, size, e_star and
-/// mask as for Contact; the half-space is free (non-periodic): the approach is
-/// prescribed. Starts out of contact; each step() loads from the last state.
+/// mask as for Contact. `periodic=False` (the default): the free half-space, the approach
+/// measured from first contact. `periodic=True`: the cell repeats and carries no mean
+/// displacement, so an approach d fixes the mean gap at mean(max(h) - h) - d (Tamaas'
+/// gap control; approaches reaching complete contact are refused). Starts out of
+/// contact; each step() loads from the last state.
 #[pyclass(module = "mrdw._mrdw")]
 pub struct CohesiveContact {
-    contact: Cohesive<NonPeriodicHalfSpace>,
+    contact: Solver,
     shape: (usize, usize),
     size: (f64, f64),
 }
@@ -67,7 +104,8 @@ pub struct CohesiveContact {
 #[pymethods]
 impl CohesiveContact {
     #[new]
-    #[pyo3(signature = (heights, work, sigma0, size = None, e_star = 1.0, mask = None))]
+    #[pyo3(signature = (heights, work, sigma0, size = None, e_star = 1.0, mask = None, periodic = false))]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
         heights: &Bound<'_, PyAny>,
@@ -76,6 +114,7 @@ impl CohesiveContact {
         size: Option<(f64, f64)>,
         e_star: f64,
         mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
+        periodic: bool,
     ) -> PyResult<Self> {
         for (name, v) in [("work", work), ("sigma0", sigma0)] {
             if !(v.is_finite() && v > 0.0) {
@@ -84,7 +123,7 @@ impl CohesiveContact {
                 )));
             }
         }
-        let grid = Grid::new(py, heights, size, Some(false), mask, e_star)?;
+        let grid = Grid::new(py, heights, size, Some(periodic), mask, e_star)?;
         let ((ny, nx), (lx, ly)) = (grid.shape, grid.size);
         sysmem::check_estimate(
             8.0 * 9.0 * (nx * ny) as f64,
@@ -93,8 +132,13 @@ impl CohesiveContact {
         .map_err(|e| pyo3::exceptions::PyMemoryError::new_err(e.to_string()))?;
         let (h, mask) = (grid.heights, grid.mask);
         let built = py.detach(|| -> bem3d::Result<_> {
-            let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
-            Cohesive::new(op, &h, mask.as_deref(), work, sigma0)
+            Ok(if periodic {
+                let op = PeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
+                Solver::Periodic(Cohesive::new(op, &h, mask.as_deref(), work, sigma0)?)
+            } else {
+                let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
+                Solver::Free(Cohesive::new(op, &h, mask.as_deref(), work, sigma0)?)
+            })
         });
         let contact = built.map_err(|e| bem_err(py, e, (ny, nx), lx * ly))?;
         Ok(Self {
@@ -147,9 +191,14 @@ impl CohesiveContact {
     }
     fn __repr__(&self) -> String {
         format!(
-            "CohesiveContact(shape={:?}, size={:?}, dugdale_length={:.4e})",
+            "CohesiveContact(shape={:?}, size={:?}, periodic={}, dugdale_length={:.4e})",
             self.shape,
             self.size,
+            if matches!(self.contact, Solver::Periodic(_)) {
+                "True"
+            } else {
+                "False"
+            },
             self.contact.dugdale_length()
         )
     }

@@ -326,9 +326,9 @@ class CohesiveStep:
         """Cell pressures, shape (ny, nx) [stress], negative in tension (>= -sigma0)."""
 
 class CohesiveContact:
-    """A rigid surface in Maugis-Dugdale adhesive contact with a free elastic
-    half-space, loaded along an approach history: a tension sigma0 wherever the gap lies
-    below the range w / sigma0 (Bradley's to JKR's limit with the Tabor parameter)."""
+    """A rigid surface in Maugis-Dugdale adhesive contact with an elastic half-space,
+    free or periodic, loaded along an approach history: a tension sigma0 wherever the gap
+    lies below the range w / sigma0 (Bradley's to JKR's limit with the Tabor parameter)."""
 
     def __init__(
         self,
@@ -338,10 +338,13 @@ class CohesiveContact:
         size: Optional[Tuple[float, float]] = None,
         e_star: float = 1.0,
         mask: Optional[ArrayLike] = None,
+        periodic: bool = False,
     ) -> None:
         """work: the work of adhesion w [stress x length], > 0; sigma0: the cohesive
-        stress [stress], > 0; heights, size, e_star, mask as for Contact (the half-space
-        is free). Starts out of contact."""
+        stress [stress], > 0; heights, size, e_star, mask as for Contact. periodic=False:
+        the free half-space, approach from first contact; periodic=True: the approach d
+        fixes the mean gap at mean(max(h) - h) - d (approaches reaching complete contact
+        raise ValueError). Starts out of contact."""
     def step(self, approach: float, *, tolerance: float = 1e-8) -> CohesiveStep:
         """Load from the last state to the approach [length] from first contact
         (negative: retracted). Releases the GIL."""
