@@ -16,7 +16,9 @@
 //! real 2D transform: `mrdw bench` times one convolution with it, and bem3d's tests
 //! check the transforms), [`wide`] (the SIMD kernels, tested one by one in
 //! `bem3d/tests`), [`mask`] (disc masks for scenes and tests). The symbols and the
-//! stencil preconditioner are internal.
+//! stencil preconditioner are internal. [`ContactSolver::new_shared`] with
+//! [`solver::SharedHeights`]: the Python package's `Contact` reads the caller's numpy
+//! heights in place instead of keeping a second copy of the map.
 
 // Numerical kernels index several parallel arrays with one index.
 #![allow(clippy::needless_range_loop)]

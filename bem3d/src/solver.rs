@@ -195,8 +195,8 @@ mod window;
 pub use crate::solution::{Path, Solution};
 use options::Target;
 pub use options::{Choice, Interrupt, Load, Paths, SolverOptions, MAX_LOAD, MAX_TOLERANCE};
-pub use state::ContactSolver;
-use state::{chunk_cells, Problem, Tuning, Work, LARGE_GRID_CELLS};
+use state::{chunk_cells, Gap0, Problem, Tuning, Values, Work, ZMap, LARGE_GRID_CELLS};
+pub use state::{ContactSolver, SharedHeights};
 
 /// The error of a forced path that cannot run.
 fn unavailable(path: &'static str, reason: String) -> BemError {
@@ -224,12 +224,21 @@ fn warm_pays(warm: &Solution, target: Target) -> bool {
 
 impl<K: SolverOperator> ContactSolver<K> {
     /// `heights` (`ny x nx`, peaks up, finite); `mask`: cells that may touch (None: all).
+    /// The solver keeps a copy of the heights.
     pub fn new(op: K, heights: &[f64], mask: Option<Vec<bool>>) -> Result<Self> {
         // On the pool, as a solve (its parallel loops start in place).
-        crate::pool::on_pool(|| Self::new_on_pool(op, heights, mask))
+        crate::pool::on_pool(|| Self::new_on_pool(op, Values::Owned(heights.to_vec()), mask))
     }
 
-    fn new_on_pool(op: K, heights: &[f64], mask: Option<Vec<bool>>) -> Result<Self> {
+    /// As [`ContactSolver::new`] on heights the caller keeps: the solver reads them in
+    /// place and holds no copy (the gap at zero approach is computed from them where it
+    /// is read, bit for bit as from a copy). They must not change while the solver holds
+    /// them (from Python: the array is checked before each solve).
+    pub fn new_shared(op: K, heights: SharedHeights, mask: Option<Vec<bool>>) -> Result<Self> {
+        crate::pool::on_pool(|| Self::new_on_pool(op, Values::Shared(heights), mask))
+    }
+
+    fn new_on_pool(op: K, heights: Values, mask: Option<Vec<bool>>) -> Result<Self> {
         let n = op.cells();
         op.half_space().validate()?;
         let mask: Option<Vec<u8>> = match mask {
@@ -247,7 +256,7 @@ impl<K: SolverOperator> ContactSolver<K> {
         // a re-admitted cell's pressure per unit overlap.
         let overlap_stiffness = op.e_star() / (op.lx() * op.ly()).sqrt();
         let mut solver = Self::with_buffers(op, mask, overlap_stiffness);
-        solver.set_heights(heights)?;
+        solver.install_heights(heights)?;
         Ok(solver)
     }
 
@@ -263,7 +272,7 @@ impl<K: SolverOperator> ContactSolver<K> {
         Self {
             op,
             problem: Problem {
-                z: vec![0.0; n],
+                z: Gap0::gathered(Vec::new()),
                 domain_cells: mask.count(),
                 mask,
                 h_rms: 0.0,
@@ -295,9 +304,19 @@ impl<K: SolverOperator> ContactSolver<K> {
         }
     }
 
-    /// Replaces the height map (same grid and mask), keeping the operator and buffers.
+    /// Replaces the height map (same grid and mask), keeping the operator and buffers;
+    /// the solver keeps a copy.
     pub fn set_heights(&mut self, heights: &[f64]) -> Result<()> {
+        self.install_heights(Values::Owned(heights.to_vec()))
+    }
+
+    /// Checks the heights, records their statistics and z's map, and sets w = z.
+    fn install_heights(&mut self, values: Values) -> Result<()> {
         let (n, nx) = (self.op.cells(), self.op.nx());
+        let heights = match &values {
+            Values::Owned(v) => v.as_slice(),
+            Values::Shared(v) => (**v).as_ref(),
+        };
         if heights.len() != n {
             return Err(BemError::InvalidInput(format!(
                 "height map has {} values but the grid is {} x {nx}",
@@ -337,15 +356,16 @@ impl<K: SolverOperator> ContactSolver<K> {
         };
         self.problem.z_mean = hmax - mean;
         self.problem.slope_rms = self.rms_slope(heights);
-        self.problem
-            .z
+        let map = ZMap {
+            offset: hmax,
+            sign: -1.0,
+        };
+        self.work
+            .w
             .par_iter_mut()
-            .zip(self.work.w.par_iter_mut())
             .zip(heights)
-            .for_each(|((z, w), h)| {
-                *z = hmax - h;
-                *w = *z;
-            });
+            .for_each(|(w, h)| *w = map.of(*h));
+        self.problem.z = Gap0 { values, map };
         self.coarse = None;
         Ok(())
     }
@@ -622,7 +642,7 @@ impl<K: SolverOperator> ContactSolver<K> {
             .into_par_iter()
             .map(|k| {
                 let i = 2 * (k / cx) * nx + 2 * (k % cx);
-                -0.25 * (z[i] + z[i + 1] + z[i + nx] + z[i + nx + 1])
+                -0.25 * (z.at(i) + z.at(i + 1) + z.at(i + nx) + z.at(i + nx + 1))
             })
             .collect();
         let mut s = ContactSolver::new(op, &heights, None).ok()?;

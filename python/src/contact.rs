@@ -1,6 +1,7 @@
 //! The 3D boundary-element contact solver (`bem3d`) on numpy height maps.
 
 use crate::errors::{convergence, memory_error, value_error};
+use crate::shared_heights::PyHeights;
 use bem3d::{
     Choice, ContactSolver, Interrupt, Load, NonPeriodicHalfSpace, Paths, PeriodicHalfSpace,
     Solution, SolverOptions,
@@ -8,6 +9,7 @@ use bem3d::{
 use numpy::ndarray::Array2;
 use numpy::{AllowTypeChange, PyArray2, PyArrayLike1, PyArrayLike2};
 use pyo3::prelude::*;
+use std::sync::Arc;
 
 /// The solver on one of the two operators.
 enum Solver {
@@ -345,14 +347,21 @@ impl<'py> HeightMap<'py> {
         self.view().dim()
     }
 
-    /// The heights row by row (y) in one copy (a memcpy for a C-ordered array): the
-    /// solver keeps no reference to numpy's memory while the GIL is released.
+    /// The heights row by row (y) in one copy (a memcpy for a C-ordered array), for the
+    /// solvers that keep their own.
     pub fn copy(&self) -> Vec<f64> {
         let view = self.view();
         match view.as_slice() {
             Some(s) => s.to_vec(),
             None => view.iter().copied().collect(),
         }
+    }
+
+    /// The heights in place, when numpy holds them as one C-ordered block of rows of y
+    /// (a C-ordered array, or a topography's F-ordered one): see [`PyHeights`].
+    pub fn shared(&self) -> Option<PyHeights> {
+        let array: &Bound<'py, PyArray2<f64>> = &self.array;
+        PyHeights::of(array.as_any(), self.view())
     }
 
     /// The undefined cells row by row (y), if the heights were a masked array.
@@ -400,7 +409,10 @@ impl<'py> HeightMap<'py> {
 /// The grid a constructor builds on: the heights (rows of y), the solver's mask, the
 /// size and periodicity from the arguments or else the topography object's.
 pub struct Grid {
+    /// The heights, copied; empty where `shared` holds them.
     pub heights: Vec<f64>,
+    /// The caller's heights read in place (constructors that ask for them).
+    pub shared: Option<PyHeights>,
     pub mask: Option<Vec<bool>>,
     /// Cells the heights left undefined (a masked array's masked cells).
     pub undefined: usize,
@@ -411,7 +423,8 @@ pub struct Grid {
 
 impl Grid {
     /// From `heights` as `Contact` and `TransientContact` take them, `e_star` the
-    /// modulus the operator is built with (for the command line's range checks).
+    /// modulus the operator is built with (for the command line's range checks); the
+    /// heights copied.
     pub fn new(
         py: Python<'_>,
         heights: &Bound<'_, PyAny>,
@@ -419,6 +432,29 @@ impl Grid {
         periodic: Option<bool>,
         mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
         e_star: f64,
+    ) -> PyResult<Self> {
+        Self::build(py, heights, (size, periodic), mask, e_star, false)
+    }
+
+    /// As [`Grid::new`], the heights read in place where numpy's layout allows.
+    pub fn sharing(
+        py: Python<'_>,
+        heights: &Bound<'_, PyAny>,
+        size: Option<(f64, f64)>,
+        periodic: Option<bool>,
+        mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
+        e_star: f64,
+    ) -> PyResult<Self> {
+        Self::build(py, heights, (size, periodic), mask, e_star, true)
+    }
+
+    fn build(
+        py: Python<'_>,
+        heights: &Bound<'_, PyAny>,
+        (size, periodic): (Option<(f64, f64)>, Option<bool>),
+        mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
+        e_star: f64,
+        share: bool,
     ) -> PyResult<Self> {
         let map = HeightMap::extract(heights)?;
         if map.by_x && size.is_none() && map.size.is_none() {
@@ -451,8 +487,14 @@ impl Grid {
                 "no cell may touch: every cell is undefined or outside mask=",
             ));
         }
+        let shared = if share { map.shared() } else { None };
         Ok(Self {
-            heights: map.copy(),
+            heights: if shared.is_some() {
+                Vec::new()
+            } else {
+                map.copy()
+            },
+            shared,
             mask,
             undefined,
             shape: (ny, nx),
@@ -481,7 +523,10 @@ impl Grid {
 /// (as SurfaceTopography's heights() gives for maps with undefined points) leaves its
 /// masked cells out of the contact, as mask= does, with a UserWarning that counts them
 /// (`undefined_cells`). The operator and buffers are built once; solve() may be called
-/// for many loads.
+/// for many loads. A float64 array in C order (or a topography object's heights in F
+/// order) is read in place, not copied, so a caller who keeps it does not hold the map
+/// twice: do not write to it while a solve runs, and a solve after it changed raises
+/// ValueError (build a new Contact).
 #[pyclass(module = "mrdw._mrdw")]
 pub struct Contact {
     solver: Solver,
@@ -493,6 +538,9 @@ pub struct Contact {
     undefined: usize,
     /// Set on Ctrl-C during a solve ([`interruptible`]).
     interrupt: Interrupt,
+    /// The caller's heights, where the solver reads them in place: checked unchanged
+    /// before each solve.
+    shared: Option<Arc<PyHeights>>,
 }
 
 pub(crate) struct Request {
@@ -625,6 +673,12 @@ impl Contact {
         req: &Request,
         warm: Option<&Solution>,
     ) -> PyResult<ContactResult> {
+        if self.shared.as_ref().is_some_and(|h| !h.unchanged()) {
+            return Err(value_error(
+                "heights: the array changed since this Contact was built (Contact reads it in \
+                 place, without a copy): build a new Contact for the new heights",
+            ));
+        }
         let solver = &mut self.solver;
         let opts = SolverOptions {
             interrupt: Some(self.interrupt.clone()),
@@ -661,22 +715,30 @@ impl Contact {
         periodic: Option<bool>,
         mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
     ) -> PyResult<Self> {
-        let grid = Grid::new(py, heights, size, periodic, mask, e_star)?;
+        let grid = Grid::sharing(py, heights, size, periodic, mask, e_star)?;
         let ((ny, nx), (lx, ly)) = (grid.shape, grid.size);
         let (h, mask) = (&grid.heights, grid.mask);
+        let shared = grid.shared.map(Arc::new);
+        let heights = shared.clone();
         let built = py.detach(|| -> bem3d::Result<Solver> {
+            // The caller's heights in place where numpy's layout allows, else the copy.
+            fn solver<K: bem3d::operator::SolverOperator>(
+                op: K,
+                h: &[f64],
+                shared: Option<Arc<PyHeights>>,
+                mask: Option<Vec<bool>>,
+            ) -> bem3d::Result<ContactSolver<K>> {
+                match shared {
+                    Some(s) => ContactSolver::new_shared(op, s, mask),
+                    None => ContactSolver::new(op, h, mask),
+                }
+            }
             Ok(if grid.periodic {
-                Solver::Periodic(ContactSolver::new(
-                    PeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?,
-                    h,
-                    mask,
-                )?)
+                let op = PeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
+                Solver::Periodic(solver(op, h, heights, mask)?)
             } else {
-                Solver::NonPeriodic(ContactSolver::new(
-                    NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?,
-                    h,
-                    mask,
-                )?)
+                let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
+                Solver::NonPeriodic(solver(op, h, heights, mask)?)
             })
         });
         let solver = built.map_err(|e| bem_err(py, e, (ny, nx), lx * ly))?;
@@ -688,6 +750,7 @@ impl Contact {
             periodic: grid.periodic,
             undefined: grid.undefined,
             interrupt: Interrupt::default(),
+            shared,
         })
     }
 

@@ -12,6 +12,7 @@ mod contact;
 mod errors;
 mod rough;
 mod scene;
+mod shared_heights;
 mod tangential;
 mod transient;
 

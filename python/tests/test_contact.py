@@ -303,3 +303,21 @@ def test_a_surfacetopography_topography_when_installed():
     r = mrdw.Contact(topo).solve(mean_pressure=0.02)
     ref = mrdw.Contact(h, size=(2.0, 1.5), periodic=True).solve(mean_pressure=0.02)
     assert np.array_equal(r.pressure, ref.pressure)
+
+
+def test_heights_are_read_in_place_bit_for_bit_and_a_change_is_refused():
+    """Contact reads a C-ordered float64 array in place (no copy beside the caller's):
+    the solve equals that of a copied (F-ordered) array bit for bit, periodic and free,
+    and a solve after the array changed raises ValueError naming the heights."""
+    n = 48
+    x = (np.arange(n) + 0.5) / n - 0.5
+    h = -(x[:, None] ** 2 + x[None, :] ** 2) + 1e-3 * np.sin(23 * x)[:, None] * np.cos(17 * x)[None, :]
+    for periodic in (True, False):
+        a = mrdw.Contact(h, periodic=periodic).solve(mean_pressure=1e-3)
+        b = mrdw.Contact(np.asfortranarray(h), periodic=periodic).solve(mean_pressure=1e-3)
+        assert np.array_equal(a.pressure, b.pressure) and a.iterations == b.iterations
+    c = mrdw.Contact(h)
+    c.solve(mean_pressure=1e-3)
+    h[5, 7] = np.nextafter(h[5, 7], 1.0)
+    with pytest.raises(ValueError, match="heights: the array changed"):
+        c.solve(mean_pressure=1e-3)

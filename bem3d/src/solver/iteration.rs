@@ -600,17 +600,18 @@ impl<K: SolverOperator> ContactSolver<K> {
         }
         // w = K p + z before, scale K p + z after (with add_z: w = K p before).
         let zf = 1.0 - scale * (1.0 - add_z);
+        let zmap = self.problem.z.map;
         reduce(
             (
                 p.par_chunks_mut(ch),
-                self.problem.z.par_chunks(ch),
+                self.problem.z.values().par_chunks(ch),
                 self.work.w.par_chunks_mut(ch),
                 self.work.active.par_chunks_mut(ch),
                 self.work.rows_p.par_chunks(ch / nx),
                 self.work.rows_on.par_chunks_mut(ch / nx),
             ),
             |(p, z, w, act, with_p, on)| {
-                sweeps::rescale(p, z, w, act, (with_p, on, nx), (scale, zf), offset)
+                sweeps::rescale(p, z, zmap, w, act, (with_p, on, nx), (scale, zf), offset)
             },
             None,
         )
@@ -643,7 +644,13 @@ impl<K: SolverOperator> ContactSolver<K> {
 
     /// The solution without contact: w = z (no pressure), approach `d`.
     pub(super) fn finish_unloaded(&mut self, d: f64) -> Solution {
-        self.work.w.copy_from_slice(&self.problem.z);
+        let z = &self.problem.z;
+        let map = z.map;
+        self.work
+            .w
+            .par_iter_mut()
+            .zip(z.values())
+            .for_each(|(w, v)| *w = map.of(*v));
         let n = self.op.cells();
         self.finish(vec![0.0; n], d, 0, 0.0)
     }

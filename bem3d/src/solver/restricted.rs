@@ -124,7 +124,7 @@ impl<K: SolverOperator> Part<K> for CandidateSet {
         let e_star = grid.op.e_star();
         let dense =
             DenseCompliance::from_matrix(self.cells.len(), (hx, hy), e_star, matrix, single);
-        let z = self.cells.iter().map(|&i| grid.problem.z[i]).collect();
+        let z = self.cells.iter().map(|&i| grid.problem.z.at(i)).collect();
         let (h_rms, stiffness) = (grid.problem.h_rms, grid.problem.overlap_stiffness);
         self.inner = Some(ContactSolver::on_part(dense, None, z, h_rms, stiffness));
         Ok(())
@@ -216,7 +216,7 @@ fn candidate_start<K: SolverOperator>(
             let (mask, z) = (&problem.mask, &problem.z);
             (0..n)
                 .into_par_iter()
-                .filter(|&i| mask.holds(i) && z[i] < d)
+                .filter(|&i| mask.holds(i) && z.at(i) < d)
                 .count()
         }
     };

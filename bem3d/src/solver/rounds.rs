@@ -13,7 +13,7 @@
 
 use super::iteration::{Refresh, Start};
 use super::options::{SolverOptions, Target};
-use super::state::ContactSolver;
+use super::state::{ContactSolver, Gap0};
 use crate::operator::SolverOperator;
 use crate::solution::{Path, Solution};
 
@@ -155,7 +155,7 @@ impl<K: SolverOperator> ContactSolver<K> {
     ) -> Self {
         let mut solver = Self::with_buffers(op, mask, overlap_stiffness);
         solver.work.w.copy_from_slice(&z);
-        solver.problem.z = z;
+        solver.problem.z = Gap0::gathered(z);
         solver.problem.h_rms = h_rms;
         solver
     }

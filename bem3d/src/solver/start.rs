@@ -47,10 +47,11 @@ impl Problem {
         if nm >= 2 && fraction.is_finite() && fraction < 1.0 {
             let k = ((fraction * nm as f64).ceil() as usize).clamp(1, nm - 1);
             let d = self.kth_height(k, chunk_cells(op.nx()));
+            let map = self.z.map;
             p.par_iter_mut()
                 .zip(self.mask.par_iter())
-                .zip(&self.z)
-                .for_each(|((v, &m), z)| *v = m as f64 * (d - z).max(0.0));
+                .zip(self.z.values())
+                .for_each(|((v, &m), z)| *v = m as f64 * (d - map.of(*z)).max(0.0));
         }
         if p.iter().all(|&v| v == 0.0) {
             self.uniform_start(p);
@@ -66,8 +67,14 @@ impl Problem {
         const BINS: usize = 4096;
         // The domain's heights, a chunk at a time in parallel.
         let domain = || {
-            let chunks = self.z.par_chunks(ch).zip(self.mask.par_chunks(ch));
-            chunks.map(|(z, m)| z.iter().zip(m).filter(|(_, &m)| m > 0).map(|(&v, _)| v))
+            let map = self.z.map;
+            let chunks = self.z.values().par_chunks(ch).zip(self.mask.par_chunks(ch));
+            chunks.map(move |(z, m)| {
+                z.iter()
+                    .zip(m)
+                    .filter(|(_, &m)| m > 0)
+                    .map(move |(&v, _)| map.of(v))
+            })
         };
         let wide = (f64::INFINITY, f64::NEG_INFINITY);
         let (lo, hi) = domain()
@@ -129,9 +136,10 @@ impl Problem {
     /// longest wavelength.
     pub(super) fn overlap_start<K: SolverOperator>(&self, op: &K, p: &mut [f64], d: f64) {
         let scale = op.e_star() / (op.lx() * op.ly()).sqrt();
+        let map = self.z.map;
         p.par_iter_mut()
             .zip(self.mask.par_iter())
-            .zip(&self.z)
-            .for_each(|((v, &m), z)| *v = m as f64 * (d - z).max(0.0) * scale);
+            .zip(self.z.values())
+            .for_each(|((v, &m), z)| *v = m as f64 * (d - map.of(*z)).max(0.0) * scale);
     }
 }

@@ -5,6 +5,7 @@
 
 use super::{domain, stored};
 use crate::operator::SolverOperator;
+use std::sync::Arc;
 
 /// Solver for one height map on one operator; buffers are allocated once. Its state
 /// by job: the operator, the problem (heights, mask and their statistics), the work
@@ -23,7 +24,7 @@ pub struct ContactSolver<K: SolverOperator> {
 /// statistics the solve reads.
 pub(super) struct Problem {
     /// The gap at zero approach: the highest height minus the heights.
-    pub(super) z: Vec<f64>,
+    pub(super) z: Gap0,
     /// The cells that may touch, read as 1 or 0 (numbers: the sweeps are branch-free).
     pub(super) mask: domain::Domain,
     /// Rms of z over the domain (the length scale of the convergence criterion).
@@ -37,6 +38,70 @@ pub(super) struct Problem {
     /// Converts an overlap into a pressure [pressure / length] (see
     /// [`ContactSolver::solve`]).
     pub(super) overlap_stiffness: f64,
+}
+
+/// Heights the caller keeps and the solver reads in place (a numpy array from Python):
+/// rows of y, `ny x nx`, unchanged while the solver holds them.
+pub type SharedHeights = Arc<dyn AsRef<[f64]> + Send + Sync>;
+
+/// Where the heights' values live: copied into the solver, or the caller's.
+pub(super) enum Values {
+    Owned(Vec<f64>),
+    Shared(SharedHeights),
+}
+
+/// The gap at zero approach `z = offset + sign v` over stored values v: the heights with
+/// `offset` the highest height of the domain and `sign` -1 (the solver keeps no copy of
+/// z beside the heights), or a part's gathered z with (-0, +1). Both forms give z bit
+/// for bit as a stored `top - h` does: `(-1) v` and `1 v` are exact, `top + (-h)` is by
+/// definition `top - h`, and `-0 + z = z` for every z, signed zeros included.
+pub(super) struct Gap0 {
+    pub(super) values: Values,
+    pub(super) map: ZMap,
+}
+
+/// The affine map from stored values to z (see [`Gap0`]).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct ZMap {
+    pub(super) offset: f64,
+    pub(super) sign: f64,
+}
+
+impl ZMap {
+    /// The values are z themselves.
+    pub(super) const IDENTITY: ZMap = ZMap {
+        offset: -0.0,
+        sign: 1.0,
+    };
+
+    #[inline(always)]
+    pub(super) fn of(self, v: f64) -> f64 {
+        self.offset + self.sign * v
+    }
+}
+
+impl Gap0 {
+    /// The stored values (z through [`Gap0::map`]).
+    pub(super) fn values(&self) -> &[f64] {
+        match &self.values {
+            Values::Owned(v) => v,
+            Values::Shared(v) => (**v).as_ref(),
+        }
+    }
+
+    /// z at cell `i`.
+    #[inline]
+    pub(super) fn at(&self, i: usize) -> f64 {
+        self.map.of(self.values()[i])
+    }
+
+    /// A part's z, gathered from the grid's.
+    pub(super) fn gathered(z: Vec<f64>) -> Self {
+        Self {
+            values: Values::Owned(z),
+            map: ZMap::IDENTITY,
+        }
+    }
 }
 
 /// The work buffers of the iteration (allocated once per solver).

@@ -11,6 +11,7 @@
 //! the development machine: a quarter of an iteration's time, about 1.7x the vector
 //! form's).
 
+use super::state::ZMap;
 use super::stored::{scale_for, Cell};
 use std::ops::Range;
 
@@ -75,11 +76,14 @@ fn row_runs(
 /// marks the contact set (p > 0) in `active` and its rows in `on`; returns the sum of
 /// `w - offset` and the cell count over the set. p is read only in the rows (of `width`
 /// cells) that `with_p` marks: the others hold no pressure (pass D's flags). With
-/// `scale = 1` and `zf = 0` (no rescale pending) p and w are read, not written.
+/// `scale = 1` and `zf = 0` (no rescale pending) p and w are read, not written. z is
+/// `zmap` of the values `z` (the heights, or z itself).
 #[inline(never)]
+#[allow(clippy::too_many_arguments)]
 pub(super) fn rescale(
     p: &mut [f64],
     z: &[f64],
+    zmap: ZMap,
     w: &mut [f64],
     active: &mut [u8],
     (with_p, on, width): (&[bool], &mut [bool], usize),
@@ -115,7 +119,7 @@ pub(super) fn rescale(
             // No pressure in these rows: w only.
             if !unchanged {
                 for (w, z) in w.iter_mut().zip(z) {
-                    *w = scale * *w + zf * z;
+                    *w = scale * *w + zf * zmap.of(*z);
                 }
             }
             act.fill(0);
@@ -139,11 +143,13 @@ pub(super) fn rescale(
         }
         for (((p, z), w), a) in pb.iter_mut().zip(zb).zip(wb.iter_mut()).zip(ab.iter_mut()) {
             for l in 0..LANES {
-                sums.lane(l, |s| cell(&mut p[l], z[l], &mut w[l], &mut a[l], s));
+                sums.lane(l, |s| {
+                    cell(&mut p[l], zmap.of(z[l]), &mut w[l], &mut a[l], s)
+                });
             }
         }
         for (((p, z), w), a) in pt.iter_mut().zip(zt).zip(wt.iter_mut()).zip(at.iter_mut()) {
-            sums.lane(0, |s| cell(p, *z, w, a, s));
+            sums.lane(0, |s| cell(p, zmap.of(*z), w, a, s));
         }
     }
     for ((on, act), &any_p) in on.iter_mut().zip(active[..n].chunks(width)).zip(with_p) {
@@ -601,6 +607,54 @@ fn max(a: f64, b: f64) -> f64 {
 mod tests {
     use super::*;
 
+    /// Pass A on z itself (the identity map).
+    fn rescale_on_z(
+        p: &mut [f64],
+        z: &[f64],
+        w: &mut [f64],
+        a: &mut [u8],
+        rows: (&[bool], &mut [bool], usize),
+        sf: (f64, f64),
+        offset: f64,
+    ) -> [f64; 2] {
+        rescale(p, z, ZMap::IDENTITY, w, a, rows, sf, offset)
+    }
+
+    /// Pass A on heights through z's map gives the bits of pass A on a stored
+    /// `top - h`, signed zeros included (heights of both signs of zero, a top of -0).
+    #[test]
+    fn pass_a_on_heights_is_pass_a_on_z() {
+        let n = 37;
+        let h: Vec<f64> = (0..n)
+            .map(|i| match i % 5 {
+                0 => 0.0,
+                1 => -0.0,
+                _ => ((i * 7919) % 101) as f64 * -1e-3,
+            })
+            .collect();
+        for top in [-0.0, 0.0, 0.25] {
+            let z: Vec<f64> = h.iter().map(|v| top - v).collect();
+            let map = ZMap {
+                offset: top,
+                sign: -1.0,
+            };
+            let p0: Vec<f64> = (0..n).map(|i| (i as f64 - 12.0) * 0.1).collect();
+            let run = |z: &[f64], map: ZMap| {
+                let (mut p, mut w, mut a, mut on) =
+                    (p0.clone(), vec![0.5; n], vec![0u8; n], [false]);
+                let rows = (&[true][..], &mut on[..], n);
+                let sums = rescale(&mut p, z, map, &mut w, &mut a, rows, (1.5, -0.25), 0.1);
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                (bits(&p), bits(&w), a, sums.map(f64::to_bits))
+            };
+            assert_eq!(run(&h, map), run(&z, ZMap::IDENTITY), "top {top}");
+            for (v, zi) in h.iter().zip(&z) {
+                assert_eq!(map.of(*v).to_bits(), zi.to_bits());
+                assert_eq!(ZMap::IDENTITY.of(*zi).to_bits(), zi.to_bits());
+            }
+        }
+    }
+
     /// The documented order: cell i of the blocks to lane i % LANES, the last
     /// `len % LANES` cells to lane 0, lanes added in order.
     fn in_lane_order<const N: usize>(cells: &[[f64; N]], max_slot: Option<usize>) -> [f64; N] {
@@ -725,7 +779,7 @@ mod tests {
         // Pass A: p read and rescaled in the marked rows only; w everywhere.
         let (mut p, mut w, mut a, mut on) = (p0.clone(), w0.clone(), vec![9u8; n], [true; 6]);
         let rows = (&flags[..], &mut on[..], width);
-        let got = rescale(&mut p, &z, &mut w, &mut a, rows, (scale, zf), approach);
+        let got = rescale_on_z(&mut p, &z, &mut w, &mut a, rows, (scale, zf), approach);
         let mut cells = vec![];
         for i in 0..n {
             let wi = scale * w0[i] + zf * z[i];
@@ -746,7 +800,7 @@ mod tests {
         // Without a pending rescale p and w are left as they are.
         let (mut p, mut w, mut on) = (p0.clone(), w0.clone(), [true; 6]);
         let rows = (&flags[..], &mut on[..], width);
-        rescale(&mut p, &z, &mut w, &mut a, rows, (1.0, 0.0), approach);
+        rescale_on_z(&mut p, &z, &mut w, &mut a, rows, (1.0, 0.0), approach);
         assert_eq!((p, w), (p0.clone(), w0.clone()));
 
         // Pass B: p read in the marked rows only, q = 0 elsewhere, every gap counted.
@@ -872,7 +926,7 @@ mod tests {
             // Pass A.
             let (mut p, mut w, mut a, mut on) = (p0.clone(), w0.clone(), vec![9u8; n], [false]);
             let all = (&[true][..], &mut on[..], n.max(1));
-            let got = rescale(&mut p, &z, &mut w, &mut a, all, (scale, zf), approach);
+            let got = rescale_on_z(&mut p, &z, &mut w, &mut a, all, (scale, zf), approach);
             let mut cells = vec![];
             for i in 0..n {
                 let (pi, wi) = (p0[i] * scale, scale * w0[i] + zf * z[i]);

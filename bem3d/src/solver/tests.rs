@@ -47,7 +47,7 @@ fn kth_height_matches_a_sort() {
             let s = ContactSolver::new(op, &h, mask).unwrap();
             let mut zs: Vec<f64> = (0..nx * ny)
                 .filter(|&i| s.problem.mask.holds(i))
-                .map(|i| s.problem.z[i])
+                .map(|i| s.problem.z.at(i))
                 .collect();
             zs.sort_by(f64::total_cmp);
             let step = (zs.len() / 200).max(1);
@@ -257,4 +257,56 @@ fn stencil_and_transforms_reach_the_same_solution() {
             .zip(&by_stencil.pressure)
             .all(|(a, b)| a.to_bits() == b.to_bits()));
     }
+}
+
+/// The caller's heights read in place give the solve of a copy bit for bit: periodic
+/// and free, force and approach, a mask, and a contact small enough for the window and
+/// candidate-set paths (whose parts gather z from the heights).
+#[test]
+fn shared_heights_solve_as_a_copy_does() {
+    let n = 96;
+    let h: Vec<f64> = (0..n * n)
+        .map(|k| {
+            let (x, y) = ((k % n) as f64 / n as f64, (k / n) as f64 / n as f64);
+            let bump = -((x - 0.5).powi(2) + (y - 0.5).powi(2));
+            bump + 0.004 * (23.0 * x).sin() * (17.0 * y).cos() + 0.002 * (41.0 * y).sin()
+        })
+        .collect();
+    let shared: SharedHeights = std::sync::Arc::new(h.clone());
+    let mask: Vec<bool> = (0..n * n).map(|k| k % 7 != 3).collect();
+    let opts = SolverOptions::new(1e-10, 10_000);
+    let mut paths = Vec::new();
+    for load in [Load::Force(1e-4), Load::Force(3e-3), Load::Approach(2e-3)] {
+        for m in [None, Some(mask.clone())] {
+            let periodic = || PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
+            let a = ContactSolver::new(periodic(), &h, m.clone())
+                .unwrap()
+                .solve(load, &opts, None)
+                .unwrap();
+            let b = ContactSolver::new_shared(periodic(), shared.clone(), m.clone())
+                .unwrap()
+                .solve(load, &opts, None)
+                .unwrap();
+            let free = || NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
+            let c = ContactSolver::new(free(), &h, m.clone())
+                .unwrap()
+                .solve(load, &opts, None)
+                .unwrap();
+            let d = ContactSolver::new_shared(free(), shared.clone(), m)
+                .unwrap()
+                .solve(load, &opts, None)
+                .unwrap();
+            for (x, y) in [(&a, &b), (&c, &d)] {
+                let bits =
+                    |s: &Solution| s.pressure.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(x), bits(y), "{load:?}");
+                assert_eq!((x.iterations, x.path), (y.iterations, y.path), "{load:?}");
+                paths.push(format!("{:?}", x.path));
+            }
+        }
+    }
+    paths.sort();
+    paths.dedup();
+    // Measured: the candidate set, the full grid and the window all ran.
+    assert_eq!(paths, ["CandidateSet", "FullGrid", "Window"]);
 }

@@ -24,7 +24,7 @@
 
 use super::options::{SolverOptions, Target};
 use super::rounds::{Part, Round, Tally};
-use super::state::ContactSolver;
+use super::state::{ContactSolver, Gap0};
 use crate::operator::{NonPeriodicHalfSpace, SolverOperator};
 use crate::solution::{Path, Solution};
 use rayon::prelude::*;
@@ -262,7 +262,7 @@ fn gaps_outside<K: SolverOperator>(
         .flat_map_iter(|y| {
             let below = move |&x: &usize| {
                 let i = y * nx + x;
-                mask.holds(i) && z[i] < approach && !win.holds(x, y)
+                mask.holds(i) && z.at(i) < approach && !win.holds(x, y)
             };
             (0..nx).filter(below).map(move |x| y * nx + x)
         })
@@ -282,7 +282,7 @@ fn gaps_outside<K: SolverOperator>(
     Some(
         at.into_iter()
             .zip(u)
-            .map(|(i, u)| (i, u + z[i] - approach))
+            .map(|(i, u)| (i, u + z.at(i) - approach))
             .collect(),
     )
 }
@@ -297,7 +297,7 @@ fn on_window<K: SolverOperator>(
     let nx = grid.op.nx();
     let problem = &grid.problem;
     let mask = problem.mask.cells().map(|m| gather(m, nx, win));
-    let z = gather(&problem.z, nx, win);
+    let z = gather_z(&problem.z, nx, win);
     ContactSolver::on_part(op, mask, z, problem.h_rms, problem.overlap_stiffness)
 }
 
@@ -309,6 +309,15 @@ fn gather<T: Copy>(grid: &[T], nx: usize, win: Window) -> Vec<T> {
                 .iter()
                 .copied()
         })
+        .collect()
+}
+
+/// z over a window of a grid of row length `nx`, row-major.
+fn gather_z(z: &Gap0, nx: usize, win: Window) -> Vec<f64> {
+    let map = z.map;
+    gather(z.values(), nx, win)
+        .into_iter()
+        .map(|v| map.of(v))
         .collect()
 }
 

@@ -107,7 +107,9 @@ class Contact:
         is_periodic are the defaults of size and periodic (else (1, 1) and True; a
         topography whose physical_sizes is None needs size). A numpy masked array's
         masked cells (undefined points) are left out of the contact, as mask= does,
-        with a UserWarning that counts them."""
+        with a UserWarning that counts them. A float64 array in C order (or a
+        topography's in F order) is read in place, not copied: do not write to it
+        while a solve runs; a solve after it changed raises ValueError."""
     def solve(
         self,
         mean_pressure: Optional[float] = None,
