@@ -119,7 +119,7 @@ impl AdhesiveContact {
                 "work = {work}: the work of adhesion must be finite and > 0 (without adhesion use Contact)"
             )));
         }
-        let grid = Grid::new(py, heights, size, periodic, mask, e_star)?;
+        let grid = Grid::new(py, heights, (size, periodic), mask, e_star, false)?;
         let ((ny, nx), (lx, ly)) = (grid.shape, grid.size);
         sysmem::check_estimate(
             8.0 * 9.0 * (nx * ny) as f64,

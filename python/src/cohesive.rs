@@ -123,7 +123,7 @@ impl CohesiveContact {
                 )));
             }
         }
-        let grid = Grid::new(py, heights, size, Some(periodic), mask, e_star)?;
+        let grid = Grid::new(py, heights, (size, Some(periodic)), mask, e_star, false)?;
         let ((ny, nx), (lx, ly)) = (grid.shape, grid.size);
         sysmem::check_estimate(
             8.0 * 9.0 * (nx * ny) as f64,

@@ -423,32 +423,9 @@ pub struct Grid {
 
 impl Grid {
     /// From `heights` as `Contact` and `TransientContact` take them, `e_star` the
-    /// modulus the operator is built with (for the command line's range checks); the
-    /// heights copied.
+    /// modulus the operator is built with (for the command line's range checks);
+    /// `share`: the heights read in place where numpy's layout allows, else copied.
     pub fn new(
-        py: Python<'_>,
-        heights: &Bound<'_, PyAny>,
-        size: Option<(f64, f64)>,
-        periodic: Option<bool>,
-        mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
-        e_star: f64,
-    ) -> PyResult<Self> {
-        Self::build(py, heights, (size, periodic), mask, e_star, false)
-    }
-
-    /// As [`Grid::new`], the heights read in place where numpy's layout allows.
-    pub fn sharing(
-        py: Python<'_>,
-        heights: &Bound<'_, PyAny>,
-        size: Option<(f64, f64)>,
-        periodic: Option<bool>,
-        mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
-        e_star: f64,
-    ) -> PyResult<Self> {
-        Self::build(py, heights, (size, periodic), mask, e_star, true)
-    }
-
-    fn build(
         py: Python<'_>,
         heights: &Bound<'_, PyAny>,
         (size, periodic): (Option<(f64, f64)>, Option<bool>),
@@ -715,7 +692,7 @@ impl Contact {
         periodic: Option<bool>,
         mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
     ) -> PyResult<Self> {
-        let grid = Grid::sharing(py, heights, size, periodic, mask, e_star)?;
+        let grid = Grid::new(py, heights, (size, periodic), mask, e_star, true)?;
         let ((ny, nx), (lx, ly)) = (grid.shape, grid.size);
         let (h, mask) = (&grid.heights, grid.mask);
         let shared = grid.shared.map(Arc::new);

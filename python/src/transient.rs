@@ -124,7 +124,7 @@ impl TransientContact {
         // heights, displacement, the raised heights and their lift, one hereditary
         // integral per term.
         let e_ref = modulus.glassy();
-        let grid = Grid::new(py, heights, size, periodic, mask, e_ref).map_err(|e| {
+        let grid = Grid::new(py, heights, (size, periodic), mask, e_ref, false).map_err(|e| {
             // The operator's check names E*, which this class takes as its terms.
             let text = e.value(py).to_string().replace(
                 "e_star (the contact modulus E*)",
