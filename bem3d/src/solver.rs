@@ -313,10 +313,7 @@ impl<K: SolverOperator> ContactSolver<K> {
     /// Checks the heights, records their statistics and z's map, and sets w = z.
     fn install_heights(&mut self, values: Values) -> Result<()> {
         let (n, nx) = (self.op.cells(), self.op.nx());
-        let heights = match &values {
-            Values::Owned(v) => v.as_slice(),
-            Values::Shared(v) => (**v).as_ref(),
-        };
+        let heights = values.as_slice();
         if heights.len() != n {
             return Err(BemError::InvalidInput(format!(
                 "height map has {} values but the grid is {} x {nx}",

@@ -80,13 +80,19 @@ impl ZMap {
     }
 }
 
-impl Gap0 {
-    /// The stored values (z through [`Gap0::map`]).
-    pub(super) fn values(&self) -> &[f64] {
-        match &self.values {
+impl Values {
+    pub(super) fn as_slice(&self) -> &[f64] {
+        match self {
             Values::Owned(v) => v,
             Values::Shared(v) => (**v).as_ref(),
         }
+    }
+}
+
+impl Gap0 {
+    /// The stored values (z through [`Gap0::map`]).
+    pub(super) fn values(&self) -> &[f64] {
+        self.values.as_slice()
     }
 
     /// z at cell `i`.
