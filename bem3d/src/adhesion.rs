@@ -503,6 +503,44 @@ fn masked_sum(on: &[bool], f: impl Fn(usize) -> f64) -> f64 {
 }
 
 #[cfg(test)]
+/// An adhesive solve at a vanishing work of adhesion against the normal solver's at
+/// the same approach `d` on `op`: pressures within 1e-6 of the peak, force within 1e-7,
+/// the same contact cells.
+pub(crate) fn is_the_normal_solve<K: crate::operator::SolverOperator>(
+    op: K,
+    heights: &[f64],
+    d: f64,
+    pressure: &[f64],
+    force: f64,
+    contact_cells: usize,
+) {
+    let normal = crate::ContactSolver::new(op, heights, None)
+        .unwrap()
+        .solve(
+            Load::Approach(d),
+            &crate::SolverOptions::new(1e-12, 10_000),
+            None,
+        )
+        .unwrap();
+    let peak = normal.pressure.iter().cloned().fold(0.0, f64::max);
+    let worst = pressure
+        .iter()
+        .zip(&normal.pressure)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        worst < 1e-6 * peak,
+        "largest difference {worst:e}, peak {peak:e}"
+    );
+    assert!(
+        (force / normal.force - 1.0).abs() < 1e-7,
+        "{force} {}",
+        normal.force
+    );
+    assert_eq!(contact_cells, normal.contact_cells);
+}
+
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::love::love_coefficient;
@@ -709,27 +747,7 @@ mod tests {
         let mut c = AdhesiveContact::new(op, &heights, None, 1e-14).unwrap();
         let s = c.step(Load::Approach(d), 1e-10).unwrap();
         let op = NonPeriodicHalfSpace::new(n, n, l, l, 1.0);
-        let normal = crate::ContactSolver::new(op, &heights, None)
-            .unwrap()
-            .solve(
-                Load::Approach(d),
-                &crate::SolverOptions::new(1e-12, 10_000),
-                None,
-            )
-            .unwrap();
-        let peak = normal.pressure.iter().cloned().fold(0.0, f64::max);
-        let worst = c
-            .pressure()
-            .iter()
-            .zip(&normal.pressure)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
-        assert!(
-            worst < 1e-6 * peak,
-            "largest difference {worst:e}, peak {peak:e}"
-        );
-        assert!((s.force / normal.force - 1.0).abs() < 1e-7);
-        assert_eq!(s.contact_cells, normal.contact_cells);
+        is_the_normal_solve(op, &heights, d, c.pressure(), s.force, s.contact_cells);
     }
 
     /// A periodic surface under a mean pressure: the force is held and an approach is
