@@ -52,8 +52,9 @@ pub trait Checkpointed {
     /// The checkpoint file names of all tasks, in their fixed global order (shard K of N
     /// computes every N-th from K).
     fn task_files(&self) -> Vec<String>;
-    /// Computes the missing tasks (of the shard in `control`) into `dir`.
-    fn compute(&self, dir: &Path, control: &RunControl) -> Result<()>;
+    /// Computes the missing tasks (of the shard in `control`) into `dir`; `ctx` resolves
+    /// the scene's files.
+    fn compute(&self, ctx: &Context, dir: &Path, control: &RunControl) -> Result<()>;
 }
 
 /// How a run divides and limits its work.

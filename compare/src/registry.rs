@@ -99,6 +99,10 @@ pub const KINDS: &[Kind] = &[
         "rough_slip_3d",
         "partial slip of a rough sphere or rough flat punch on the free half-space, 3D against MRD's rough line (lambda) and against MRD's law on the 3D normal curve: force-shift to gross slip, energy per cycle, k_t / k_n (Sections 6-7 on rough bodies)",
     ),
+    Kind::of::<rough::calibrate::Calibrate>(
+        "calibrate",
+        "lambda of Eq. (76) for the user's own surface (a measured map, a PSD table or a self-affine spectrum with roll-off): 3D rough punches of its spectrum against MRD lines, with interval, misfit, alpha_3D and alpha_MRD, and the map itself solved in 3D (Section 9)",
+    ),
     Kind::of::<rough::rough_stiffness::RoughStiffness>(
         "rough_stiffness",
         "ensemble stiffness-force law of MRD rough lines (Eq. 77)",

@@ -65,6 +65,14 @@ pub const EMBEDDED: &[(&str, &str)] = &[
         "tangential-stiffness-3d",
         include_str!("../../cases/tangential-stiffness-3d.toml"),
     ),
+    (
+        "calibrate-ci",
+        include_str!("../../cases/calibrate-ci.toml"),
+    ),
+    (
+        "calibrate-rolloff",
+        include_str!("../../cases/calibrate-rolloff.toml"),
+    ),
     ("cone", include_str!("../../cases/cone.toml")),
     (
         "contact-area-ci",

@@ -59,7 +59,7 @@ pub fn run_shard(scene: &Scene, out: &Path, control: &RunControl) -> Result<()> 
         serde_json::to_string_pretty(&m).map_err(|e| CompareError::Internal(e.to_string()))?;
     std::fs::write(dir.join("shard.json"), text).map_err(io_err("writing shard.json"))?;
     for c in outputs {
-        c.compute(&dir.join("work").join(c.key()), control)?;
+        c.compute(&scene.context, &dir.join("work").join(c.key()), control)?;
     }
     Ok(())
 }

@@ -65,5 +65,6 @@ fn _mrdw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // scenes
     m.add_function(wrap_pyfunction!(scene::scenes, m)?)?;
     m.add_function(wrap_pyfunction!(scene::run_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::_run_to_folder, m)?)?;
     Ok(())
 }

@@ -75,3 +75,39 @@ pub fn run_scene<'py>(py: Python<'py>, scene: &str) -> PyResult<Bound<'py, PyDic
     }
     Ok(out)
 }
+
+/// _run_to_folder(scene, out, work, progress) -> dict
+///
+/// Runs a scene file as `mrdw run SCENE --out OUT [--work WORK]` does: writes the report
+/// folder `out` (CSV, PNG, summary.json), keeps checkpoints in `work` when given (a rerun
+/// resumes from them), shows progress bars on stderr when `progress`. Returns
+/// {"results", "warnings", "files"}. The GIL is released while it runs. `mrdw.calibrate`
+/// calls it.
+#[pyfunction]
+#[pyo3(signature = (scene, out, work = None, progress = false))]
+pub fn _run_to_folder<'py>(
+    py: Python<'py>,
+    scene: &str,
+    out: std::path::PathBuf,
+    work: Option<std::path::PathBuf>,
+    progress: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let s = Scene::open(scene).map_err(|e| compare_err(py, e))?;
+    let control = compare::RunControl {
+        progress,
+        ..Default::default()
+    };
+    let (report, files) = py
+        .detach(|| compare::run::run_to_folder(&s, &out, work.as_deref(), &control))
+        .map_err(|e| compare_err(py, e))?;
+    let d = PyDict::new(py);
+    let json = serde_json::Value::Object(report.results()).to_string();
+    d.set_item(
+        "results",
+        py.import("json")?.call_method1("loads", (json,))?,
+    )?;
+    d.set_item("warnings", report.warnings())?;
+    let files: Vec<String> = files.iter().map(|p| p.display().to_string()).collect();
+    d.set_item("files", files)?;
+    Ok(d)
+}

@@ -8,7 +8,8 @@
 //! grid for the tangential outputs ([`axisym_3d`]), MRD's tangential law on any normal
 //! curve ([`tangential_map`]), the elastomer of the sliding-friction outputs with the fit
 //! of Eq. (82) ([`elastomer`]) and their MRD ensemble of sliding lines
-//! ([`sliding_line`]), and the progress bar of long stages
+//! ([`sliding_line`]), a measured topography's detrended square and isotropic PSD
+//! ([`measured`]), checkpointed task sets ([`tasks`]) and the progress bar of long stages
 //! ([`progress`]).
 
 pub mod axisym_3d;
@@ -17,6 +18,7 @@ pub mod fit;
 pub mod hess;
 pub mod lambda;
 pub mod lambda_meaning;
+pub mod measured;
 pub mod periodic;
 pub mod progress;
 pub mod rough_body;
@@ -24,3 +26,4 @@ pub mod rough_punch;
 pub mod rough_sphere;
 pub mod sliding_line;
 pub mod tangential_map;
+pub mod tasks;

@@ -80,8 +80,10 @@ from ._mrdw import (
     run_scene,
 )
 from ._topography import Topography, read_topography
+from ._calibrate import calibrate
 
 __all__ = [
+    "calibrate",
     "__version__",
     "ConvergenceError",
     "Contact",

@@ -2,6 +2,7 @@
 //! the studies that calibrate lambda(H), and the tangential springs of a rough contact
 //! (Section 6 on rough surfaces) and of a rough adhesive sphere (Section 5).
 
+pub mod calibrate;
 pub mod contact_area;
 pub mod hurst_sweep;
 pub mod lambda_study;

@@ -69,7 +69,7 @@ impl Output for HurstSweep {
                 Stage::Bem3dStiffness,
                 Stage::RoughContact,
             ],
-            || self.compute(&work, env.control),
+            || self.compute(env.ctx, &work, env.control),
         )?;
         let results = out.stage(Stage::SweepFit, || aggregate::aggregate(self, &work))?;
         figures::report(self, &results, out);
@@ -88,7 +88,7 @@ impl Checkpointed for HurstSweep {
         tasks::all(self).iter().map(|t| t.file_name()).collect()
     }
 
-    fn compute(&self, dir: &Path, control: &RunControl) -> Result<()> {
+    fn compute(&self, _: &Context, dir: &Path, control: &RunControl) -> Result<()> {
         tasks::compute(self, dir, control)
     }
 }

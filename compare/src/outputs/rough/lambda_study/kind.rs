@@ -165,7 +165,7 @@ impl Output for LambdaStudy {
                 Stage::Bem3dStiffness,
                 Stage::RoughContact,
             ],
-            || self.compute(&work, env.control),
+            || self.compute(env.ctx, &work, env.control),
         )?;
         let (results, scatter) = out.stage(Stage::SweepFit, || {
             Ok::<_, CompareError>((
@@ -194,7 +194,7 @@ impl Checkpointed for LambdaStudy {
         Vec::new()
     }
 
-    fn compute(&self, dir: &Path, control: &RunControl) -> Result<()> {
+    fn compute(&self, _: &Context, dir: &Path, control: &RunControl) -> Result<()> {
         schedule::compute(self, dir, control)
     }
 }

@@ -1,0 +1,281 @@
+//! A measured topography made ready for the rough studies: the central square of the
+//! map, its mean plane removed (instrument tilt), and its isotropic power spectrum
+//! C2D(q) (radially averaged over a Hann window, so the map's non-periodic edges do not
+//! leak power to high q), with what a user must know about it: the slope anisotropy the
+//! isotropic average hides, and whether the spectrum shows a roll-off or still rises at
+//! the scan's longest wavelength.
+
+use crate::error::{CompareError, Result};
+use mrd::roughness::stats::surface_psd;
+use mrd::roughness::TabulatedSpectrum;
+use std::f64::consts::PI;
+
+/// The fewest pixels a side that a calibration accepts.
+pub const MIN_PIXELS: usize = 32;
+
+/// The slope anisotropy above which a warning says the isotropic PSD is a simplification.
+pub const ANISOTROPY_WARN: f64 = 0.2;
+
+/// A measured map reduced to what the studies use.
+#[derive(Debug, Clone)]
+pub struct Measured {
+    /// Pixels a side of the square kept.
+    pub n: usize,
+    /// Its side L [length].
+    pub side: f64,
+    /// Heights of the square, row-major, mean plane removed [length].
+    pub heights: Vec<f64>,
+    /// Radially averaged PSD of the square (q [1/length], C2D [length^4]).
+    pub psd: Vec<(f64, f64)>,
+    /// (s_x^2 - s_y^2) / (s_x^2 + s_y^2), s the rms slopes along x and y by finite
+    /// differences: 0 for an isotropic surface.
+    pub anisotropy: f64,
+    /// log-log slope of C2D over the lowest octaves against the rest; None when too few
+    /// bins (fewer than three in each part).
+    pub slopes: Option<(f64, f64)>,
+    /// (rows, cols) of the map when only its central square was kept.
+    pub cropped_from: Option<(usize, usize)>,
+}
+
+impl Measured {
+    /// The map `data` (`rows x cols`, row-major, rows along y) of physical size `size`
+    /// (lx, ly): its central square, detrended.
+    pub fn new(data: &[f64], rows: usize, cols: usize, size: (f64, f64)) -> Result<Self> {
+        let bad = |m: String| Err(CompareError::Scene(m));
+        if rows < MIN_PIXELS || cols < MIN_PIXELS {
+            return bad(format!(
+                "topography: {rows} x {cols} pixels; a calibration needs at least {MIN_PIXELS} a side (its PSD spans half the pixels in wavenumber)"
+            ));
+        }
+        if !(size.0.is_finite() && size.0 > 0.0 && size.1.is_finite() && size.1 > 0.0) {
+            return bad(format!(
+                "size = [{}, {}]: give the map's physical size [lx, ly] > 0 in the scene's length unit",
+                size.0, size.1
+            ));
+        }
+        let (dx, dy) = (size.0 / cols as f64, size.1 / rows as f64);
+        if (dx / dy - 1.0).abs() > 1e-6 {
+            return bad(format!(
+                "size = [{}, {}] over {cols} x {rows} pixels gives pixels of {dx:.4e} x {dy:.4e}: the calibration needs square pixels",
+                size.0, size.1
+            ));
+        }
+        if let Some(i) = data.iter().position(|v| !v.is_finite()) {
+            return bad(format!(
+                "topography: undefined height at row {}, column {}: fill or crop the missing points first",
+                i / cols + 1,
+                i % cols + 1
+            ));
+        }
+        let n = rows.min(cols);
+        let (r0, c0) = ((rows - n) / 2, (cols - n) / 2);
+        let mut heights: Vec<f64> = (0..n)
+            .flat_map(|j| {
+                data[(r0 + j) * cols + c0..(r0 + j) * cols + c0 + n]
+                    .iter()
+                    .copied()
+            })
+            .collect();
+        remove_plane(&mut heights, n);
+        let side = n as f64 * dx;
+        let psd = windowed_psd(&heights, n, side);
+        Ok(Self {
+            n,
+            side,
+            anisotropy: anisotropy(&heights, n),
+            slopes: slopes(&psd, side),
+            cropped_from: (rows != cols).then_some((rows, cols)),
+            heights,
+            psd,
+        })
+    }
+
+    /// The PSD as a spectrum, held flat from its lowest bin down to 2 pi / L.
+    pub fn spectrum(&self) -> Result<TabulatedSpectrum> {
+        TabulatedSpectrum::new(&self.psd)
+            .map(|t| t.with_lowest_wavenumber(2.0 * PI / self.side))
+            .map_err(|e| CompareError::Scene(format!("topography PSD: {e}")))
+    }
+
+    /// Whether the spectrum flattens at its longest wavelengths (a roll-off): the
+    /// lowest octaves' slope less than half as steep as the rest's.
+    pub fn rolloff_seen(&self) -> Option<bool> {
+        self.slopes.map(|(low, rest)| low > 0.5 * rest)
+    }
+
+    /// Warnings a user must read before trusting a calibration of this map.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut w = Vec::new();
+        if let Some((r, c)) = self.cropped_from {
+            w.push(format!(
+                "topography: {r} x {c} pixels; the central {0} x {0} square is used (the punch is the disc inscribed in it)",
+                self.n
+            ));
+        }
+        if self.anisotropy.abs() > ANISOTROPY_WARN {
+            w.push(format!(
+                "topography: the mean square slopes along x and y differ by {:.0} % of their sum ((s_x^2 - s_y^2)/(s_x^2 + s_y^2) = {:.2}): the calibration uses the radially averaged, isotropic PSD and MRD lines of any direction; lambda describes an isotropic surface of that PSD",
+                100.0 * self.anisotropy.abs(),
+                self.anisotropy
+            ));
+        }
+        match (self.slopes, self.rolloff_seen()) {
+            (Some((low, rest)), Some(false)) => w.push(format!(
+                "topography: no roll-off in the PSD (log-log slope {low:.2} over the lowest two octaves against {rest:.2} above): the spectrum still rises at the scan's longest wavelength, so the punch of diameter L = {:.4e} (the scan) sets q0 = 2 pi / L and lambda holds for that diameter; a larger contact sees a spectrum the map does not show",
+                self.side
+            )),
+            (None, _) => w.push(
+                "topography: too few PSD bins to tell whether the spectrum rolls off; lambda holds for a punch of the scan's diameter".into(),
+            ),
+            _ => {}
+        }
+        w
+    }
+}
+
+/// Removes the least-squares plane a + b x + c y of an `n x n` map (pixel coordinates
+/// centred, so the three normal equations decouple).
+fn remove_plane(h: &mut [f64], n: usize) {
+    let c = (n as f64 - 1.0) / 2.0;
+    let (mut s0, mut sx, mut sy, mut xx) = (0.0, 0.0, 0.0, 0.0);
+    for j in 0..n {
+        for i in 0..n {
+            let v = h[j * n + i];
+            let (x, y) = (i as f64 - c, j as f64 - c);
+            s0 += v;
+            sx += v * x;
+            sy += v * y;
+            xx += x * x;
+        }
+    }
+    let cells = (n * n) as f64;
+    let (a, b, cy) = (s0 / cells, sx / xx, sy / xx);
+    for j in 0..n {
+        for i in 0..n {
+            h[j * n + i] -= a + b * (i as f64 - c) + cy * (j as f64 - c);
+        }
+    }
+}
+
+/// Radially averaged PSD of the map under a separable Hann window, normalised by the
+/// window's mean square so that a stationary surface keeps its power.
+fn windowed_psd(h: &[f64], n: usize, side: f64) -> Vec<(f64, f64)> {
+    let w: Vec<f64> = (0..n)
+        .map(|i| (PI * (i as f64 + 0.5) / n as f64).sin().powi(2))
+        .collect();
+    let ms = w.iter().map(|v| v * v).sum::<f64>() / n as f64;
+    let norm = 1.0 / ms; // the 2D window's mean square is ms^2; amplitude 1/ms
+    let hw: Vec<f64> = (0..n * n)
+        .map(|k| h[k] * w[k % n] * w[k / n] * norm)
+        .collect();
+    let bins = (n / 8).clamp(16, 64);
+    surface_psd(&hw, n, n, side, side, bins)
+}
+
+/// Slope anisotropy from finite differences along x and y.
+fn anisotropy(h: &[f64], n: usize) -> f64 {
+    let (mut sx, mut sy) = (0.0, 0.0);
+    for j in 0..n - 1 {
+        for i in 0..n - 1 {
+            let v = h[j * n + i];
+            sx += (h[j * n + i + 1] - v).powi(2);
+            sy += (h[(j + 1) * n + i] - v).powi(2);
+        }
+    }
+    if sx + sy > 0.0 {
+        (sx - sy) / (sx + sy)
+    } else {
+        0.0
+    }
+}
+
+/// log-log slopes of the PSD over q < 4 (2 pi / L) (the lowest two octaves above the
+/// window-smeared first mode) and over the rest.
+fn slopes(psd: &[(f64, f64)], side: f64) -> Option<(f64, f64)> {
+    let q1 = 2.0 * PI / side;
+    let fit = |pts: Vec<&(f64, f64)>| -> Option<f64> {
+        if pts.len() < 3 {
+            return None;
+        }
+        let x: Vec<f64> = pts.iter().map(|p| p.0.ln()).collect();
+        let y: Vec<f64> = pts.iter().map(|p| p.1.ln()).collect();
+        mrd::rough_contact::fit_line(&x, &y).ok().map(|l| l.b)
+    };
+    let usable = psd.iter().filter(|p| p.0 >= 1.5 * q1 && p.1 > 0.0);
+    let low = fit(usable.clone().filter(|p| p.0 < 4.0 * q1).collect())?;
+    let rest = fit(usable.filter(|p| p.0 >= 4.0 * q1).collect())?;
+    Some((low, rest))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use mrd::roughness::synthesis::{surface, Amplitudes, Grid};
+    use mrd::roughness::SelfAffine;
+
+    /// A periodic self-affine map with a roll-off at 4 (2 pi / L), tilted: the plane is
+    /// removed to rounding, the PSD follows the spectrum (within 20 % in bins of many
+    /// modes, 10 % in the mean over the bins from the roll-off to half the Nyquist
+    /// wavenumber; one realisation), the roll-off is seen, and without one it is not.
+    #[test]
+    fn a_tilted_synthetic_map_gives_back_its_spectrum() {
+        let (n, side) = (256, 2.0);
+        let q0 = 2.0 * PI / side;
+        for (rolloff, seen) in [(4.0, true), (1.0, false)] {
+            let s = SelfAffine::new(0.8, q0, rolloff * q0, PI * n as f64 / side).unwrap();
+            let mut h =
+                surface(&s, &Grid::square(n, side), 3, 0, Amplitudes::Deterministic).unwrap();
+            let flat = h.clone();
+            for j in 0..n {
+                for i in 0..n {
+                    h[j * n + i] += 0.3 + 1e-3 * i as f64 - 2e-3 * j as f64;
+                }
+            }
+            let m = Measured::new(&h, n, n, (side, side)).unwrap();
+            let mean = flat.iter().sum::<f64>() / flat.len() as f64;
+            let mut check = flat.iter().map(|v| v - mean).collect::<Vec<_>>();
+            remove_plane(&mut check, n);
+            let worst = m
+                .heights
+                .iter()
+                .zip(&check)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            assert!(worst < 1e-12, "{worst}");
+            // A bin of few modes scatters (the window mixes neighbouring modes, whose
+            // phases are random): bins above 30 / L hold hundreds of modes.
+            let (mut sum, mut bins) = (0.0, 0.0);
+            for &(q, c) in &m.psd {
+                if q > 1.2 * rolloff * q0 && q < 0.5 * PI * n as f64 / side {
+                    let r = c / s.c2d(q);
+                    sum += r;
+                    bins += 1.0;
+                    assert!(q < 30.0 || (r - 1.0).abs() < 0.2, "q = {q}: {r}");
+                }
+            }
+            assert!((sum / bins - 1.0).abs() < 0.1, "mean ratio {}", sum / bins);
+            assert_eq!(m.rolloff_seen(), Some(seen), "{:?}", m.slopes);
+            assert!(m.anisotropy.abs() < 0.05, "{}", m.anisotropy);
+        }
+    }
+
+    /// Bad maps are refused, each naming what is wrong.
+    #[test]
+    fn bad_maps_are_refused_by_name() {
+        let ok = vec![0.0; 64 * 64];
+        let err = |d: &[f64], r, c, s| Measured::new(d, r, c, s).unwrap_err().to_string();
+        assert!(err(&ok[..16 * 64], 16, 64, (1.0, 1.0)).contains("16 x 64 pixels"));
+        assert!(err(&ok, 64, 64, (1.0, 0.0)).contains("size"));
+        assert!(err(&ok, 64, 64, (1.0, 2.0)).contains("square pixels"));
+        let mut nan = ok.clone();
+        nan[65] = f64::NAN;
+        assert!(err(&nan, 64, 64, (1.0, 1.0)).contains("row 2, column 2"));
+        // Streaks along x: slopes along y only.
+        let streaks: Vec<f64> = (0..64 * 64)
+            .map(|k| ((k / 64) as f64 * 0.7).sin())
+            .collect();
+        let m = Measured::new(&streaks, 64, 64, (1.0, 1.0)).unwrap();
+        assert!(m.anisotropy < -0.9, "{}", m.anisotropy);
+        assert!(m.warnings().iter().any(|w| w.contains("along x and y")));
+    }
+}

@@ -1,0 +1,182 @@
+//! `Calibrate` as an output kind: its checks, stages and run (the realisation plan and
+//! the analysis of what the checkpoints hold).
+
+use super::analysis::{self, Calibration};
+use super::tasks::{self, Case, Lines, Task};
+use super::{report, Calibrate};
+use crate::checks::{bad, count_in, MAX_LOADS, MAX_REALISATIONS};
+use crate::context::Context;
+use crate::error::{CompareError, Result};
+use crate::experiment::rough_punch::BemCurve;
+use crate::output::{Checkpointed, Env, Output, RunControl};
+use crate::plan::Stage;
+use crate::report::Section;
+use std::path::Path;
+
+impl Output for Calibrate {
+    fn validate(&self, ctx: &Context) -> Result<()> {
+        let r = self.realisations;
+        count_in("realisations.min", r.min, 2..=MAX_REALISATIONS)?;
+        count_in("realisations.max", r.max, r.min..=MAX_REALISATIONS)?;
+        count_in("realisations.batch", r.batch, 1..=r.max)?;
+        count_in("bandwidth", self.bandwidth as u64, 8..=512)?;
+        count_in("cells", self.cells as u64, 2..=32)?;
+        count_in("loads", self.loads as u64, 6..=MAX_LOADS)?;
+        count_in("lines", self.lines, 2..=MAX_REALISATIONS)?;
+        count_in("points_1d_per_cell", self.points_1d_per_cell as u64, 2..=64)?;
+        crate::checks::check_tolerance(self.tolerance)?;
+        let [lo, hi] = self.window;
+        if !(lo > 0.0 && lo < hi && hi <= 1.0) {
+            return bad("window must satisfy 0 < window[0] < window[1] <= 1 (k/(E* L))");
+        }
+        if !(self.target > 0.0 && self.target < 1.0) {
+            return bad(format!("target = {} must lie in (0, 1)", self.target));
+        }
+        let case = Case::new(self, ctx)?;
+        let g = case.grid.max(case.map.as_ref().map_or(0, |m| m.n));
+        if g > 4096 {
+            return bad(format!(
+                "the 3D grid would be {g} cells a side (cells x bandwidth, or the map): at most 4096"
+            ));
+        }
+        crate::checks::check_memory(
+            (g * g) as f64
+                * crate::checks::BYTES_PER_CELL_NON_PERIODIC
+                * rayon::current_num_threads() as f64,
+            &format!("a {g} x {g} punch per thread"),
+        )
+    }
+
+    fn stages(&self, _: &Context) -> Vec<Stage> {
+        let mut s = Vec::new();
+        if self.topography.is_some() || self.psd.is_some() {
+            s.push(Stage::Psd);
+        }
+        s.extend([
+            Stage::RoughSynthesis,
+            Stage::Bem3d,
+            Stage::Bem3dStiffness,
+            Stage::RoughContact,
+            Stage::SweepFit,
+        ]);
+        s
+    }
+
+    fn seed(&self) -> Option<u64> {
+        Some(self.seed)
+    }
+
+    fn checkpointed(&self) -> Option<&dyn Checkpointed> {
+        Some(self)
+    }
+
+    fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
+        let make = || Case::new(self, env.ctx);
+        let case = if self.topography.is_some() || self.psd.is_some() {
+            out.stage(Stage::Psd, make)?
+        } else {
+            make()?
+        };
+        for w in &case.warnings {
+            out.warn(w.clone());
+        }
+        let work = env.work_root.join(self.key());
+        let plan = out.stages_together(
+            &[
+                Stage::RoughSynthesis,
+                Stage::Bem3d,
+                Stage::Bem3dStiffness,
+                Stage::RoughContact,
+            ],
+            || self.realise(&case, &work, env.control),
+        )?;
+        let (cal, map) = out.stage(Stage::SweepFit, || -> Result<_> {
+            let map = match (&case.map, self.solve_map) {
+                (Some(_), true) => Some(report::MapCurves {
+                    bem: tasks::load(&work, Task::MapBem)?,
+                    lines: tasks::load(&work, Task::MapMrd)?,
+                    rms_factor: case.rms_factor(case.source_band),
+                }),
+                _ => None,
+            };
+            Ok((plan, map))
+        })?;
+        report::report(self, &case, &cal, map.as_ref(), &env.ctx.units.length, out)
+    }
+}
+
+impl Calibrate {
+    /// Computes (unless `report_only`) and calibrates on `min` realisations, then on
+    /// batches more while lambda's interval is wider than the target; a sharded run
+    /// computes every realisation up to `max` and reports nothing.
+    fn realise(&self, case: &Case, work: &Path, control: &RunControl) -> Result<Calibration> {
+        let r = self.realisations;
+        let head = tasks::all(self).len() - r.max as usize;
+        let mut n = r.min;
+        loop {
+            if !control.report_only {
+                tasks::compute(self, case, work, head + n as usize, n == r.min, control)?;
+            }
+            let c = self.calibrate(case, work, n)?;
+            let met = c.lambda.relative_half_width() <= self.target;
+            if met || n >= r.max {
+                return Ok(c);
+            }
+            n = (n + r.batch).min(r.max);
+        }
+    }
+
+    /// The calibration on the first `n` punches of `work`.
+    fn calibrate(&self, case: &Case, work: &Path, n: u64) -> Result<Calibration> {
+        let fs = tasks::f_grid();
+        let lines: Lines = tasks::load(work, Task::Mrd)?;
+        let k1 = analysis::mean_lines(&lines);
+        let k3 = (0..n)
+            .map(|r| {
+                Ok(analysis::reduce(
+                    &tasks::load::<BemCurve>(work, Task::Bem(r))?,
+                    &fs,
+                ))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let mut rng = mrd::roughness::synthesis::realisation_rng(self.seed, 0x6361_6c69);
+        analysis::calibrate(&fs, &k3, &k1, self.window, case.rms_factor(case.band), &mut rng)
+            .ok_or_else(|| {
+                CompareError::Scene(format!(
+                    "fewer than 3 points of the 3D mean k/(E* L) lie in window = {:?} after {n} punches: widen the window or raise loads",
+                    self.window
+                ))
+            })
+    }
+}
+
+impl Checkpointed for Calibrate {
+    /// Every parameter the tasks depend on (the source's data are checked separately,
+    /// by the fingerprint in the folder).
+    fn key(&self) -> String {
+        let text = format!(
+            "calibrate v1 {:?} {:?} {:?} size={:?} bandwidth={} cells={} loads={} tolerance={} lines={} points={} seed={}",
+            self.topography,
+            self.psd,
+            self.self_affine,
+            self.size,
+            self.bandwidth,
+            self.cells,
+            self.loads,
+            self.tolerance,
+            self.lines,
+            self.points_1d_per_cell,
+            self.seed
+        );
+        crate::output::checkpoint_key(&text)
+    }
+
+    fn task_files(&self) -> Vec<String> {
+        tasks::all(self).iter().map(Task::file_name).collect()
+    }
+
+    fn compute(&self, ctx: &Context, dir: &Path, control: &RunControl) -> Result<()> {
+        let case = Case::new(self, ctx)?;
+        tasks::compute(self, &case, dir, tasks::all(self).len(), true, control)
+    }
+}

@@ -1,0 +1,141 @@
+//! `calibrate`: lambda of Eq. (76) for the user's own surface. From a measured height
+//! map, an isotropic PSD table or a self-affine spectrum with a roll-off, it presses 3D
+//! rough punches whose faces carry that spectrum and MRD lines with C1D = lambda q C2D of
+//! the same spectrum, and returns the lambda that makes MRD's stiffness-force curve
+//! k(F) match the 3D ensemble's, with its 95 % interval, the misfit left over the force
+//! range, the exponents alpha_3D and alpha_MRD (Eq. 77) and both curves. A measured map
+//! is also solved itself, in 3D at its full resolution, against MRD lines of its whole
+//! spectrum with the calibrated lambda.
+//!
+//! The set-up is the lambda study's (`lambda_study`), in units of the punch diameter L
+//! (the map's side) and E* = 1: a rigid circular punch of diameter L whose face is a
+//! nested random-phase surface with the spectrum's C2D on the wave vectors 0 < |k| <= B
+//! (units of 2 pi / L; B = `bandwidth`, or the map's Nyquist wavenumber if lower),
+//! sampled with `cells` cells per shortest wavelength; the load ladder runs from 1e-3 of
+//! the full-contact approach to full contact; k = dF/dd at fixed contact set. MRD lines
+//! are nested the same way (C1D = pi q C2D, `points_1d_per_cell` points per 3D cell).
+//! Each curve is reduced by its own rms height (f = F/(E* h L)); lambda only rescales the
+//! line's heights, so MRD at lambda is K1(f sqrt(pi / l)) with l = lambda times the
+//! case's rms factor (`experiment::lambda_meaning`), and l minimises the log-space misfit
+//! to the 3D ensemble mean wherever that mean lies in `window` (k/(E* L)). Intervals:
+//! 95 % bootstrap over the 3D realisations (200 resamples, on the full sample's points).
+//!
+//! Realisations: `realisations.min`, then batches of `realisations.batch` (up to
+//! `realisations.max`) while lambda's interval is wider than +/- `target`; decisions use
+//! complete batches only, so the result does not depend on threads, shards or
+//! interruptions (a sharded run computes every realisation up to `max`).
+//!
+//! Files: [`tasks`] (the source's spectrum, the checkpointed solves), [`analysis`]
+//! (curves, lambda, intervals), [`report`] (tables and figures), [`kind`] (the output).
+
+pub mod analysis;
+mod kind;
+mod report;
+pub mod tasks;
+
+use serde::Deserialize;
+
+/// Parameters of a calibration (an `[[outputs]]` entry of kind `calibrate`).
+#[derive(Debug, Clone, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Calibrate {
+    /// A measured height map (`.npy`, text matrix, ESRI ASCII grid, `.xyz` list),
+    /// relative to the scene; heights in the scene's length unit.
+    pub topography: Option<String>,
+    /// An isotropic PSD table, relative to the scene: two columns q [1/length] and C2D
+    /// [length^4] (`#` comments and a header line allowed).
+    pub psd: Option<String>,
+    /// A self-affine spectrum with a roll-off (C2D flat below q_r = `rolloff` 2 pi / L),
+    /// for the verification against the lambda table.
+    pub self_affine: Option<SelfAffineSource>,
+    /// [lx, ly] [length]: the map's physical size (needed unless the file states its
+    /// cell size), or for `psd` the punch diameter L as [L, L].
+    pub size: Option<[f64; 2]>,
+    /// Bandwidth B = L / lambda_min of the calibration punches (the spectrum is cut
+    /// there, or at the map's Nyquist wavenumber if that is lower).
+    #[serde(default = "thirty_two")]
+    pub bandwidth: usize,
+    /// Cells per shortest wavelength of the 3D punches.
+    #[serde(default = "eight")]
+    pub cells: usize,
+    #[serde(default)]
+    pub realisations: Realisations,
+    /// Relative half-width of lambda's 95 % interval at which realisations stop.
+    #[serde(default = "ten_percent")]
+    pub target: f64,
+    /// The calibration range in k/(E* L).
+    #[serde(default = "window")]
+    pub window: [f64; 2],
+    /// Approaches per 3D punch.
+    #[serde(default = "sixteen")]
+    pub loads: usize,
+    /// 3D solver tolerance.
+    #[serde(default = "tolerance")]
+    pub tolerance: f64,
+    /// MRD lines.
+    #[serde(default = "thousand")]
+    pub lines: u64,
+    /// MRD points per 3D cell across.
+    #[serde(default = "sixteen")]
+    pub points_1d_per_cell: usize,
+    /// Solve the measured map itself in 3D (topography only).
+    #[serde(default = "yes")]
+    pub solve_map: bool,
+    #[serde(default)]
+    pub seed: u64,
+}
+
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SelfAffineSource {
+    pub hurst: f64,
+    /// q_r / q0 (1: no roll-off).
+    #[serde(default = "one")]
+    pub rolloff: f64,
+}
+
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Realisations {
+    pub min: u64,
+    pub max: u64,
+    pub batch: u64,
+}
+
+impl Default for Realisations {
+    fn default() -> Self {
+        Self {
+            min: 16,
+            max: 400,
+            batch: 16,
+        }
+    }
+}
+
+fn thirty_two() -> usize {
+    32
+}
+fn eight() -> usize {
+    8
+}
+fn sixteen() -> usize {
+    16
+}
+fn thousand() -> u64 {
+    1000
+}
+fn ten_percent() -> f64 {
+    0.10
+}
+fn window() -> [f64; 2] {
+    [0.02, 0.5]
+}
+fn tolerance() -> f64 {
+    1e-8
+}
+fn yes() -> bool {
+    true
+}
+fn one() -> f64 {
+    1.0
+}

@@ -1,0 +1,324 @@
+//! The calibration's results, tables and figures.
+
+use super::analysis::{self, Calibration};
+use super::tasks::{f_grid, Case, Lines, Spectrum};
+use super::Calibrate;
+use crate::error::Result;
+use crate::experiment::fit::{calibrate_lambda_at, fit_points, window_points};
+use crate::experiment::rough_punch::BemCurve;
+use crate::report::{Figure, Section, Series, Style, Table};
+use std::f64::consts::TAU;
+
+/// The measured map's own 3D curve and the MRD ensemble of its whole spectrum.
+pub struct MapCurves {
+    pub bem: BemCurve,
+    pub lines: Lines,
+    pub rms_factor: f64,
+}
+
+/// The map against MRD at the calibrated lambda.
+struct MapCheck {
+    k3: Vec<Option<f64>>,
+    mrd: Vec<Option<f64>>,
+    misfit: (f64, f64),
+    /// lambda fitted on the map alone (one realisation), NaN where the map's curve has
+    /// fewer than 3 points in the window.
+    lambda_alone: f64,
+    alpha: f64,
+}
+
+fn map_check(spec: &Calibrate, cal: &Calibration, m: &MapCurves) -> MapCheck {
+    let fs = f_grid();
+    let k3 = analysis::reduce(&m.bem, &fs);
+    let k1 = analysis::mean_lines(&m.lines);
+    let mrd = analysis::mrd_at(&fs, &k1, cal.lambda.value * m.rms_factor);
+    let points = window_points(&k3, spec.window[0], spec.window[1]);
+    MapCheck {
+        misfit: analysis::misfit(&k3, &mrd, &points),
+        lambda_alone: calibrate_lambda_at(&fs, &k3, &k1, &points)
+            .map_or(f64::NAN, |l| l / m.rms_factor),
+        alpha: fit_points(&fs, &k3, &points).map_or(f64::NAN, |a| a.0),
+        k3,
+        mrd,
+    }
+}
+
+pub fn report(
+    spec: &Calibrate,
+    case: &Case,
+    cal: &Calibration,
+    map: Option<&MapCurves>,
+    unit: &str,
+    out: &mut Section,
+) -> Result<()> {
+    let l = &cal.lambda;
+    let width = l.relative_half_width();
+    if width > spec.target {
+        out.warn(format!(
+            "lambda's 95 % interval is +/- {:.1} % after {} punches (realisations.max), wider than target = {}: raise realisations.max",
+            100.0 * width,
+            cal.realisations,
+            spec.target
+        ));
+    }
+    for (k, v) in [
+        ("lambda", l.value),
+        ("lambda_lo", l.lo),
+        ("lambda_hi", l.hi),
+        ("realisations", cal.realisations as f64),
+        ("bandwidth", case.band as f64),
+        ("grid", case.grid as f64),
+        ("misfit_max", cal.misfit.0),
+        ("misfit_rms", cal.misfit.1),
+        ("alpha_3d", cal.alpha_3d.value),
+        ("alpha_3d_lo", cal.alpha_3d.lo),
+        ("alpha_3d_hi", cal.alpha_3d.hi),
+        ("alpha_mrd", cal.alpha_mrd),
+        ("rms_factor", case.rms_factor(case.band)),
+        ("lambda_lower_half", cal.halves.0),
+        ("lambda_upper_half", cal.halves.1),
+    ] {
+        out.scalar(k, v);
+    }
+    let check = map.map(|m| map_check(spec, cal, m));
+    if let (Some(c), Some(m)) = (&check, &case.map) {
+        out.scalar("map_misfit_max", c.misfit.0);
+        out.scalar("map_misfit_rms", c.misfit.1);
+        out.scalar("map_lambda_alone", c.lambda_alone);
+        out.scalar("map_alpha_3d", c.alpha);
+        out.scalar("map_pixels", m.n as f64);
+        out.scalar("map_anisotropy", m.anisotropy);
+    }
+    out.tables.push(summary_table(spec, case, cal));
+    let curves = curves_table(spec, case.grid, cal, check.as_ref());
+    out.figures
+        .push(curves_figure(spec, case, cal, &curves, check.is_some()));
+    out.tables.push(curves);
+    let psd = psd_table(case, l.value, unit);
+    out.figures.push(psd_figure(&psd, case, l.value));
+    out.tables.push(psd);
+    Ok(())
+}
+
+fn summary_table(spec: &Calibrate, case: &Case, cal: &Calibration) -> Table {
+    let cols: Vec<String> = [
+        "bandwidth L/lambda_min [1]",
+        "grid [cells]",
+        "realisations [1]",
+        "lambda [1]",
+        "lambda_lo95 [1]",
+        "lambda_hi95 [1]",
+        "misfit_max |dln k| [1]",
+        "misfit_rms |dln k| [1]",
+        "alpha_3d [1]",
+        "alpha_3d_lo95 [1]",
+        "alpha_3d_hi95 [1]",
+        "alpha_mrd [1]",
+        "lambda_lower_half [1]",
+        "lambda_upper_half [1]",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    let mut t = Table::new("calibration", &cols);
+    t.notes.push(format!(
+        "lambda of Eq. (76) (C1D = lambda q C2D of the same C2D, the line not rescaled) for this surface: {} rigid circular punches of diameter L (the source's side) with faces of its spectrum up to {} x 2 pi / L, {} cells a side, against {} MRD lines; fitted over k/(E* L) in [{}, {}] of the 3D mean (f = F/(E* h L), each curve over its own rms height); 95 % bootstrap intervals over the punches ({} resamples); misfit: |ln k3D - ln kMRD| at the calibrated lambda over that range; alpha: slope of ln k against ln f there (Eq. 77); halves: lambda fitted on the lower / upper half of the range's forces",
+        cal.realisations,
+        case.band,
+        case.grid,
+        spec.lines,
+        spec.window[0],
+        spec.window[1],
+        analysis::RESAMPLES
+    ));
+    t.push(vec![
+        case.band as f64,
+        case.grid as f64,
+        cal.realisations as f64,
+        cal.lambda.value,
+        cal.lambda.lo,
+        cal.lambda.hi,
+        cal.misfit.0,
+        cal.misfit.1,
+        cal.alpha_3d.value,
+        cal.alpha_3d.lo,
+        cal.alpha_3d.hi,
+        cal.alpha_mrd,
+        cal.halves.0,
+        cal.halves.1,
+    ]);
+    t
+}
+
+fn curves_table(spec: &Calibrate, grid: usize, cal: &Calibration, map: Option<&MapCheck>) -> Table {
+    let mut cols: Vec<String> = [
+        "f = F/(E* h L) [1]",
+        "k3D/(E* L) mean [1]",
+        "k3D lo95 [1]",
+        "k3D hi95 [1]",
+        "kMRD/(E* L) at lambda [1]",
+        "in_range [0/1]",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    if map.is_some() {
+        cols.push("k3D/(E* L) of the map [1]".into());
+        cols.push("kMRD/(E* L) of the map's spectrum at lambda [1]".into());
+    }
+    let mut t = Table::new("curves", &cols);
+    t.notes.push(format!(
+        "k(f) where the 3D mean is defined and above 3 contact cells' worth (k/(E* L) >= 3 / grid = {:.4}; below, a handful of cells set k and the curve is the grid's, not the surface's): the punches' mean with its pointwise 95 % bootstrap interval, MRD at the calibrated lambda; in_range marks the calibration range k/(E* L) in [{}, {}]; the map's columns (NaN outside its range): the measured map itself as a punch, and MRD lines of its whole spectrum (to its Nyquist wavenumber) at the same lambda",
+        3.0 / grid as f64,
+        spec.window[0],
+        spec.window[1]
+    ));
+    let nan = |v: Option<f64>| v.unwrap_or(f64::NAN);
+    for (j, f) in f_grid().into_iter().enumerate() {
+        let (Some(m), Some((lo, hi))) = (cal.mean3[j], cal.band3[j]) else {
+            continue;
+        };
+        if m < 3.0 / grid as f64 {
+            continue;
+        }
+        let mut row = vec![f, m, lo, hi, nan(cal.mrd[j]), cal.points[j] as u8 as f64];
+        if let Some(c) = map {
+            row.extend([nan(c.k3[j]), nan(c.mrd[j])]);
+        }
+        t.push(row);
+    }
+    t
+}
+
+fn curves_figure(
+    spec: &Calibrate,
+    case: &Case,
+    cal: &Calibration,
+    t: &Table,
+    with_map: bool,
+) -> Figure {
+    let l = &cal.lambda;
+    let f = t.column("f = F/(E* h L)");
+    let pick = |name: &str, keep: &dyn Fn(usize) -> bool| -> Vec<(f64, f64)> {
+        t.column(name)
+            .into_iter()
+            .enumerate()
+            .filter(|&(j, v)| keep(j) && v.is_finite())
+            .map(|(j, v)| (f[j], v))
+            .collect()
+    };
+    let inr = t.column("in_range");
+    let all = |_: usize| true;
+    let mut fig = Figure::new(
+        "curves",
+        &format!(
+            "k(F), 3D punches against MRD at lambda = {:.3} [{:.3}, {:.3}] (B = {})",
+            l.value, l.lo, l.hi, case.band
+        ),
+        "reduced force F/(E* h L) [1]",
+        "reduced stiffness k/(E* L) [1]",
+    )
+    .with(Series::new(
+        format!("3D mean of {} punches", cal.realisations),
+        pick("k3D/(E* L) mean", &all),
+        Style::Line,
+    ))
+    .with(Series::new("3D 95 % interval", pick("k3D lo95", &all), Style::Dashed).colored(0))
+    .with(Series::new("", pick("k3D hi95", &all), Style::Dashed).colored(0))
+    .with(Series::new(
+        format!("MRD, {} lines, calibrated lambda", spec.lines),
+        pick("kMRD/(E* L) at lambda", &all),
+        Style::Line,
+    ))
+    .with(Series::new(
+        format!(
+            "calibration range k/(E* L) in [{}, {}]",
+            spec.window[0], spec.window[1]
+        ),
+        pick("k3D/(E* L) mean", &|j| inr[j] > 0.5),
+        Style::Markers,
+    ));
+    if with_map {
+        fig = fig
+            .with(Series::new(
+                "the measured map in 3D",
+                pick("k3D/(E* L) of the map", &all),
+                Style::Crosses,
+            ))
+            .with(Series::new(
+                "MRD of the map's whole spectrum, same lambda",
+                pick("kMRD/(E* L) of the map's spectrum at lambda", &all),
+                Style::Dashed,
+            ));
+    }
+    fig.log_log()
+}
+
+fn psd_table(case: &Case, lambda: f64, unit: &str) -> Table {
+    let (unit, scale) = match case.spectrum {
+        Spectrum::SelfAffine(_) => ("L", 1.0),
+        Spectrum::Table { side, .. } => (unit, side),
+    };
+    let (unit_q, unit_c, unit_1) = (
+        format!("[1/{unit}]"),
+        format!("[{unit}^4]"),
+        format!("[{unit}^3]"),
+    );
+    let mut t = Table::new(
+        "psd",
+        &[
+            format!("q {unit_q}"),
+            format!("C2D {unit_c}"),
+            format!("C1D = lambda q C2D {unit_1}"),
+        ],
+    );
+    t.notes.push(format!(
+        "the spectrum the punches carry (the source's, to {} x 2 pi / L) and the MRD line's at the calibrated lambda = {lambda:.4}; L = {:.6e}",
+        case.band, case.side
+    ));
+    for k in 1..=case.band {
+        // Reduced q' = 2 pi k (units of 1/L); physical q = q' / L, C2D = C2D' L^4.
+        let qr = TAU * k as f64;
+        let c = case.spectrum.c2d(qr) * scale.powi(4);
+        let q = qr / scale;
+        t.push(vec![q, c, lambda * q * c]);
+    }
+    t
+}
+
+fn psd_figure(t: &Table, case: &Case, lambda: f64) -> Figure {
+    let q = &t.columns[0];
+    let fig = Figure::new(
+        "psd",
+        "The spectrum of the punches and of the MRD lines",
+        &format!("wavenumber {q}"),
+        &format!("C2D {}, C1D {}", unit(&t.columns[1]), unit(&t.columns[2])),
+    )
+    .with(Series::new(
+        "C2D (3D punch faces)",
+        t.xy(&t.columns[0], &t.columns[1]),
+        Style::Line,
+    ))
+    .with(Series::new(
+        format!("C1D = lambda q C2D, lambda = {lambda:.3} (MRD lines)"),
+        t.xy(&t.columns[0], &t.columns[2]),
+        Style::Dashed,
+    ));
+    match &case.map {
+        Some(m) => fig.with(Series::new(
+            format!(
+                "the map's PSD ({0} x {0}, mean plane removed, Hann window, radial average)",
+                m.n
+            ),
+            m.psd.clone(),
+            Style::Markers,
+        )),
+        None => fig,
+    }
+    .log_log()
+}
+
+/// The "[unit]" at the end of a column header.
+fn unit(header: &str) -> &str {
+    header.rfind(" [").map_or("", |i| &header[i + 1..])
+}

@@ -1,0 +1,67 @@
+"""mrdw.calibrate: lambda of Eq. (76) for one surface, from a spectrum, a PSD table or a
+measured map, and its refusals of bad input."""
+
+import json
+import os
+
+import numpy as np
+import pytest
+
+import mrdw
+
+SMALL = dict(bandwidth=16, cells=4, realisations=(8, 16, 8), lines=100, loads=10, progress=False)
+
+
+def test_a_self_affine_spectrum_calibrates_like_the_cli(tmp_path):
+    """The same scene as the CLI's: lambda at H = 0.5, bandwidth 16 lies where the lambda
+    study puts it at low bandwidth, inside its interval, and the report folder holds the
+    tables, figures and the scene."""
+    r = mrdw.calibrate({"hurst": 0.5}, out=tmp_path / "a", seed=3, **SMALL)
+    lo, hi = r["interval"]
+    assert lo < r["lambda"] < hi and 2.0 < r["lambda"] < 5.0
+    assert r["realisations"] in (8, 16) and r["bandwidth"] == 16
+    assert abs(r["alpha_3d"] - r["alpha_mrd"]) < 0.1
+    names = {os.path.basename(f) for f in r["files"]}
+    assert {"calibration.csv", "curves.csv", "curves.png", "psd.csv", "summary.json"} <= names
+    again = mrdw.calibrate({"hurst": 0.5}, out=tmp_path / "b", seed=3, **SMALL)
+    assert again["lambda"] == r["lambda"]
+    a = (tmp_path / "a" / "curves.csv").read_text().split("\n# scene file")[1]
+    b = (tmp_path / "b" / "curves.csv").read_text().split("\n# scene file")[1]
+    assert a == b
+
+
+def test_a_map_and_its_psd_table_end_to_end(tmp_path):
+    """A synthetic map (as a measurement would be: tilted, non-periodic crop) solved
+    with the map itself, and its PSD passed as a table: both calibrate, the map's own
+    solve is reported, and a PSD table needs the punch diameter."""
+    h = mrdw.surface((96, 96), (2.0, 2.0), 0.8, np.pi, np.pi, 48 * np.pi, rms_height=1e-3, seed=5)
+    h = h[:64, :64] + 1e-4 * np.arange(64)[None, :]
+    with pytest.warns(UserWarning, match="units"):
+        r = mrdw.calibrate(h, size=(4 / 3, 4 / 3), out=tmp_path / "map", **SMALL)
+    assert 1.0 < r["lambda"] < 8.0
+    assert r["results"]["map_pixels"] == 64 and np.isfinite(r["results"]["map_misfit_max"])
+    q, c = mrdw.psd(h, (4 / 3, 4 / 3), bins=24)
+    with pytest.raises(ValueError, match="size"):
+        mrdw.calibrate((q, c), out=tmp_path / "psd0", **SMALL)
+    t = mrdw.calibrate((q, c), size=4 / 3, out=tmp_path / "psd", **SMALL)
+    assert 1.0 < t["lambda"] < 8.0
+
+
+@pytest.mark.filterwarnings("ignore:units")
+@pytest.mark.parametrize(
+    "source, kwargs, needle",
+    [
+        (np.zeros((16, 64)), {"size": (1.0, 0.25)}, "16 x 64 pixels"),
+        (np.zeros((64, 64)), {}, "size"),
+        (np.zeros((64, 64)), {"size": (1.0, 2.0)}, "square pixels"),
+        (np.where(np.eye(64) > 0, np.nan, 0.0), {"size": (1.0, 1.0)}, "undefined"),
+        ({"hurst": 5.0}, {}, "hurst"),
+        ({"hurst": 0.5, "rolloff": 0.5}, {}, "rolloff"),
+        ({"hurst": 0.5}, {"window": (0.5, 0.1)}, "window"),
+        ({"hurst": 0.5}, {"realisations": (8, 4, 2)}, "realisations.max"),
+    ],
+)
+def test_bad_input_names_the_parameter(tmp_path, source, kwargs, needle):
+    with pytest.raises(ValueError, match=needle):
+        mrdw.calibrate(source, out=tmp_path / "x", **{**SMALL, **kwargs})
+    assert not (tmp_path / "x").exists()
