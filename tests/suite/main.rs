@@ -2,9 +2,11 @@
 //! linked once for them): the layering of the code (`architecture`), every command and
 //! scene (`cli`), bad and extreme input (`robustness`), report folders and files
 //! (`safety`), the Hurst sweep (`sweep`), the lambda study and the shipped calibration
-//! (`lambda_study`), viscoelastic rough contact (`viscoelastic_rough`).
+//! (`lambda_study`), viscoelastic rough contact (`viscoelastic_rough`), lambda for one
+//! surface (`calibrate`).
 
 mod architecture;
+mod calibrate;
 mod cli;
 mod common;
 mod lambda_study;

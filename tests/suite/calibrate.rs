@@ -1,0 +1,167 @@
+//! `calibrate` end to end: a measured map from a file (tilted, rectangular, in mm) to
+//! lambda with the map's own 3D solve; a killed run resumes to the same bytes whatever
+//! the thread count; shards merge to the single run; checkpoints of another map are
+//! refused.
+
+use crate::common::{mrdw_env as mrdw, ok, stderr};
+use serde_json::Value;
+use std::path::Path;
+
+fn csvs(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut v: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "csv"))
+        .map(|p| {
+            (
+                p.file_name().unwrap().to_string_lossy().into_owned(),
+                std::fs::read(&p).unwrap(),
+            )
+        })
+        .collect();
+    v.sort();
+    assert!(v.len() >= 3);
+    v
+}
+
+fn summary(out: &Path) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+}
+
+const SMALL: &str = "bandwidth = 16\ncells = 4\nrealisations = { min = 8, max = 16, batch = 8 }\nlines = 100\nloads = 10\nseed = 2\n";
+
+/// A 72 x 64 self-affine map (H = 0.7, no roll-off), tilted, written as .npy: what a
+/// profilometer export looks like after conversion.
+fn write_map(path: &Path, seed: u64) {
+    use mrd::roughness::synthesis::{surface, Amplitudes, Grid};
+    use mrd::roughness::SelfAffine;
+    let q0 = std::f64::consts::PI; // side 2 mm
+    let s = SelfAffine::new(0.7, q0, q0, 36.0 * q0).unwrap();
+    let g = Grid {
+        nx: 72,
+        ny: 72,
+        lx: 2.25,
+        ly: 2.25,
+    };
+    let h = surface(&s, &g, seed, 0, Amplitudes::Deterministic).unwrap();
+    let rows = 64;
+    let data: Vec<f64> = (0..rows * 72)
+        .map(|k| 1e-3 * h[k] + 2e-4 * (k % 72) as f64)
+        .collect();
+    mrd::topography::HeightMap {
+        rows,
+        cols: 72,
+        data,
+    }
+    .write_npy(path)
+    .unwrap();
+}
+
+#[test]
+fn a_measured_map_calibrates_with_its_own_3d_solve() {
+    let tmp = tempfile::tempdir().unwrap();
+    write_map(&tmp.path().join("map.npy"), 4);
+    let scene = tmp.path().join("c.toml");
+    std::fs::write(
+        &scene,
+        format!("name = \"c\"\n[units]\nlength = \"mm\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"calibrate\"\ntopography = \"map.npy\"\nsize = [2.25, 2.0]\n{SMALL}"),
+    )
+    .unwrap();
+    let out = tmp.path().join("o");
+    ok(&mrdw(
+        &["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap()],
+        &[],
+    ));
+    let s = summary(&out);
+    let r = |k: &str| s["results"][format!("calibrate.{k}")].as_f64().unwrap();
+    assert!(r("lambda_lo") < r("lambda") && r("lambda") < r("lambda_hi"));
+    assert!((1.5..8.0).contains(&r("lambda")), "{}", r("lambda"));
+    assert_eq!(r("map_pixels"), 64.0);
+    assert!(r("map_misfit_max").is_finite() && r("map_lambda_alone") > 0.0);
+    let warnings = s["warnings"].to_string();
+    assert!(warnings.contains("central 64 x 64 square"), "{warnings}");
+    assert!(warnings.contains("no roll-off"), "{warnings}");
+    let psd = std::fs::read_to_string(out.join("psd.csv")).unwrap();
+    assert!(psd.contains("q [1/mm],C2D [mm^4],C1D = lambda q C2D [mm^3]"));
+    // The stages the plan declared ran, the PSD's first.
+    let o = &s["outputs"][0];
+    assert_eq!(o["stages"], o["declared"]);
+    assert_eq!(o["stages"][0], "measured_psd");
+
+    // Checkpoints of another map are refused, not mixed in.
+    let work = tmp.path().join("w");
+    let run = |out: &str| {
+        mrdw(
+            &[
+                "run",
+                scene.to_str().unwrap(),
+                "--out",
+                tmp.path().join(out).to_str().unwrap(),
+                "--work",
+                work.to_str().unwrap(),
+            ],
+            &[],
+        )
+    };
+    ok(&run("a"));
+    write_map(&tmp.path().join("map.npy"), 5);
+    let o = run("b");
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("another surface"), "{}", stderr(&o));
+}
+
+#[test]
+fn killed_run_resumes_and_shards_merge_to_identical_csvs() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = tmp.path().join("c.toml");
+    std::fs::write(
+        &scene,
+        format!("name = \"c\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"calibrate\"\nself_affine = {{ hurst = 0.5, rolloff = 2.0 }}\ntarget = 0.01\n{SMALL}"),
+    )
+    .unwrap();
+    let s = scene.to_str().unwrap();
+    let full = tmp.path().join("full");
+    ok(&mrdw(&["run", s, "--out", full.to_str().unwrap()], &[]));
+    // target 0.01 is not met: every punch up to max ran, and the report says so.
+    let sm = summary(&full);
+    assert_eq!(sm["results"]["calibrate.realisations"], 16.0);
+    assert!(sm["warnings"].to_string().contains("raise realisations.max"));
+    let part = tmp.path().join("part");
+    let o = mrdw(
+        &["run", s, "--out", part.to_str().unwrap()],
+        &[("MRDW_STOP_AFTER_TASKS", "5")],
+    );
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    assert!(!part.exists());
+    ok(&mrdw(
+        &["run", s, "--out", part.to_str().unwrap(), "--threads", "1"],
+        &[],
+    ));
+    assert_eq!(csvs(&full), csvs(&part));
+    let shard = |k: usize| tmp.path().join(format!("shard{k}"));
+    for k in 0..2 {
+        ok(&mrdw(
+            &[
+                "run",
+                s,
+                "--shard",
+                &format!("{k}/2"),
+                "--out",
+                shard(k).to_str().unwrap(),
+            ],
+            &[],
+        ));
+    }
+    let merged = tmp.path().join("merged");
+    ok(&mrdw(
+        &[
+            "merge",
+            shard(0).to_str().unwrap(),
+            shard(1).to_str().unwrap(),
+            "--out",
+            merged.to_str().unwrap(),
+        ],
+        &[],
+    ));
+    assert_eq!(csvs(&full), csvs(&merged));
+}
