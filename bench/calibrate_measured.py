@@ -38,6 +38,7 @@ def main():
                     bandwidth=b,
                     cells=a.cells,
                     progress=False,
+                    name=name,
                 )
             res = r["results"]
             print(

@@ -22,6 +22,7 @@ all=(
   adhesion-3d adhesion-tabor rough-adhesion-3d rough-adhesion-3d-punch tangential-3d
   tangential-3d-free tangential-viscoelastic-3d tangential-stiffness-3d
   rough-partial-slip-3d rough-slip-3d rough-slip-3d-punch
+  calibrate-rolloff:curves.png,curves_4.png
 )
 wanted=("$@")
 for entry in "${all[@]}"; do

@@ -69,7 +69,12 @@ fn a_measured_map_calibrates_with_its_own_3d_solve() {
     .unwrap();
     let out = tmp.path().join("o");
     ok(&mrdw(
-        &["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap()],
+        &[
+            "run",
+            scene.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
         &[],
     ));
     let s = summary(&out);
@@ -125,7 +130,9 @@ fn killed_run_resumes_and_shards_merge_to_identical_csvs() {
     // target 0.01 is not met: every punch up to max ran, and the report says so.
     let sm = summary(&full);
     assert_eq!(sm["results"]["calibrate.realisations"], 16.0);
-    assert!(sm["warnings"].to_string().contains("raise realisations.max"));
+    assert!(sm["warnings"]
+        .to_string()
+        .contains("raise realisations.max"));
     let part = tmp.path().join("part");
     let o = mrdw(
         &["run", s, "--out", part.to_str().unwrap()],

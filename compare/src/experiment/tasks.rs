@@ -14,17 +14,17 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Computes the missing tasks among the first `upto` of `names` (the global list, in
 /// its fixed order; shards take every N-th of the whole list) into `work`, in parallel,
-/// one task per thread: `run(i)` computes task `i`. `label` names the work on the
-/// progress bar and, when `announce` is set and checkpoints are found, in a message
-/// saying how many were taken from them.
-pub fn compute<T: Serialize>(
+/// one task per thread: `run(i)` computes task `i` and returns its checkpoint's text
+/// ([`json`]). `label` names the work on the progress bar and, when `announce` is set
+/// and checkpoints are found, in a message saying how many were taken from them.
+pub fn compute(
     work: &Path,
     label: &'static str,
     names: &[String],
     upto: usize,
     announce: bool,
     control: &RunControl,
-    run: &(dyn Fn(usize) -> Result<T> + Sync),
+    run: &(dyn Fn(usize) -> Result<String> + Sync),
 ) -> Result<()> {
     std::fs::create_dir_all(work).map_err(io_err(format!("creating {}", work.display())))?;
     let mine: Vec<usize> = (0..upto.min(names.len()))
@@ -52,9 +52,7 @@ pub fn compute<T: Serialize>(
     );
     let done = AtomicUsize::new(0);
     let result = todo.par_iter().with_max_len(1).try_for_each(|&i| {
-        let text =
-            serde_json::to_string(&run(i)?).map_err(|e| CompareError::Internal(e.to_string()))?;
-        write_atomic(&work.join(&names[i]), &text)?;
+        write_atomic(&work.join(&names[i]), &run(i)?)?;
         bar.inc();
         let n = done.fetch_add(1, Ordering::SeqCst) + 1;
         match control.stop_after {
@@ -64,6 +62,11 @@ pub fn compute<T: Serialize>(
     });
     bar.finish();
     result
+}
+
+/// A task's result as its checkpoint's text.
+pub fn json<T: Serialize>(v: &T) -> Result<String> {
+    serde_json::to_string(v).map_err(|e| CompareError::Internal(e.to_string()))
 }
 
 /// Reads the checkpoint `name` of `work`.
@@ -87,9 +90,9 @@ mod tests {
         let dir = crate::files::ScratchDir::new().unwrap();
         let names: Vec<String> = (0..7).map(|i| format!("t{i}.json")).collect();
         let runs = AtomicUsize::new(0);
-        let run = |i: usize| -> Result<usize> {
+        let run = |i: usize| -> Result<String> {
             runs.fetch_add(1, Ordering::SeqCst);
-            Ok(i * i)
+            json(&(i * i))
         };
         for k in 0..3 {
             let c = RunControl {

@@ -10,7 +10,7 @@ from . import _mrdw
 from ._topography import read_topography
 
 
-def _stage_source(source, size, folder):
+def _stage_source(source, size, folder, name):
     """The scene's source keys and length unit for `source`, files written to `folder`."""
     if isinstance(source, dict):
         if "hurst" not in source:
@@ -60,8 +60,11 @@ def _stage_source(source, size, folder):
             "unspecified unit (lambda is dimensionless; the PSD table's unit reads '1')",
             stacklevel=3,
         )
-    np.save(os.path.join(folder, "heights.npy"), np.ascontiguousarray(topo.data, dtype=float))
-    return ["topography = \"heights.npy\"", f"size = [{lx!r}, {ly!r}]"], str(unit or "1")
+    if name is None and isinstance(source, (str, bytes, os.PathLike)):
+        name = os.path.basename(os.fsdecode(source))
+    stem = "".join(c if c.isalnum() or c in "-_." else "_" for c in (name or "map"))
+    np.save(os.path.join(folder, stem + ".npy"), np.ascontiguousarray(topo.data, dtype=float))
+    return [f"topography = \"{stem}.npy\"", f"size = [{lx!r}, {ly!r}]"], str(unit or "1")
 
 
 def calibrate(
@@ -80,6 +83,7 @@ def calibrate(
     solve_map=True,
     seed=0,
     progress=True,
+    name=None,
 ):
     """calibrate(source, *, out, size=None, work=None, ...) -> dict
 
@@ -103,7 +107,7 @@ def calibrate(
         interval is wider than +/- `target`.
     window: the calibration range in k/(E* L); loads: approaches per punch; lines: MRD
         lines; solve_map: also solve the measured map itself in 3D; seed: the random
-        phases.
+        phases; name: the map's name in titles (default: the file's name, else "map").
 
     Returns {"lambda", "interval" (95 %), "misfit" (max, rms |Delta ln k| over the
     range), "alpha_3d", "alpha_3d_interval", "alpha_mrd", "realisations", "bandwidth",
@@ -115,7 +119,7 @@ def calibrate(
         raise ValueError("realisations: give (min, max, batch)")
     out = os.fspath(out)
     with tempfile.TemporaryDirectory(prefix="mrdw-calibrate-") as folder:
-        keys, unit = _stage_source(source, size, folder)
+        keys, unit = _stage_source(source, size, folder, name)
         lines_toml = [
             'name = "calibrate"',
             'title = "lambda of Eq. (76) calibrated for one surface"',

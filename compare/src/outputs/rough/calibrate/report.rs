@@ -212,8 +212,12 @@ fn curves_figure(
     let mut fig = Figure::new(
         "curves",
         &format!(
-            "k(F), 3D punches against MRD at lambda = {:.3} [{:.3}, {:.3}] (B = {})",
-            l.value, l.lo, l.hi, case.band
+            "k(F) of {}: 3D punches against MRD at lambda = {:.3} [{:.3}, {:.3}] (B = {})",
+            source(spec, case),
+            l.value,
+            l.lo,
+            l.hi,
+            case.band
         ),
         "reduced force F/(E* h L) [1]",
         "reduced stiffness k/(E* L) [1]",
@@ -321,4 +325,22 @@ fn psd_figure(t: &Table, case: &Case, lambda: f64) -> Figure {
 /// The "[unit]" at the end of a column header.
 fn unit(header: &str) -> &str {
     header.rfind(" [").map_or("", |i| &header[i + 1..])
+}
+
+/// The source in a few words, for titles.
+fn source(spec: &Calibrate, case: &Case) -> String {
+    let file = |p: &str| {
+        std::path::Path::new(p)
+            .file_name()
+            .map_or(p.to_string(), |f| f.to_string_lossy().into_owned())
+    };
+    match (&spec.topography, &spec.psd, &spec.self_affine, &case.map) {
+        (Some(t), _, _, Some(m)) => format!("{} ({}^2)", file(t), m.n),
+        (_, Some(p), _, _) => file(p),
+        (_, _, Some(s), _) if s.rolloff > 1.0 => {
+            format!("H = {}, q_r / q0 = {}", s.hurst, s.rolloff)
+        }
+        (_, _, Some(s), _) => format!("H = {}", s.hurst),
+        _ => "the source".into(),
+    }
 }

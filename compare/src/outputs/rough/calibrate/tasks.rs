@@ -273,29 +273,24 @@ fn run_lines(spec: &Calibrate, case: &Case, band: usize, points: usize) -> Resul
     })
 }
 
-fn json<T: Serialize>(v: Result<T>) -> Result<serde_json::Value> {
-    serde_json::to_value(v?).map_err(|e| CompareError::Internal(e.to_string()))
-}
-
-fn run(spec: &Calibrate, case: &Case, t: Task) -> Result<serde_json::Value> {
+fn run(spec: &Calibrate, case: &Case, t: Task) -> Result<String> {
+    use tasks::json;
+    let map_n = case.map.as_ref().map_or(0, |m| m.n);
     match t {
-        Task::Mrd => json(run_lines(
+        Task::Mrd => json(&run_lines(
             spec,
             case,
             case.band,
             spec.points_1d_per_cell * case.grid,
-        )),
-        Task::MapMrd => {
-            let n = case.map.as_ref().map_or(0, |m| m.n);
-            json(run_lines(
-                spec,
-                case,
-                case.source_band,
-                spec.points_1d_per_cell * n,
-            ))
-        }
-        Task::MapBem => json(run_map_bem(spec, case)),
-        Task::Bem(r) => json(run_bem(spec, case, r)),
+        )?),
+        Task::MapMrd => json(&run_lines(
+            spec,
+            case,
+            case.source_band,
+            spec.points_1d_per_cell * map_n,
+        )?),
+        Task::MapBem => json(&run_map_bem(spec, case)?),
+        Task::Bem(r) => json(&run_bem(spec, case, r)?),
     }
 }
 

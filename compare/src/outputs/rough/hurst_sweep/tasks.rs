@@ -3,9 +3,9 @@
 //! atomically to its own JSON file; a task whose file exists is not recomputed.
 
 use super::HurstSweep;
-use crate::error::{io_err, CompareError, Context as _, Result};
+use crate::error::{Context as _, Result};
 use crate::experiment::rough_punch::{punch_curve, BemCurve, MrdEnsemble};
-use crate::files::write_atomic;
+use crate::experiment::tasks::json;
 use crate::output::RunControl;
 use mrd::rough_contact::RoughLine;
 use mrd::roughness::synthesis::{line, surface, Amplitudes, Grid};
@@ -125,70 +125,23 @@ fn run_mrd(spec: &HurstSweep, h: usize) -> Result<MrdEnsemble> {
 
 /// Computes the missing tasks of `spec` (of this shard) into `work`.
 pub fn compute(spec: &HurstSweep, work: &Path, control: &RunControl) -> Result<()> {
-    std::fs::create_dir_all(work).map_err(io_err(format!("creating {}", work.display())))?;
-    let mine: Vec<Task> = all(spec)
-        .into_iter()
-        .enumerate()
-        .filter(|(i, _)| control.shard.is_none_or(|(k, n)| i % n == k))
-        .map(|(_, t)| t)
-        .collect();
-    let total = mine.len();
-    let todo: Vec<Task> = mine
-        .into_iter()
-        .filter(|t| !work.join(t.file_name()).exists())
-        .collect();
-    if control.progress && todo.len() < total {
-        let _ = std::io::Write::write_fmt(&mut std::io::stderr(), format_args!(
-            "hurst sweep: resuming: {} of {total} tasks taken from checkpoints in {}, {} to compute\n",
-            total - todo.len(),
-            work.display(),
-            todo.len()
-        ));
-    }
-    let bar = (control.progress && !todo.is_empty()).then(|| {
-        let b = indicatif::ProgressBar::new(todo.len() as u64);
-        b.set_style(
-            indicatif::ProgressStyle::with_template(
-                "{msg} [{bar:30}] {pos}/{len} tasks, {elapsed} elapsed, ETA {eta}",
-            )
-            .expect("valid template")
-            .progress_chars("=> "),
-        );
-        b.set_message("hurst sweep");
-        b
-    });
-    let done = std::sync::atomic::AtomicUsize::new(0);
-    let result = todo
-        .par_iter()
-        .with_max_len(1)
-        .try_for_each(|t| -> Result<()> {
-            let text = match *t {
-                Task::Bem { h, g, r } => serde_json::to_string(&run_bem(spec, h, g, r)?),
-                Task::Mrd { h } => serde_json::to_string(&run_mrd(spec, h)?),
-            }
-            .map_err(|e| CompareError::Internal(e.to_string()))?;
-            write_atomic(&work.join(t.file_name()), &text)?;
-            if let Some(b) = &bar {
-                b.inc(1);
-            }
-            let n = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
-            match control.stop_after {
-                Some(s) if n >= s => Err(CompareError::Stopped { tasks: n }),
-                _ => Ok(()),
-            }
-        });
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
-    result
+    let list = all(spec);
+    let names: Vec<String> = list.iter().map(Task::file_name).collect();
+    crate::experiment::tasks::compute(
+        work,
+        "hurst sweep",
+        &names,
+        names.len(),
+        true,
+        control,
+        &|i| match list[i] {
+            Task::Bem { h, g, r } => json(&run_bem(spec, h, g, r)?),
+            Task::Mrd { h } => json(&run_mrd(spec, h)?),
+        },
+    )
 }
 
 /// Reads one task's checkpoint.
 pub fn load<T: for<'de> Deserialize<'de>>(work: &Path, t: &Task) -> Result<T> {
-    let p = work.join(t.file_name());
-    let text = std::fs::read_to_string(&p).map_err(io_err(format!(
-        "reading {} (missing task: run all shards, or rerun to resume)",
-        p.display()
-    )))?;
-    serde_json::from_str(&text).map_err(|e| CompareError::Internal(format!("{}: {e}", p.display())))
+    crate::experiment::tasks::load(work, &t.file_name())
 }
