@@ -3,26 +3,9 @@
 //! the thread count; shards merge to the single run; checkpoints of another map are
 //! refused.
 
-use crate::common::{mrdw_env as mrdw, ok, stderr};
+use crate::common::{csvs, mrdw_env as mrdw, ok, stderr};
 use serde_json::Value;
 use std::path::Path;
-
-fn csvs(dir: &Path) -> Vec<(String, Vec<u8>)> {
-    let mut v: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "csv"))
-        .map(|p| {
-            (
-                p.file_name().unwrap().to_string_lossy().into_owned(),
-                std::fs::read(&p).unwrap(),
-            )
-        })
-        .collect();
-    v.sort();
-    assert!(v.len() >= 3);
-    v
-}
 
 fn summary(out: &Path) -> Value {
     serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()

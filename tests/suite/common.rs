@@ -31,3 +31,21 @@ pub fn stderr(o: &Output) -> String {
 pub fn ok(o: &Output) {
     assert!(o.status.success(), "{}", stderr(o));
 }
+
+/// The CSV files of a report folder, (name, bytes), sorted by name; at least one.
+pub fn csvs(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut v: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "csv"))
+        .map(|p| {
+            (
+                p.file_name().unwrap().to_string_lossy().into_owned(),
+                std::fs::read(&p).unwrap(),
+            )
+        })
+        .collect();
+    v.sort();
+    assert!(!v.is_empty(), "no CSV in {}", dir.display());
+    v
+}

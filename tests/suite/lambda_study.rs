@@ -4,7 +4,7 @@
 //! a report from committed checkpoints without computing, and the shipped table loads
 //! as lambda. The physics is checked at publication scale (fig6-converged).
 
-use crate::common::{mrdw_env as mrdw, ok};
+use crate::common::{csvs, mrdw_env as mrdw, ok};
 use std::path::Path;
 
 /// Asserts two report folders hold the same CSVs, naming the first that differs.
@@ -23,22 +23,6 @@ fn same_csvs(a: &Path, b: &Path) {
             b.display()
         );
     }
-}
-
-fn csvs(dir: &Path) -> Vec<(String, Vec<u8>)> {
-    let mut v: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "csv"))
-        .map(|p| {
-            (
-                p.file_name().unwrap().to_string_lossy().into_owned(),
-                std::fs::read(&p).unwrap(),
-            )
-        })
-        .collect();
-    v.sort();
-    v
 }
 
 /// Rows of a report CSV (comments and header skipped), split at commas.

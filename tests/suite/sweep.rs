@@ -1,26 +1,8 @@
 //! The Hurst sweep end to end: fitted exponents in 3D and 1D agree (fig6-ci), a killed
 //! run resumes to the same bytes, and shards merge to the same bytes as one run.
 
-use crate::common::{mrdw_env as mrdw, ok};
+use crate::common::{csvs, mrdw_env as mrdw, ok};
 use serde_json::Value;
-use std::path::Path;
-
-fn csvs(dir: &Path) -> Vec<(String, Vec<u8>)> {
-    let mut v: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "csv"))
-        .map(|p| {
-            (
-                p.file_name().unwrap().to_string_lossy().into_owned(),
-                std::fs::read(&p).unwrap(),
-            )
-        })
-        .collect();
-    v.sort();
-    assert!(!v.is_empty());
-    v
-}
 
 #[test]
 fn fig6_ci_exponents_agree_between_3d_and_mrd() {

@@ -4,8 +4,19 @@
 //! ensemble of MRD lines on the same f grid, as the studies checkpoint them.
 
 use crate::error::{Context as _, Result};
+use crate::plan::Stage;
 use bem3d::{BemError, ContactSolver, Load, NonPeriodicHalfSpace, SolverOptions};
 use serde::{Deserialize, Serialize};
+
+/// The stages of a rough-punch study's checkpointed work, which run interleaved: a 3D
+/// task synthesises a face and solves it and its stiffness at every load, a 1D task
+/// synthesises and loads its lines.
+pub const STAGES: [Stage; 4] = [
+    Stage::RoughSynthesis,
+    Stage::Bem3d,
+    Stage::Bem3dStiffness,
+    Stage::RoughContact,
+];
 
 /// One 3D solve of a realisation's load ladder, as recorded in the solves table.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
@@ -123,4 +134,19 @@ pub fn punch_curve(heights: &[f64], g: usize, loads: usize, tolerance: f64) -> R
         }
     }
     Ok(out)
+}
+
+/// k/(E* L) of one MRD line on the foundation E* = 1, L = 1 at each reduced force
+/// f = F/(E* h L) of `fs`, h the line's own rms height; past complete contact k = E* L.
+pub fn line_stiffness(rl: &mrd::rough_contact::RoughLine, fs: &[f64]) -> Result<Vec<f64>> {
+    let full_force = rl.at_depth(rl.full_contact_depth()).ctx("1D")?.force;
+    fs.iter()
+        .map(|&f| {
+            let force = f * rl.rms_height;
+            if full_force <= force {
+                return Ok(1.0);
+            }
+            Ok(rl.at_force(force).ctx("1D")?.stiffness)
+        })
+        .collect()
 }

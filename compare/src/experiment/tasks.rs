@@ -8,9 +8,31 @@ use crate::files::write_atomic;
 use crate::output::RunControl;
 use rayon::prelude::*;
 use serde::de::DeserializeOwned;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// The realisation plan of an adaptive study: `min` first, then batches of `batch` (up
+/// to `max`) while the quantity's interval is wider than its target; decisions on
+/// complete batches only, so results do not depend on threads, shards or interruptions.
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Realisations {
+    pub min: u64,
+    pub max: u64,
+    pub batch: u64,
+}
+
+impl Realisations {
+    /// At least 2 and at most [`crate::checks::MAX_REALISATIONS`], min <= max, a batch
+    /// of 1..=max; messages name `realisations.<field>`.
+    pub fn validate(&self) -> Result<()> {
+        use crate::checks::{count_in, MAX_REALISATIONS};
+        count_in("realisations.min", self.min, 2..=MAX_REALISATIONS)?;
+        count_in("realisations.max", self.max, self.min..=MAX_REALISATIONS)?;
+        count_in("realisations.batch", self.batch, 1..=self.max)
+    }
+}
 
 /// Computes the missing tasks among the first `upto` of `names` (the global list, in
 /// its fixed order; shards take every N-th of the whole list) into `work`, in parallel,

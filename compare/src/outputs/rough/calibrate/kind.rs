@@ -15,10 +15,7 @@ use std::path::Path;
 
 impl Output for Calibrate {
     fn validate(&self, ctx: &Context) -> Result<()> {
-        let r = self.realisations;
-        count_in("realisations.min", r.min, 2..=MAX_REALISATIONS)?;
-        count_in("realisations.max", r.max, r.min..=MAX_REALISATIONS)?;
-        count_in("realisations.batch", r.batch, 1..=r.max)?;
+        self.realisations.validate()?;
         count_in("bandwidth", self.bandwidth as u64, 8..=512)?;
         count_in("cells", self.cells as u64, 2..=32)?;
         count_in("loads", self.loads as u64, 6..=MAX_LOADS)?;
@@ -52,13 +49,8 @@ impl Output for Calibrate {
         if self.topography.is_some() || self.psd.is_some() {
             s.push(Stage::Psd);
         }
-        s.extend([
-            Stage::RoughSynthesis,
-            Stage::Bem3d,
-            Stage::Bem3dStiffness,
-            Stage::RoughContact,
-            Stage::SweepFit,
-        ]);
+        s.extend(crate::experiment::rough_punch::STAGES);
+        s.push(Stage::SweepFit);
         s
     }
 
@@ -81,15 +73,9 @@ impl Output for Calibrate {
             out.warn(w.clone());
         }
         let work = env.work_root.join(self.key());
-        let plan = out.stages_together(
-            &[
-                Stage::RoughSynthesis,
-                Stage::Bem3d,
-                Stage::Bem3dStiffness,
-                Stage::RoughContact,
-            ],
-            || self.realise(&case, &work, env.control),
-        )?;
+        let plan = out.stages_together(&crate::experiment::rough_punch::STAGES, || {
+            self.realise(&case, &work, env.control)
+        })?;
         let (cal, map) = out.stage(Stage::SweepFit, || -> Result<_> {
             let map = match (&case.map, self.solve_map) {
                 (Some(_), true) => Some(report::MapCurves {

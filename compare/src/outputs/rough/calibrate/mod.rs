@@ -33,6 +33,7 @@ mod kind;
 mod report;
 pub mod tasks;
 
+use crate::experiment::tasks::Realisations;
 use serde::Deserialize;
 
 /// Parameters of a calibration (an `[[outputs]]` entry of kind `calibrate`).
@@ -58,7 +59,7 @@ pub struct Calibrate {
     /// Cells per shortest wavelength of the 3D punches.
     #[serde(default = "eight")]
     pub cells: usize,
-    #[serde(default)]
+    #[serde(default = "realisations")]
     pub realisations: Realisations,
     /// Relative half-width of lambda's 95 % interval at which realisations stop.
     #[serde(default = "ten_percent")]
@@ -94,21 +95,12 @@ pub struct SelfAffineSource {
     pub rolloff: f64,
 }
 
-#[derive(Debug, Clone, Copy, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct Realisations {
-    pub min: u64,
-    pub max: u64,
-    pub batch: u64,
-}
-
-impl Default for Realisations {
-    fn default() -> Self {
-        Self {
-            min: 16,
-            max: 400,
-            batch: 16,
-        }
+/// The default plan: 16 punches, then 16 at a time up to 400.
+fn realisations() -> Realisations {
+    Realisations {
+        min: 16,
+        max: 400,
+        batch: 16,
     }
 }
 

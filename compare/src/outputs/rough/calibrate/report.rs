@@ -299,7 +299,7 @@ fn psd_figure(t: &Table, case: &Case, lambda: f64) -> Figure {
         &format!("C2D {}, C1D {}", unit(&t.columns[1]), unit(&t.columns[2])),
     )
     .with(Series::new(
-        "C2D (3D punch faces)",
+        format!("C2D of the 3D punch faces (to B = {})", case.band),
         t.xy(&t.columns[0], &t.columns[1]),
         Style::Line,
     ))

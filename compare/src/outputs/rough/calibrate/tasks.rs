@@ -6,7 +6,7 @@ use super::Calibrate;
 use crate::context::Context;
 use crate::error::{CompareError, Context as _, Result};
 use crate::experiment::measured::Measured;
-use crate::experiment::rough_punch::{punch_curve, BemCurve};
+use crate::experiment::rough_punch::{line_stiffness, punch_curve, BemCurve};
 use crate::experiment::tasks;
 use crate::output::RunControl;
 use mrd::rough_contact::RoughLine;
@@ -253,17 +253,7 @@ fn run_lines(spec: &Calibrate, case: &Case, band: usize, points: usize) -> Resul
         .into_par_iter()
         .map(|r| -> Result<Vec<f64>> {
             let z = nested::line(&c1d, band, points, 1.0, spec.seed, r).ctx("MRD line")?;
-            let rl = RoughLine::new(&z, 1.0, 1.0).ctx("MRD line")?;
-            let full = rl.at_depth(rl.full_contact_depth()).ctx("MRD line")?.force;
-            fs.iter()
-                .map(|&f| {
-                    let force = f * rl.rms_height;
-                    if force >= full {
-                        return Ok(1.0); // complete contact: k = E* L
-                    }
-                    Ok(rl.at_force(force).ctx("MRD line")?.stiffness)
-                })
-                .collect()
+            line_stiffness(&RoughLine::new(&z, 1.0, 1.0).ctx("MRD line")?, &fs)
         })
         .collect::<Result<_>>()?;
     Ok(Lines {

@@ -41,13 +41,9 @@ impl Output for HurstSweep {
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
-        vec![
-            Stage::RoughSynthesis,
-            Stage::Bem3d,
-            Stage::Bem3dStiffness,
-            Stage::RoughContact,
-            Stage::SweepFit,
-        ]
+        let mut s = crate::experiment::rough_punch::STAGES.to_vec();
+        s.push(Stage::SweepFit);
+        s
     }
 
     fn seed(&self) -> Option<u64> {
@@ -62,15 +58,9 @@ impl Output for HurstSweep {
         let work = env.work_root.join(self.key());
         // Each 3D task synthesises a surface, solves it and its stiffness at every load;
         // each 1D task synthesises and loads its lines: the stages run interleaved.
-        out.stages_together(
-            &[
-                Stage::RoughSynthesis,
-                Stage::Bem3d,
-                Stage::Bem3dStiffness,
-                Stage::RoughContact,
-            ],
-            || self.compute(env.ctx, &work, env.control),
-        )?;
+        out.stages_together(&crate::experiment::rough_punch::STAGES, || {
+            self.compute(env.ctx, &work, env.control)
+        })?;
         let results = out.stage(Stage::SweepFit, || aggregate::aggregate(self, &work))?;
         figures::report(self, &results, out);
         Ok(())

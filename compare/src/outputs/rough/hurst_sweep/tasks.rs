@@ -4,7 +4,7 @@
 
 use super::HurstSweep;
 use crate::error::{Context as _, Result};
-use crate::experiment::rough_punch::{punch_curve, BemCurve, MrdEnsemble};
+use crate::experiment::rough_punch::{line_stiffness, punch_curve, BemCurve, MrdEnsemble};
 use crate::experiment::tasks::json;
 use crate::output::RunControl;
 use mrd::rough_contact::RoughLine;
@@ -103,17 +103,7 @@ fn run_mrd(spec: &HurstSweep, h: usize) -> Result<MrdEnsemble> {
             let (seed, id) = stream(spec.seed, 2, h, spec.grid, r);
             let z =
                 line(&line_spec, n1, 1.0, seed, id, Amplitudes::Deterministic).ctx("1D line")?;
-            let rl = RoughLine::new(&z, 1.0, 1.0).ctx("1D line")?;
-            let full_force = rl.at_depth(rl.full_contact_depth()).ctx("1D")?.force;
-            fs.iter()
-                .map(|&f| {
-                    let force = f * rl.rms_height;
-                    if full_force <= force {
-                        return Ok(1.0); // complete contact: k = E* L
-                    }
-                    Ok(rl.at_force(force).ctx("1D")?.stiffness)
-                })
-                .collect()
+            line_stiffness(&RoughLine::new(&z, 1.0, 1.0).ctx("1D line")?, &fs)
         })
         .collect::<Result<_>>()?;
     Ok(MrdEnsemble {

@@ -92,18 +92,7 @@ impl Output for LambdaStudy {
                 3..=crate::checks::MAX_REALISATIONS,
             )?;
         }
-        let r = self.realisations;
-        count_in(
-            "realisations.min",
-            r.min,
-            2..=crate::checks::MAX_REALISATIONS,
-        )?;
-        count_in(
-            "realisations.max",
-            r.max,
-            r.min..=crate::checks::MAX_REALISATIONS,
-        )?;
-        count_in("realisations.batch", r.batch, 1..=r.max)?;
+        self.realisations.validate()?;
         count_in(
             "realisations_1d",
             self.realisations_1d,
@@ -139,13 +128,9 @@ impl Output for LambdaStudy {
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
-        vec![
-            Stage::RoughSynthesis,
-            Stage::Bem3d,
-            Stage::Bem3dStiffness,
-            Stage::RoughContact,
-            Stage::SweepFit,
-        ]
+        let mut s = crate::experiment::rough_punch::STAGES.to_vec();
+        s.push(Stage::SweepFit);
+        s
     }
 
     fn seed(&self) -> Option<u64> {
@@ -158,15 +143,9 @@ impl Output for LambdaStudy {
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
         let work = env.work_root.join(self.key());
-        out.stages_together(
-            &[
-                Stage::RoughSynthesis,
-                Stage::Bem3d,
-                Stage::Bem3dStiffness,
-                Stage::RoughContact,
-            ],
-            || self.compute(env.ctx, &work, env.control),
-        )?;
+        out.stages_together(&crate::experiment::rough_punch::STAGES, || {
+            self.compute(env.ctx, &work, env.control)
+        })?;
         let (results, scatter) = out.stage(Stage::SweepFit, || {
             Ok::<_, CompareError>((
                 analysis::analyse(self, &work)?,

@@ -55,6 +55,7 @@ pub mod tasks;
 
 use crate::checks::bad;
 use crate::error::Result;
+use crate::experiment::tasks::Realisations;
 use serde::Deserialize;
 
 /// Parameters of a study (an `[[outputs]]` entry of kind `lambda_study`).
@@ -148,14 +149,6 @@ pub struct ToleranceCheck {
 pub struct ScatterAt {
     pub bandwidth: usize,
     pub realisations: u64,
-}
-
-#[derive(Debug, Clone, Copy, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct Realisations {
-    pub min: u64,
-    pub max: u64,
-    pub batch: u64,
 }
 
 fn eight() -> usize {

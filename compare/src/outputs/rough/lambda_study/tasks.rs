@@ -5,7 +5,7 @@
 
 use super::LambdaStudy;
 use crate::error::{io_err, CompareError, Context as _, Result};
-use crate::experiment::rough_punch::{punch_curve, BemCurve, MrdEnsemble};
+use crate::experiment::rough_punch::{line_stiffness, punch_curve, BemCurve, MrdEnsemble};
 use mrd::rough_contact::RoughLine;
 use mrd::roughness::nested;
 use mrd::roughness::synthesis::Grid;
@@ -392,19 +392,7 @@ pub(super) fn run_mrd(s: &LambdaStudy, hurst: f64, band: usize) -> Result<MrdEns
     let fs = s.f_grid();
     let stiffness: Vec<Vec<f64>> = (0..s.realisations_1d)
         .into_par_iter()
-        .map(|r| -> Result<Vec<f64>> {
-            let rl = mrd_line(s, &line, band, r)?;
-            let full_force = rl.at_depth(rl.full_contact_depth()).ctx("1D")?.force;
-            fs.iter()
-                .map(|&f| {
-                    let force = f * rl.rms_height;
-                    if full_force <= force {
-                        return Ok(1.0); // complete contact: k = E* L
-                    }
-                    Ok(rl.at_force(force).ctx("1D")?.stiffness)
-                })
-                .collect()
-        })
+        .map(|r| -> Result<Vec<f64>> { line_stiffness(&mrd_line(s, &line, band, r)?, &fs) })
         .collect::<Result<_>>()?;
     Ok(MrdEnsemble {
         stiffness,
