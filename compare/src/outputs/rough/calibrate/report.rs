@@ -212,7 +212,7 @@ fn curves_figure(
     let mut fig = Figure::new(
         "curves",
         &format!(
-            "k(F) of {}: 3D punches against MRD at lambda = {:.3} [{:.3}, {:.3}] (B = {})",
+            "k(F) of {}, 3D against MRD: lambda = {:.3} [{:.3}, {:.3}], B = {}",
             source(spec, case),
             l.value,
             l.lo,
@@ -331,7 +331,7 @@ fn unit(header: &str) -> &str {
 fn source(spec: &Calibrate, case: &Case) -> String {
     let file = |p: &str| {
         std::path::Path::new(p)
-            .file_name()
+            .file_stem()
             .map_or(p.to_string(), |f| f.to_string_lossy().into_owned())
     };
     match (&spec.topography, &spec.psd, &spec.self_affine, &case.map) {
