@@ -61,6 +61,8 @@ def test_a_map_and_its_psd_table_end_to_end(tmp_path):
         ({"hurst": 0.5, "rolloff": 0.5}, {}, "rolloff"),
         ({"hurst": 0.5}, {"window": (0.5, 0.1)}, "window"),
         ({"hurst": 0.5}, {"realisations": (8, 4, 2)}, "realisations.max"),
+        ({"hurst": 0.5}, {"size": 1.0}, "size"),
+        ({"hurst": 0.5}, {"solve_map": False}, "solve_map"),
     ],
 )
 def test_bad_input_names_the_parameter(tmp_path, source, kwargs, needle):

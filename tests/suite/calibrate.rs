@@ -155,3 +155,52 @@ fn killed_run_resumes_and_shards_merge_to_identical_csvs() {
     ));
     assert_eq!(csvs(&full), csvs(&merged));
 }
+
+/// Keys that would be accepted and ignored are refused, naming the key.
+#[test]
+fn keys_without_effect_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::write(
+        tmp.path().join("psd.csv"),
+        "q, C2D\n6.3, 1.0\n630.0, 1e-8\n",
+    )
+    .unwrap();
+    for (source, needle) in [
+        (
+            "self_affine = { hurst = 0.5 }\nsize = [1.0, 1.0]",
+            "size: a self_affine",
+        ),
+        (
+            "self_affine = { hurst = 0.5 }\nsolve_map = false",
+            "solve_map applies",
+        ),
+        (
+            "psd = \"psd.csv\"\nsize = [1.0, 1.0]\nsolve_map = true",
+            "solve_map applies",
+        ),
+        (
+            "self_affine = { hurst = 0.5 }\npsd = \"psd.csv\"",
+            "exactly one of",
+        ),
+    ] {
+        let scene = tmp.path().join("c.toml");
+        std::fs::write(
+            &scene,
+            format!("name = \"c\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"calibrate\"\n{source}\n{SMALL}"),
+        )
+        .unwrap();
+        let out = tmp.path().join("o");
+        let o = mrdw(
+            &[
+                "run",
+                scene.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+            ],
+            &[],
+        );
+        assert_eq!(o.status.code(), Some(2), "{source}: {}", stderr(&o));
+        assert!(stderr(&o).contains(needle), "{source}: {}", stderr(&o));
+        assert!(!out.exists());
+    }
+}

@@ -13,6 +13,8 @@ from ._topography import read_topography
 def _stage_source(source, size, folder, name):
     """The scene's source keys and length unit for `source`, files written to `folder`."""
     if isinstance(source, dict):
+        if size is not None:
+            raise ValueError("size: a self-affine spectrum is in units of the punch diameter L; give no size")
         if "hurst" not in source:
             raise ValueError("source: a self-affine spectrum is a dict with 'hurst' (and 'rolloff')")
         keys = {k: float(v) for k, v in source.items()}
@@ -120,6 +122,10 @@ def calibrate(
     out = os.fspath(out)
     with tempfile.TemporaryDirectory(prefix="mrdw-calibrate-") as folder:
         keys, unit = _stage_source(source, size, folder, name)
+        if keys[0].startswith("topography"):
+            keys.append(f"solve_map = {'true' if solve_map else 'false'}")
+        elif not solve_map:
+            raise ValueError("solve_map: applies to a measured map only")
         lines_toml = [
             'name = "calibrate"',
             'title = "lambda of Eq. (76) calibrated for one surface"',
@@ -138,7 +144,6 @@ def calibrate(
             f"window = [{float(window[0])!r}, {float(window[1])!r}]",
             f"loads = {int(loads)}",
             f"lines = {int(lines)}",
-            f"solve_map = {'true' if solve_map else 'false'}",
             f"seed = {int(seed)}",
         ]
         scene = os.path.join(folder, "scene.toml")

@@ -77,7 +77,7 @@ impl Output for Calibrate {
             self.realise(&case, &work, env.control)
         })?;
         let (cal, map) = out.stage(Stage::SweepFit, || -> Result<_> {
-            let map = match (&case.map, self.solve_map) {
+            let map = match (&case.map, self.solves_map()) {
                 (Some(_), true) => Some(report::MapCurves {
                     bem: tasks::load(&work, Task::MapBem)?,
                     lines: tasks::load(&work, Task::MapMrd)?,

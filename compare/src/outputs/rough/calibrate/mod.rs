@@ -79,9 +79,8 @@ pub struct Calibrate {
     /// MRD points per 3D cell across.
     #[serde(default = "sixteen")]
     pub points_1d_per_cell: usize,
-    /// Solve the measured map itself in 3D (topography only).
-    #[serde(default = "yes")]
-    pub solve_map: bool,
+    /// Solve the measured map itself in 3D (a topography only; default true).
+    pub solve_map: Option<bool>,
     #[serde(default)]
     pub seed: u64,
 }
@@ -125,9 +124,13 @@ fn window() -> [f64; 2] {
 fn tolerance() -> f64 {
     1e-8
 }
-fn yes() -> bool {
-    true
-}
 fn one() -> f64 {
     1.0
+}
+
+impl Calibrate {
+    /// Whether the measured map itself is solved.
+    pub fn solves_map(&self) -> bool {
+        self.topography.is_some() && self.solve_map.unwrap_or(true)
+    }
 }

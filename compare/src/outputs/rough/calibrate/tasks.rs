@@ -67,6 +67,15 @@ impl Case {
         if given.iter().filter(|&&g| g).count() != 1 {
             return bad("give exactly one of topography, psd and self_affine".into());
         }
+        if spec.solve_map.is_some() && spec.topography.is_none() {
+            return bad("solve_map applies to a topography (a measured map) only".into());
+        }
+        if spec.size.is_some() && spec.self_affine.is_some() {
+            return bad(
+                "size: a self_affine spectrum is in units of the punch diameter L; give no size"
+                    .into(),
+            );
+        }
         let mut warnings = Vec::new();
         let (spectrum, source_band, side, map, fingerprint) = if let Some(t) = &spec.topography {
             let path = ctx.resolve(t);
@@ -211,7 +220,7 @@ impl Task {
 /// up to `realisations.max`.
 pub fn all(spec: &Calibrate) -> Vec<Task> {
     let mut t = vec![Task::Mrd];
-    if spec.topography.is_some() && spec.solve_map {
+    if spec.solves_map() {
         t.extend([Task::MapMrd, Task::MapBem]);
     }
     t.extend((0..spec.realisations.max).map(Task::Bem));
