@@ -268,9 +268,6 @@ fn parse_shard(s: &str) -> Result<(usize, usize), String> {
 enum Failure {
     /// One line for stderr and the exit code.
     Error(String, u8),
-    /// The reader of standard output went away (`mrdw scenes | head`): stop quietly,
-    /// as a filter does.
-    ReaderGone,
 }
 
 impl From<CompareError> for Failure {
@@ -292,9 +289,6 @@ impl From<String> for Failure {
 
 impl From<std::io::Error> for Failure {
     fn from(e: std::io::Error) -> Self {
-        if e.kind() == std::io::ErrorKind::BrokenPipe {
-            return Failure::ReaderGone;
-        }
         Failure::Error(format!("writing to standard output: {e}"), 2)
     }
 }
@@ -505,7 +499,6 @@ fn main() -> ExitCode {
             note!("error: {}", e.replace('\n', " "));
             ExitCode::from(code)
         }
-        Err(Failure::ReaderGone) => ExitCode::SUCCESS,
     }
 }
 
