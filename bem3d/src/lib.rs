@@ -7,7 +7,7 @@
 //! contact held in full stick ([`tangential`]: solvers beside the normal one, on the
 //! same transforms, with Cerruti's tensor); adhesive normal contact in the JKR limit
 //! ([`adhesion`]: a solver beside the normal one, generic over the same operators) and
-//! with the finite-range Maugis-Dugdale law ([`cohesive`]). Knows nothing of MRD: it
+//! with a finite-range law, Maugis-Dugdale or exponential ([`cohesive`]). Knows nothing of MRD: it
 //! takes plain height arrays (row-major `ny x nx`). Operators ([`operator`]) are apart
 //! from the solvers; a linear solve restricted to a set of cells (the tangent and stick
 //! stiffnesses) is shared by both kinds of solver.

@@ -1,11 +1,11 @@
 //! Adhesive normal contact in 3D with a finite-range cohesive law (`bem3d::cohesive`:
-//! Maugis-Dugdale) on numpy height maps, under a prescribed approach, on the free or the
+//! Maugis-Dugdale or exponential) on numpy height maps, under a prescribed approach, on the free or the
 //! periodic half-space.
 
 use crate::contact::bem_err;
 use crate::contact::{grid_array, Grid};
 use crate::errors::value_error;
-use bem3d::cohesive::{CohesiveContact as Cohesive, CohesiveStep as Step};
+use bem3d::cohesive::{CohesiveContact as Cohesive, CohesiveLaw, CohesiveStep as Step};
 use bem3d::{NonPeriodicHalfSpace, PeriodicHalfSpace};
 use numpy::{AllowTypeChange, PyArray2, PyArrayLike2};
 use pyo3::prelude::*;
@@ -22,7 +22,7 @@ step_class! {
         contact_area: f64,
         /// Cells in contact (gap 0).
         contact_cells: usize,
-        /// Cells in the cohesive zone (0 < gap < w / sigma0).
+        /// Cells in the cohesive zone (0 < gap < w / sigma0), under either law.
         cohesive_cells: usize,
         /// Set-update rounds, and conjugate-gradient iterations summed over them.
         rounds: usize,
@@ -76,15 +76,25 @@ impl Solver {
             Self::Periodic(c) => c.resolved(),
         }
     }
+    fn law(&self) -> CohesiveLaw {
+        match self {
+            Self::Free(c) => c.law(),
+            Self::Periodic(c) => c.law(),
+        }
+    }
 }
 
-/// A rigid surface in Maugis-Dugdale adhesive contact with an elastic half-space, free
-/// or periodic, loaded along an approach history (3D FFT boundary elements).
+/// A rigid surface in finite-range adhesive contact with an elastic half-space, free or
+/// periodic, loaded along an approach history (3D FFT boundary elements).
 ///
-/// CohesiveContact(heights, work, sigma0, size=None, e_star=1.0, mask=None, periodic=False)
+/// CohesiveContact(heights, work, sigma0, size=None, e_star=1.0, mask=None, periodic=False,
+///                 law="dugdale")
 ///
-/// Finite-range adhesion: a constant tension sigma0 [stress] wherever the gap lies below
-/// the range w / sigma0, w = `work` the work of adhesion [stress x length]; with the
+/// Finite-range adhesion, w = `work` the work of adhesion [stress x length] and
+/// rho = w / sigma0 the range [length]. law="dugdale" (Maugis-Dugdale): a constant
+/// tension sigma0 [stress] wherever the gap lies below rho. law="exponential": the
+/// tension sigma0 exp(-gap / rho) at every gap (the adhesive energy -w exp(-gap / rho),
+/// Tamaas' ExponentialAdhesionFunctional with surface_energy = w). With the
 /// Tabor-Maugis parameter it spans Bradley's rigid limit to JKR's (the JKR limit is
 /// AdhesiveContact). The cohesive zone must span cells: `resolved` says whether the
 /// Dugdale length E* w / sigma0^2 spans 10 of them (coarser grids overestimate the
@@ -104,7 +114,7 @@ pub struct CohesiveContact {
 #[pymethods]
 impl CohesiveContact {
     #[new]
-    #[pyo3(signature = (heights, work, sigma0, size = None, e_star = 1.0, mask = None, periodic = false))]
+    #[pyo3(signature = (heights, work, sigma0, size = None, e_star = 1.0, mask = None, periodic = false, law = "dugdale"))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -115,7 +125,17 @@ impl CohesiveContact {
         e_star: f64,
         mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
         periodic: bool,
+        law: &str,
     ) -> PyResult<Self> {
+        let law = match law {
+            "dugdale" => CohesiveLaw::Dugdale,
+            "exponential" => CohesiveLaw::Exponential,
+            other => {
+                return Err(value_error(format!(
+                    "law = {other:?}: expected \"dugdale\" or \"exponential\""
+                )))
+            }
+        };
         for (name, v) in [("work", work), ("sigma0", sigma0)] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(value_error(format!(
@@ -134,10 +154,12 @@ impl CohesiveContact {
         let built = py.detach(|| -> bem3d::Result<_> {
             Ok(if periodic {
                 let op = PeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
-                Solver::Periodic(Cohesive::new(op, &h, mask.as_deref(), work, sigma0)?)
+                Solver::Periodic(
+                    Cohesive::new(op, &h, mask.as_deref(), work, sigma0)?.with_law(law),
+                )
             } else {
                 let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
-                Solver::Free(Cohesive::new(op, &h, mask.as_deref(), work, sigma0)?)
+                Solver::Free(Cohesive::new(op, &h, mask.as_deref(), work, sigma0)?.with_law(law))
             })
         });
         let contact = built.map_err(|e| bem_err(py, e, (ny, nx), lx * ly))?;
@@ -189,9 +211,17 @@ impl CohesiveContact {
     fn size(&self) -> (f64, f64) {
         self.size
     }
+    /// "dugdale" or "exponential".
+    #[getter]
+    fn law(&self) -> &'static str {
+        match self.contact.law() {
+            CohesiveLaw::Dugdale => "dugdale",
+            CohesiveLaw::Exponential => "exponential",
+        }
+    }
     fn __repr__(&self) -> String {
         format!(
-            "CohesiveContact(shape={:?}, size={:?}, periodic={}, dugdale_length={:.4e})",
+            "CohesiveContact(shape={:?}, size={:?}, periodic={}, law={:?}, dugdale_length={:.4e})",
             self.shape,
             self.size,
             if matches!(self.contact, Solver::Periodic(_)) {
@@ -199,6 +229,7 @@ impl CohesiveContact {
             } else {
                 "False"
             },
+            self.law(),
             self.contact.dugdale_length()
         )
     }

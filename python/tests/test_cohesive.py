@@ -1,5 +1,6 @@
-"""mrdw.CohesiveContact: finite-range (Maugis-Dugdale) adhesion from Python, checked
-against Maugis' closed form between Bradley's and JKR's limits and on bad input."""
+"""mrdw.CohesiveContact: finite-range adhesion (Maugis-Dugdale and exponential) from
+Python, checked against Maugis' closed form between Bradley's and JKR's limits, against
+Tamaas where it is installed, and on bad input."""
 
 import math
 
@@ -52,7 +53,10 @@ def test_bad_input_names_the_parameter():
     ]:
         with pytest.raises(ValueError, match=name):
             mrdw.CohesiveContact(h, **kw)
+    with pytest.raises(ValueError, match="law"):
+        mrdw.CohesiveContact(h, work=1e-3, sigma0=0.1, law="lennard-jones")
     c = mrdw.CohesiveContact(h, work=1e-3, sigma0=0.1)
+    assert c.law == "dugdale"
     with pytest.raises(ValueError, match="approach"):
         c.step(float("nan"))
     with pytest.raises(ValueError, match="tolerance"):
@@ -104,3 +108,46 @@ def test_a_periodic_cell_refuses_complete_contact_and_matches_tamaas():
             same_zone += 1
             assert abs(s.force - p_t.mean()) < 1e-7 * scale, (d, s.force, p_t.mean())
     assert same_zone >= 1
+
+
+def test_the_exponential_law_holds_and_matches_tamaas():
+    """law="exponential": the tension sigma0 exp(-gap / rho) on every cell out of contact
+    (gaps by Tamaas' operator when installed, else the contact counts alone). The smooth
+    law has one equilibrium where the discrete Dugdale law has several: Tamaas' solver
+    with ExponentialAdhesionFunctional reaches the same state, forces within 1e-8 of the
+    mean |pressure| (bench/tamaas_adhesion.py --law exponential: 1e-11 to 1e-9)."""
+    n, w = 32, 0.002
+    sigma0 = 0.3 / (9.0 / (2.0 * math.pi * w)) ** (1.0 / 3.0)
+    rho = w / sigma0
+    x = (np.arange(n) + 0.5) / n - 0.5
+    h = -(x[:, None] ** 2 + x[None, :] ** 2) / 2.0
+    z_mean = float((h.max() - h).mean())
+    c = mrdw.CohesiveContact(h, w, sigma0, size=(1.0, 1.0), periodic=True, law="exponential")
+    assert c.law == "exponential" and "exponential" in repr(c)
+    dugdale = mrdw.CohesiveContact(h, w, sigma0, size=(1.0, 1.0), periodic=True)
+    steps = [(d, c.step(d, tolerance=1e-10)) for d in [0.02, 0.04, 0.06, 0.04, 0.02]]
+    # Every cell carries tension up to sigma0; the laws differ.
+    assert all(s.pressure.min() >= -sigma0 * (1 + 1e-12) for _, s in steps)
+    assert abs(steps[0][1].force - dugdale.step(0.02, tolerance=1e-10).force) > 1e-3 * abs(
+        steps[0][1].force
+    )
+    tm = pytest.importorskip("tamaas")
+    tm.set_log_level(tm.LogLevel.error)
+    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], [n, n])
+    model.E, model.nu = 1.0, 0.0
+    solver = tm.PolonskyKeerRey(model, h, 1e-10, tm.PolonskyKeerRey.gap, tm.PolonskyKeerRey.gap)
+    solver.max_iter = 100000
+    law = tm.ExponentialAdhesionFunctional(h)
+    law.parameters = {"rho": rho, "surface_energy": w}
+    solver.addFunctionalTerm(law)
+    for d, s in steps:
+        solver.solve(z_mean - d)
+        p_t = model.traction.copy()
+        model.traction[:] = s.pressure
+        model.solveNeumann()
+        g = model.displacement - h
+        g += z_mean - d - g.mean()
+        free = g > 1e-9 * rho
+        assert np.abs(s.pressure[free] + sigma0 * np.exp(-g[free] / rho)).max() < 1e-8 * sigma0
+        assert g.min() > -1e-8 * rho and s.contact_cells == (~free).sum()
+        assert abs(s.force - p_t.mean()) < 1e-8 * np.abs(p_t).mean(), (d, s.force, p_t.mean())

@@ -102,569 +102,638 @@ fn every_case_file_is_embedded() {
     }
 }
 
+/// Embedded scenes not run here: the sweeps (tests/suite/sweep.rs runs fig6-ci) and the
+/// report-scale runs of minutes.
+fn runs_elsewhere(name: &str) -> bool {
+    name.starts_with("fig6")
+        || matches!(
+            name,
+            "fig7"
+                | "fig7-3d"
+                | "static-friction-3d"
+                | "rough-sphere"
+                | "viscoelastic-rough"
+                | "tangential-stiffness-3d"
+                | "rough-partial-slip-3d"
+                | "rough-slip-3d"
+                | "rough-slip-3d-punch"
+                | "rough-adhesion-3d"
+                | "rough-adhesion-3d-punch"
+                | "calibrate-rolloff"
+        )
+}
+
+/// One test per embedded scene (so that the test harness runs them side by side), and the
+/// list they make.
+macro_rules! embedded_scene_tests {
+    ($($test:ident => $scene:literal),* $(,)?) => {
+        $(
+            #[test]
+            fn $test() {
+                check_embedded_scene($scene);
+            }
+        )*
+        const CHECKED_HERE: &[&str] = &[$($scene),*];
+    };
+}
+
+embedded_scene_tests! {
+    embedded_adhesion_3d => "adhesion-3d",
+    embedded_adhesion_3d_punch => "adhesion-3d-punch",
+    embedded_adhesion_tabor => "adhesion-tabor",
+    embedded_adhesion_3d_cone => "adhesion-3d-cone",
+    embedded_adhesive_cone => "adhesive-cone",
+    embedded_cattaneo_mindlin => "cattaneo-mindlin",
+    embedded_tangential_3d => "tangential-3d",
+    embedded_tangential_3d_free => "tangential-3d-free",
+    embedded_tangential_3d_cone => "tangential-3d-cone",
+    embedded_rough_adhesion_3d_ci => "rough-adhesion-3d-ci",
+    embedded_rough_partial_slip_3d_ci => "rough-partial-slip-3d-ci",
+    embedded_tangential_stiffness_3d_ci => "tangential-stiffness-3d-ci",
+    embedded_calibrate_ci => "calibrate-ci",
+    embedded_cone => "cone",
+    embedded_contact_area_ci => "contact-area-ci",
+    embedded_ejike => "ejike",
+    embedded_fig7_ci => "fig7-ci",
+    embedded_fig7_3d_ci => "fig7-3d-ci",
+    embedded_fig7_viscous => "fig7-viscous",
+    embedded_fig9 => "fig9",
+    embedded_rough_sphere_ci => "rough-sphere-ci",
+    embedded_rough_slip_3d_ci => "rough-slip-3d-ci",
+    embedded_tangential_viscoelastic => "tangential-viscoelastic",
+    embedded_tangential_viscoelastic_3d => "tangential-viscoelastic-3d",
+    embedded_viscoelastic_rough_ci => "viscoelastic-rough-ci",
+    embedded_static_friction_3d_ci => "static-friction-3d-ci",
+    embedded_fig9_readings => "fig9-readings",
+    embedded_flat_punch => "flat-punch",
+    embedded_hertz => "hertz",
+    embedded_jkr => "jkr",
+    embedded_mindlin_damping => "mindlin-damping",
+    embedded_power_law => "power-law",
+    embedded_radok => "radok",
+    embedded_rough_stiffness => "rough-stiffness",
+    embedded_tabulated => "tabulated",
+    embedded_tour => "tour",
+}
+
 #[test]
-fn all_embedded_scenes_run_and_match_closed_forms() {
+fn every_embedded_scene_is_checked_here_or_elsewhere() {
+    let mut here: Vec<&str> = compare::scenes::EMBEDDED
+        .iter()
+        .map(|(name, _)| *name)
+        .filter(|name| !runs_elsewhere(name))
+        .collect();
+    let mut listed = CHECKED_HERE.to_vec();
+    here.sort_unstable();
+    listed.sort_unstable();
+    assert_eq!(
+        here, listed,
+        "list each new embedded scene in embedded_scene_tests!"
+    );
+}
+
+/// An embedded scene runs, and its results match the closed forms and the measured
+/// tolerances stated beside each check.
+fn check_embedded_scene(name: &str) {
     let tmp = tempfile::tempdir().unwrap();
-    for (name, _) in compare::scenes::EMBEDDED {
-        if name.starts_with("fig6")
-            || *name == "fig7"
-            || *name == "fig7-3d"
-            || *name == "static-friction-3d"
-            || *name == "rough-sphere"
-            || *name == "viscoelastic-rough"
-            || *name == "tangential-stiffness-3d"
-            || *name == "rough-partial-slip-3d"
-            || *name == "rough-slip-3d"
-            || *name == "rough-slip-3d-punch"
-            || *name == "rough-adhesion-3d"
-            || *name == "rough-adhesion-3d-punch"
-            || *name == "calibrate-rolloff"
+    let name = &name;
+    let out = tmp.path().join(name);
+    let s = run_scene(name, &out);
+    // Every CSV carries provenance and unit-bearing headers; every figure exists.
+    for f in s["files"].as_array().unwrap() {
+        let f = f.as_str().unwrap();
+        let path = out.join(f);
+        assert!(path.metadata().unwrap().len() > 0, "{name}/{f} empty");
+        if f.ends_with(".csv") {
+            let text = std::fs::read_to_string(&path).unwrap();
+            assert!(text.starts_with("# mrdw "), "{name}/{f}: no provenance");
+            assert!(text.contains("# scene file as given:"));
+            let header = text.lines().find(|l| !l.starts_with('#')).unwrap();
+            assert!(
+                header.contains('['),
+                "{name}/{f}: header without units: {header}"
+            );
+            let data: String = text.lines().filter(|l| !l.starts_with('#')).collect();
+            assert!(
+                !data.contains("NaN") && !data.contains("inf"),
+                "{name}/{f}: non-finite values"
+            );
+        }
+    }
+    let res = s["results"].as_object().unwrap();
+    // Semi-analytic paths: 1e-9 relative against the closed forms.
+    for (k, v) in res {
+        let Some(v) = v.as_f64() else { continue }; // per-H objects
+        if k.ends_with("max_rel_error_vs_closed_form")
+            || k.ends_with("vs_cattaneo_mindlin")
+            || k.ends_with("pull_off_rel_error_vs_closed_form")
+            || k.ends_with("max_rel_dev_quadrature_vs_closed_form")
+            || k == "tangential.traction_max_error_over_mu_p0"
         {
-            continue; // sweeps: tests/suite/sweep.rs (fig6-ci); the others are long runs
+            assert!(v < 1e-9, "{name}: {k} = {v}");
         }
-        let out = tmp.path().join(name);
-        let s = run_scene(name, &out);
-        // Every CSV carries provenance and unit-bearing headers; every figure exists.
-        for f in s["files"].as_array().unwrap() {
-            let f = f.as_str().unwrap();
-            let path = out.join(f);
-            assert!(path.metadata().unwrap().len() > 0, "{name}/{f} empty");
-            if f.ends_with(".csv") {
-                let text = std::fs::read_to_string(&path).unwrap();
-                assert!(text.starts_with("# mrdw "), "{name}/{f}: no provenance");
-                assert!(text.contains("# scene file as given:"));
-                let header = text.lines().find(|l| !l.starts_with('#')).unwrap();
-                assert!(
-                    header.contains('['),
-                    "{name}/{f}: header without units: {header}"
-                );
-                let data: String = text.lines().filter(|l| !l.starts_with('#')).collect();
-                assert!(
-                    !data.contains("NaN") && !data.contains("inf"),
-                    "{name}/{f}: non-finite values"
-                );
-            }
+        if k == "pressure.equilibrium_rel_error" {
+            assert!(v < 1e-7, "{name}: {k} = {v}");
         }
-        let res = s["results"].as_object().unwrap();
-        // Semi-analytic paths: 1e-9 relative against the closed forms.
-        for (k, v) in res {
-            let Some(v) = v.as_f64() else { continue }; // per-H objects
-            if k.ends_with("max_rel_error_vs_closed_form")
-                || k.ends_with("vs_cattaneo_mindlin")
-                || k.ends_with("pull_off_rel_error_vs_closed_form")
-                || k.ends_with("max_rel_dev_quadrature_vs_closed_form")
-                || k == "tangential.traction_max_error_over_mu_p0"
-            {
-                assert!(v < 1e-9, "{name}: {k} = {v}");
-            }
-            if k == "pressure.equilibrium_rel_error" {
-                assert!(v < 1e-7, "{name}: {k} = {v}");
-            }
-            // Discrete paths, at the scenes' spring counts (>= 2000 over 1.5 a): 1e-3.
-            if k == "force_depth.max_rel_dev_discrete_vs_semi_analytic"
-                || k == "damping.max_rel_error_time_stepped_vs_eq58"
-            {
-                assert!(v < 1e-3, "{name}: {k} = {v}");
-            }
-            // Viscoelastic springs (Eq. 63) against Radok at the scene's 20000 springs.
-            if k == "viscoelastic.max_rel_dev_springs_vs_radok" {
-                assert!(v < 1e-3, "{name}: {k} = {v}");
-            }
-            // A sphere loaded tangentially (`tangential-3d`, 25.6 cells per contact radius,
-            // period 10 radii): MRD's springs are exact; the 3D stick radius (a count of
-            // cells) and dissipation per cycle within 1.5 % of Cattaneo-Mindlin and
-            // Mindlin-Deresiewicz (measured 0.95 % and 0.63 %), the 3D loop's area equal
-            // to the summed dissipation within 0.5 % (measured 0.29 %, 20 steps per half
-            // cycle).
-            if k == "tangential_3d.stick_radius_max_rel_error_mrd"
-                || k == "tangential_3d.dissipation_max_rel_error_mrd"
-            {
-                assert!(v < 1e-9, "{name}: {k} = {v}");
-            }
-            if k == "tangential_3d.stick_radius_max_rel_error_3d"
-                || k == "tangential_3d.dissipation_max_rel_error_3d"
-            {
-                assert!(v < 0.015, "{name}: {k} = {v}");
-            }
-            // 3D against MRD's exact springs (the cone: measured 2.0 % on the stick radius,
-            // 0.49 % on the dissipation; the sphere 0.95 % and 0.63 %).
-            if k == "tangential_3d.stick_radius_max_rel_dev_3d_vs_mrd"
-                || k == "tangential_3d.dissipation_max_rel_dev_3d_vs_mrd"
-            {
-                assert!(v < 0.025, "{name}: {k} = {v}");
-            }
-            if k == "tangential_3d.energy_balance_max_rel_3d" {
-                assert!(v < 0.005, "{name}: {k} = {v}");
-            }
-            // The hysteresis loops on the free half-space (`tangential-3d-free`, 64 cells
-            // per contact radius): the 3D shift at every force of the cycle within 1e-3 of
-            // the amplitude's shift from Mindlin-Deresiewicz and from MRD's springs by
-            // Masing's rule (measured 4.4e-5 for both).
-            if k == "tangential_3d.loop_shift_max_rel_error_3d"
-                || k == "tangential_3d.loop_shift_max_rel_dev_3d_vs_mrd"
-            {
-                assert!(v < 1e-3, "{name}: {k} = {v}");
-            }
-            // Rough contacts held in stick (`tangential-stiffness-3d-ci`, 32^2 and 64^2
-            // cells): the 3D k_t / k_n lies a few per cent above MRD's G*/E* (measured
-            // 4.3 % at 21 % contact, nu = 0.5; the report-scale scene 1.3-6.1 %), the
-            // last refinement moves it by under 1 % (measured 0.09 %), and q_y = 0 softens
-            // the set by under 3 % (measured 1.5 %).
-            if k == "tangential_stiffness_3d.kt_over_kn_max_rel_dev_3d_vs_mrd" {
-                assert!(v > 0.01 && v < 0.08, "{name}: {k} = {v}");
-            }
-            if k == "tangential_stiffness_3d.kt_over_kn_max_rel_change_last_refinement" {
-                assert!(v < 0.01, "{name}: {k} = {v}");
-            }
-            if k == "tangential_stiffness_3d.kt_along_only_max_rel_dev" {
-                assert!(v < 0.03, "{name}: {k} = {v}");
-            }
-            // Rough partial slip (`rough-partial-slip-3d-ci`, 64^2 cells): at nu = 0 the
-            // 3D shift equals MRD's mapping of the 3D normal curve to the solvers'
-            // tolerance (measured 1.2e-9) and the energy per cycle to the loop's steps
-            // (measured 2.2e-4, 6 steps per half cycle); at nu = 0.5 MRD's mapping is off
-            // by a few per cent (measured 4.2 % on the shift, 5.6 % on the energy).
-            if k == "rough_partial_slip_3d.shift_max_rel_dev_3d_vs_mrd_at_nu_0" {
-                assert!(v < 1e-6, "{name}: {k} = {v}");
-            }
-            if k == "rough_partial_slip_3d.dissipation_max_rel_dev_3d_vs_mrd_at_nu_0" {
-                assert!(v < 2e-3, "{name}: {k} = {v}");
-            }
-            if k == "rough_partial_slip_3d.shift_max_rel_dev_3d_vs_mrd"
-                || k == "rough_partial_slip_3d.dissipation_max_rel_dev_3d_vs_mrd"
-            {
-                assert!(v > 0.005 && v < 0.15, "{name}: {k} = {v}");
-            }
-            // A rough sphere in partial slip (`rough-slip-3d-ci`, 64^2 and 128^2 cells):
-            // at nu = 0 the 3D shift equals MRD's law on the 3D normal curve to the
-            // solvers' tolerance (measured 8.5e-10), the energy per cycle to the loop's
-            // steps (1.4e-4) and k_t = k_n (9e-9); the smooth sphere's shift and energy
-            // equal MRD's (5.8e-5, 1.7e-3); at nu = 0.5 the law is off by a few per cent
-            // on the rough sphere (4.3 %), k_t / k_n within 0.3 % of G*/E*, and the last
-            // refinement moves the 3D values by under 6 % (2.7 %).
-            if k.starts_with("rough_slip_3d.") {
-                let bound = match k.trim_start_matches("rough_slip_3d.") {
-                    "shift_rough_max_rel_dev_3d_vs_law_nu_0"
-                    | "kt_over_kn_max_rel_dev_3d_vs_mrd_nu_0" => 1e-6,
-                    "dissipation_rough_max_rel_dev_3d_vs_law_nu_0" => 2e-3,
-                    "shift_smooth_max_rel_dev_3d_vs_mrd_nu_0"
-                    | "shift_smooth_max_rel_dev_3d_vs_mrd_nu_0p5" => 1e-3,
-                    "dissipation_smooth_max_rel_dev_3d_vs_mrd_nu_0"
-                    | "dissipation_smooth_max_rel_dev_3d_vs_mrd_nu_0p5" => 5e-3,
-                    "kt_over_kn_max_rel_dev_3d_vs_mrd_nu_0p5" => 0.03,
-                    "shift_max_rel_change_3d_last_refinement"
-                    | "dissipation_max_rel_change_3d_last_refinement" => 0.06,
-                    _ => f64::INFINITY,
-                };
-                assert!(v < bound, "{name}: {k} = {v}");
-                if k == "rough_slip_3d.shift_rough_max_rel_dev_3d_vs_law_nu_0p5" {
-                    assert!(v > 0.005 && v < 0.1, "{name}: {k} = {v}");
-                }
-            }
-            // Adhesion in 3D (`adhesion-3d*`): MRD's pull-off against JKR, Kendall and
-            // Eq. 37 to rounding; the 3D pull-off against MRD's on the finest grid (measured
-            // 1.7 % for the sphere at 50 cells per pull-off radius, 0.21 % for the punch at
-            // 51, 3.1 % for the cone at 77) and converging (observed orders 1.44, 2.27,
-            // 1.42 on the last pair of grids).
-            if k == "adhesion_3d.pull_off_rel_error_mrd"
-                || k == "adhesion_3d.jump_out_rel_error_mrd"
-            {
-                assert!(v < 1e-9, "{name}: {k} = {v}");
-            }
-            if k == "adhesion_3d.pull_off_rel_error_3d" {
-                assert!(v < 0.04, "{name}: {k} = {v}");
-            }
-            if k == "adhesion_3d.pull_off_order_3d" {
-                assert!(v > 0.8, "{name}: {k} = {v}");
-            }
-            // The Tabor map (`adhesion-tabor`): 3D Maugis-Dugdale against Maugis' closed
-            // form where resolved (measured 3.8 % at lambda = 1, 0.3 % at 0.3, 0.2 % at
-            // 0.1); MRD (JKR) misses Bradley's end (-23 % at lambda = 0.1) and meets JKR's
-            // (-1.1 % at lambda = 3).
-            if k == "tabor_3d.rel_error_3d_vs_maugis_max_resolved" {
-                assert!(v < 0.05, "{name}: {k} = {v}");
-            }
-            if k == "tabor_3d.rel_error_mrd_vs_maugis_at_smallest_lambda" {
-                assert!(v < -0.2, "{name}: {k} = {v}");
-            }
-            if k == "tabor_3d.rel_error_mrd_vs_maugis_at_largest_lambda" {
-                assert!(v.abs() < 0.02, "{name}: {k} = {v}");
-            }
-            // Rough adhesive spheres (`rough-adhesion-3d-ci`, 64^2 and 128^2 cells, 15 and
-            // 30 cells per JKR pull-off radius): the smooth sphere's pull-off against JKR's
-            // 3/2 pi R w within 5 % in 3D (measured 3.7 %) and 1 % on MRD's 512 springs
-            // (measured 0.78 %, 120 springs per pull-off radius); every adhesive cycle
-            // loses energy.
-            if k == "rough_adhesion_3d.smooth_pull_off_over_closed_form_3d" {
-                assert!((v - 1.0).abs() < 0.05, "{name}: {k} = {v}");
-            }
-            if k == "rough_adhesion_3d.smooth_pull_off_over_closed_form_mrd" {
-                assert!((v - 1.0).abs() < 0.01, "{name}: {k} = {v}");
-            }
-            if k == "rough_adhesion_3d.loop_energy_min_over_smooth_3d" {
-                assert!(v > 0.0, "{name}: {k} = {v}");
-            }
-            // Adhesive pull-off on springs is first order in dx (quantised radius): 2e-3.
-            if k == "adhesion.pull_off_rel_dev_discrete_vs_semi_analytic" {
-                assert!(v < 2e-3, "{name}: {k} = {v}");
+        // Discrete paths, at the scenes' spring counts (>= 2000 over 1.5 a): 1e-3.
+        if k == "force_depth.max_rel_dev_discrete_vs_semi_analytic"
+            || k == "damping.max_rel_error_time_stepped_vs_eq58"
+        {
+            assert!(v < 1e-3, "{name}: {k} = {v}");
+        }
+        // Viscoelastic springs (Eq. 63) against Radok at the scene's 20000 springs.
+        if k == "viscoelastic.max_rel_dev_springs_vs_radok" {
+            assert!(v < 1e-3, "{name}: {k} = {v}");
+        }
+        // A sphere loaded tangentially (`tangential-3d`, 25.6 cells per contact radius,
+        // period 10 radii): MRD's springs are exact; the 3D stick radius (a count of
+        // cells) and dissipation per cycle within 1.5 % of Cattaneo-Mindlin and
+        // Mindlin-Deresiewicz (measured 0.95 % and 0.63 %), the 3D loop's area equal
+        // to the summed dissipation within 0.5 % (measured 0.29 %, 20 steps per half
+        // cycle).
+        if k == "tangential_3d.stick_radius_max_rel_error_mrd"
+            || k == "tangential_3d.dissipation_max_rel_error_mrd"
+        {
+            assert!(v < 1e-9, "{name}: {k} = {v}");
+        }
+        if k == "tangential_3d.stick_radius_max_rel_error_3d"
+            || k == "tangential_3d.dissipation_max_rel_error_3d"
+        {
+            assert!(v < 0.015, "{name}: {k} = {v}");
+        }
+        // 3D against MRD's exact springs (the cone: measured 2.0 % on the stick radius,
+        // 0.49 % on the dissipation; the sphere 0.95 % and 0.63 %).
+        if k == "tangential_3d.stick_radius_max_rel_dev_3d_vs_mrd"
+            || k == "tangential_3d.dissipation_max_rel_dev_3d_vs_mrd"
+        {
+            assert!(v < 0.025, "{name}: {k} = {v}");
+        }
+        if k == "tangential_3d.energy_balance_max_rel_3d" {
+            assert!(v < 0.005, "{name}: {k} = {v}");
+        }
+        // The hysteresis loops on the free half-space (`tangential-3d-free`, 64 cells
+        // per contact radius): the 3D shift at every force of the cycle within 1e-3 of
+        // the amplitude's shift from Mindlin-Deresiewicz and from MRD's springs by
+        // Masing's rule (measured 4.4e-5 for both).
+        if k == "tangential_3d.loop_shift_max_rel_error_3d"
+            || k == "tangential_3d.loop_shift_max_rel_dev_3d_vs_mrd"
+        {
+            assert!(v < 1e-3, "{name}: {k} = {v}");
+        }
+        // Rough contacts held in stick (`tangential-stiffness-3d-ci`, 32^2 and 64^2
+        // cells): the 3D k_t / k_n lies a few per cent above MRD's G*/E* (measured
+        // 4.3 % at 21 % contact, nu = 0.5; the report-scale scene 1.3-6.1 %), the
+        // last refinement moves it by under 1 % (measured 0.09 %), and q_y = 0 softens
+        // the set by under 3 % (measured 1.5 %).
+        if k == "tangential_stiffness_3d.kt_over_kn_max_rel_dev_3d_vs_mrd" {
+            assert!(v > 0.01 && v < 0.08, "{name}: {k} = {v}");
+        }
+        if k == "tangential_stiffness_3d.kt_over_kn_max_rel_change_last_refinement" {
+            assert!(v < 0.01, "{name}: {k} = {v}");
+        }
+        if k == "tangential_stiffness_3d.kt_along_only_max_rel_dev" {
+            assert!(v < 0.03, "{name}: {k} = {v}");
+        }
+        // Rough partial slip (`rough-partial-slip-3d-ci`, 64^2 cells): at nu = 0 the
+        // 3D shift equals MRD's mapping of the 3D normal curve to the solvers'
+        // tolerance (measured 1.2e-9) and the energy per cycle to the loop's steps
+        // (measured 2.2e-4, 6 steps per half cycle); at nu = 0.5 MRD's mapping is off
+        // by a few per cent (measured 4.2 % on the shift, 5.6 % on the energy).
+        if k == "rough_partial_slip_3d.shift_max_rel_dev_3d_vs_mrd_at_nu_0" {
+            assert!(v < 1e-6, "{name}: {k} = {v}");
+        }
+        if k == "rough_partial_slip_3d.dissipation_max_rel_dev_3d_vs_mrd_at_nu_0" {
+            assert!(v < 2e-3, "{name}: {k} = {v}");
+        }
+        if k == "rough_partial_slip_3d.shift_max_rel_dev_3d_vs_mrd"
+            || k == "rough_partial_slip_3d.dissipation_max_rel_dev_3d_vs_mrd"
+        {
+            assert!(v > 0.005 && v < 0.15, "{name}: {k} = {v}");
+        }
+        // A rough sphere in partial slip (`rough-slip-3d-ci`, 64^2 and 128^2 cells):
+        // at nu = 0 the 3D shift equals MRD's law on the 3D normal curve to the
+        // solvers' tolerance (measured 8.5e-10), the energy per cycle to the loop's
+        // steps (1.4e-4) and k_t = k_n (9e-9); the smooth sphere's shift and energy
+        // equal MRD's (5.8e-5, 1.7e-3); at nu = 0.5 the law is off by a few per cent
+        // on the rough sphere (4.3 %), k_t / k_n within 0.3 % of G*/E*, and the last
+        // refinement moves the 3D values by under 6 % (2.7 %).
+        if k.starts_with("rough_slip_3d.") {
+            let bound = match k.trim_start_matches("rough_slip_3d.") {
+                "shift_rough_max_rel_dev_3d_vs_law_nu_0"
+                | "kt_over_kn_max_rel_dev_3d_vs_mrd_nu_0" => 1e-6,
+                "dissipation_rough_max_rel_dev_3d_vs_law_nu_0" => 2e-3,
+                "shift_smooth_max_rel_dev_3d_vs_mrd_nu_0"
+                | "shift_smooth_max_rel_dev_3d_vs_mrd_nu_0p5" => 1e-3,
+                "dissipation_smooth_max_rel_dev_3d_vs_mrd_nu_0"
+                | "dissipation_smooth_max_rel_dev_3d_vs_mrd_nu_0p5" => 5e-3,
+                "kt_over_kn_max_rel_dev_3d_vs_mrd_nu_0p5" => 0.03,
+                "shift_max_rel_change_3d_last_refinement"
+                | "dissipation_max_rel_change_3d_last_refinement" => 0.06,
+                _ => f64::INFINITY,
+            };
+            assert!(v < bound, "{name}: {k} = {v}");
+            if k == "rough_slip_3d.shift_rough_max_rel_dev_3d_vs_law_nu_0p5" {
+                assert!(v > 0.005 && v < 0.1, "{name}: {k} = {v}");
             }
         }
-        if name.starts_with("adhesion-3d") {
+        // Adhesion in 3D (`adhesion-3d*`): MRD's pull-off against JKR, Kendall and
+        // Eq. 37 to rounding; the 3D pull-off against MRD's on the finest grid (measured
+        // 1.7 % for the sphere at 50 cells per pull-off radius, 0.21 % for the punch at
+        // 51, 3.1 % for the cone at 77) and converging (observed orders 1.44, 2.27,
+        // 1.42 on the last pair of grids).
+        if k == "adhesion_3d.pull_off_rel_error_mrd" || k == "adhesion_3d.jump_out_rel_error_mrd" {
+            assert!(v < 1e-9, "{name}: {k} = {v}");
+        }
+        if k == "adhesion_3d.pull_off_rel_error_3d" {
+            assert!(v < 0.04, "{name}: {k} = {v}");
+        }
+        if k == "adhesion_3d.pull_off_order_3d" {
+            assert!(v > 0.8, "{name}: {k} = {v}");
+        }
+        // The Tabor map (`adhesion-tabor`): 3D Maugis-Dugdale against Maugis' closed
+        // form where resolved (measured 3.8 % at lambda = 1, 0.3 % at 0.3, 0.2 % at
+        // 0.1); MRD (JKR) misses Bradley's end (-23 % at lambda = 0.1) and meets JKR's
+        // (-1.1 % at lambda = 3).
+        if k == "tabor_3d.rel_error_3d_vs_maugis_max_resolved" {
+            assert!(v < 0.05, "{name}: {k} = {v}");
+        }
+        if k == "tabor_3d.rel_error_mrd_vs_maugis_at_smallest_lambda" {
+            assert!(v < -0.2, "{name}: {k} = {v}");
+        }
+        if k == "tabor_3d.rel_error_mrd_vs_maugis_at_largest_lambda" {
+            assert!(v.abs() < 0.02, "{name}: {k} = {v}");
+        }
+        // Rough adhesive spheres (`rough-adhesion-3d-ci`, 64^2 and 128^2 cells, 15 and
+        // 30 cells per JKR pull-off radius): the smooth sphere's pull-off against JKR's
+        // 3/2 pi R w within 5 % in 3D (measured 3.7 %) and 1 % on MRD's 512 springs
+        // (measured 0.78 %, 120 springs per pull-off radius); every adhesive cycle
+        // loses energy.
+        if k == "rough_adhesion_3d.smooth_pull_off_over_closed_form_3d" {
+            assert!((v - 1.0).abs() < 0.05, "{name}: {k} = {v}");
+        }
+        if k == "rough_adhesion_3d.smooth_pull_off_over_closed_form_mrd" {
+            assert!((v - 1.0).abs() < 0.01, "{name}: {k} = {v}");
+        }
+        if k == "rough_adhesion_3d.loop_energy_min_over_smooth_3d" {
+            assert!(v > 0.0, "{name}: {k} = {v}");
+        }
+        // Adhesive pull-off on springs is first order in dx (quantised radius): 2e-3.
+        if k == "adhesion.pull_off_rel_dev_discrete_vs_semi_analytic" {
+            assert!(v < 2e-3, "{name}: {k} = {v}");
+        }
+    }
+    if name.starts_with("adhesion-3d") {
+        for k in [
+            "pull_off_rel_error_3d",
+            "pull_off_order_3d",
+            "pull_off_rel_error_mrd",
+        ] {
+            assert!(
+                result(&s, &format!("adhesion_3d.{k}")).is_finite(),
+                "{name}: {k}"
+            );
+        }
+        assert!(stages(&s).contains(&"adhesion_3d".to_string()));
+    }
+    if *name == "adhesion-tabor" {
+        for k in [
+            "rel_error_3d_vs_maugis_max_resolved",
+            "rel_error_mrd_vs_maugis_at_smallest_lambda",
+            "rel_error_mrd_vs_maugis_at_largest_lambda",
+        ] {
+            assert!(result(&s, &format!("tabor_3d.{k}")).is_finite(), "{k}");
+        }
+    }
+    if *name == "adhesion-3d" {
+        // The sphere's jump-out under approach control: its depth within one
+        // approach step of JKR's (measured 3.2 %, a step 6.1 %).
+        let step = result(&s, "adhesion_3d.approach_step_over_jump_out_depth");
+        assert!(result(&s, "adhesion_3d.jump_out_depth_rel_error_3d") < step);
+        return;
+    }
+    if *name == "rough-adhesion-3d-ci" {
+        for k in [
+            "smooth_pull_off_over_closed_form_3d",
+            "smooth_pull_off_over_closed_form_mrd",
+            "loop_energy_min_over_smooth_3d",
+            "pull_off_over_smooth_max_abs_change_last_refinement_3d",
+            "pull_off_over_smooth_max_abs_dev_mrd_outer_0_vs_3d",
+            "pull_off_over_smooth_max_abs_dev_mrd_cluster_2_vs_3d",
+        ] {
+            let key = format!("rough_adhesion_3d.{k}");
+            assert!(result(&s, &key).is_finite(), "{k}");
+        }
+        return;
+    }
+    if *name == "rough-partial-slip-3d-ci" {
+        for k in [
+            "shift_max_rel_dev_3d_vs_mrd",
+            "dissipation_max_rel_dev_3d_vs_mrd",
+            "shift_max_rel_dev_3d_vs_mrd_at_nu_0",
+            "dissipation_max_rel_dev_3d_vs_mrd_at_nu_0",
+            "ratio_max_rel_change_last_refinement",
+        ] {
+            let key = format!("rough_partial_slip_3d.{k}");
+            assert!(result(&s, &key).is_finite(), "{k}");
+        }
+        return;
+    }
+    if *name == "rough-slip-3d-ci" {
+        for nu in ["nu_0", "nu_0p5"] {
             for k in [
-                "pull_off_rel_error_3d",
-                "pull_off_order_3d",
-                "pull_off_rel_error_mrd",
+                "shift_smooth_max_rel_dev_3d_vs_mrd",
+                "dissipation_smooth_max_rel_dev_3d_vs_mrd",
+                "shift_rough_max_rel_dev_3d_vs_law",
+                "dissipation_rough_max_rel_dev_3d_vs_law",
+                "shift_rough_max_rel_dev_3d_vs_mrd_0",
+                "shift_rough_max_rel_dev_3d_vs_mrd_1",
+                "dissipation_rough_max_rel_dev_3d_vs_mrd_1",
+                "kt_over_kn_max_rel_dev_3d_vs_mrd",
             ] {
-                assert!(
-                    result(&s, &format!("adhesion_3d.{k}")).is_finite(),
-                    "{name}: {k}"
-                );
-            }
-            assert!(stages(&s).contains(&"adhesion_3d".to_string()));
-        }
-        if *name == "adhesion-tabor" {
-            for k in [
-                "rel_error_3d_vs_maugis_max_resolved",
-                "rel_error_mrd_vs_maugis_at_smallest_lambda",
-                "rel_error_mrd_vs_maugis_at_largest_lambda",
-            ] {
-                assert!(result(&s, &format!("tabor_3d.{k}")).is_finite(), "{k}");
-            }
-        }
-        if *name == "adhesion-3d" {
-            // The sphere's jump-out under approach control: its depth within one
-            // approach step of JKR's (measured 3.2 %, a step 6.1 %).
-            let step = result(&s, "adhesion_3d.approach_step_over_jump_out_depth");
-            assert!(result(&s, "adhesion_3d.jump_out_depth_rel_error_3d") < step);
-            continue;
-        }
-        if *name == "rough-adhesion-3d-ci" {
-            for k in [
-                "smooth_pull_off_over_closed_form_3d",
-                "smooth_pull_off_over_closed_form_mrd",
-                "loop_energy_min_over_smooth_3d",
-                "pull_off_over_smooth_max_abs_change_last_refinement_3d",
-                "pull_off_over_smooth_max_abs_dev_mrd_outer_0_vs_3d",
-                "pull_off_over_smooth_max_abs_dev_mrd_cluster_2_vs_3d",
-            ] {
-                let key = format!("rough_adhesion_3d.{k}");
-                assert!(result(&s, &key).is_finite(), "{k}");
-            }
-            continue;
-        }
-        if *name == "rough-partial-slip-3d-ci" {
-            for k in [
-                "shift_max_rel_dev_3d_vs_mrd",
-                "dissipation_max_rel_dev_3d_vs_mrd",
-                "shift_max_rel_dev_3d_vs_mrd_at_nu_0",
-                "dissipation_max_rel_dev_3d_vs_mrd_at_nu_0",
-                "ratio_max_rel_change_last_refinement",
-            ] {
-                let key = format!("rough_partial_slip_3d.{k}");
-                assert!(result(&s, &key).is_finite(), "{k}");
-            }
-            continue;
-        }
-        if *name == "rough-slip-3d-ci" {
-            for nu in ["nu_0", "nu_0p5"] {
-                for k in [
-                    "shift_smooth_max_rel_dev_3d_vs_mrd",
-                    "dissipation_smooth_max_rel_dev_3d_vs_mrd",
-                    "shift_rough_max_rel_dev_3d_vs_law",
-                    "dissipation_rough_max_rel_dev_3d_vs_law",
-                    "shift_rough_max_rel_dev_3d_vs_mrd_0",
-                    "shift_rough_max_rel_dev_3d_vs_mrd_1",
-                    "dissipation_rough_max_rel_dev_3d_vs_mrd_1",
-                    "kt_over_kn_max_rel_dev_3d_vs_mrd",
-                ] {
-                    let key = format!("rough_slip_3d.{k}_{nu}");
-                    assert!(result(&s, &key).is_finite(), "{key}");
-                }
-            }
-            for k in ["shift", "dissipation"] {
-                let key = format!("rough_slip_3d.{k}_max_rel_change_3d_last_refinement");
+                let key = format!("rough_slip_3d.{k}_{nu}");
                 assert!(result(&s, &key).is_finite(), "{key}");
             }
-            continue;
         }
-        if *name == "tangential-stiffness-3d-ci" {
-            for k in [
-                "kt_over_kn_max_rel_dev_3d_vs_mrd",
-                "kt_over_kn_max_rel_change_last_refinement",
-                "kt_along_only_max_rel_dev",
-            ] {
-                let key = format!("tangential_stiffness_3d.{k}");
-                assert!(result(&s, &key).is_finite(), "{k}");
-            }
-            continue;
+        for k in ["shift", "dissipation"] {
+            let key = format!("rough_slip_3d.{k}_max_rel_change_3d_last_refinement");
+            assert!(result(&s, &key).is_finite(), "{key}");
         }
-        if *name == "tangential-3d-cone" {
-            for k in [
-                "stick_radius_max_rel_dev_3d_vs_mrd",
-                "dissipation_max_rel_dev_3d_vs_mrd",
-                "energy_balance_max_rel_3d",
-            ] {
-                assert!(result(&s, &format!("tangential_3d.{k}")).is_finite(), "{k}");
-            }
-            continue;
-        }
-        if *name == "tangential-3d-free" {
-            // The free half-space at 64 cells per contact radius (no periodic images):
-            // the stick radius within 1 % of Cattaneo-Mindlin (measured 0.57 %, a count
-            // of cells), the energy per cycle within 0.3 % of Mindlin-Deresiewicz
-            // (measured 0.07 %).
-            let c = result(&s, "tangential_3d.stick_radius_max_rel_error_3d");
-            let w = result(&s, "tangential_3d.dissipation_max_rel_error_3d");
-            assert!(c < 0.01 && w < 0.003, "c/a {c}, W {w}");
-            continue;
-        }
-        if *name == "tangential-3d" {
-            // The keys the checks above read are present (a renamed key fails here).
-            for k in [
-                "stick_radius_max_rel_error_3d",
-                "dissipation_max_rel_error_3d",
-            ] {
-                assert!(result(&s, &format!("tangential_3d.{k}")).is_finite());
-            }
-            assert!(stages(&s).contains(&"tangential_3d".to_string()));
-            continue;
-        }
-        if *name == "rough-stiffness" {
-            // Eq. (80): alpha = 1/(1+H) for the MRD rough line (stated tolerance 0.02).
-            let a = result(&s, "rough_stiffness.alpha");
-            assert!(
-                (a - result(&s, "rough_stiffness.alpha_scaling_eq80")).abs() < 0.02,
-                "alpha {a}"
-            );
-        }
-        if *name == "fig9" {
-            // h calibrated to ~40 contacts at F = 500 (on 40 lines; 300 lines agree to 15 %),
-            // and the slope b of Eq. (91) near the caption's 0.0614 for Hurst 1.
-            let c = result(&s, "static_friction.contacts_at_max_force");
-            assert!((c / 40.0 - 1.0).abs() < 0.15, "contacts {c}");
-            let b = result(&s, "static_friction.b");
-            let ci = result(&s, "static_friction.b_ci95");
-            assert!((b - 0.0614).abs() < 2.0 * ci, "b = {b} +/- {ci}");
-        }
-        if *name == "fig9-readings" {
-            // Reading A (rms height h = 1) touches at thousands of points at F = 500, not
-            // the caption's 40: the caption's "H = 1" is the Hurst exponent.
-            assert!(result(&s, "static_friction.contacts_at_max_force") > 1000.0);
-            // b of Eq. (91) falls with H (reading B, H = 0.3 .. 1).
-            let b: Vec<f64> = (2..=5)
-                .map(|k| result(&s, &format!("static_friction_{k}.b")))
-                .collect();
-            assert!(b.windows(2).all(|w| w[1] < w[0]), "{b:?}");
-        }
-        // The plan is true: every output ran exactly the stages it declared.
-        for o in s["outputs"].as_array().unwrap() {
-            assert_eq!(o["stages"], o["declared"], "{name}: {o}");
-            assert!(!o["stages"].as_array().unwrap().is_empty(), "{name}: {o}");
-        }
-        if *name == "fig7-ci" {
-            // Section 10.1: mu -> 0 at both ends of seven decades of velocity, every run
-            // reached its steady state, the dissipated energy per unit distance equals the
-            // friction force where contacts are resolved (k v <= 100 rad/s: 2 %), and xi of
-            // Eq. (82) is of order one.
-            let t = read_csv(&out.join("sliding_friction.csv"));
-            let peak = result(&s, "sliding_friction.mu_peak");
-            let last = t.rows.len() - 1;
-            assert!(t.get("mu_mean", 0) < 0.05 * peak && t.get("mu_mean", last) < 0.05 * peak);
-            for k in 0..t.rows.len() {
-                assert_eq!(t.get("converged", k), 1.0, "row {k}");
-                if t.get("kv", k) <= 100.0 {
-                    let (m, e) = (t.get("mu_mean", k), t.get("mu_energy_mean", k));
-                    assert!((e / m - 1.0).abs() < 0.02, "row {k}: {m} vs {e}");
-                }
-            }
-            let xi = result(&s, "sliding_friction.xi");
-            assert!((0.4..1.2).contains(&xi), "xi {xi}");
-            assert!(s["failures"].as_array().unwrap().is_empty());
-        }
-        if *name == "fig7-3d-ci" {
-            // Fig. 7 in 3D at 128^2: every solve converged on both grids; the rubbery end
-            // is resolved (the two routes to mu within 10 %, the grid change within 30 %);
-            // mu -> 0 at both ends; xi of Eq. (82) fitted to each side is of order one.
-            let t = read_csv(&out.join("sliding_friction_3d.csv"));
-            let peak = result(&s, "sliding_friction_3d.mu_peak_3d");
-            let last = t.rows.len() - 1;
-            for k in 0..t.rows.len() {
-                assert_eq!(t.get("solves_converged", k), 6.0, "row {k}");
-            }
-            assert_eq!(t.get("resolved", 0), 1.0);
-            assert!(t.get("routes_rel_diff_max", 0) < 0.1 && t.get("grid_rel_change", 0) < 0.3);
-            assert!(
-                t.get("mu_3d_mean", 0) < 0.05 * peak && t.get("mu_3d_mean", last) < 0.05 * peak
-            );
-            for side in ["3d", "mrd"] {
-                let xi = result(&s, &format!("sliding_friction_3d.xi_{side}"));
-                assert!((0.2..1.5).contains(&xi), "xi_{side} {xi}");
-            }
-            assert!(s["failures"].as_array().unwrap().is_empty());
-        }
-        if *name == "fig7-viscous" {
-            // Eq. (83): on a purely viscous medium mu = xi grad z, independent of v, with
-            // xi near 1 for a fractal line.
-            let t = read_csv(&out.join("sliding_friction.csv"));
-            let mu = t.column("mu_mean");
-            let spread = mu
-                .iter()
-                .fold(0.0f64, |m, &v| m.max((v / mu[0] - 1.0).abs()));
-            assert!(spread < 0.05, "mu {mu:?}");
-            let (lo, hi) = (
-                result(&s, "sliding_friction.xi_lo95"),
-                result(&s, "sliding_friction.xi_hi95"),
-            );
-            assert!(lo > 0.8 && hi < 1.6, "xi in [{lo}, {hi}]");
-        }
-        if *name == "static-friction-3d-ci" {
-            // Eq. (93) machinery: past complete contact xi = 1 on both sides and every
-            // geometry; below it 0 < xi < 1 and xi grows with f; the fit of Eq. (91) has
-            // b > 0 on both sides; every 3D solve converged; the refinement is reported.
-            let t = read_csv(&out.join("static_friction_3d.csv"));
-            let last = t.rows.len() - 1;
-            for k in 0..t.rows.len() {
-                let xi = t.get("xi_3d", k);
-                if t.get("area_3d", k) == 1.0 {
-                    assert!((xi - 1.0).abs() < 1e-12, "row {k}: {xi}");
-                    assert_eq!(t.get("xi_mrd_pi", k), 1.0);
-                } else {
-                    assert!(xi > 0.0 && xi < 1.0, "row {k}: {xi}");
-                    assert!(xi < t.get("xi_3d", k + 1) + t.get("xi_3d_ci95", k + 1));
-                }
-            }
-            assert_eq!(t.get("area_3d", last), 1.0);
-            assert_eq!(t.get("realisations_3d", 0), 4.0);
-            let fits = read_csv(&out.join("static_friction_3d_fit.csv"));
-            assert_eq!(fits.rows.len(), 6, "2 geometries x (3D + 2 lambdas)");
-            for k in 0..fits.rows.len() {
-                let (b, lo, hi) = (
-                    fits.get("b", k),
-                    fits.get("b_lo95", k),
-                    fits.get("b_hi95", k),
-                );
-                assert!(
-                    b > 0.0 && lo <= b && b <= hi,
-                    "fit row {k}: {b} [{lo}, {hi}]"
-                );
-            }
-            let change = result(&s, "static_friction_3d.refine_change");
-            assert!(change.abs() < result(&s, "static_friction_3d.refine_xi_ci95"));
-            assert!(s["failures"].as_array().unwrap().is_empty());
-            assert!(stages(&s).contains(&"bem3d".to_string()));
-            continue;
-        }
-        if *name == "tangential-viscoelastic-3d" {
-            // Eqs. 64-65 in 3D: on a viscoelastic half-space (free, 25.6 cells per contact
-            // radius) the force history of ramp, hold and cycle follows MRD's springs
-            // within 1e-3 of the peak (measured 1.5e-4), the cycle's energy within 0.5 %
-            // (measured 0.006 %), the stick radius within 3 % of a (measured 0.84 %).
-            let k = "tangential_viscoelastic";
-            let f = result(&s, &format!("{k}.force_max_abs_dev_3d_vs_mrd_over_peak"));
-            let w = result(&s, &format!("{k}.cycle_dissipation_3d_over_mrd"));
-            let c = result(
-                &s,
-                &format!("{k}.stick_radius_max_abs_dev_3d_vs_mrd_over_a"),
-            );
-            assert!(
-                f < 1e-3 && (w - 1.0).abs() < 5e-3 && c < 0.03,
-                "{f} {w} {c}"
-            );
-            continue;
-        }
-        if *name == "tangential-viscoelastic" {
-            // Work = stored + viscous + friction dissipation to trapezoid accuracy; the
-            // viscoelastic loop dissipates more than the relaxed elastic one (its
-            // glassy stiffness makes it slip more, and its dashpots dissipate).
-            let r = result(
-                &s,
-                "tangential_viscoelastic.energy_balance_max_residual_over_work",
-            );
-            assert!(r < 1e-4, "{r}");
-            let ve = result(&s, "tangential_viscoelastic.cycle_dissipation");
-            let el = result(
-                &s,
-                "tangential_viscoelastic.cycle_dissipation_relaxed_elastic",
-            );
-            assert!(ve > 10.0 * el && el > 0.0, "{ve} {el}");
-            continue;
-        }
-        if *name == "viscoelastic-rough-ci" {
-            // Physics in tests/suite/viscoelastic_rough.rs; here: the transient 3D stage ran.
-            assert!(stages(&s).contains(&"viscoelastic_3d".to_string()));
-            continue;
-        }
-        if *name == "rough-sphere-ci" {
-            // The smooth sphere is Hertz on both sides (3D at 16 cells per Hertz radius:
-            // 3 cells across the smallest contact, hence the stiffness tolerance; MRD to
-            // its spring spacing); roughness softens the contact at small forces on both
-            // sides; no contact reaches the map's edge; every solve converged.
-            let dev =
-                |k: &str| result(&s, &format!("rough_sphere.smooth_{k}_max_rel_dev_vs_hertz"));
-            assert!(dev("3d_d") < 5e-3 && dev("3d_a") < 0.03 && dev("3d_k") < 0.08);
-            assert!(dev("mrd_d") < 1e-3 && dev("mrd_a") < 2e-3 && dev("mrd_k") < 0.03);
-            let v = &s["results"]["rough_sphere.per_alpha"];
-            assert_eq!(v["0"]["lambda_0"]["within_5_percent"], true, "{v}");
-            let t = read_csv(&out.join("rough_sphere.csv"));
-            let first_rough = (0..t.rows.len())
-                .find(|&k| t.get("alpha", k) == 2.0)
-                .unwrap();
-            let k_h = t.get("k_hertz", first_rough);
-            assert!(t.get("k_3d", first_rough) < 0.9 * k_h);
-            assert!(t.get("k_mrd_0", first_rough) < 0.95 * k_h);
-            assert!(
-                s["warnings"].as_array().unwrap().is_empty(),
-                "{}",
-                s["warnings"]
-            );
-            assert!(s["failures"].as_array().unwrap().is_empty());
-            assert!(stages(&s).contains(&"bem3d_stiffness".to_string()));
-            continue;
-        }
-        if *name == "calibrate-ci" {
-            // H = 0.5 at bandwidth 16: the lambda study's range at low bandwidth (3.36
-            // [3.19, 3.52] at 32, 216 punches); an interval that holds the value; the
-            // misfit after calibration small; the two exponents close (Eq. 77), below
-            // 1/(1+H) (Eq. 80) at this bandwidth as in the study.
-            let r = |k: &str| result(&s, &format!("calibrate.{k}"));
-            let (l, lo, hi) = (r("lambda"), r("lambda_lo"), r("lambda_hi"));
-            assert!(lo < l && l < hi && (2.5..4.5).contains(&l), "{lo} {l} {hi}");
-            assert!(r("misfit_max") < 0.2 && r("misfit_rms") < 0.1);
-            let (a3, a1) = (r("alpha_3d"), r("alpha_mrd"));
-            assert!(
-                (a3 - a1).abs() < 0.05 && (0.45..0.67).contains(&a3),
-                "{a3} {a1}"
-            );
-            assert!(hi / l - 1.0 <= 0.3 && 1.0 - lo / l <= 0.3);
-            let t = read_csv(&out.join("curves.csv"));
-            assert!(t.rows.len() > 20);
-            continue;
-        }
-        if *name == "contact-area-ci" {
-            // Section 11: the MRD contact-length fraction is several times the 3D area
-            // fraction at small forces on this punch (single macro-contact), and the two
-            // approach each other as the contact fills.
-            let t = read_csv(&out.join("contact_area.csv"));
-            for (h, v) in s["results"]["contact_area.per_hurst"].as_object().unwrap() {
-                let r0 = v["area_ratio_initial"].as_f64().unwrap();
-                assert!(r0 > 3.0, "H = {h}: initial ratio {r0}");
-                let rows: Vec<usize> = (0..t.rows.len())
-                    .filter(|&k| t.get("hurst", k) == h.parse::<f64>().unwrap())
-                    .collect();
-                let last = *rows.last().unwrap();
-                let r_end = t.get("area_mrd", last) / t.get("area_3d", last);
-                assert!(r_end < r0 / 2.0, "H = {h}: ratio {r0} -> {r_end}");
-                for w in rows.windows(2) {
-                    assert!(t.get("area_3d", w[1]) >= t.get("area_3d", w[0]) - 1e-12);
-                    assert!(t.get("area_mrd", w[1]) >= t.get("area_mrd", w[0]));
-                }
-            }
-            assert!(stages(&s).contains(&"bem3d".to_string()));
-            continue;
-        }
-        // MRD-only scenes never touch the 3D solver.
-        assert!(stages(&s).iter().all(|st| !st.starts_with("bem")), "{name}");
+        return;
     }
+    if *name == "tangential-stiffness-3d-ci" {
+        for k in [
+            "kt_over_kn_max_rel_dev_3d_vs_mrd",
+            "kt_over_kn_max_rel_change_last_refinement",
+            "kt_along_only_max_rel_dev",
+        ] {
+            let key = format!("tangential_stiffness_3d.{k}");
+            assert!(result(&s, &key).is_finite(), "{k}");
+        }
+        return;
+    }
+    if *name == "tangential-3d-cone" {
+        for k in [
+            "stick_radius_max_rel_dev_3d_vs_mrd",
+            "dissipation_max_rel_dev_3d_vs_mrd",
+            "energy_balance_max_rel_3d",
+        ] {
+            assert!(result(&s, &format!("tangential_3d.{k}")).is_finite(), "{k}");
+        }
+        return;
+    }
+    if *name == "tangential-3d-free" {
+        // The free half-space at 64 cells per contact radius (no periodic images):
+        // the stick radius within 1 % of Cattaneo-Mindlin (measured 0.57 %, a count
+        // of cells), the energy per cycle within 0.3 % of Mindlin-Deresiewicz
+        // (measured 0.07 %).
+        let c = result(&s, "tangential_3d.stick_radius_max_rel_error_3d");
+        let w = result(&s, "tangential_3d.dissipation_max_rel_error_3d");
+        assert!(c < 0.01 && w < 0.003, "c/a {c}, W {w}");
+        return;
+    }
+    if *name == "tangential-3d" {
+        // The keys the checks above read are present (a renamed key fails here).
+        for k in [
+            "stick_radius_max_rel_error_3d",
+            "dissipation_max_rel_error_3d",
+        ] {
+            assert!(result(&s, &format!("tangential_3d.{k}")).is_finite());
+        }
+        assert!(stages(&s).contains(&"tangential_3d".to_string()));
+        return;
+    }
+    if *name == "rough-stiffness" {
+        // Eq. (80): alpha = 1/(1+H) for the MRD rough line (stated tolerance 0.02).
+        let a = result(&s, "rough_stiffness.alpha");
+        assert!(
+            (a - result(&s, "rough_stiffness.alpha_scaling_eq80")).abs() < 0.02,
+            "alpha {a}"
+        );
+    }
+    if *name == "fig9" {
+        // h calibrated to ~40 contacts at F = 500 (on 40 lines; 300 lines agree to 15 %),
+        // and the slope b of Eq. (91) near the caption's 0.0614 for Hurst 1.
+        let c = result(&s, "static_friction.contacts_at_max_force");
+        assert!((c / 40.0 - 1.0).abs() < 0.15, "contacts {c}");
+        let b = result(&s, "static_friction.b");
+        let ci = result(&s, "static_friction.b_ci95");
+        assert!((b - 0.0614).abs() < 2.0 * ci, "b = {b} +/- {ci}");
+    }
+    if *name == "fig9-readings" {
+        // Reading A (rms height h = 1) touches at thousands of points at F = 500, not
+        // the caption's 40: the caption's "H = 1" is the Hurst exponent.
+        assert!(result(&s, "static_friction.contacts_at_max_force") > 1000.0);
+        // b of Eq. (91) falls with H (reading B, H = 0.3 .. 1).
+        let b: Vec<f64> = (2..=5)
+            .map(|k| result(&s, &format!("static_friction_{k}.b")))
+            .collect();
+        assert!(b.windows(2).all(|w| w[1] < w[0]), "{b:?}");
+    }
+    // The plan is true: every output ran exactly the stages it declared.
+    for o in s["outputs"].as_array().unwrap() {
+        assert_eq!(o["stages"], o["declared"], "{name}: {o}");
+        assert!(!o["stages"].as_array().unwrap().is_empty(), "{name}: {o}");
+    }
+    if *name == "fig7-ci" {
+        // Section 10.1: mu -> 0 at both ends of seven decades of velocity, every run
+        // reached its steady state, the dissipated energy per unit distance equals the
+        // friction force where contacts are resolved (k v <= 100 rad/s: 2 %), and xi of
+        // Eq. (82) is of order one.
+        let t = read_csv(&out.join("sliding_friction.csv"));
+        let peak = result(&s, "sliding_friction.mu_peak");
+        let last = t.rows.len() - 1;
+        assert!(t.get("mu_mean", 0) < 0.05 * peak && t.get("mu_mean", last) < 0.05 * peak);
+        for k in 0..t.rows.len() {
+            assert_eq!(t.get("converged", k), 1.0, "row {k}");
+            if t.get("kv", k) <= 100.0 {
+                let (m, e) = (t.get("mu_mean", k), t.get("mu_energy_mean", k));
+                assert!((e / m - 1.0).abs() < 0.02, "row {k}: {m} vs {e}");
+            }
+        }
+        let xi = result(&s, "sliding_friction.xi");
+        assert!((0.4..1.2).contains(&xi), "xi {xi}");
+        assert!(s["failures"].as_array().unwrap().is_empty());
+    }
+    if *name == "fig7-3d-ci" {
+        // Fig. 7 in 3D at 128^2: every solve converged on both grids; the rubbery end
+        // is resolved (the two routes to mu within 10 %, the grid change within 30 %);
+        // mu -> 0 at both ends; xi of Eq. (82) fitted to each side is of order one.
+        let t = read_csv(&out.join("sliding_friction_3d.csv"));
+        let peak = result(&s, "sliding_friction_3d.mu_peak_3d");
+        let last = t.rows.len() - 1;
+        for k in 0..t.rows.len() {
+            assert_eq!(t.get("solves_converged", k), 6.0, "row {k}");
+        }
+        assert_eq!(t.get("resolved", 0), 1.0);
+        assert!(t.get("routes_rel_diff_max", 0) < 0.1 && t.get("grid_rel_change", 0) < 0.3);
+        assert!(t.get("mu_3d_mean", 0) < 0.05 * peak && t.get("mu_3d_mean", last) < 0.05 * peak);
+        for side in ["3d", "mrd"] {
+            let xi = result(&s, &format!("sliding_friction_3d.xi_{side}"));
+            assert!((0.2..1.5).contains(&xi), "xi_{side} {xi}");
+        }
+        assert!(s["failures"].as_array().unwrap().is_empty());
+    }
+    if *name == "fig7-viscous" {
+        // Eq. (83): on a purely viscous medium mu = xi grad z, independent of v, with
+        // xi near 1 for a fractal line.
+        let t = read_csv(&out.join("sliding_friction.csv"));
+        let mu = t.column("mu_mean");
+        let spread = mu
+            .iter()
+            .fold(0.0f64, |m, &v| m.max((v / mu[0] - 1.0).abs()));
+        assert!(spread < 0.05, "mu {mu:?}");
+        let (lo, hi) = (
+            result(&s, "sliding_friction.xi_lo95"),
+            result(&s, "sliding_friction.xi_hi95"),
+        );
+        assert!(lo > 0.8 && hi < 1.6, "xi in [{lo}, {hi}]");
+    }
+    if *name == "static-friction-3d-ci" {
+        // Eq. (93) machinery: past complete contact xi = 1 on both sides and every
+        // geometry; below it 0 < xi < 1 and xi grows with f; the fit of Eq. (91) has
+        // b > 0 on both sides; every 3D solve converged; the refinement is reported.
+        let t = read_csv(&out.join("static_friction_3d.csv"));
+        let last = t.rows.len() - 1;
+        for k in 0..t.rows.len() {
+            let xi = t.get("xi_3d", k);
+            if t.get("area_3d", k) == 1.0 {
+                assert!((xi - 1.0).abs() < 1e-12, "row {k}: {xi}");
+                assert_eq!(t.get("xi_mrd_pi", k), 1.0);
+            } else {
+                assert!(xi > 0.0 && xi < 1.0, "row {k}: {xi}");
+                assert!(xi < t.get("xi_3d", k + 1) + t.get("xi_3d_ci95", k + 1));
+            }
+        }
+        assert_eq!(t.get("area_3d", last), 1.0);
+        assert_eq!(t.get("realisations_3d", 0), 4.0);
+        let fits = read_csv(&out.join("static_friction_3d_fit.csv"));
+        assert_eq!(fits.rows.len(), 6, "2 geometries x (3D + 2 lambdas)");
+        for k in 0..fits.rows.len() {
+            let (b, lo, hi) = (
+                fits.get("b", k),
+                fits.get("b_lo95", k),
+                fits.get("b_hi95", k),
+            );
+            assert!(
+                b > 0.0 && lo <= b && b <= hi,
+                "fit row {k}: {b} [{lo}, {hi}]"
+            );
+        }
+        let change = result(&s, "static_friction_3d.refine_change");
+        assert!(change.abs() < result(&s, "static_friction_3d.refine_xi_ci95"));
+        assert!(s["failures"].as_array().unwrap().is_empty());
+        assert!(stages(&s).contains(&"bem3d".to_string()));
+        return;
+    }
+    if *name == "tangential-viscoelastic-3d" {
+        // Eqs. 64-65 in 3D: on a viscoelastic half-space (free, 25.6 cells per contact
+        // radius) the force history of ramp, hold and cycle follows MRD's springs
+        // within 1e-3 of the peak (measured 1.5e-4), the cycle's energy within 0.5 %
+        // (measured 0.006 %), the stick radius within 3 % of a (measured 0.84 %).
+        let k = "tangential_viscoelastic";
+        let f = result(&s, &format!("{k}.force_max_abs_dev_3d_vs_mrd_over_peak"));
+        let w = result(&s, &format!("{k}.cycle_dissipation_3d_over_mrd"));
+        let c = result(
+            &s,
+            &format!("{k}.stick_radius_max_abs_dev_3d_vs_mrd_over_a"),
+        );
+        assert!(
+            f < 1e-3 && (w - 1.0).abs() < 5e-3 && c < 0.03,
+            "{f} {w} {c}"
+        );
+        return;
+    }
+    if *name == "tangential-viscoelastic" {
+        // Work = stored + viscous + friction dissipation to trapezoid accuracy; the
+        // viscoelastic loop dissipates more than the relaxed elastic one (its
+        // glassy stiffness makes it slip more, and its dashpots dissipate).
+        let r = result(
+            &s,
+            "tangential_viscoelastic.energy_balance_max_residual_over_work",
+        );
+        assert!(r < 1e-4, "{r}");
+        let ve = result(&s, "tangential_viscoelastic.cycle_dissipation");
+        let el = result(
+            &s,
+            "tangential_viscoelastic.cycle_dissipation_relaxed_elastic",
+        );
+        assert!(ve > 10.0 * el && el > 0.0, "{ve} {el}");
+        return;
+    }
+    if *name == "viscoelastic-rough-ci" {
+        // Physics in tests/suite/viscoelastic_rough.rs; here: the transient 3D stage ran.
+        assert!(stages(&s).contains(&"viscoelastic_3d".to_string()));
+        return;
+    }
+    if *name == "rough-sphere-ci" {
+        // The smooth sphere is Hertz on both sides (3D at 16 cells per Hertz radius:
+        // 3 cells across the smallest contact, hence the stiffness tolerance; MRD to
+        // its spring spacing); roughness softens the contact at small forces on both
+        // sides; no contact reaches the map's edge; every solve converged.
+        let dev = |k: &str| result(&s, &format!("rough_sphere.smooth_{k}_max_rel_dev_vs_hertz"));
+        assert!(dev("3d_d") < 5e-3 && dev("3d_a") < 0.03 && dev("3d_k") < 0.08);
+        assert!(dev("mrd_d") < 1e-3 && dev("mrd_a") < 2e-3 && dev("mrd_k") < 0.03);
+        let v = &s["results"]["rough_sphere.per_alpha"];
+        assert_eq!(v["0"]["lambda_0"]["within_5_percent"], true, "{v}");
+        let t = read_csv(&out.join("rough_sphere.csv"));
+        let first_rough = (0..t.rows.len())
+            .find(|&k| t.get("alpha", k) == 2.0)
+            .unwrap();
+        let k_h = t.get("k_hertz", first_rough);
+        assert!(t.get("k_3d", first_rough) < 0.9 * k_h);
+        assert!(t.get("k_mrd_0", first_rough) < 0.95 * k_h);
+        assert!(
+            s["warnings"].as_array().unwrap().is_empty(),
+            "{}",
+            s["warnings"]
+        );
+        assert!(s["failures"].as_array().unwrap().is_empty());
+        assert!(stages(&s).contains(&"bem3d_stiffness".to_string()));
+        return;
+    }
+    if *name == "calibrate-ci" {
+        // H = 0.5 at bandwidth 16: the lambda study's range at low bandwidth (3.36
+        // [3.19, 3.52] at 32, 216 punches); an interval that holds the value; the
+        // misfit after calibration small; the two exponents close (Eq. 77), below
+        // 1/(1+H) (Eq. 80) at this bandwidth as in the study.
+        let r = |k: &str| result(&s, &format!("calibrate.{k}"));
+        let (l, lo, hi) = (r("lambda"), r("lambda_lo"), r("lambda_hi"));
+        assert!(lo < l && l < hi && (2.5..4.5).contains(&l), "{lo} {l} {hi}");
+        assert!(r("misfit_max") < 0.2 && r("misfit_rms") < 0.1);
+        let (a3, a1) = (r("alpha_3d"), r("alpha_mrd"));
+        assert!(
+            (a3 - a1).abs() < 0.05 && (0.45..0.67).contains(&a3),
+            "{a3} {a1}"
+        );
+        assert!(hi / l - 1.0 <= 0.3 && 1.0 - lo / l <= 0.3);
+        let t = read_csv(&out.join("curves.csv"));
+        assert!(t.rows.len() > 20);
+        return;
+    }
+    if *name == "contact-area-ci" {
+        // Section 11: the MRD contact-length fraction is several times the 3D area
+        // fraction at small forces on this punch (single macro-contact), and the two
+        // approach each other as the contact fills.
+        let t = read_csv(&out.join("contact_area.csv"));
+        for (h, v) in s["results"]["contact_area.per_hurst"].as_object().unwrap() {
+            let r0 = v["area_ratio_initial"].as_f64().unwrap();
+            assert!(r0 > 3.0, "H = {h}: initial ratio {r0}");
+            let rows: Vec<usize> = (0..t.rows.len())
+                .filter(|&k| t.get("hurst", k) == h.parse::<f64>().unwrap())
+                .collect();
+            let last = *rows.last().unwrap();
+            let r_end = t.get("area_mrd", last) / t.get("area_3d", last);
+            assert!(r_end < r0 / 2.0, "H = {h}: ratio {r0} -> {r_end}");
+            for w in rows.windows(2) {
+                assert!(t.get("area_3d", w[1]) >= t.get("area_3d", w[0]) - 1e-12);
+                assert!(t.get("area_mrd", w[1]) >= t.get("area_mrd", w[0]));
+            }
+        }
+        assert!(stages(&s).contains(&"bem3d".to_string()));
+        return;
+    }
+    // MRD-only scenes never touch the 3D solver.
+    assert!(stages(&s).iter().all(|st| !st.starts_with("bem")), "{name}");
 }
 
 #[test]

@@ -328,9 +328,10 @@ class CohesiveStep:
         """Cell pressures, shape (ny, nx) [stress], negative in tension (>= -sigma0)."""
 
 class CohesiveContact:
-    """A rigid surface in Maugis-Dugdale adhesive contact with an elastic half-space,
-    free or periodic, loaded along an approach history: a tension sigma0 wherever the gap
-    lies below the range w / sigma0 (Bradley's to JKR's limit with the Tabor parameter)."""
+    """A rigid surface in finite-range adhesive contact with an elastic half-space, free
+    or periodic, loaded along an approach history. law="dugdale": a tension sigma0
+    wherever the gap lies below the range rho = w / sigma0; law="exponential": the
+    tension sigma0 exp(-gap / rho) (Bradley's to JKR's limit with the Tabor parameter)."""
 
     def __init__(
         self,
@@ -341,12 +342,14 @@ class CohesiveContact:
         e_star: float = 1.0,
         mask: Optional[ArrayLike] = None,
         periodic: bool = False,
+        law: str = "dugdale",
     ) -> None:
-        """work: the work of adhesion w [stress x length], > 0; sigma0: the cohesive
-        stress [stress], > 0; heights, size, e_star, mask as for Contact. periodic=False:
-        the free half-space, approach from first contact; periodic=True: the approach d
-        fixes the mean gap at mean(max(h) - h) - d (approaches reaching complete contact
-        raise ValueError). Starts out of contact."""
+        """work: the work of adhesion w [stress x length], > 0; sigma0: the peak
+        cohesive stress [stress], > 0; heights, size, e_star, mask as for Contact.
+        periodic=False: the free half-space, approach from first contact; periodic=True:
+        the approach d fixes the mean gap at mean(max(h) - h) - d (approaches reaching
+        complete contact raise ValueError). law: "dugdale" or "exponential" (the
+        adhesive energy -w exp(-gap / rho), rho = w / sigma0). Starts out of contact."""
     def step(self, approach: float, *, tolerance: float = 1e-8) -> CohesiveStep:
         """Load from the last state to the approach [length] from first contact
         (negative: retracted). Releases the GIL."""
@@ -356,6 +359,9 @@ class CohesiveContact:
     @property
     def resolved(self) -> bool:
         """Whether the Dugdale length spans at least 10 cells."""
+    @property
+    def law(self) -> str:
+        """The traction-gap law: "dugdale" or "exponential"."""
     @property
     def shape(self) -> Tuple[int, int]: ...
     @property
