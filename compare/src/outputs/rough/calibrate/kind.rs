@@ -29,7 +29,7 @@ impl Output for Calibrate {
         if !(self.target > 0.0 && self.target < 1.0) {
             return bad(format!("target = {} must lie in (0, 1)", self.target));
         }
-        let case = Case::new(self, ctx)?;
+        let case = self.case(ctx)?;
         let g = case.grid.max(case.map.as_ref().map_or(0, |m| m.n));
         if g > 4096 {
             return bad(format!(
@@ -63,7 +63,7 @@ impl Output for Calibrate {
     }
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
-        let make = || Case::new(self, env.ctx);
+        let make = || self.case(env.ctx);
         let case = if self.topography.is_some() || self.psd.is_some() {
             out.stage(Stage::Psd, make)?
         } else {
@@ -74,7 +74,7 @@ impl Output for Calibrate {
         }
         let work = env.work_root.join(self.key());
         let plan = out.stages_together(&crate::experiment::rough_punch::STAGES, || {
-            self.realise(&case, &work, env.control)
+            self.realise(case, &work, env.control)
         })?;
         let (cal, map) = out.stage(Stage::SweepFit, || -> Result<_> {
             let map = match (&case.map, self.solves_map()) {
@@ -87,23 +87,36 @@ impl Output for Calibrate {
             };
             Ok((plan, map))
         })?;
-        report::report(self, &case, &cal, map.as_ref(), &env.ctx.units.length, out)
+        report::report(self, case, &cal, map.as_ref(), &env.ctx.units.length, out)
     }
 }
 
 impl Calibrate {
     /// Computes (unless `report_only`) and calibrates on `min` realisations, then on
     /// batches more while lambda's interval is wider than the target; a sharded run
-    /// computes every realisation up to `max` and reports nothing.
+    /// computes every realisation up to `max` and reports nothing. Each punch's curve is
+    /// read and reduced once, when its batch is first calibrated.
     fn realise(&self, case: &Case, work: &Path, control: &RunControl) -> Result<Calibration> {
         let r = self.realisations;
         let head = tasks::all(self).len() - r.max as usize;
+        let fs = tasks::f_grid();
+        let (mut k1, mut k3): (Option<Vec<Option<f64>>>, _) = (None, Vec::new());
         let mut n = r.min;
         loop {
             if !control.report_only {
                 tasks::compute(self, case, work, head + n as usize, n == r.min, control)?;
             }
-            let c = self.calibrate(case, work, n)?;
+            if k1.is_none() {
+                k1 = Some(analysis::mean_lines(&tasks::load::<Lines>(
+                    work,
+                    Task::Mrd,
+                )?));
+            }
+            for r in k3.len() as u64..n {
+                let curve = tasks::load::<BemCurve>(work, Task::Bem(r))?;
+                k3.push(analysis::reduce(&curve, &fs));
+            }
+            let c = self.calibrate(case, &fs, &k3, k1.as_deref().unwrap_or_default())?;
             let met = c.lambda.relative_half_width() <= self.target;
             if met || n >= r.max {
                 return Ok(c);
@@ -112,25 +125,21 @@ impl Calibrate {
         }
     }
 
-    /// The calibration on the first `n` punches of `work`.
-    fn calibrate(&self, case: &Case, work: &Path, n: u64) -> Result<Calibration> {
-        let fs = tasks::f_grid();
-        let lines: Lines = tasks::load(work, Task::Mrd)?;
-        let k1 = analysis::mean_lines(&lines);
-        let k3 = (0..n)
-            .map(|r| {
-                Ok(analysis::reduce(
-                    &tasks::load::<BemCurve>(work, Task::Bem(r))?,
-                    &fs,
-                ))
-            })
-            .collect::<Result<Vec<_>>>()?;
+    /// The calibration on the reduced 3D curves `k3` against the mean MRD curve `k1`.
+    fn calibrate(
+        &self,
+        case: &Case,
+        fs: &[f64],
+        k3: &[Vec<Option<f64>>],
+        k1: &[Option<f64>],
+    ) -> Result<Calibration> {
         let mut rng = mrd::roughness::synthesis::realisation_rng(self.seed, 0x6361_6c69);
-        analysis::calibrate(&fs, &k3, &k1, self.window, case.rms_factor(case.band), &mut rng)
+        analysis::calibrate(fs, k3, k1, self.window, case.rms_factor(case.band), &mut rng)
             .ok_or_else(|| {
                 CompareError::Scene(format!(
-                    "fewer than 3 points of the 3D mean k/(E* L) lie in window = {:?} after {n} punches: widen the window or raise loads",
-                    self.window
+                    "fewer than 3 points of the 3D mean k/(E* L) lie in window = {:?} after {} punches: widen the window or raise loads",
+                    self.window,
+                    k3.len()
                 ))
             })
     }
@@ -162,7 +171,7 @@ impl Checkpointed for Calibrate {
     }
 
     fn compute(&self, ctx: &Context, dir: &Path, control: &RunControl) -> Result<()> {
-        let case = Case::new(self, ctx)?;
-        tasks::compute(self, &case, dir, tasks::all(self).len(), true, control)
+        let case = self.case(ctx)?;
+        tasks::compute(self, case, dir, tasks::all(self).len(), true, control)
     }
 }
