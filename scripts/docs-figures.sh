@@ -19,7 +19,8 @@ all=(
   static-friction-3d:static_friction_3d_periodic.png,static_friction_3d_disc.png
   rough-sphere:rough_sphere_stiffness.png,rough_sphere_radius.png
   viscoelastic-rough:viscoelastic_rough_radok.png,viscoelastic_rough_approach.png
-  adhesion-3d adhesion-tabor rough-adhesion-3d rough-adhesion-3d-punch tangential-3d
+  adhesion-3d adhesion-tabor adhesion-tabor-exponential rough-adhesion-3d
+  rough-adhesion-3d-punch tangential-3d
   tangential-3d-free tangential-viscoelastic-3d tangential-stiffness-3d
   rough-partial-slip-3d rough-slip-3d rough-slip-3d-punch
   calibrate-rolloff:curves.png,curves_4.png

@@ -30,7 +30,10 @@
 //! gaps (a majorant: the rounds never raise the total energy, the convex-concave
 //! procedure), which is the problem above with a bound `-sigma0 exp(-g_last / delta)` per
 //! cell, solved by the same projected conjugate gradient. The rounds stop when every cell
-//! out of contact holds the law at its own gap within `tolerance * sigma0`.
+//! out of contact holds the law at its own gap within the tension that a gap error of
+//! the solves' own criterion (`tolerance` times the length scale) makes,
+//! `tolerance * sigma0 * scale / delta`: a tighter stop would ask the tensions for more
+//! than the gaps they come from resolve.
 //!
 //! **Approach on a periodic cell.** The periodic half-space carries no mean displacement
 //! (its k = 0 mode), so the approach `d` fixes the mean gap over the cell at
@@ -208,6 +211,7 @@ impl<C: Preconditioner> CohesiveContact<C> {
         let (mut iterations, mut residual) = (0, 0.0);
         self.op.apply(&self.p, &mut self.u);
         let (sigma0, range) = (self.sigma0, self.range);
+        let scale = self.rms.max(d.abs()).max(range);
         let tension = move |g: f64| -sigma0 * (-g.max(0.0) / range).exp();
         for round in 1..=MAX_ROUNDS {
             // The law's departure on the cells out of contact (at their bound).
@@ -215,7 +219,7 @@ impl<C: Preconditioner> CohesiveContact<C> {
                 .filter(|&i| self.domain[i] && self.p[i] <= self.bound[i])
                 .map(|i| (self.p[i] - tension(self.u[i] + self.z[i] - d)).abs())
                 .fold(0.0f64, f64::max);
-            if round > 1 && departure <= tolerance * self.sigma0 {
+            if round > 1 && departure <= tolerance * self.sigma0 * scale / self.range {
                 return Ok(self.report(d, round, iterations, residual));
             }
             for i in (0..n).filter(|&i| self.domain[i]) {

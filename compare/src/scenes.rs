@@ -14,6 +14,10 @@ pub const EMBEDDED: &[(&str, &str)] = &[
         include_str!("../../cases/adhesion-tabor.toml"),
     ),
     (
+        "adhesion-tabor-exponential",
+        include_str!("../../cases/adhesion-tabor-exponential.toml"),
+    ),
+    (
         "adhesion-3d-cone",
         include_str!("../../cases/adhesion-3d-cone.toml"),
     ),

@@ -120,6 +120,7 @@ fn runs_elsewhere(name: &str) -> bool {
                 | "rough-adhesion-3d"
                 | "rough-adhesion-3d-punch"
                 | "calibrate-rolloff"
+                | "adhesion-tabor-exponential"
         )
 }
 

@@ -1,13 +1,17 @@
 //! `tabor_3d`: where MRD's adhesion holds as the range of adhesion grows: the pull-off
 //! force of a sphere against the Tabor-Maugis parameter lambda, in 3D with the
-//! Maugis-Dugdale law (`bem3d::cohesive`), in Maugis' closed form, and by MRD's rule of
-//! Hess with Eq. 33, which is the zero-range (JKR) limit: -3/2 pi w R whatever lambda.
+//! Maugis-Dugdale or the exponential law (`bem3d::cohesive`, key `law`), in Maugis'
+//! closed form (the Dugdale law's; for the exponential law a reference, not its answer),
+//! and by MRD's rule of Hess with Eq. 33, which is the zero-range (JKR) limit: -3/2 pi w
+//! R whatever lambda.
 //!
-//! Each lambda sets the cohesive stress sigma0 = lambda (2 pi w E*^2 / (9 R))^(1/3) and
-//! the range w / sigma0. The 3D grid is free, of side `extent` times the diameter of the
-//! cohesive zone at `depth_max` (rigid estimate sqrt(a^2 + 2 R range)); the cycle is
-//! the one of `adhesion_3d` (approach steps in, and out until the cohesive zone is
-//! gone); the pull-off is the smallest force of the unloading.
+//! Each lambda sets the cohesive stress sigma0 = lambda (2 pi w E*^2 / (9 R))^(1/3) (the
+//! exponential law's peak tension) and the range w / sigma0. The 3D grid is free, of
+//! side `extent` times the diameter of the cohesive zone at `depth_max` (rigid estimate
+//! sqrt(a^2 + 2 R reach), the reach being the range for the Dugdale law and 9.2 ranges,
+//! where the tension falls below 1e-4 sigma0, for the exponential law); the cycle is the
+//! one of `adhesion_3d` (approach steps in, and out until the cohesive zone is gone);
+//! the pull-off is the smallest force of the unloading.
 
 use crate::checks::{bad, check_memory, check_tolerance, default_tolerance, positive};
 use crate::context::Context;
@@ -16,7 +20,7 @@ use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
-use bem3d::cohesive::{CohesiveContact, RESOLVED_CELLS};
+use bem3d::cohesive::{CohesiveContact, CohesiveLaw, RESOLVED_CELLS};
 use bem3d::NonPeriodicHalfSpace;
 use mrd::adhesion::{AdhesiveContact as AdhesiveRow, Control};
 use mrd::reference::{for_profile, maugis_dugdale};
@@ -43,6 +47,41 @@ pub struct Tabor3d {
     steps: usize,
     #[serde(default = "default_tolerance")]
     tolerance: f64,
+    /// The traction-gap law of the 3D runs.
+    #[serde(default)]
+    law: Law,
+}
+
+/// `law = "dugdale"` (the default) or `"exponential"`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum Law {
+    #[default]
+    Dugdale,
+    Exponential,
+}
+
+impl Law {
+    /// The figure's title and the 3D series' qualifier.
+    fn labels(self) -> (&'static str, &'static str) {
+        match self {
+            Self::Dugdale => (
+                "Pull-off of a sphere against the Tabor-Maugis parameter: 3D, Maugis and MRD",
+                "",
+            ),
+            Self::Exponential => (
+                "Sphere pull-off against the Tabor parameter: 3D exponential law, Maugis, MRD",
+                " exponential law,",
+            ),
+        }
+    }
+
+    fn solver(self) -> CohesiveLaw {
+        match self {
+            Self::Dugdale => CohesiveLaw::Dugdale,
+            Self::Exponential => CohesiveLaw::Exponential,
+        }
+    }
 }
 
 fn default_cells() -> Vec<usize> {
@@ -156,12 +195,19 @@ impl Tabor3d {
     fn run_3d(&self, lambda: f64, n: usize, r: f64, e: f64, a_top: f64) -> bem3d::Result<Run> {
         let sigma0 = lambda * (2.0 * PI * self.gamma * e * e / (9.0 * r)).cbrt();
         let range = self.gamma / sigma0;
-        let l = self.extent * 2.0 * (a_top * a_top + 2.0 * r * range).sqrt();
+        // The gap over which the law pulls: the range (Dugdale), or where the exponential
+        // tension has fallen below 1e-4 sigma0 (ln 1e4 = 9.2 ranges).
+        let reach = match self.law {
+            Law::Dugdale => range,
+            Law::Exponential => range * 1e4f64.ln(),
+        };
+        let l = self.extent * 2.0 * (a_top * a_top + 2.0 * r * reach).sqrt();
         let h = l / n as f64;
         let heights = bem3d::mask::centred(n, l, |x, y| -(x * x + y * y) / (2.0 * r));
         let apex = heights.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
         let op = NonPeriodicHalfSpace::new(n, n, l, l, e);
-        let mut c = CohesiveContact::new(op, &heights, None, self.gamma, sigma0)?;
+        let mut c = CohesiveContact::new(op, &heights, None, self.gamma, sigma0)?
+            .with_law(self.law.solver());
         let dd = self.depth_max / self.steps as f64;
         for k in 1..=self.steps {
             c.step(dd * k as f64 + apex, self.tolerance)?;
@@ -215,7 +261,11 @@ impl Tabor3d {
             ],
         );
         t.notes.push(format!(
-            "pull-off force over pi w R (pi w R = {scale:e} [{force}]), force control (the smallest force of the approach-controlled unloading); 3D: Maugis-Dugdale law on the free half-space, resolved when the Dugdale length E* w / sigma0^2 spans {RESOLVED_CELLS} cells; MRD: rule of Hess with Eq. 33 (zero range: JKR)"
+            "pull-off force over pi w R (pi w R = {scale:e} [{force}]), force control (the smallest force of the approach-controlled unloading); 3D: {} on the free half-space, resolved when the Dugdale length E* w / sigma0^2 spans {RESOLVED_CELLS} cells; MRD: rule of Hess with Eq. 33 (zero range: JKR)",
+            match self.law {
+                Law::Dugdale => "Maugis-Dugdale law",
+                Law::Exponential => "exponential law (tension sigma0 exp(-gap / rho), rho = w / sigma0; the Maugis column is the Dugdale law's closed form, a reference, and rel_error_3d_vs_maugis the departure from it)",
+            }
         ));
         let (mut worst, mut unresolved) = (0.0f64, 0usize);
         let finest = *self.cells.last().unwrap_or(&0);
@@ -248,7 +298,13 @@ impl Tabor3d {
                 mrd / closed[k] - 1.0,
             ]);
         }
-        out.scalar("rel_error_3d_vs_maugis_max_resolved", worst);
+        out.scalar(
+            match self.law {
+                Law::Dugdale => "rel_error_3d_vs_maugis_max_resolved",
+                Law::Exponential => "rel_dev_3d_exponential_vs_maugis_max_resolved",
+            },
+            worst,
+        );
         out.scalar("unresolved_lambdas", unresolved as f64);
         let (lo, hi) = self
             .lambdas
@@ -274,9 +330,10 @@ impl Tabor3d {
             })
             .collect();
         let ends = vec![(curve[0].0, -mrd), (curve[60].0, -mrd)];
+        let (title, law) = self.law.labels();
         let mut fig = Figure::new(
             "tabor",
-            "Pull-off of a sphere against the Tabor-Maugis parameter: 3D, Maugis and MRD",
+            title,
             "Tabor-Maugis parameter lambda [1]",
             "pull-off force -F / (pi w R) [1]",
         )
@@ -305,13 +362,17 @@ impl Tabor3d {
             };
             let resolved = pts(true);
             if !resolved.is_empty() {
-                fig = fig.with(Series::new(format!("3D, {n}^2 cells"), resolved, style));
+                fig = fig.with(Series::new(
+                    format!("3D,{law} {n}^2 cells"),
+                    resolved,
+                    style,
+                ));
             }
             let rest = pts(false);
             if !rest.is_empty() {
                 fig = fig.with(Series::new(
                     format!(
-                        "3D, {n}^2 cells, unresolved (< {RESOLVED_CELLS} cells per Dugdale length)"
+                        "3D,{law} {n}^2 cells, unresolved (< {RESOLVED_CELLS} cells per Dugdale length)"
                     ),
                     rest,
                     Style::Crosses,

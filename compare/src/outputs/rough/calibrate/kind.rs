@@ -29,7 +29,7 @@ impl Output for Calibrate {
         if !(self.target > 0.0 && self.target < 1.0) {
             return bad(format!("target = {} must lie in (0, 1)", self.target));
         }
-        let case = self.case(ctx)?;
+        let case = Case::new(self, ctx)?;
         let g = case.grid.max(case.map.as_ref().map_or(0, |m| m.n));
         if g > 4096 {
             return bad(format!(
@@ -63,7 +63,7 @@ impl Output for Calibrate {
     }
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
-        let make = || self.case(env.ctx);
+        let make = || Case::new(self, env.ctx);
         let case = if self.topography.is_some() || self.psd.is_some() {
             out.stage(Stage::Psd, make)?
         } else {
@@ -74,7 +74,7 @@ impl Output for Calibrate {
         }
         let work = env.work_root.join(self.key());
         let plan = out.stages_together(&crate::experiment::rough_punch::STAGES, || {
-            self.realise(case, &work, env.control)
+            self.realise(&case, &work, env.control)
         })?;
         let (cal, map) = out.stage(Stage::SweepFit, || -> Result<_> {
             let map = match (&case.map, self.solves_map()) {
@@ -87,7 +87,7 @@ impl Output for Calibrate {
             };
             Ok((plan, map))
         })?;
-        report::report(self, case, &cal, map.as_ref(), &env.ctx.units.length, out)
+        report::report(self, &case, &cal, map.as_ref(), &env.ctx.units.length, out)
     }
 }
 
@@ -171,7 +171,7 @@ impl Checkpointed for Calibrate {
     }
 
     fn compute(&self, ctx: &Context, dir: &Path, control: &RunControl) -> Result<()> {
-        let case = self.case(ctx)?;
-        tasks::compute(self, case, dir, tasks::all(self).len(), true, control)
+        let case = Case::new(self, ctx)?;
+        tasks::compute(self, &case, dir, tasks::all(self).len(), true, control)
     }
 }

@@ -83,32 +83,6 @@ pub struct Calibrate {
     pub solve_map: Option<bool>,
     #[serde(default)]
     pub seed: u64,
-    /// The source read once, by the first of `validate`, `run` or a shard's `compute`.
-    #[serde(skip)]
-    case: CaseOnce,
-}
-
-/// The case a scene's source gives, built once (a map is read and its PSD computed once
-/// per run); it carries no parameter of its own, so two calibrations compare equal
-/// whatever it holds.
-#[derive(Debug, Clone, Default)]
-struct CaseOnce(std::sync::OnceLock<tasks::Case>);
-
-impl PartialEq for CaseOnce {
-    fn eq(&self, _: &Self) -> bool {
-        true
-    }
-}
-
-impl Calibrate {
-    /// The case of this scene's source (built on the first call).
-    fn case(&self, ctx: &crate::context::Context) -> crate::error::Result<&tasks::Case> {
-        if let Some(case) = self.case.0.get() {
-            return Ok(case);
-        }
-        let case = tasks::Case::new(self, ctx)?;
-        Ok(self.case.0.get_or_init(|| case))
-    }
 }
 
 #[derive(Debug, Clone, Copy, Deserialize, PartialEq)]
