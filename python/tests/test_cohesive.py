@@ -34,6 +34,24 @@ def pull_off(lam, n, w=1e-4, l=0.6):
     return -min(forces) / (math.pi * w)
 
 
+def tamaas_gap_solver(h, w, rho, functional):
+    """Tamaas' PolonskyKeerRey in gap formulation on a periodic unit cell (E* = 1) with
+    the adhesion functional named (work w, range rho); skips the test without Tamaas.
+    The functional is returned too: the solver holds it without owning it, so the caller
+    keeps it alive."""
+    tm = pytest.importorskip("tamaas")
+    tm.set_log_level(tm.LogLevel.error)
+    n = h.shape[0]
+    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], [n, n])
+    model.E, model.nu = 1.0, 0.0
+    solver = tm.PolonskyKeerRey(model, h, 1e-10, tm.PolonskyKeerRey.gap, tm.PolonskyKeerRey.gap)
+    solver.max_iter = 100000
+    law = getattr(tm, functional)(h)
+    law.parameters = {"rho": rho, "surface_energy": w}
+    solver.addFunctionalTerm(law)
+    return model, solver, law
+
+
 def test_pull_off_follows_maugis_between_bradley_and_jkr():
     # Maugis' closed form (docs/results.md): -1.951 pi w R at lambda = 0.1, -1.816 at
     # 0.3 (Bradley's rigid limit -2, JKR's -1.5). Measured on 48^2 cells: 1.9496
@@ -79,15 +97,7 @@ def test_a_periodic_cell_refuses_complete_contact_and_matches_tamaas():
     assert "periodic=True" in repr(c)
     with pytest.raises(ValueError, match="complete contact"):
         c.step(z_mean)
-    tm = pytest.importorskip("tamaas")
-    tm.set_log_level(tm.LogLevel.error)
-    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], [n, n])
-    model.E, model.nu = 1.0, 0.0
-    solver = tm.PolonskyKeerRey(model, h, 1e-10, tm.PolonskyKeerRey.gap, tm.PolonskyKeerRey.gap)
-    solver.max_iter = 100000
-    law = tm.MaugisAdhesionFunctional(h)
-    law.parameters = {"rho": rho, "surface_energy": w}
-    solver.addFunctionalTerm(law)
+    model, solver, _law = tamaas_gap_solver(h, w, rho, "MaugisAdhesionFunctional")
     same_zone = 0
     for d in [0.02, 0.04, 0.06, 0.04, 0.02]:
         solver.solve(z_mean - d)
@@ -131,15 +141,7 @@ def test_the_exponential_law_holds_and_matches_tamaas():
     assert abs(steps[0][1].force - dugdale.step(0.02, tolerance=1e-10).force) > 1e-3 * abs(
         steps[0][1].force
     )
-    tm = pytest.importorskip("tamaas")
-    tm.set_log_level(tm.LogLevel.error)
-    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], [n, n])
-    model.E, model.nu = 1.0, 0.0
-    solver = tm.PolonskyKeerRey(model, h, 1e-10, tm.PolonskyKeerRey.gap, tm.PolonskyKeerRey.gap)
-    solver.max_iter = 100000
-    law = tm.ExponentialAdhesionFunctional(h)
-    law.parameters = {"rho": rho, "surface_energy": w}
-    solver.addFunctionalTerm(law)
+    model, solver, _law = tamaas_gap_solver(h, w, rho, "ExponentialAdhesionFunctional")
     for d, s in steps:
         solver.solve(z_mean - d)
         p_t = model.traction.copy()
