@@ -34,6 +34,15 @@ def pull_off(lam, n, w=1e-4, l=0.6):
     return -min(forces) / (math.pi * w)
 
 
+def periodic_sphere(n=32, w=0.002, tabor=0.3):
+    """A sphere R = 1 on a periodic unit cell of n^2 cells (E* = 1) at the Tabor
+    parameter `tabor`: (w, sigma0, rho, heights, mean(max(h) - h))."""
+    sigma0 = tabor / (9.0 / (2.0 * math.pi * w)) ** (1.0 / 3.0)
+    x = (np.arange(n) + 0.5) / n - 0.5
+    h = -(x[:, None] ** 2 + x[None, :] ** 2) / 2.0
+    return w, sigma0, w / sigma0, h, float((h.max() - h).mean())
+
+
 def tamaas_gap_solver(h, w, rho, functional):
     """Tamaas' PolonskyKeerRey in gap formulation on a periodic unit cell (E* = 1) with
     the adhesion functional named (work w, range rho); skips the test without Tamaas.
@@ -87,12 +96,7 @@ def test_a_periodic_cell_refuses_complete_contact_and_matches_tamaas():
     discrete Maugis-Dugdale law admits several equilibria that differ by cells on the
     zone's outer edge; both codes' states obey the law, and where they hold the same
     zone their forces agree to the solvers' tolerance."""
-    n, w = 32, 0.002
-    sigma0 = 0.3 / (9.0 / (2.0 * math.pi * w)) ** (1.0 / 3.0)
-    rho = w / sigma0
-    x = (np.arange(n) + 0.5) / n - 0.5
-    h = -(x[:, None] ** 2 + x[None, :] ** 2) / 2.0
-    z_mean = float((h.max() - h).mean())
+    w, sigma0, rho, h, z_mean = periodic_sphere()
     c = mrdw.CohesiveContact(h, work=w, sigma0=sigma0, size=(1.0, 1.0), periodic=True)
     assert "periodic=True" in repr(c)
     with pytest.raises(ValueError, match="complete contact"):
@@ -126,12 +130,7 @@ def test_the_exponential_law_holds_and_matches_tamaas():
     law has one equilibrium where the discrete Dugdale law has several: Tamaas' solver
     with ExponentialAdhesionFunctional reaches the same state, forces within 1e-8 of the
     mean |pressure| (bench/tamaas_adhesion.py --law exponential: 1e-11 to 1e-9)."""
-    n, w = 32, 0.002
-    sigma0 = 0.3 / (9.0 / (2.0 * math.pi * w)) ** (1.0 / 3.0)
-    rho = w / sigma0
-    x = (np.arange(n) + 0.5) / n - 0.5
-    h = -(x[:, None] ** 2 + x[None, :] ** 2) / 2.0
-    z_mean = float((h.max() - h).mean())
+    w, sigma0, rho, h, z_mean = periodic_sphere()
     c = mrdw.CohesiveContact(h, w, sigma0, size=(1.0, 1.0), periodic=True, law="exponential")
     assert c.law == "exponential" and "exponential" in repr(c)
     dugdale = mrdw.CohesiveContact(h, w, sigma0, size=(1.0, 1.0), periodic=True)
