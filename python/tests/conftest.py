@@ -2,6 +2,7 @@
 
 import os
 import pathlib
+import re
 import shutil
 import subprocess
 
@@ -23,3 +24,17 @@ def mrdw_bin():
 
 def run_cli(exe, *args, cwd=None):
     return subprocess.run([exe, *args], capture_output=True, text=True, cwd=cwd)
+
+
+def coarse_scene(name, folder, **keys):
+    """A copy of the embedded scene `cases/<name>.toml` in `folder` with the given
+    `key = value` lines replaced (e.g. a coarser grid), so that a bit-identity check
+    against the CLI runs in seconds; each key must appear exactly once."""
+    text = (ROOT / "cases" / f"{name}.toml").read_text()
+    for key, value in keys.items():
+        pattern = re.compile(rf"^{re.escape(key)} = .*$", re.MULTILINE)
+        text, count = pattern.subn(f"{key} = {value}", text)
+        assert count == 1, f"{name}.toml has {count} lines setting {key}"
+    path = pathlib.Path(folder) / f"{name}.toml"
+    path.write_text(text)
+    return path

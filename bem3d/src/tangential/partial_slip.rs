@@ -177,6 +177,13 @@ impl<C: TangentialCompliance> PartialSlip<C> {
                 "tolerance {tolerance} must lie in (0, 0.1]"
             )));
         }
+        // On a pool thread: the iteration's short parallel loops start in place (the
+        // module docs of `crate::pool`; 32^2 steps were a hundred times slower outside).
+        crate::pool::on_pool(|| self.load_on_pool(force, tolerance))
+    }
+
+    /// [`Self::load`] of a checked force and tolerance, on a pool thread.
+    fn load_on_pool(&mut self, force: f64, tolerance: f64) -> Result<TangentialStep> {
         if force.abs() >= self.friction {
             return Ok(self.sliding(force));
         }

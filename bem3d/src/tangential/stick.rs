@@ -150,12 +150,17 @@ impl CerrutiPeriodic {
             }
         };
         let sum = |v: &[f64]| v.iter().sum::<f64>() * area;
-        let qx = solve(&mut tensor, &set2, &[c.as_slice(), &zeros].concat())?;
-        let qy = solve(&mut tensor, &set2, &[zeros.as_slice(), &c].concat())?;
-        tensor.d = 1;
-        tensor.compliance.truncate(1);
-        tensor.stiffness = vec![along_x];
-        let q1 = solve(&mut tensor, &c, &c)?;
+        // On a pool thread, so that the solves' short parallel loops start in place
+        // (the module docs of `crate::pool`).
+        let (qx, qy, q1) = crate::pool::on_pool(|| -> Result<_> {
+            let qx = solve(&mut tensor, &set2, &[c.as_slice(), &zeros].concat())?;
+            let qy = solve(&mut tensor, &set2, &[zeros.as_slice(), &c].concat())?;
+            tensor.d = 1;
+            tensor.compliance.truncate(1);
+            tensor.stiffness = vec![along_x];
+            let q1 = solve(&mut tensor, &c, &c)?;
+            Ok((qx, qy, q1))
+        })?;
         Ok(StickStiffness {
             x: sum(&qx[..n]),
             y: sum(&qy[n..]),

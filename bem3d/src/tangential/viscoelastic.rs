@@ -137,6 +137,12 @@ impl<C: TangentialCompliance> ViscoelasticSlip<C> {
                 "tolerance {tolerance} must lie in (0, 0.1]"
             )));
         }
+        crate::pool::on_pool(|| self.step_on_pool(dt, shift, tolerance))
+    }
+
+    /// [`Self::step`] of checked arguments, on a pool thread (its solves' short parallel
+    /// loops then start in place: the module docs of `crate::pool`).
+    fn step_on_pool(&mut self, dt: f64, shift: f64, tolerance: f64) -> Result<ViscoelasticStep> {
         let factors = self.modulus.step_factors(dt);
         let g_eff = self.modulus.effective(&factors);
         // The history's offset -H_n / G_eff per cell, added to the accumulated slip.
