@@ -3,13 +3,8 @@
 //! the thread count; shards merge to the single run; checkpoints of another map are
 //! refused.
 
-use crate::common::{csvs, mrdw_env as mrdw, ok, stderr};
-use serde_json::Value;
+use crate::common::{csvs, mrdw_env as mrdw, ok, run_written_scene, stderr, summary};
 use std::path::Path;
-
-fn summary(out: &Path) -> Value {
-    serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
-}
 
 const SMALL: &str = "bandwidth = 16\ncells = 4\nrealisations = { min = 8, max = 16, batch = 8 }\nlines = 100\nloads = 10\nseed = 2\n";
 
@@ -44,23 +39,10 @@ fn write_map(path: &Path, seed: u64) {
 fn a_measured_map_calibrates_with_its_own_3d_solve() {
     let tmp = tempfile::tempdir().unwrap();
     write_map(&tmp.path().join("map.npy"), 4);
-    let scene = tmp.path().join("c.toml");
-    std::fs::write(
-        &scene,
-        format!("name = \"c\"\n[units]\nlength = \"mm\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"calibrate\"\ntopography = \"map.npy\"\nsize = [2.25, 2.0]\n{SMALL}"),
-    )
-    .unwrap();
-    let out = tmp.path().join("o");
-    ok(&mrdw(
-        &[
-            "run",
-            scene.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-        ],
-        &[],
-    ));
-    let s = summary(&out);
+    let (scene, out, s) = run_written_scene(
+        tmp.path(),
+        &format!("name = \"c\"\n[units]\nlength = \"mm\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"calibrate\"\ntopography = \"map.npy\"\nsize = [2.25, 2.0]\n{SMALL}"),
+    );
     let r = |k: &str| s["results"][format!("calibrate.{k}")].as_f64().unwrap();
     assert!(r("lambda_lo") < r("lambda") && r("lambda") < r("lambda_hi"));
     assert!((1.5..8.0).contains(&r("lambda")), "{}", r("lambda"));

@@ -20,8 +20,7 @@ fn run_scene(scene: &str, out: &Path) -> Value {
         "{scene}: {}",
         String::from_utf8_lossy(&o.stderr)
     );
-    let text = std::fs::read_to_string(out.join("summary.json")).unwrap();
-    serde_json::from_str(&text).unwrap()
+    crate::common::summary(out)
 }
 
 fn result(s: &Value, key: &str) -> f64 {
@@ -193,6 +192,184 @@ fn every_embedded_scene_is_checked_here_or_elsewhere() {
     );
 }
 
+/// What a result must satisfy (strict inequalities; a NaN satisfies none).
+#[derive(Debug, Clone, Copy)]
+enum Bound {
+    /// v < b
+    Below(f64),
+    /// v > b
+    Above(f64),
+    /// lo < v < hi
+    Within(f64, f64),
+    /// |v - 1| < b
+    NearOne(f64),
+    /// finite
+    Present,
+}
+
+impl Bound {
+    fn holds(self, v: f64) -> bool {
+        match self {
+            Bound::Below(b) => v < b,
+            Bound::Above(b) => v > b,
+            Bound::Within(lo, hi) => lo < v && v < hi,
+            Bound::NearOne(b) => (v - 1.0).abs() < b,
+            Bound::Present => v.is_finite(),
+        }
+    }
+}
+
+use Bound::{Above, Below, NearOne, Present, Within};
+
+const ADHESION_3D: &[&str] = &["adhesion-3d", "adhesion-3d-punch", "adhesion-3d-cone"];
+const TABOR: &[&str] = &["adhesion-tabor"];
+const ROUGH_ADHESION: &[&str] = &["rough-adhesion-3d-ci"];
+const ROUGH_PARTIAL_SLIP: &[&str] = &["rough-partial-slip-3d-ci"];
+const ROUGH_SLIP: &[&str] = &["rough-slip-3d-ci"];
+const STIFFNESS: &[&str] = &["tangential-stiffness-3d-ci"];
+const CONE: &[&str] = &["tangential-3d-cone"];
+
+/// The embedded scenes' results and their bounds: (key, bound, scenes that must report
+/// the key). The bound holds in every scene that reports the key; a scene listed must
+/// report it, so that a renamed key fails instead of leaving its bound unchecked. Each bound's reason and the measured value are
+/// stated beside it.
+#[rustfmt::skip]
+const RESULT_BOUNDS: &[(&str, Bound, &[&str])] = &[
+    ("pressure.equilibrium_rel_error", Below(1e-7), &["hertz", "cone", "flat-punch", "ejike"]),
+    // Discrete paths, at the scenes' spring counts (>= 2000 over 1.5 a): 1e-3.
+    ("force_depth.max_rel_dev_discrete_vs_semi_analytic", Below(1e-3), &["hertz", "cone", "flat-punch", "ejike"]),
+    ("damping.max_rel_error_time_stepped_vs_eq58", Below(1e-3), &["mindlin-damping", "tour"]),
+    // Viscoelastic springs (Eq. 63) against Radok at the scene's 20000 springs.
+    ("viscoelastic.max_rel_dev_springs_vs_radok", Below(1e-3), &["radok"]),
+    // Adhesive pull-off on springs is first order in dx (quantised radius): 2e-3.
+    ("adhesion.pull_off_rel_dev_discrete_vs_semi_analytic", Below(2e-3), &["jkr", "adhesive-cone"]),
+    // A sphere loaded tangentially (`tangential-3d`, 25.6 cells per contact radius,
+    // period 10 radii): MRD's springs are exact; the 3D stick radius (a count of cells)
+    // and dissipation per cycle within 1.5 % of Cattaneo-Mindlin and
+    // Mindlin-Deresiewicz (measured 0.95 % and 0.63 %).
+    ("tangential_3d.stick_radius_max_rel_error_mrd", Below(1e-9), &["tangential-3d", "tangential-3d-free"]),
+    ("tangential_3d.dissipation_max_rel_error_mrd", Below(1e-9), &["tangential-3d", "tangential-3d-free"]),
+    ("tangential_3d.stick_radius_max_rel_error_3d", Below(0.015), &["tangential-3d"]),
+    ("tangential_3d.dissipation_max_rel_error_3d", Below(0.015), &["tangential-3d"]),
+    // 3D against MRD's exact springs (the cone: measured 2.0 % on the stick radius,
+    // 0.49 % on the dissipation; the sphere 0.95 % and 0.63 %); the 3D loop's area
+    // equal to the summed dissipation within 0.5 % (measured 0.29 %, 20 steps per half
+    // cycle).
+    ("tangential_3d.stick_radius_max_rel_dev_3d_vs_mrd", Below(0.025), CONE),
+    ("tangential_3d.dissipation_max_rel_dev_3d_vs_mrd", Below(0.025), CONE),
+    ("tangential_3d.energy_balance_max_rel_3d", Below(0.005), CONE),
+    // The hysteresis loops on the free half-space (`tangential-3d-free`, 64 cells per
+    // contact radius): the 3D shift at every force of the cycle within 1e-3 of the
+    // amplitude's shift from Mindlin-Deresiewicz and from MRD's springs by Masing's
+    // rule (measured 4.4e-5 for both).
+    ("tangential_3d.loop_shift_max_rel_error_3d", Below(1e-3), &["tangential-3d-free"]),
+    ("tangential_3d.loop_shift_max_rel_dev_3d_vs_mrd", Below(1e-3), &["tangential-3d-free"]),
+    // Rough contacts held in stick (`tangential-stiffness-3d-ci`, 32^2 and 64^2 cells):
+    // the 3D k_t / k_n lies a few per cent above MRD's G*/E* (measured 4.3 % at 21 %
+    // contact, nu = 0.5; the report-scale scene 1.3-6.1 %), the last refinement moves it
+    // by under 1 % (measured 0.09 %), and q_y = 0 softens the set by under 3 %
+    // (measured 1.5 %).
+    ("tangential_stiffness_3d.kt_over_kn_max_rel_dev_3d_vs_mrd", Within(0.01, 0.08), STIFFNESS),
+    ("tangential_stiffness_3d.kt_over_kn_max_rel_change_last_refinement", Below(0.01), STIFFNESS),
+    ("tangential_stiffness_3d.kt_along_only_max_rel_dev", Below(0.03), STIFFNESS),
+    // Rough partial slip (`rough-partial-slip-3d-ci`, 64^2 cells): at nu = 0 the 3D
+    // shift equals MRD's mapping of the 3D normal curve to the solvers' tolerance
+    // (measured 1.2e-9) and the energy per cycle to the loop's steps (measured 2.2e-4,
+    // 6 steps per half cycle); at nu = 0.5 MRD's mapping is off by a few per cent
+    // (measured 4.2 % on the shift, 5.6 % on the energy).
+    ("rough_partial_slip_3d.shift_max_rel_dev_3d_vs_mrd_at_nu_0", Below(1e-6), ROUGH_PARTIAL_SLIP),
+    ("rough_partial_slip_3d.dissipation_max_rel_dev_3d_vs_mrd_at_nu_0", Below(2e-3), ROUGH_PARTIAL_SLIP),
+    ("rough_partial_slip_3d.shift_max_rel_dev_3d_vs_mrd", Within(0.005, 0.15), ROUGH_PARTIAL_SLIP),
+    ("rough_partial_slip_3d.dissipation_max_rel_dev_3d_vs_mrd", Within(0.005, 0.15), ROUGH_PARTIAL_SLIP),
+    ("rough_partial_slip_3d.ratio_max_rel_change_last_refinement", Present, ROUGH_PARTIAL_SLIP),
+    // A rough sphere in partial slip (`rough-slip-3d-ci`, 64^2 and 128^2 cells): at
+    // nu = 0 the 3D shift equals MRD's law on the 3D normal curve to the solvers'
+    // tolerance (measured 8.5e-10), the energy per cycle to the loop's steps (1.4e-4)
+    // and k_t = k_n (9e-9); the smooth sphere's shift and energy equal MRD's (5.8e-5,
+    // 1.7e-3); at nu = 0.5 the law is off by a few per cent on the rough sphere (4.3 %),
+    // k_t / k_n within 0.3 % of G*/E*, and the last refinement moves the 3D values by
+    // under 6 % (2.7 %).
+    ("rough_slip_3d.shift_rough_max_rel_dev_3d_vs_law_nu_0", Below(1e-6), ROUGH_SLIP),
+    ("rough_slip_3d.kt_over_kn_max_rel_dev_3d_vs_mrd_nu_0", Below(1e-6), ROUGH_SLIP),
+    ("rough_slip_3d.dissipation_rough_max_rel_dev_3d_vs_law_nu_0", Below(2e-3), ROUGH_SLIP),
+    ("rough_slip_3d.shift_smooth_max_rel_dev_3d_vs_mrd_nu_0", Below(1e-3), ROUGH_SLIP),
+    ("rough_slip_3d.shift_smooth_max_rel_dev_3d_vs_mrd_nu_0p5", Below(1e-3), ROUGH_SLIP),
+    ("rough_slip_3d.dissipation_smooth_max_rel_dev_3d_vs_mrd_nu_0", Below(5e-3), ROUGH_SLIP),
+    ("rough_slip_3d.dissipation_smooth_max_rel_dev_3d_vs_mrd_nu_0p5", Below(5e-3), ROUGH_SLIP),
+    ("rough_slip_3d.kt_over_kn_max_rel_dev_3d_vs_mrd_nu_0p5", Below(0.03), ROUGH_SLIP),
+    ("rough_slip_3d.shift_max_rel_change_3d_last_refinement", Below(0.06), ROUGH_SLIP),
+    ("rough_slip_3d.dissipation_max_rel_change_3d_last_refinement", Below(0.06), ROUGH_SLIP),
+    ("rough_slip_3d.shift_rough_max_rel_dev_3d_vs_law_nu_0p5", Within(0.005, 0.1), ROUGH_SLIP),
+    ("rough_slip_3d.dissipation_rough_max_rel_dev_3d_vs_law_nu_0p5", Present, ROUGH_SLIP),
+    ("rough_slip_3d.shift_rough_max_rel_dev_3d_vs_mrd_0_nu_0", Present, ROUGH_SLIP),
+    ("rough_slip_3d.shift_rough_max_rel_dev_3d_vs_mrd_0_nu_0p5", Present, ROUGH_SLIP),
+    ("rough_slip_3d.shift_rough_max_rel_dev_3d_vs_mrd_1_nu_0", Present, ROUGH_SLIP),
+    ("rough_slip_3d.shift_rough_max_rel_dev_3d_vs_mrd_1_nu_0p5", Present, ROUGH_SLIP),
+    ("rough_slip_3d.dissipation_rough_max_rel_dev_3d_vs_mrd_1_nu_0", Present, ROUGH_SLIP),
+    ("rough_slip_3d.dissipation_rough_max_rel_dev_3d_vs_mrd_1_nu_0p5", Present, ROUGH_SLIP),
+    // Adhesion in 3D (`adhesion-3d*`): MRD's pull-off against JKR, Kendall and Eq. 37
+    // to rounding; the 3D pull-off against MRD's on the finest grid (measured 1.7 % for
+    // the sphere at 50 cells per pull-off radius, 0.21 % for the punch at 51, 3.1 % for
+    // the cone at 77) and converging (observed orders 1.44, 2.27, 1.42 on the last pair
+    // of grids).
+    ("adhesion_3d.pull_off_rel_error_mrd", Below(1e-9), ADHESION_3D),
+    ("adhesion_3d.jump_out_rel_error_mrd", Below(1e-9), &["adhesion-3d"]),
+    ("adhesion_3d.pull_off_rel_error_3d", Below(0.04), ADHESION_3D),
+    ("adhesion_3d.pull_off_order_3d", Above(0.8), ADHESION_3D),
+    // The Tabor map (`adhesion-tabor`): 3D Maugis-Dugdale against Maugis' closed form
+    // where resolved (measured 3.8 % at lambda = 1, 0.3 % at 0.3, 0.2 % at 0.1); MRD
+    // (JKR) misses Bradley's end (-23 % at lambda = 0.1) and meets JKR's (-1.1 % at
+    // lambda = 3).
+    ("tabor_3d.rel_error_3d_vs_maugis_max_resolved", Below(0.05), TABOR),
+    ("tabor_3d.rel_error_mrd_vs_maugis_at_smallest_lambda", Below(-0.2), TABOR),
+    ("tabor_3d.rel_error_mrd_vs_maugis_at_largest_lambda", Within(-0.02, 0.02), TABOR),
+    // Rough adhesive spheres (`rough-adhesion-3d-ci`, 64^2 and 128^2 cells, 15 and 30
+    // cells per JKR pull-off radius): the smooth sphere's pull-off against JKR's
+    // 3/2 pi R w within 5 % in 3D (measured 3.7 %) and 1 % on MRD's 512 springs
+    // (measured 0.78 %, 120 springs per pull-off radius); every adhesive cycle loses
+    // energy.
+    ("rough_adhesion_3d.smooth_pull_off_over_closed_form_3d", NearOne(0.05), ROUGH_ADHESION),
+    ("rough_adhesion_3d.smooth_pull_off_over_closed_form_mrd", NearOne(0.01), ROUGH_ADHESION),
+    ("rough_adhesion_3d.loop_energy_min_over_smooth_3d", Above(0.0), ROUGH_ADHESION),
+    ("rough_adhesion_3d.pull_off_over_smooth_max_abs_change_last_refinement_3d", Present, ROUGH_ADHESION),
+    ("rough_adhesion_3d.pull_off_over_smooth_max_abs_dev_mrd_outer_0_vs_3d", Present, ROUGH_ADHESION),
+    ("rough_adhesion_3d.pull_off_over_smooth_max_abs_dev_mrd_cluster_2_vs_3d", Present, ROUGH_ADHESION),
+];
+
+/// Key endings of semi-analytic paths: 1e-9 relative against the closed forms.
+const CLOSED_FORM_ENDINGS: &[&str] = &[
+    "max_rel_error_vs_closed_form",
+    "vs_cattaneo_mindlin",
+    "pull_off_rel_error_vs_closed_form",
+    "max_rel_dev_quadrature_vs_closed_form",
+];
+
+/// The bounds of [`RESULT_BOUNDS`] and the closed forms on the scene's results.
+fn check_result_bounds(name: &str, s: &Value) {
+    let res = s["results"].as_object().unwrap();
+    for (k, v) in res {
+        let Some(v) = v.as_f64() else { continue }; // per-H objects
+        if CLOSED_FORM_ENDINGS.iter().any(|e| k.ends_with(e))
+            || k == "tangential.traction_max_error_over_mu_p0"
+        {
+            assert!(v < 1e-9, "{name}: {k} = {v}");
+        }
+        for (key, bound, _) in RESULT_BOUNDS.iter().filter(|b| b.0 == k) {
+            assert!(bound.holds(v), "{name}: {key} = {v}, bound {bound:?}");
+        }
+    }
+    for (key, bound, scenes) in RESULT_BOUNDS {
+        if scenes.contains(&name) {
+            let v = res.get(*key).and_then(Value::as_f64);
+            assert!(v.is_some(), "{name}: no result {key}");
+            assert!(
+                v.is_some_and(f64::is_finite),
+                "{name}: {key} = {v:?}, bound {bound:?}"
+            );
+        }
+    }
+}
+
 /// An embedded scene runs, and its results match the closed forms and the measured
 /// tolerances stated beside each check.
 fn check_embedded_scene(name: &str) {
@@ -221,266 +398,15 @@ fn check_embedded_scene(name: &str) {
             );
         }
     }
-    let res = s["results"].as_object().unwrap();
-    // Semi-analytic paths: 1e-9 relative against the closed forms.
-    for (k, v) in res {
-        let Some(v) = v.as_f64() else { continue }; // per-H objects
-        if k.ends_with("max_rel_error_vs_closed_form")
-            || k.ends_with("vs_cattaneo_mindlin")
-            || k.ends_with("pull_off_rel_error_vs_closed_form")
-            || k.ends_with("max_rel_dev_quadrature_vs_closed_form")
-            || k == "tangential.traction_max_error_over_mu_p0"
-        {
-            assert!(v < 1e-9, "{name}: {k} = {v}");
-        }
-        if k == "pressure.equilibrium_rel_error" {
-            assert!(v < 1e-7, "{name}: {k} = {v}");
-        }
-        // Discrete paths, at the scenes' spring counts (>= 2000 over 1.5 a): 1e-3.
-        if k == "force_depth.max_rel_dev_discrete_vs_semi_analytic"
-            || k == "damping.max_rel_error_time_stepped_vs_eq58"
-        {
-            assert!(v < 1e-3, "{name}: {k} = {v}");
-        }
-        // Viscoelastic springs (Eq. 63) against Radok at the scene's 20000 springs.
-        if k == "viscoelastic.max_rel_dev_springs_vs_radok" {
-            assert!(v < 1e-3, "{name}: {k} = {v}");
-        }
-        // A sphere loaded tangentially (`tangential-3d`, 25.6 cells per contact radius,
-        // period 10 radii): MRD's springs are exact; the 3D stick radius (a count of
-        // cells) and dissipation per cycle within 1.5 % of Cattaneo-Mindlin and
-        // Mindlin-Deresiewicz (measured 0.95 % and 0.63 %), the 3D loop's area equal
-        // to the summed dissipation within 0.5 % (measured 0.29 %, 20 steps per half
-        // cycle).
-        if k == "tangential_3d.stick_radius_max_rel_error_mrd"
-            || k == "tangential_3d.dissipation_max_rel_error_mrd"
-        {
-            assert!(v < 1e-9, "{name}: {k} = {v}");
-        }
-        if k == "tangential_3d.stick_radius_max_rel_error_3d"
-            || k == "tangential_3d.dissipation_max_rel_error_3d"
-        {
-            assert!(v < 0.015, "{name}: {k} = {v}");
-        }
-        // 3D against MRD's exact springs (the cone: measured 2.0 % on the stick radius,
-        // 0.49 % on the dissipation; the sphere 0.95 % and 0.63 %).
-        if k == "tangential_3d.stick_radius_max_rel_dev_3d_vs_mrd"
-            || k == "tangential_3d.dissipation_max_rel_dev_3d_vs_mrd"
-        {
-            assert!(v < 0.025, "{name}: {k} = {v}");
-        }
-        if k == "tangential_3d.energy_balance_max_rel_3d" {
-            assert!(v < 0.005, "{name}: {k} = {v}");
-        }
-        // The hysteresis loops on the free half-space (`tangential-3d-free`, 64 cells
-        // per contact radius): the 3D shift at every force of the cycle within 1e-3 of
-        // the amplitude's shift from Mindlin-Deresiewicz and from MRD's springs by
-        // Masing's rule (measured 4.4e-5 for both).
-        if k == "tangential_3d.loop_shift_max_rel_error_3d"
-            || k == "tangential_3d.loop_shift_max_rel_dev_3d_vs_mrd"
-        {
-            assert!(v < 1e-3, "{name}: {k} = {v}");
-        }
-        // Rough contacts held in stick (`tangential-stiffness-3d-ci`, 32^2 and 64^2
-        // cells): the 3D k_t / k_n lies a few per cent above MRD's G*/E* (measured
-        // 4.3 % at 21 % contact, nu = 0.5; the report-scale scene 1.3-6.1 %), the
-        // last refinement moves it by under 1 % (measured 0.09 %), and q_y = 0 softens
-        // the set by under 3 % (measured 1.5 %).
-        if k == "tangential_stiffness_3d.kt_over_kn_max_rel_dev_3d_vs_mrd" {
-            assert!(v > 0.01 && v < 0.08, "{name}: {k} = {v}");
-        }
-        if k == "tangential_stiffness_3d.kt_over_kn_max_rel_change_last_refinement" {
-            assert!(v < 0.01, "{name}: {k} = {v}");
-        }
-        if k == "tangential_stiffness_3d.kt_along_only_max_rel_dev" {
-            assert!(v < 0.03, "{name}: {k} = {v}");
-        }
-        // Rough partial slip (`rough-partial-slip-3d-ci`, 64^2 cells): at nu = 0 the
-        // 3D shift equals MRD's mapping of the 3D normal curve to the solvers'
-        // tolerance (measured 1.2e-9) and the energy per cycle to the loop's steps
-        // (measured 2.2e-4, 6 steps per half cycle); at nu = 0.5 MRD's mapping is off
-        // by a few per cent (measured 4.2 % on the shift, 5.6 % on the energy).
-        if k == "rough_partial_slip_3d.shift_max_rel_dev_3d_vs_mrd_at_nu_0" {
-            assert!(v < 1e-6, "{name}: {k} = {v}");
-        }
-        if k == "rough_partial_slip_3d.dissipation_max_rel_dev_3d_vs_mrd_at_nu_0" {
-            assert!(v < 2e-3, "{name}: {k} = {v}");
-        }
-        if k == "rough_partial_slip_3d.shift_max_rel_dev_3d_vs_mrd"
-            || k == "rough_partial_slip_3d.dissipation_max_rel_dev_3d_vs_mrd"
-        {
-            assert!(v > 0.005 && v < 0.15, "{name}: {k} = {v}");
-        }
-        // A rough sphere in partial slip (`rough-slip-3d-ci`, 64^2 and 128^2 cells):
-        // at nu = 0 the 3D shift equals MRD's law on the 3D normal curve to the
-        // solvers' tolerance (measured 8.5e-10), the energy per cycle to the loop's
-        // steps (1.4e-4) and k_t = k_n (9e-9); the smooth sphere's shift and energy
-        // equal MRD's (5.8e-5, 1.7e-3); at nu = 0.5 the law is off by a few per cent
-        // on the rough sphere (4.3 %), k_t / k_n within 0.3 % of G*/E*, and the last
-        // refinement moves the 3D values by under 6 % (2.7 %).
-        if k.starts_with("rough_slip_3d.") {
-            let bound = match k.trim_start_matches("rough_slip_3d.") {
-                "shift_rough_max_rel_dev_3d_vs_law_nu_0"
-                | "kt_over_kn_max_rel_dev_3d_vs_mrd_nu_0" => 1e-6,
-                "dissipation_rough_max_rel_dev_3d_vs_law_nu_0" => 2e-3,
-                "shift_smooth_max_rel_dev_3d_vs_mrd_nu_0"
-                | "shift_smooth_max_rel_dev_3d_vs_mrd_nu_0p5" => 1e-3,
-                "dissipation_smooth_max_rel_dev_3d_vs_mrd_nu_0"
-                | "dissipation_smooth_max_rel_dev_3d_vs_mrd_nu_0p5" => 5e-3,
-                "kt_over_kn_max_rel_dev_3d_vs_mrd_nu_0p5" => 0.03,
-                "shift_max_rel_change_3d_last_refinement"
-                | "dissipation_max_rel_change_3d_last_refinement" => 0.06,
-                _ => f64::INFINITY,
-            };
-            assert!(v < bound, "{name}: {k} = {v}");
-            if k == "rough_slip_3d.shift_rough_max_rel_dev_3d_vs_law_nu_0p5" {
-                assert!(v > 0.005 && v < 0.1, "{name}: {k} = {v}");
-            }
-        }
-        // Adhesion in 3D (`adhesion-3d*`): MRD's pull-off against JKR, Kendall and
-        // Eq. 37 to rounding; the 3D pull-off against MRD's on the finest grid (measured
-        // 1.7 % for the sphere at 50 cells per pull-off radius, 0.21 % for the punch at
-        // 51, 3.1 % for the cone at 77) and converging (observed orders 1.44, 2.27,
-        // 1.42 on the last pair of grids).
-        if k == "adhesion_3d.pull_off_rel_error_mrd" || k == "adhesion_3d.jump_out_rel_error_mrd" {
-            assert!(v < 1e-9, "{name}: {k} = {v}");
-        }
-        if k == "adhesion_3d.pull_off_rel_error_3d" {
-            assert!(v < 0.04, "{name}: {k} = {v}");
-        }
-        if k == "adhesion_3d.pull_off_order_3d" {
-            assert!(v > 0.8, "{name}: {k} = {v}");
-        }
-        // The Tabor map (`adhesion-tabor`): 3D Maugis-Dugdale against Maugis' closed
-        // form where resolved (measured 3.8 % at lambda = 1, 0.3 % at 0.3, 0.2 % at
-        // 0.1); MRD (JKR) misses Bradley's end (-23 % at lambda = 0.1) and meets JKR's
-        // (-1.1 % at lambda = 3).
-        if k == "tabor_3d.rel_error_3d_vs_maugis_max_resolved" {
-            assert!(v < 0.05, "{name}: {k} = {v}");
-        }
-        if k == "tabor_3d.rel_error_mrd_vs_maugis_at_smallest_lambda" {
-            assert!(v < -0.2, "{name}: {k} = {v}");
-        }
-        if k == "tabor_3d.rel_error_mrd_vs_maugis_at_largest_lambda" {
-            assert!(v.abs() < 0.02, "{name}: {k} = {v}");
-        }
-        // Rough adhesive spheres (`rough-adhesion-3d-ci`, 64^2 and 128^2 cells, 15 and
-        // 30 cells per JKR pull-off radius): the smooth sphere's pull-off against JKR's
-        // 3/2 pi R w within 5 % in 3D (measured 3.7 %) and 1 % on MRD's 512 springs
-        // (measured 0.78 %, 120 springs per pull-off radius); every adhesive cycle
-        // loses energy.
-        if k == "rough_adhesion_3d.smooth_pull_off_over_closed_form_3d" {
-            assert!((v - 1.0).abs() < 0.05, "{name}: {k} = {v}");
-        }
-        if k == "rough_adhesion_3d.smooth_pull_off_over_closed_form_mrd" {
-            assert!((v - 1.0).abs() < 0.01, "{name}: {k} = {v}");
-        }
-        if k == "rough_adhesion_3d.loop_energy_min_over_smooth_3d" {
-            assert!(v > 0.0, "{name}: {k} = {v}");
-        }
-        // Adhesive pull-off on springs is first order in dx (quantised radius): 2e-3.
-        if k == "adhesion.pull_off_rel_dev_discrete_vs_semi_analytic" {
-            assert!(v < 2e-3, "{name}: {k} = {v}");
-        }
-    }
+    check_result_bounds(name, &s);
     if name.starts_with("adhesion-3d") {
-        for k in [
-            "pull_off_rel_error_3d",
-            "pull_off_order_3d",
-            "pull_off_rel_error_mrd",
-        ] {
-            assert!(
-                result(&s, &format!("adhesion_3d.{k}")).is_finite(),
-                "{name}: {k}"
-            );
-        }
         assert!(stages(&s).contains(&"adhesion_3d".to_string()));
-    }
-    if *name == "adhesion-tabor" {
-        for k in [
-            "rel_error_3d_vs_maugis_max_resolved",
-            "rel_error_mrd_vs_maugis_at_smallest_lambda",
-            "rel_error_mrd_vs_maugis_at_largest_lambda",
-        ] {
-            assert!(result(&s, &format!("tabor_3d.{k}")).is_finite(), "{k}");
-        }
     }
     if *name == "adhesion-3d" {
         // The sphere's jump-out under approach control: its depth within one
         // approach step of JKR's (measured 3.2 %, a step 6.1 %).
         let step = result(&s, "adhesion_3d.approach_step_over_jump_out_depth");
         assert!(result(&s, "adhesion_3d.jump_out_depth_rel_error_3d") < step);
-        return;
-    }
-    if *name == "rough-adhesion-3d-ci" {
-        for k in [
-            "smooth_pull_off_over_closed_form_3d",
-            "smooth_pull_off_over_closed_form_mrd",
-            "loop_energy_min_over_smooth_3d",
-            "pull_off_over_smooth_max_abs_change_last_refinement_3d",
-            "pull_off_over_smooth_max_abs_dev_mrd_outer_0_vs_3d",
-            "pull_off_over_smooth_max_abs_dev_mrd_cluster_2_vs_3d",
-        ] {
-            let key = format!("rough_adhesion_3d.{k}");
-            assert!(result(&s, &key).is_finite(), "{k}");
-        }
-        return;
-    }
-    if *name == "rough-partial-slip-3d-ci" {
-        for k in [
-            "shift_max_rel_dev_3d_vs_mrd",
-            "dissipation_max_rel_dev_3d_vs_mrd",
-            "shift_max_rel_dev_3d_vs_mrd_at_nu_0",
-            "dissipation_max_rel_dev_3d_vs_mrd_at_nu_0",
-            "ratio_max_rel_change_last_refinement",
-        ] {
-            let key = format!("rough_partial_slip_3d.{k}");
-            assert!(result(&s, &key).is_finite(), "{k}");
-        }
-        return;
-    }
-    if *name == "rough-slip-3d-ci" {
-        for nu in ["nu_0", "nu_0p5"] {
-            for k in [
-                "shift_smooth_max_rel_dev_3d_vs_mrd",
-                "dissipation_smooth_max_rel_dev_3d_vs_mrd",
-                "shift_rough_max_rel_dev_3d_vs_law",
-                "dissipation_rough_max_rel_dev_3d_vs_law",
-                "shift_rough_max_rel_dev_3d_vs_mrd_0",
-                "shift_rough_max_rel_dev_3d_vs_mrd_1",
-                "dissipation_rough_max_rel_dev_3d_vs_mrd_1",
-                "kt_over_kn_max_rel_dev_3d_vs_mrd",
-            ] {
-                let key = format!("rough_slip_3d.{k}_{nu}");
-                assert!(result(&s, &key).is_finite(), "{key}");
-            }
-        }
-        for k in ["shift", "dissipation"] {
-            let key = format!("rough_slip_3d.{k}_max_rel_change_3d_last_refinement");
-            assert!(result(&s, &key).is_finite(), "{key}");
-        }
-        return;
-    }
-    if *name == "tangential-stiffness-3d-ci" {
-        for k in [
-            "kt_over_kn_max_rel_dev_3d_vs_mrd",
-            "kt_over_kn_max_rel_change_last_refinement",
-            "kt_along_only_max_rel_dev",
-        ] {
-            let key = format!("tangential_stiffness_3d.{k}");
-            assert!(result(&s, &key).is_finite(), "{k}");
-        }
-        return;
-    }
-    if *name == "tangential-3d-cone" {
-        for k in [
-            "stick_radius_max_rel_dev_3d_vs_mrd",
-            "dissipation_max_rel_dev_3d_vs_mrd",
-            "energy_balance_max_rel_3d",
-        ] {
-            assert!(result(&s, &format!("tangential_3d.{k}")).is_finite(), "{k}");
-        }
-        return;
     }
     if *name == "tangential-3d-free" {
         // The free half-space at 64 cells per contact radius (no periodic images):
@@ -490,18 +416,9 @@ fn check_embedded_scene(name: &str) {
         let c = result(&s, "tangential_3d.stick_radius_max_rel_error_3d");
         let w = result(&s, "tangential_3d.dissipation_max_rel_error_3d");
         assert!(c < 0.01 && w < 0.003, "c/a {c}, W {w}");
-        return;
     }
     if *name == "tangential-3d" {
-        // The keys the checks above read are present (a renamed key fails here).
-        for k in [
-            "stick_radius_max_rel_error_3d",
-            "dissipation_max_rel_error_3d",
-        ] {
-            assert!(result(&s, &format!("tangential_3d.{k}")).is_finite());
-        }
         assert!(stages(&s).contains(&"tangential_3d".to_string()));
-        return;
     }
     if *name == "rough-stiffness" {
         // Eq. (80): alpha = 1/(1+H) for the MRD rough line (stated tolerance 0.02).
@@ -734,8 +651,22 @@ fn check_embedded_scene(name: &str) {
         return;
     }
     // MRD-only scenes never touch the 3D solver.
-    assert!(stages(&s).iter().all(|st| !st.starts_with("bem")), "{name}");
+    if !CHECKED_IN_THE_TABLE_3D.contains(name) {
+        assert!(stages(&s).iter().all(|st| !st.starts_with("bem")), "{name}");
+    }
 }
+
+/// The scenes with 3D solves whose checks are the table's and the ones above (the
+/// other 3D scenes return after their own checks).
+const CHECKED_IN_THE_TABLE_3D: &[&str] = &[
+    "rough-adhesion-3d-ci",
+    "rough-partial-slip-3d-ci",
+    "rough-slip-3d-ci",
+    "tangential-stiffness-3d-ci",
+    "tangential-3d",
+    "tangential-3d-cone",
+    "tangential-3d-free",
+];
 
 #[test]
 fn force_depth_request_runs_no_pressure_stage() {

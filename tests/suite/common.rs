@@ -1,6 +1,7 @@
 //! Helpers the test modules share: running the `mrdw` binary and reading its output.
 
-use std::path::Path;
+use serde_json::Value;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// `mrdw ARGS` run in `dir`.
@@ -48,4 +49,21 @@ pub fn csvs(dir: &Path) -> Vec<(String, Vec<u8>)> {
     v.sort();
     assert!(!v.is_empty(), "no CSV in {}", dir.display());
     v
+}
+
+/// The report folder's `summary.json`.
+pub fn summary(out: &Path) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+}
+
+/// Writes the scene `text` as `dir/scene.toml`, runs it into `dir/o` (whose earlier
+/// report it replaces) and returns (scene file, report folder, summary); a failed run
+/// fails the test with its standard error.
+pub fn run_written_scene(dir: &Path, text: &str) -> (PathBuf, PathBuf, Value) {
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, text).unwrap();
+    ok(&mrdw_in(dir, &["run", "scene.toml", "--out", "o"]));
+    let out = dir.join("o");
+    let s = summary(&out);
+    (scene, out, s)
 }

@@ -4,7 +4,7 @@
 //! run, report folders keep what a user added, and the benchmark commands refuse what
 //! they cannot do.
 
-use crate::common::{mrdw_in, stderr};
+use crate::common::{mrdw_in, stderr, summary};
 use std::path::Path;
 use std::process::{Command, Output};
 
@@ -20,8 +20,19 @@ fn refused(o: &Output, needle: &str) {
     );
 }
 
-fn summary(dir: &Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+/// Each scene `head` + body of `cases` is refused before anything runs: exit code 2,
+/// one line containing the case's needle, and no report folder.
+fn each_refused(head: &str, cases: &[(String, &str)]) {
+    let tmp = tempfile::tempdir().unwrap();
+    for (body, needle) in cases {
+        std::fs::write(tmp.path().join("b.toml"), format!("{head}{body}")).unwrap();
+        let o = mrdw_in(tmp.path(), &["run", "b.toml", "--out", "o"]);
+        refused(&o, needle);
+        assert!(
+            !tmp.path().join("o").exists(),
+            "{needle}: a report was written"
+        );
+    }
 }
 
 /// Every integer key of every embedded scene, set to 10^15 (counts, sizes, points):
@@ -433,11 +444,10 @@ fn half_lengths_and_scene_names_get_true_messages() {
 /// The 3D claims' kinds name a bad value before anything runs.
 #[test]
 fn static_friction_3d_and_rough_sphere_refuse_bad_values() {
-    let tmp = tempfile::tempdir().unwrap();
     let head = "name = \"b\"\n[material]\ne_star = 1.0\n[[outputs]]\n";
     let sf = "kind = \"static_friction_3d\"\nbandwidth = 6\nrealisations_3d = 2\nrealisations_1d = 2\nf_max = 1.0\n";
     let rs = "kind = \"rough_sphere\"\nradius = 1.0\nhurst = 0.8\ngrid = 64\nrealisations_3d = 2\nrealisations_1d = 2\n";
-    for (body, needle) in [
+    let cases = [
         (format!("{sf}hurst = [1.5]\nf_min = 1e-3\n"), "hurst = 1.5 must lie in [0, 1]"),
         (format!("{sf}hurst = [0.7]\nf_min = 2.0\n"), "need 0 < f_min < f_max"),
         (
@@ -470,22 +480,16 @@ fn static_friction_3d_and_rough_sphere_refuse_bad_values() {
                 .replace("radius = 1.0", "radius = 1e300"),
             "radius = 1e300 must lie in [1e-100, 1e100]",
         ),
-    ] {
-        let scene = tmp.path().join("b.toml");
-        std::fs::write(&scene, format!("{head}{body}")).unwrap();
-        let o = mrdw_in(tmp.path(), &["run", "b.toml", "--out", "o"]);
-        refused(&o, needle);
-        assert!(!tmp.path().join("o").exists(), "{needle}: a report was written");
-    }
+    ];
+    each_refused(head, &cases);
 }
 
 /// The lambda study's checks name a bad value before anything runs.
 #[test]
 fn lambda_study_refuses_bad_checks() {
-    let tmp = tempfile::tempdir().unwrap();
     let head = "name = \"b\"\n[material]\ne_star = 1.0\n[[outputs]]\n";
     let ls = "kind = \"lambda_study\"\nhurst = [0.0, 1.0]\nbandwidths = [8, 16]\ncells = 4\ncalibrate_at = 16\nrealisations = { min = 4, max = 8, batch = 4 }\nrealisations_1d = 16\n";
-    for (body, needle) in [
+    let cases = [
         (
             format!("{ls}top_check = {{ hurst = 0.5, bandwidth = 16, tolerance = 1e-10, realisations = 2 }}\n"),
             "top_check.hurst must be one of hurst",
@@ -512,13 +516,8 @@ fn lambda_study_refuses_bad_checks() {
                 .replace("cells = 4", "cells = 17"),
             "top_check runs at twice cells = 17 (so cells must be at most 16): 34 cells per wavelength, outside 3..=32",
         ),
-    ] {
-        let scene = tmp.path().join("b.toml");
-        std::fs::write(&scene, format!("{head}{body}")).unwrap();
-        let o = mrdw_in(tmp.path(), &["run", "b.toml", "--out", "o"]);
-        refused(&o, needle);
-        assert!(!tmp.path().join("o").exists(), "{needle}: a report was written");
-    }
+    ];
+    each_refused(head, &cases);
 }
 
 /// The viscoelastic rough punch names a bad value before anything runs.
@@ -527,7 +526,7 @@ fn viscoelastic_rough_refuses_bad_values() {
     let tmp = tempfile::tempdir().unwrap();
     let head = "name = \"b\"\n[material]\ne_star = 1.0\n[[outputs]]\n";
     let vr = "kind = \"viscoelastic_rough\"\nhurst = 0.8\nbandwidth = 4\ncells = 4\nrealisations_3d = 2\nrealisations_1d = 2\nforce = 0.05\nramp = 1.0\nhold = 1.0\nunload = 0.25\n";
-    for (body, needle) in [
+    let cases = [
         (
             format!("{vr}steps = 10\nmodulus = {{ relaxed = 1.0, terms = [[4.0, 0.05]] }}\n"),
             "exceeds the shortest relaxation time modulus.terms tau = 5.000e-2: give steps >= 20",
@@ -571,16 +570,8 @@ fn viscoelastic_rough_refuses_bad_values() {
                 .replace("force = 0.05", "approach = -1.0"),
             "force or approach must be finite and > 0",
         ),
-    ] {
-        let scene = tmp.path().join("b.toml");
-        std::fs::write(&scene, format!("{head}{body}")).unwrap();
-        let o = mrdw_in(tmp.path(), &["run", "b.toml", "--out", "o"]);
-        refused(&o, needle);
-        assert!(
-            !tmp.path().join("o").exists(),
-            "{needle}: a report was written"
-        );
-    }
+    ];
+    each_refused(head, &cases);
     // A hold of 1e15 ramps: refused before anything is allocated, on both kinds.
     let scene = tmp.path().join("b.toml");
     let body = format!("{vr}steps = 10\nmodulus = {{ relaxed = 1.0, terms = [[4.0, 0.5]] }}\n")

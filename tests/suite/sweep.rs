@@ -1,7 +1,7 @@
 //! The Hurst sweep end to end: fitted exponents in 3D and 1D agree (fig6-ci), a killed
 //! run resumes to the same bytes, and shards merge to the same bytes as one run.
 
-use crate::common::{csvs, mrdw_env as mrdw, ok};
+use crate::common::{csvs, mrdw_env as mrdw, ok, run_written_scene};
 use serde_json::Value;
 
 #[test]
@@ -74,26 +74,11 @@ fn calibrated_lambda_tables_load() {
         "# from a sweep\nhurst [1],lambda [1]\n0.0,2.5\n1.0,4.0\n",
     )
     .unwrap();
-    let scene = tmp.path().join("r.toml");
     for lam in ["\"calibrated\"", "\"lam.csv\""] {
-        std::fs::write(
-            &scene,
-            format!("name = \"r\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"rough_stiffness\"\nhurst = 0.5\npoints = 4096\nlength = 1.0\nlambda = {lam}\nrealisations = 4\nf_min = 1e-5\nf_max = 1.0\n"),
-        )
-        .unwrap();
-        let out = tmp.path().join("o");
-        ok(&mrdw(
-            &[
-                "run",
-                scene.to_str().unwrap(),
-                "--out",
-                out.to_str().unwrap(),
-            ],
-            &[],
-        ));
-        let s: Value =
-            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
-                .unwrap();
+        let (_, _, s) = run_written_scene(
+            tmp.path(),
+            &format!("name = \"r\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"rough_stiffness\"\nhurst = 0.5\npoints = 4096\nlength = 1.0\nlambda = {lam}\nrealisations = 4\nf_min = 1e-5\nf_max = 1.0\n"),
+        );
         let l = s["results"]["rough_stiffness.lambda"].as_f64().unwrap();
         // H = 0.5: halfway between the file's nodes; a node of the embedded table.
         let expect = if lam.contains("lam.csv") {
