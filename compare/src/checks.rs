@@ -101,6 +101,12 @@ pub fn check_memory(bytes: f64, what: &str) -> Result<()> {
     sysmem::check_estimate(bytes, what).map_err(CompareError::from)
 }
 
+/// [`check_memory`] for `bytes` that each worker thread holds at once (one task per
+/// thread: a 3D grid, a set of springs).
+pub(crate) fn check_memory_per_thread(bytes: f64, what: &str) -> Result<()> {
+    check_memory(bytes * rayon::current_num_threads() as f64, what)
+}
+
 /// A spring count: at least 2, and within memory at `bytes` per spring
 /// ([`spring_bytes`]).
 pub(crate) fn check_springs(springs: usize, bytes: f64) -> Result<()> {

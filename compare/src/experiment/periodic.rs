@@ -4,7 +4,9 @@
 //! patch's rms slope h' (the same for every realisation: the modes' amplitudes are fixed,
 //! their phases random), the scale of the reduced pressure p / (E* h').
 
-use crate::checks::{bad, check_memory, count_in, BYTES_PER_CELL_PERIODIC, MAX_REALISATIONS};
+use crate::checks::{
+    bad, check_memory_per_thread, count_in, BYTES_PER_CELL_PERIODIC, MAX_REALISATIONS,
+};
 use crate::error::{Context as _, Result};
 use mrd::roughness::synthesis::Grid;
 use mrd::roughness::{nested, SelfAffine};
@@ -72,10 +74,8 @@ impl Ladder<'_> {
         }
         count_in("realisations", self.realisations, 2..=MAX_REALISATIONS)?;
         let n = self.cells.last().copied().unwrap_or(2) * self.bandwidth;
-        check_memory(
-            (n * n) as f64
-                * (BYTES_PER_CELL_PERIODIC + bytes_per_cell)
-                * rayon::current_num_threads() as f64,
+        check_memory_per_thread(
+            (n * n) as f64 * (BYTES_PER_CELL_PERIODIC + bytes_per_cell),
             &format!("3D grids of {n}^2 cells, one per thread"),
         )?;
         Ok(n)

@@ -171,11 +171,8 @@ impl MrdSliding {
         if self.points() > 1 << 22 {
             return bad("springs x refine must be <= 4194304");
         }
-        crate::checks::check_memory(
-            self.springs as f64
-                * (shear.terms.len() as f64 + 4.0)
-                * 16.0
-                * rayon::current_num_threads() as f64,
+        crate::checks::check_memory_per_thread(
+            self.springs as f64 * (shear.terms.len() as f64 + 4.0) * 16.0,
             &format!("springs = {}", self.springs),
         )?;
         if !positive(self.reduced_force) {

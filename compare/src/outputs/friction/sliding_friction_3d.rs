@@ -338,11 +338,8 @@ impl Output for SlidingFriction3d {
                 if self.coarse_check { " and coarse_check solves on grid / 2 too" } else { "" }
             ));
         }
-        crate::checks::check_memory(
-            (self.grid * self.grid) as f64
-                * 4.0
-                * crate::checks::BYTES_PER_CELL_PERIODIC
-                * rayon::current_num_threads() as f64,
+        crate::checks::check_memory_per_thread(
+            (self.grid * self.grid) as f64 * 4.0 * crate::checks::BYTES_PER_CELL_PERIODIC,
             &format!("grid = {}", self.grid),
         )?;
         elastomer::velocities(

@@ -3,7 +3,9 @@
 
 use super::{report, runs};
 use super::{Geometry, StaticFriction3d};
-use crate::checks::{bad, check_memory, count_in, positive, BYTES_PER_CELL_NON_PERIODIC};
+use crate::checks::{
+    bad, check_memory_per_thread, count_in, positive, BYTES_PER_CELL_NON_PERIODIC,
+};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::lambda::LambdaSpec;
@@ -49,8 +51,8 @@ impl Output for StaticFriction3d {
         }
         // One solver per worker thread; the refinement's grid when there is one.
         let side = if self.refine.is_some() { 2 * n } else { n } as f64;
-        check_memory(
-            side * side * BYTES_PER_CELL_NON_PERIODIC * rayon::current_num_threads() as f64,
+        check_memory_per_thread(
+            side * side * BYTES_PER_CELL_NON_PERIODIC,
             &format!("3D grids of {side}^2 cells, one per thread"),
         )
     }

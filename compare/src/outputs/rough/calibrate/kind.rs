@@ -36,10 +36,8 @@ impl Output for Calibrate {
                 "the 3D grid would be {g} cells a side (cells x bandwidth, or the map): at most 4096"
             ));
         }
-        crate::checks::check_memory(
-            (g * g) as f64
-                * crate::checks::BYTES_PER_CELL_NON_PERIODIC
-                * rayon::current_num_threads() as f64,
+        crate::checks::check_memory_per_thread(
+            (g * g) as f64 * crate::checks::BYTES_PER_CELL_NON_PERIODIC,
             &format!("a {g} x {g} punch per thread"),
         )
     }

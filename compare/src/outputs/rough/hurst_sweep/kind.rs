@@ -32,10 +32,8 @@ impl Output for HurstSweep {
         crate::checks::count_in("points_1d_factor", self.points_1d_factor as u64, 2..=64)?;
         crate::checks::check_tolerance(self.tolerance)?;
         // One 3D task per worker thread at a time.
-        crate::checks::check_memory(
-            (self.grid * self.grid) as f64
-                * crate::checks::BYTES_PER_CELL_NON_PERIODIC
-                * rayon::current_num_threads() as f64,
+        crate::checks::check_memory_per_thread(
+            (self.grid * self.grid) as f64 * crate::checks::BYTES_PER_CELL_NON_PERIODIC,
             &format!("grid = {}", self.grid),
         )
     }

@@ -221,10 +221,8 @@ impl LambdaStudy {
             ));
         }
         // One 3D task per worker thread at a time.
-        crate::checks::check_memory(
-            (g * g) as f64
-                * crate::checks::BYTES_PER_CELL_NON_PERIODIC
-                * rayon::current_num_threads() as f64,
+        crate::checks::check_memory_per_thread(
+            (g * g) as f64 * crate::checks::BYTES_PER_CELL_NON_PERIODIC,
             &format!("bandwidth {b} at {cells} cells ({g}^2)"),
         )
     }

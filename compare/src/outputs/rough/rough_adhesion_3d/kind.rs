@@ -2,7 +2,7 @@
 
 use super::cycles::{cycle_1d, cycle_3d, unit_rms_scale, Cases};
 use super::{report, RoughAdhesion3d, Variant};
-use crate::checks::{bad, check_memory, check_tolerance, count_in};
+use crate::checks::{bad, check_memory_per_thread, check_tolerance, count_in};
 use crate::checks::{check_ensembles, BYTES_PER_CELL_NON_PERIODIC};
 use crate::context::Context;
 use crate::error::Result;
@@ -65,8 +65,8 @@ impl Output for RoughAdhesion3d {
         }
         LambdaSpec::check_all(&self.lambda, ctx, &self.hurst)?;
         let n = *self.cells.last().unwrap_or(&16) as f64;
-        check_memory(
-            n * n * BYTES_PER_CELL * rayon::current_num_threads() as f64,
+        check_memory_per_thread(
+            n * n * BYTES_PER_CELL,
             &format!("3D grids of {n}^2 cells, one per thread"),
         )
     }

@@ -2,7 +2,7 @@
 
 use super::runs::{run_1d, run_3d, unit_rms_scale, Case};
 use super::{report, RoughSlip3d};
-use crate::checks::{bad, check_memory, check_tolerance, count_in, positive};
+use crate::checks::{bad, check_memory_per_thread, check_tolerance, count_in, positive};
 use crate::checks::{check_ensembles, BYTES_PER_CELL_NON_PERIODIC};
 use crate::context::Context;
 use crate::error::Result;
@@ -85,8 +85,8 @@ impl Output for RoughSlip3d {
         check_tolerance(self.tolerance)?;
         LambdaSpec::check_all(&self.lambda, ctx, &self.hurst)?;
         let n = *self.cells.last().unwrap_or(&16) as f64;
-        check_memory(
-            n * n * BYTES_PER_CELL * rayon::current_num_threads() as f64,
+        check_memory_per_thread(
+            n * n * BYTES_PER_CELL,
             &format!("3D grids of {n}^2 cells, one per thread"),
         )
     }

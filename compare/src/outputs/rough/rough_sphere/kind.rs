@@ -3,7 +3,7 @@
 
 use super::RoughSphere;
 use super::{report, runs};
-use crate::checks::{bad, check_memory, count_in, BYTES_PER_CELL_NON_PERIODIC};
+use crate::checks::{bad, check_memory_per_thread, count_in, BYTES_PER_CELL_NON_PERIODIC};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::lambda::LambdaSpec;
@@ -44,8 +44,8 @@ impl Output for RoughSphere {
         crate::checks::check_tolerance(self.tolerance)?;
         LambdaSpec::check_all(&self.lambda, ctx, &[self.hurst])?;
         let n = self.grid as f64;
-        check_memory(
-            n * n * BYTES_PER_CELL_NON_PERIODIC * rayon::current_num_threads() as f64,
+        check_memory_per_thread(
+            n * n * BYTES_PER_CELL_NON_PERIODIC,
             &format!("3D grids of {n}^2 cells, one per thread"),
         )
     }

@@ -3,7 +3,7 @@
 
 use super::{radok, report, runs};
 use super::{ViscoelasticRough, MAX_STEPS};
-use crate::checks::{bad, check_memory, count_in, BYTES_PER_CELL_NON_PERIODIC};
+use crate::checks::{bad, check_memory_per_thread, count_in, BYTES_PER_CELL_NON_PERIODIC};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::lambda::LambdaSpec;
@@ -72,8 +72,8 @@ impl Output for ViscoelasticRough {
         LambdaSpec::check_all(&self.lambda, ctx, &[self.hurst])?;
         let g = self.grid() as f64;
         // Two solvers (viscoelastic, elastic) per realisation, one realisation per thread.
-        check_memory(
-            2.0 * g * g * BYTES_PER_CELL_NON_PERIODIC * rayon::current_num_threads() as f64,
+        check_memory_per_thread(
+            2.0 * g * g * BYTES_PER_CELL_NON_PERIODIC,
             &format!("3D grids of {g}^2 cells, two per thread"),
         )
     }
