@@ -13,6 +13,25 @@ fn mrdw(args: &[&str]) -> std::process::Output {
         .expect("mrdw runs")
 }
 
+/// [`run_scene`] on one worker thread: the scene tests run side by side, one per core,
+/// and results do not depend on the thread count.
+fn run_scene_on_one_thread(scene: &str, out: &Path) -> Value {
+    let o = mrdw(&[
+        "run",
+        scene,
+        "--out",
+        out.to_str().unwrap(),
+        "--threads",
+        "1",
+    ]);
+    assert!(
+        o.status.success(),
+        "{scene}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    crate::common::summary(out)
+}
+
 fn run_scene(scene: &str, out: &Path) -> Value {
     let o = mrdw(&["run", scene, "--out", out.to_str().unwrap()]);
     assert!(
@@ -376,7 +395,7 @@ fn check_embedded_scene(name: &str) {
     let tmp = tempfile::tempdir().unwrap();
     let name = &name;
     let out = tmp.path().join(name);
-    let s = run_scene(name, &out);
+    let s = run_scene_on_one_thread(name, &out);
     // Every CSV carries provenance and unit-bearing headers; every figure exists.
     for f in s["files"].as_array().unwrap() {
         let f = f.as_str().unwrap();
