@@ -13,17 +13,12 @@ fn mrdw(args: &[&str]) -> std::process::Output {
         .expect("mrdw runs")
 }
 
-/// [`run_scene`] on one worker thread: the scene tests run side by side, one per core,
-/// and results do not depend on the thread count.
-fn run_scene_on_one_thread(scene: &str, out: &Path) -> Value {
-    let o = mrdw(&[
-        "run",
-        scene,
-        "--out",
-        out.to_str().unwrap(),
-        "--threads",
-        "1",
-    ]);
+/// Runs `scene` into `out` with the extra arguments `extra` and returns its summary; a
+/// failed run fails the test with its standard error.
+fn run_scene_with(scene: &str, out: &Path, extra: &[&str]) -> Value {
+    let mut args = vec!["run", scene, "--out", out.to_str().unwrap()];
+    args.extend_from_slice(extra);
+    let o = mrdw(&args);
     assert!(
         o.status.success(),
         "{scene}: {}",
@@ -33,13 +28,7 @@ fn run_scene_on_one_thread(scene: &str, out: &Path) -> Value {
 }
 
 fn run_scene(scene: &str, out: &Path) -> Value {
-    let o = mrdw(&["run", scene, "--out", out.to_str().unwrap()]);
-    assert!(
-        o.status.success(),
-        "{scene}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    crate::common::summary(out)
+    run_scene_with(scene, out, &[])
 }
 
 fn result(s: &Value, key: &str) -> f64 {
@@ -250,8 +239,8 @@ const CONE: &[&str] = &["tangential-3d-cone"];
 
 /// The embedded scenes' results and their bounds: (key, bound, scenes that must report
 /// the key). The bound holds in every scene that reports the key; a scene listed must
-/// report it, so that a renamed key fails instead of leaving its bound unchecked. Each bound's reason and the measured value are
-/// stated beside it.
+/// report it, so that a renamed key fails instead of leaving its bound unchecked. Each
+/// bound's reason and the measured value are stated beside it.
 #[rustfmt::skip]
 const RESULT_BOUNDS: &[(&str, Bound, &[&str])] = &[
     ("pressure.equilibrium_rel_error", Below(1e-7), &["hertz", "cone", "flat-punch", "ejike"]),
@@ -395,7 +384,9 @@ fn check_embedded_scene(name: &str) {
     let tmp = tempfile::tempdir().unwrap();
     let name = &name;
     let out = tmp.path().join(name);
-    let s = run_scene_on_one_thread(name, &out);
+    // One worker thread: the scene tests run side by side, one per core, and results
+    // do not depend on the thread count.
+    let s = run_scene_with(name, &out, &["--threads", "1"]);
     // Every CSV carries provenance and unit-bearing headers; every figure exists.
     for f in s["files"].as_array().unwrap() {
         let f = f.as_str().unwrap();
@@ -1160,8 +1151,7 @@ fn bench_report_quick_fits_the_known_orders() {
     ] {
         assert!(out.join(f).exists(), "{f} missing");
     }
-    let s: Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let s = crate::common::summary(&out);
     let r = |k: &str| result(&s, &format!("bench.{k}"));
     // MRD springs: midpoint sampling of a smooth image, second order (Hertz, cone);
     // event-driven adhesion: first order (the boundary spring, Eq. 33); damping: the

@@ -180,9 +180,7 @@ fn two_outputs_of_one_kind_write_distinct_files() {
     .unwrap();
     let o = mrdw_in(tmp.path(), &["run", "b.toml", "--out", "r"]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let s: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(tmp.path().join("r/summary.json")).unwrap())
-            .unwrap();
+    let s = crate::common::summary(&tmp.path().join("r"));
     let files: Vec<String> = s["files"]
         .as_array()
         .unwrap()

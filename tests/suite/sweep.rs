@@ -1,7 +1,7 @@
 //! The Hurst sweep end to end: fitted exponents in 3D and 1D agree (fig6-ci), a killed
 //! run resumes to the same bytes, and shards merge to the same bytes as one run.
 
-use crate::common::{csvs, mrdw_env as mrdw, ok, run_written_scene};
+use crate::common::{csvs, mrdw_env as mrdw, ok, run_written_scene, summary};
 use serde_json::Value;
 
 #[test]
@@ -12,8 +12,7 @@ fn fig6_ci_exponents_agree_between_3d_and_mrd() {
         &["run", "fig6-ci", "--out", out.to_str().unwrap()],
         &[],
     ));
-    let s: Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let s = summary(&out);
     let per = s["results"]["hurst_sweep.per_hurst"].as_object().unwrap();
     let mut mrd_alpha = Vec::new();
     for (h, v) in per {
