@@ -25,7 +25,7 @@
 
 mod kind;
 mod report;
-mod runs;
+pub mod runs;
 
 use crate::experiment::lambda::LambdaSpec;
 use serde::Deserialize;

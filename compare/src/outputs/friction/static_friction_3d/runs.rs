@@ -230,13 +230,6 @@ pub fn press_line(
 mod tests {
     use super::*;
 
-    fn spec(extra: &str) -> StaticFriction3d {
-        toml::from_str(&format!(
-            "hurst = [0.7]\nbandwidth = 4\nrealisations_3d = 2\nrealisations_1d = 2\nf_min = 1e-3\nf_max = 1.0\n{extra}"
-        ))
-        .unwrap()
-    }
-
     #[test]
     fn forward_differences_of_a_plane_wave() {
         // z = cos(2 pi (k x + m y)) on n^2 cells: (z(x + dx) - z(x)) / dx has mean square
@@ -253,40 +246,5 @@ mod tests {
         let mean = g2.iter().sum::<f64>() / (n * n) as f64;
         let s = |w: f64| (2.0 * (PI * w * dx).sin() / dx).powi(2) / 2.0;
         assert!((mean / (s(k) + s(m)) - 1.0).abs() < 1e-12, "{mean}");
-    }
-
-    #[test]
-    fn xi_is_one_at_complete_contact_in_3d() {
-        let s = spec("");
-        for g in [Geometry::Periodic, Geometry::Disc] {
-            let run = solve_3d(&s, g, 0.7, 0, s.cells, &[1e-3, 1e4]).unwrap();
-            let full = run.points[1].unwrap();
-            assert_eq!(full.area, 1.0, "{g:?}");
-            assert!((full.xi - 1.0).abs() < 1e-12, "{g:?}: {}", full.xi);
-            let sparse = run.points[0].unwrap();
-            assert!(
-                sparse.xi > 0.0 && sparse.xi < 1.0 && sparse.area < 0.05,
-                "{sparse:?}"
-            );
-        }
-    }
-
-    #[test]
-    fn lambda_only_rescales_the_line() {
-        // C1D = lambda q C2D scales a line by sqrt(lambda / pi): pressed with forces
-        // scaled the same way it has the same contact set, so xi(f) of lambda at 3D
-        // height h equals xi(f) of pi at h sqrt(pi / lambda) (Section 10.2's scaling).
-        let s = spec("");
-        let fs = mrd::friction::log_space(1e-3, 1.0, 7);
-        let lam = 5.0;
-        for g in [Geometry::Periodic, Geometry::Disc] {
-            let a = press_line(&s, g, 0.7, lam, 1.0, 3, &fs).unwrap();
-            let b = press_line(&s, g, 0.7, PI, (PI / lam).sqrt(), 3, &fs).unwrap();
-            for (p, q) in a.iter().zip(&b) {
-                assert_eq!(p.contacts, q.contacts);
-                assert!((p.xi - q.xi).abs() < 1e-12, "{p:?} {q:?}");
-            }
-            assert!(a[0].contacts < a[6].contacts);
-        }
     }
 }
