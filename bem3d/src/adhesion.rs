@@ -250,6 +250,8 @@ impl<C: Preconditioner> AdhesiveContact<C> {
                 return Ok(self.report(round, joined, detached, iterations, residual));
             }
         }
+        // The last round's detachments left `u` stale: the state stays consistent.
+        self.op.apply(&self.p, &mut self.u);
         Err(BemError::Breakdown {
             what: "adhesive contact",
             iterations,
@@ -287,10 +289,8 @@ impl<C: Preconditioner> AdhesiveContact<C> {
                 came += 1;
             }
         }
-        if left > 0 {
-            // The pressures changed where cells left: u follows before the next round.
-            self.op.apply(&self.p, &mut self.u);
-        }
+        // Where cells left, `u` is stale until the next round, which recomputes `K p`
+        // before it reads `u` (or zeroes both when no cell is left in contact).
         (left, came)
     }
 
