@@ -42,6 +42,12 @@
 //! `kind.rs` its `Output` impl, which calls the study's parts (tasks, analysis, report);
 //! the parts import the parameters and each other downwards only. What two studies both
 //! need goes into `experiment`, never into one of them.
+//!
+//! **Tests.** Unit tests sit beside their code when they reach no output registry and
+//! no 3D solver. A test that parses a scene, runs one or calls a study's 3D solves goes
+//! into `tests/pipeline.rs`, against the built library: beside the code it would make
+//! the unit-test binary compile every output kind and every solver a second time
+//! (about 80 s of the test build on 2 cores).
 
 pub mod checks;
 pub mod context;

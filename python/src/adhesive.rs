@@ -101,6 +101,8 @@ pub struct AdhesiveContact {
     periodic: bool,
 }
 
+grid_getters!(AdhesiveContact);
+
 #[pymethods]
 impl AdhesiveContact {
     #[new]
@@ -202,24 +204,12 @@ impl AdhesiveContact {
     fn gap<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         grid_array(py, &self.state.gap(), self.shape)
     }
-    /// (ny, nx)
-    #[getter]
-    fn shape(&self) -> (usize, usize) {
-        self.shape
-    }
-    /// (lx, ly) [length]
-    #[getter]
-    fn size(&self) -> (f64, f64) {
-        self.size
-    }
-    #[getter]
-    fn periodic(&self) -> bool {
-        self.periodic
-    }
     fn __repr__(&self) -> String {
         format!(
             "AdhesiveContact(shape={:?}, size={:?}, periodic={})",
-            self.shape, self.size, self.periodic
+            self.shape,
+            self.size,
+            crate::grid_getters::py_bool(self.periodic)
         )
     }
 }

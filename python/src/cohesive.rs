@@ -109,7 +109,10 @@ pub struct CohesiveContact {
     contact: Solver,
     shape: (usize, usize),
     size: (f64, f64),
+    periodic: bool,
 }
+
+grid_getters!(CohesiveContact);
 
 #[pymethods]
 impl CohesiveContact {
@@ -167,6 +170,7 @@ impl CohesiveContact {
             contact,
             shape: (ny, nx),
             size: grid.size,
+            periodic,
         })
     }
 
@@ -201,16 +205,6 @@ impl CohesiveContact {
     fn resolved(&self) -> bool {
         self.contact.resolved()
     }
-    /// (ny, nx)
-    #[getter]
-    fn shape(&self) -> (usize, usize) {
-        self.shape
-    }
-    /// (lx, ly) [length]
-    #[getter]
-    fn size(&self) -> (f64, f64) {
-        self.size
-    }
     /// "dugdale" or "exponential".
     #[getter]
     fn law(&self) -> &'static str {
@@ -224,11 +218,7 @@ impl CohesiveContact {
             "CohesiveContact(shape={:?}, size={:?}, periodic={}, law={:?}, dugdale_length={:.4e})",
             self.shape,
             self.size,
-            if matches!(self.contact, Solver::Periodic(_)) {
-                "True"
-            } else {
-                "False"
-            },
+            crate::grid_getters::py_bool(self.periodic),
             self.law(),
             self.contact.dugdale_length()
         )

@@ -520,6 +520,8 @@ pub struct Contact {
     shared: Option<Arc<PyHeights>>,
 }
 
+grid_getters!(Contact);
+
 pub(crate) struct Request {
     pub load: Load,
     pub opts: SolverOptions,
@@ -822,24 +824,10 @@ impl Contact {
         Ok(out)
     }
 
-    /// (ny, nx)
-    #[getter]
-    fn shape(&self) -> (usize, usize) {
-        self.shape
-    }
-    /// (lx, ly) [length]
-    #[getter]
-    fn size(&self) -> (f64, f64) {
-        self.size
-    }
     /// E* [stress]
     #[getter]
     fn e_star(&self) -> f64 {
         self.e_star
-    }
-    #[getter]
-    fn periodic(&self) -> bool {
-        self.periodic
     }
     /// Cells the heights left undefined (a numpy masked array's masked cells, as
     /// SurfaceTopography gives for maps with missing points): left out of the contact.
@@ -850,7 +838,10 @@ impl Contact {
     fn __repr__(&self) -> String {
         format!(
             "Contact(shape={:?}, size={:?}, e_star={}, periodic={})",
-            self.shape, self.size, self.e_star, self.periodic
+            self.shape,
+            self.size,
+            self.e_star,
+            crate::grid_getters::py_bool(self.periodic)
         )
     }
 }

@@ -4,6 +4,8 @@
 //! go out as numpy arrays that own their data; long solves release the GIL.
 
 #[macro_use]
+mod grid_getters;
+#[macro_use]
 mod step_class;
 mod adhesive;
 mod axisym;

@@ -106,6 +106,8 @@ pub struct TransientContact {
     interrupt: Interrupt,
 }
 
+grid_getters!(TransientContact);
+
 #[pymethods]
 impl TransientContact {
     #[new]
@@ -215,26 +217,12 @@ impl TransientContact {
     fn displacement<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         grid_array(py, self.history.displacement(), self.shape)
     }
-    /// (ny, nx)
-    #[getter]
-    fn shape(&self) -> (usize, usize) {
-        self.shape
-    }
-    /// (lx, ly) [length]
-    #[getter]
-    fn size(&self) -> (f64, f64) {
-        self.size
-    }
-    #[getter]
-    fn periodic(&self) -> bool {
-        self.periodic
-    }
     fn __repr__(&self) -> String {
         format!(
             "TransientContact(shape={:?}, size={:?}, periodic={}, time={})",
             self.shape,
             self.size,
-            self.periodic,
+            crate::grid_getters::py_bool(self.periodic),
             self.history.time()
         )
     }

@@ -321,3 +321,21 @@ def test_heights_are_read_in_place_bit_for_bit_and_a_change_is_refused():
     h[5, 7] = np.nextafter(h[5, 7], 1.0)
     with pytest.raises(ValueError, match="heights: the array changed"):
         c.solve(mean_pressure=1e-3)
+
+
+@pytest.mark.parametrize("periodic", [True, False])
+def test_every_grid_class_reports_its_shape_size_and_periodicity(periodic):
+    """Contact, TransientContact, AdhesiveContact and CohesiveContact share the getters
+    shape (ny, nx), size (lx, ly) and periodic, as given to the constructor."""
+    h = np.zeros((6, 8))
+    h[3, 4] = 1e-3
+    size = (2.0, 1.5)
+    grids = [
+        mrdw.Contact(h, size=size, periodic=periodic),
+        mrdw.TransientContact(h, 1.0, [(1.0, 1.0)], size=size, periodic=periodic),
+        mrdw.AdhesiveContact(h, work=1e-3, size=size, periodic=periodic),
+        mrdw.CohesiveContact(h, work=1e-3, sigma0=0.1, size=size, periodic=periodic),
+    ]
+    for g in grids:
+        assert (g.shape, g.size, g.periodic) == ((6, 8), size, periodic), repr(g)
+        assert f"periodic={periodic}" in repr(g)
