@@ -4,7 +4,7 @@
 # (`cargo fetch`, not timed), nothing else running. Prints the wall and CPU time of each
 # command, their sum and the CPU; run it before changing the times the README states.
 #
-#   bash scripts/setup-times.sh            # about 16 minutes on 2 cores (Intel Xeon)
+#   bash scripts/setup-times.sh            # about 11 minutes on 2 cores (Intel Xeon)
 set -euo pipefail
 src=$(cd "$(dirname "$0")/.." && pwd)
 tmp=$(mktemp -d)
