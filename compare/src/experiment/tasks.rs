@@ -36,7 +36,7 @@ impl Realisations {
 
 /// Computes the missing tasks among the first `upto` of `names` (the global list, in
 /// its fixed order; shards take every N-th of the whole list) into `work`, in parallel,
-/// one task per thread: `run(i)` computes task `i` and returns its checkpoint's text
+/// one task per thread, handed out in the list's order: `run(i)` computes task `i` and returns its checkpoint's text
 /// ([`json`]). `label` names the work on the progress bar and, when `announce` is set
 /// and checkpoints are found, in a message saying how many were taken from them.
 pub fn compute(
@@ -73,7 +73,9 @@ pub fn compute(
         "tasks",
     );
     let done = AtomicUsize::new(0);
-    let result = todo.par_iter().with_max_len(1).try_for_each(|&i| {
+    // Handed out in the list's order, one task per idle thread: a caller that lists its
+    // cheapest tasks first (the lambda study) gets them done first.
+    let result = todo.iter().par_bridge().try_for_each(|&i| {
         write_atomic(&work.join(&names[i]), &run(i)?)?;
         bar.inc();
         let n = done.fetch_add(1, Ordering::SeqCst) + 1;

@@ -10,9 +10,8 @@ use super::tasks::{
 };
 use super::LambdaStudy;
 use crate::error::{io_err, CompareError, Result};
-use crate::files::write_atomic;
+use crate::experiment::tasks::{self, json};
 use crate::output::RunControl;
-use rayon::prelude::*;
 use std::path::Path;
 
 /// How many realisations `case` needs given `n` done: the adaptive rule below, and at
@@ -187,56 +186,46 @@ pub fn compute(s: &LambdaStudy, work: &Path, control: &RunControl) -> Result<()>
         // Report only: the MRD ensembles alone (priority 0), which are not committed
         // (deterministic, about two CPU-minutes): the report needs them beside the 3D
         // checkpoints.
-        let wanted = |t: &Task| !control.report_only || t.priority(s) == 0;
-        let todo: Vec<Task> = round
+        let round: Vec<Task> = round
             .into_iter()
-            .filter(wanted)
-            .enumerate()
-            .filter(|(i, _)| control.shard.is_none_or(|(k, n)| i % n == k))
-            .map(|(_, t)| t)
+            .filter(|t| !control.report_only || t.priority(s) == 0)
             .collect();
-        if todo.is_empty() {
+        if round.is_empty() {
             return Ok(());
         }
-        let bar = control.progress.then(|| {
-            let b = indicatif::ProgressBar::new(todo.len() as u64);
-            b.set_style(
-                indicatif::ProgressStyle::with_template(
-                    "{msg} [{bar:30}] {pos}/{len} tasks of this round, {elapsed} elapsed, ETA {eta}",
-                )
-                .expect("valid template")
-                .progress_chars("=> "),
-            );
-            b.set_message("lambda study");
-            b
-        });
-        let count = std::sync::atomic::AtomicUsize::new(computed);
-        // Handed out in the plan's order (cheapest first), one task per idle thread.
-        let result = todo.iter().par_bridge().try_for_each(|t| -> Result<()> {
-            let text = match t {
-                Task::Bem { case, r } => serde_json::to_string(&run_bem(s, case, *r)?),
-                Task::Mrd { hurst, band } => serde_json::to_string(&run_mrd(s, *hurst, *band)?),
-                Task::MrdApproach { hurst, band } => {
-                    serde_json::to_string(&run_mrd_approach(s, *hurst, *band)?)
-                }
-                Task::Control { case, m } => serde_json::to_string(&run_control(s, case, *m)?),
+        // The shared task layer takes this shard's share of the round (K modulo N) and
+        // hands the tasks out in the plan's order (cheapest grids first); the limit of
+        // `stop_after` counts the tasks of every round of this run.
+        let names: Vec<String> = round.iter().map(Task::file_name).collect();
+        let left = RunControl {
+            stop_after: control.stop_after.map(|n| n.saturating_sub(computed)),
+            ..*control
+        };
+        let run = |i: usize| -> Result<String> {
+            match &round[i] {
+                Task::Bem { case, r } => json(&run_bem(s, case, *r)?),
+                Task::Mrd { hurst, band } => json(&run_mrd(s, *hurst, *band)?),
+                Task::MrdApproach { hurst, band } => json(&run_mrd_approach(s, *hurst, *band)?),
+                Task::Control { case, m } => json(&run_control(s, case, *m)?),
             }
-            .map_err(|e| CompareError::Internal(e.to_string()))?;
-            write_atomic(&work.join(t.file_name()), &text)?;
-            if let Some(b) = &bar {
-                b.inc(1);
+        };
+        match tasks::compute(
+            work,
+            "lambda study",
+            &names,
+            names.len(),
+            false,
+            &left,
+            &run,
+        ) {
+            Err(CompareError::Stopped { tasks }) => {
+                return Err(CompareError::Stopped {
+                    tasks: tasks + computed,
+                })
             }
-            let n = count.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
-            match control.stop_after {
-                Some(stop) if n >= stop => Err(CompareError::Stopped { tasks: n }),
-                _ => Ok(()),
-            }
-        });
-        if let Some(b) = bar {
-            b.finish_and_clear();
+            other => other?,
         }
-        result?;
-        computed = count.into_inner();
+        computed += names.len();
         // A shard computes one round: later rounds depend on every shard's results. A
         // report only stops after the MRD ensembles.
         if control.shard.is_some() || control.report_only {
