@@ -36,9 +36,10 @@ impl Realisations {
 
 /// Computes the missing tasks among the first `upto` of `names` (the global list, in
 /// its fixed order; shards take every N-th of the whole list) into `work`, in parallel,
-/// one task per thread, handed out in the list's order: `run(i)` computes task `i` and returns its checkpoint's text
-/// ([`json`]). `label` names the work on the progress bar and, when `announce` is set
-/// and checkpoints are found, in a message saying how many were taken from them.
+/// one task per thread, handed out in the list's order: `run(i)` computes task `i` and
+/// returns its checkpoint's text ([`json`]). `label` names the work on the progress bar
+/// and, when `announce` is set and checkpoints are found, in a message saying how many
+/// were taken from them.
 pub fn compute(
     work: &Path,
     label: &'static str,
