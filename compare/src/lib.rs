@@ -47,7 +47,7 @@
 //! no 3D solver. A test that parses a scene, runs one or calls a study's 3D solves goes
 //! into `tests/pipeline.rs`, against the built library: beside the code it would make
 //! the unit-test binary compile every output kind and every solver a second time
-//! (about 80 s of the test build on 2 cores).
+//! (docs/architecture.md, "Where a test goes").
 
 pub mod checks;
 pub mod context;

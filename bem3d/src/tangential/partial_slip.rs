@@ -179,7 +179,7 @@ impl<C: TangentialCompliance> PartialSlip<C> {
         }
         // On a pool thread: the iteration's short parallel loops start in place instead
         // of each waking a pool thread and the caller (the module docs of `crate::pool`;
-        // a 32^2 viscoelastic history on one thread runs 8.7x faster, bench/HISTORY.md).
+        // the times are in bench/HISTORY.md).
         crate::pool::on_pool(|| self.load_on_pool(force, tolerance))
     }
 
