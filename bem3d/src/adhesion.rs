@@ -30,7 +30,9 @@
 //! `sigma_c` leave, and cells outside with `g < 0` join; the rounds repeat from the
 //! last pressures until no cell moves. Each round is a linear, symmetric positive
 //! definite solve, stopped when `max_C |u + z - d| <= tolerance * l` with
-//! `l = max(rms of z, max_C |u|, |d|, w / sigma_c)`; the set update is exact. The
+//! `l = max(rms of z, max_C |u|, |d|, w / sigma_c)`; the set update is exact. On a
+//! free half-space a round solves on the smallest box of cells that holds `C` (module
+//! `window`), at the box's transform size, and applies `K` on the grid once after it. The
 //! problem is not convex (the energy of detachment is not), so the result is an
 //! equilibrium reached from the previous state (the physical one along a quasi-static
 //! history), not a global minimum. A step reports the cells that joined and detached,
@@ -38,8 +40,10 @@
 //! rounds, or a solve that stalls, is an error carrying the residual reached.
 
 use crate::error::{BemError, Result};
-use crate::operator::Preconditioner;
+use crate::operator::{GridForms, Preconditioner};
 use crate::solver::Load;
+
+mod window;
 
 /// Rounds of set updates in one step (a jump-out detaches the contact ring by ring:
 /// one round per ring).
@@ -94,7 +98,7 @@ pub struct AdhesiveStep {
 
 /// A rigid surface in adhesive contact with an elastic half-space, loaded along a
 /// history (module docs). Shares the normal solver's operators.
-pub struct AdhesiveContact<C: Preconditioner> {
+pub struct AdhesiveContact<C: Preconditioner + GridForms> {
     op: C,
     /// `max(h) - h` [length].
     z: Vec<f64>,
@@ -109,6 +113,8 @@ pub struct AdhesiveContact<C: Preconditioner> {
     /// `K p` [length].
     u: Vec<f64>,
     approach: f64,
+    /// The window of the last solves on a set, kept while it fits the set.
+    window: Option<window::SetWindow>,
 }
 
 /// Work vectors of the conjugate gradient.
@@ -119,7 +125,7 @@ struct Work {
     kt: Vec<f64>,
 }
 
-impl<C: Preconditioner> AdhesiveContact<C> {
+impl<C: Preconditioner + GridForms> AdhesiveContact<C> {
     /// `heights` (`ny x nx`, finite), an optional `mask` of the cells that may touch, and
     /// the work of adhesion `work` > 0 [energy / length^2]. Starts out of contact.
     pub fn new(op: C, heights: &[f64], mask: Option<&[bool]>, work: f64) -> Result<Self> {
@@ -149,6 +155,7 @@ impl<C: Preconditioner> AdhesiveContact<C> {
             p: vec![0.0; n],
             u: vec![0.0; n],
             approach: 0.0,
+            window: None,
         })
     }
 
@@ -323,94 +330,146 @@ impl<C: Preconditioner> AdhesiveContact<C> {
         }
     }
 
-    /// Pressures on the contact set for the target (module docs): a preconditioned
-    /// conjugate gradient, projected on `sum p = F / A` under force control. Returns the
-    /// iterations and the criterion reached.
+    /// Pressures on the contact set for the target (module docs), on the smallest window
+    /// of the grid that holds the set where the operator has one (module `window`), else on
+    /// the grid; `u = K p` on the whole grid after. Returns the iterations and the
+    /// criterion reached.
     fn solve_on_set(
         &mut self,
         target: Target,
         tolerance: f64,
         w: &mut Work,
     ) -> Result<(usize, f64)> {
-        let n = self.z.len();
         let on = self.contact.clone();
-        let count = on.iter().filter(|c| **c).count() as f64;
-        let cell = self.op.cell_area();
-        if let Target::Force(f) = target {
-            // Start on the constraint: shift the pressures uniformly over the set.
-            let miss = (f / cell - sum(&self.p)) / count;
-            for i in 0..n {
-                if on[i] {
-                    self.p[i] += miss;
-                }
-            }
-        }
+        let Some(win) = window::place(&self.op, &mut self.window, &on) else {
+            let set = OnSet {
+                on: &on,
+                z: &self.z,
+                p: &mut self.p,
+                u: &mut self.u,
+                scale: self.scale,
+                approach: &mut self.approach,
+            };
+            return solve_set(&mut self.op, set, target, tolerance, w);
+        };
+        let (z, mut p) = (win.gather(&self.z), win.gather(&self.p));
+        let mut u = vec![0.0; p.len()];
+        let set = OnSet {
+            on: &win.gather(&on),
+            z: &z,
+            p: &mut p,
+            u: &mut u,
+            scale: self.scale,
+            approach: &mut self.approach,
+        };
+        let solved = solve_set(&mut win.op, set, target, tolerance, w);
+        // The set lies in the window: p vanishes outside it, and K p is the grid's.
+        win.scatter(&mut self.p, &p);
         self.op.apply(&self.p, &mut self.u);
-        let mut rho_old = 0.0;
-        for it in 0..MAX_ITERATIONS {
-            // Residual on the set: d - (u + z), d the target or the set's mean.
-            let d = match target {
-                Target::Approach(d) => d,
-                Target::Force(_) => masked_sum(&on, |i| self.u[i] + self.z[i]) / count,
-            };
-            self.approach = d;
-            let mut worst = 0.0f64;
-            let mut largest = 0.0f64;
-            for i in 0..n {
-                w.r[i] = if on[i] {
-                    let r = d - self.u[i] - self.z[i];
-                    worst = worst.max(r.abs());
-                    largest = largest.max(self.u[i].abs());
-                    r
-                } else {
-                    0.0
-                };
-            }
-            let residual = worst / self.scale.max(largest).max(d.abs());
-            if residual <= tolerance {
-                return Ok((it, residual));
-            }
-            // Preconditioned residual on the set (about its mean under force control).
-            w.y.copy_from_slice(&w.r);
-            self.op.precondition(&mut w.y);
-            restrict(&on, &mut w.y, matches!(target, Target::Force(_)), count);
-            let rho = dot(&w.r, &w.y);
-            let beta = if it == 0 || rho_old == 0.0 {
-                0.0
-            } else {
-                rho / rho_old
-            };
-            rho_old = rho;
-            for i in 0..n {
-                w.t[i] = w.y[i] + beta * w.t[i];
-            }
-            self.op.apply(&w.t, &mut w.kt);
-            let curvature = dot(&w.t, &w.kt);
-            if !(curvature > 0.0 && rho.is_finite()) {
-                return Err(BemError::Breakdown {
-                    what: "adhesive contact",
-                    iterations: it,
-                    residual,
-                    reason: "a direction without curvature",
-                });
-            }
-            let alpha = rho / curvature;
-            for i in 0..n {
-                self.p[i] += alpha * w.t[i];
-                self.u[i] += alpha * w.kt[i];
-            }
-            // Recompute K p now and then against the drift of the updates.
-            if it % 50 == 49 {
-                self.op.apply(&self.p, &mut self.u);
+        solved
+    }
+}
+
+/// A contact set's solve: the set, `z` and the pressures and displacements it moves (all
+/// of one grid or window), the criterion's length floor and the approach it sets.
+struct OnSet<'a> {
+    on: &'a [bool],
+    z: &'a [f64],
+    p: &'a mut [f64],
+    u: &'a mut [f64],
+    scale: f64,
+    approach: &'a mut f64,
+}
+
+/// Pressures on the set for the target (module docs): a preconditioned conjugate
+/// gradient on `op`, projected on `sum p = F / A` under force control. Returns the
+/// iterations and the criterion reached.
+fn solve_set<O: Preconditioner>(
+    op: &mut O,
+    s: OnSet,
+    target: Target,
+    tolerance: f64,
+    w: &mut Work,
+) -> Result<(usize, f64)> {
+    let n = s.z.len();
+    let on = s.on;
+    let (r, y, t, kt) = (&mut w.r[..n], &mut w.y[..n], &mut w.t[..n], &mut w.kt[..n]);
+    let count = on.iter().filter(|c| **c).count() as f64;
+    let cell = op.cell_area();
+    if let Target::Force(f) = target {
+        // Start on the constraint: shift the pressures uniformly over the set.
+        let miss = (f / cell - sum(s.p)) / count;
+        for i in 0..n {
+            if on[i] {
+                s.p[i] += miss;
             }
         }
-        Err(BemError::Breakdown {
-            what: "adhesive contact",
-            iterations: MAX_ITERATIONS,
-            residual: f64::NAN,
-            reason: "the solve on a contact set did not converge within the iteration limit",
-        })
     }
+    op.apply(s.p, s.u);
+    let mut rho_old = 0.0;
+    for it in 0..MAX_ITERATIONS {
+        // Residual on the set: d - (u + z), d the target or the set's mean.
+        let d = match target {
+            Target::Approach(d) => d,
+            Target::Force(_) => masked_sum(on, |i| s.u[i] + s.z[i]) / count,
+        };
+        *s.approach = d;
+        let mut worst = 0.0f64;
+        let mut largest = 0.0f64;
+        for i in 0..n {
+            r[i] = if on[i] {
+                let r = d - s.u[i] - s.z[i];
+                worst = worst.max(r.abs());
+                largest = largest.max(s.u[i].abs());
+                r
+            } else {
+                0.0
+            };
+        }
+        let residual = worst / s.scale.max(largest).max(d.abs());
+        if residual <= tolerance {
+            return Ok((it, residual));
+        }
+        // Preconditioned residual on the set (about its mean under force control).
+        y.copy_from_slice(r);
+        op.precondition(y);
+        restrict(on, y, matches!(target, Target::Force(_)), count);
+        let rho = dot(r, y);
+        let beta = if it == 0 || rho_old == 0.0 {
+            0.0
+        } else {
+            rho / rho_old
+        };
+        rho_old = rho;
+        for i in 0..n {
+            t[i] = y[i] + beta * t[i];
+        }
+        op.apply(t, kt);
+        let curvature = dot(t, kt);
+        if !(curvature > 0.0 && rho.is_finite()) {
+            return Err(BemError::Breakdown {
+                what: "adhesive contact",
+                iterations: it,
+                residual,
+                reason: "a direction without curvature",
+            });
+        }
+        let alpha = rho / curvature;
+        for i in 0..n {
+            s.p[i] += alpha * t[i];
+            s.u[i] += alpha * kt[i];
+        }
+        // Recompute K p now and then against the drift of the updates.
+        if it % 50 == 49 {
+            op.apply(s.p, s.u);
+        }
+    }
+    Err(BemError::Breakdown {
+        what: "adhesive contact",
+        iterations: MAX_ITERATIONS,
+        residual: f64::NAN,
+        reason: "the solve on a contact set did not converge within the iteration limit",
+    })
 }
 
 /// The rigid surface of the adhesive solvers from the caller's heights and mask, checked:

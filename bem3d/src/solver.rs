@@ -190,7 +190,7 @@ mod start;
 mod state;
 mod stored;
 mod sweeps;
-mod window;
+pub(crate) mod window;
 
 pub use crate::solution::{Path, Solution};
 use options::Target;

@@ -66,7 +66,7 @@ impl Window {
 }
 
 /// Smallest number >= n of the form 2^a 3^b 5^c (fast transform lengths).
-fn smooth(n: usize) -> usize {
+pub(crate) fn smooth(n: usize) -> usize {
     (n.max(1)..)
         .find(|&m| {
             let mut r = m;

@@ -1,0 +1,135 @@
+//! The adhesive solve of a round on a window of the grid: a box of cells that holds the
+//! whole contact set, with the operator's own transforms at the box's size
+//! ([`GridForms::window`]).
+//!
+//! Within a round the set is fixed and the pressure vanishes off it, so the solve on a
+//! box that holds the set is the solve on the grid: between cells of the box the
+//! influence coefficients are the grid's (Love's kernel depends on the offset only),
+//! and only the transforms' rounding and the preconditioner (the box's inverse symbol,
+//! not the grid's) differ. The round then applies K once on the grid, for the gaps of
+//! the cells outside the set. A sphere's contact covers 10-50 % of the benchmark grid
+//! while it unloads: the box's padded transforms cost that fraction of the grid's. A
+//! periodic operator has no window (its cells couple to their images), nor does a set
+//! whose box would cover more than [`MAX_FRACTION`] of the grid.
+
+use crate::operator::{GridForms, NonPeriodicHalfSpace};
+use crate::solver::window::smooth;
+
+/// Largest window, as a fraction of the grid's cells.
+const MAX_FRACTION: f64 = 0.7;
+/// Cells added on each side of the set's box, as a fraction of its width (at least
+/// one): a growing contact keeps its window for a few steps.
+const MARGIN: f64 = 1.0 / 16.0;
+/// A kept window is built anew when it has this many times the cells it needs.
+const SHRINK: usize = 2;
+
+/// A box of `wx x wy` cells of the grid from `(x0, y0)` and the operator on it.
+pub(super) struct SetWindow {
+    x0: usize,
+    y0: usize,
+    wx: usize,
+    wy: usize,
+    nx: usize,
+    pub(super) op: NonPeriodicHalfSpace,
+}
+
+/// The window for the cells `on` of the grid of `op`: the kept one, moved over the set,
+/// while it holds the set and is not [`SHRINK`] times too large; else a new one. None:
+/// no window (periodic operator, no set, or a set spread over the grid).
+pub(super) fn place<'a, C: GridForms>(
+    op: &C,
+    kept: &'a mut Option<SetWindow>,
+    on: &[bool],
+) -> Option<&'a mut SetWindow> {
+    if op.is_periodic() {
+        return None;
+    }
+    let (nx, ny) = (op.nx(), op.ny());
+    let (x_lo, x_hi, y_lo, y_hi) = bounds(nx, on)?;
+    let (bw, bh) = (x_hi - x_lo + 1, y_hi - y_lo + 1);
+    let widen = |b: usize, len: usize| {
+        smooth(b + 2 * ((MARGIN * b as f64).ceil() as usize).max(1)).min(len)
+    };
+    let (wx, wy) = (widen(bw, nx), widen(bh, ny));
+    if (wx * wy) as f64 > MAX_FRACTION * (nx * ny) as f64 {
+        return None;
+    }
+    let fits = |w: &SetWindow| w.wx >= bw && w.wy >= bh && w.wx * w.wy <= SHRINK * wx * wy;
+    if !kept.as_ref().is_some_and(fits) {
+        *kept = Some(SetWindow {
+            x0: 0,
+            y0: 0,
+            wx,
+            wy,
+            nx,
+            op: op.window(wx, wy)?,
+        });
+    }
+    let w = kept.as_mut()?;
+    // Centre the box on the set, inside the grid.
+    w.x0 = x_lo.saturating_sub((w.wx - bw) / 2).min(nx - w.wx);
+    w.y0 = y_lo.saturating_sub((w.wy - bh) / 2).min(ny - w.wy);
+    Some(w)
+}
+
+impl SetWindow {
+    /// The window's values of a grid, row-major.
+    pub(super) fn gather<T: Copy>(&self, grid: &[T]) -> Vec<T> {
+        (self.y0..self.y0 + self.wy)
+            .flat_map(|y| {
+                let row = y * self.nx + self.x0;
+                grid[row..row + self.wx].iter().copied()
+            })
+            .collect()
+    }
+
+    /// Writes the window's `values` (row-major) into the grid.
+    pub(super) fn scatter(&self, grid: &mut [f64], values: &[f64]) {
+        for (r, y) in (self.y0..self.y0 + self.wy).enumerate() {
+            let row = y * self.nx + self.x0;
+            grid[row..row + self.wx].copy_from_slice(&values[r * self.wx..(r + 1) * self.wx]);
+        }
+    }
+}
+
+/// Inclusive bounding box `(x_lo, x_hi, y_lo, y_hi)` of the cells `on` of a grid of row
+/// length `nx`; None: no cell.
+fn bounds(nx: usize, on: &[bool]) -> Option<(usize, usize, usize, usize)> {
+    on.chunks_exact(nx)
+        .enumerate()
+        .filter_map(|(y, row)| {
+            let first = row.iter().position(|&c| c)?;
+            let last = row.iter().rposition(|&c| c)?;
+            Some((first, last, y, y))
+        })
+        .reduce(|a, b| (a.0.min(b.0), a.1.max(b.1), a.2.min(b.2), a.3.max(b.3)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_window_holds_the_set_and_stays_inside_the_grid() {
+        let op = NonPeriodicHalfSpace::new(64, 48, 1.0, 0.75, 1.0);
+        let mut on = vec![false; 64 * 48];
+        for (x, y) in [(60, 2), (63, 9), (55, 0)] {
+            on[y * 64 + x] = true;
+        }
+        let mut kept = None;
+        let w = place(&op, &mut kept, &on).unwrap();
+        assert!(w.x0 <= 55 && w.x0 + w.wx >= 64 && w.y0 == 0 && w.wy >= 10);
+        let g: Vec<f64> = (0..64 * 48).map(|i| i as f64).collect();
+        let mut back = vec![0.0; 64 * 48];
+        w.scatter(&mut back, &w.gather(&g));
+        for (i, (&a, &b)) in g.iter().zip(&back).enumerate() {
+            let (x, y) = (i % 64, i / 64);
+            let inside = (w.x0..w.x0 + w.wx).contains(&x) && (w.y0..w.y0 + w.wy).contains(&y);
+            assert_eq!(b, if inside { a } else { 0.0 });
+        }
+        // Spread over the grid: no window; periodic: none.
+        assert!(place(&op, &mut kept, &[true; 64 * 48]).is_none());
+        let periodic = crate::operator::PeriodicHalfSpace::new(64, 48, 1.0, 0.75, 1.0);
+        assert!(place(&periodic, &mut None, &on).is_none());
+    }
+}
