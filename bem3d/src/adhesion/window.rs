@@ -6,9 +6,16 @@
 //! box that holds the set is the solve on the grid: between cells of the box the
 //! influence coefficients are the grid's (Love's kernel depends on the offset only),
 //! and only the transforms' rounding and the preconditioner (the box's inverse symbol,
-//! not the grid's) differ. The round then applies K once on the grid, for the gaps of
-//! the cells outside the set. A sphere's contact covers 10-50 % of the benchmark grid
-//! while it unloads: the box's padded transforms cost that fraction of the grid's. A
+//! not the grid's) differ. A round then applies K once on the grid, for the gaps
+//! outside the box, except in a step that retracts the body under approach control:
+//! there no gap outside the set can close, and K is applied on the grid once, when
+//! the set holds in the box. (The approach's decrease opens every gap outside the set
+//! by at least what the set's lift, at most the decrease, closes: the potential of
+//! the set's equilibrium pressure is at most its value on the set. A cell that leaves
+//! only opens gaps: the potential of a positive load swept onto the set, its balayage,
+//! lies below the load's own everywhere.)
+//! A sphere's contact covers 10-50 % of the benchmark grid while it unloads: the box's
+//! padded transforms cost about that fraction of the grid's. A
 //! periodic operator has no window (its cells couple to their images), nor does a set
 //! whose box would cover more than [`MAX_FRACTION`] of the grid.
 
@@ -20,8 +27,9 @@ const MAX_FRACTION: f64 = 0.7;
 /// Cells added on each side of the set's box, as a fraction of its width (at least
 /// one): a growing contact keeps its window for a few steps.
 const MARGIN: f64 = 1.0 / 16.0;
-/// A kept window is built anew when it has this many times the cells it needs.
-const SHRINK: usize = 2;
+/// A kept window is built anew when it has this many times the cells it needs (a
+/// shrinking contact: unloading).
+const SHRINK: f64 = 1.25;
 
 /// A box of `wx x wy` cells of the grid from `(x0, y0)` and the operator on it.
 pub(super) struct SetWindow {
@@ -54,7 +62,9 @@ pub(super) fn place<'a, C: GridForms>(
     if (wx * wy) as f64 > MAX_FRACTION * (nx * ny) as f64 {
         return None;
     }
-    let fits = |w: &SetWindow| w.wx >= bw && w.wy >= bh && w.wx * w.wy <= SHRINK * wx * wy;
+    let fits = |w: &SetWindow| {
+        w.wx >= bw && w.wy >= bh && (w.wx * w.wy) as f64 <= SHRINK * (wx * wy) as f64
+    };
     if !kept.as_ref().is_some_and(fits) {
         *kept = Some(SetWindow {
             x0: 0,
@@ -72,7 +82,33 @@ pub(super) fn place<'a, C: GridForms>(
     Some(w)
 }
 
+/// A box of cells: `[x0, x0 + wx) x [y0, y0 + wy)`.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Rect {
+    x0: usize,
+    y0: usize,
+    wx: usize,
+    wy: usize,
+}
+
+impl Rect {
+    /// Whether the cell (x, y) lies in the box.
+    pub(super) fn holds(&self, x: usize, y: usize) -> bool {
+        (self.x0..self.x0 + self.wx).contains(&x) && (self.y0..self.y0 + self.wy).contains(&y)
+    }
+}
+
 impl SetWindow {
+    /// The box of the grid the window covers.
+    pub(super) fn rect(&self) -> Rect {
+        Rect {
+            x0: self.x0,
+            y0: self.y0,
+            wx: self.wx,
+            wy: self.wy,
+        }
+    }
+
     /// The window's values of a grid, row-major.
     pub(super) fn gather<T: Copy>(&self, grid: &[T]) -> Vec<T> {
         (self.y0..self.y0 + self.wy)
