@@ -363,7 +363,7 @@ impl<C: Preconditioner + GridForms> AdhesiveContact<C> {
         w: &mut Work,
     ) -> Result<(usize, f64, Option<window::Rect>)> {
         let on = self.contact.clone();
-        let Some(win) = window::place(&self.op, &mut self.window, &on) else {
+        let Some(win) = window::place(&self.op, &mut self.window, &on, box_only) else {
             let set = OnSet {
                 on: &on,
                 z: &self.z,

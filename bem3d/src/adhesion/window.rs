@@ -42,12 +42,14 @@ pub(super) struct SetWindow {
 }
 
 /// The window for the cells `on` of the grid of `op`: the kept one, moved over the set,
-/// while it holds the set and is not [`SHRINK`] times too large; else a new one. None:
+/// while it holds the set and is not [`SHRINK`] times too large; else a new one, with a
+/// [`MARGIN`] around the set's box unless the contact `shrinks` (a retraction). None:
 /// no window (periodic operator, no set, or a set spread over the grid).
 pub(super) fn place<'a, C: GridForms>(
     op: &C,
     kept: &'a mut Option<SetWindow>,
     on: &[bool],
+    shrinks: bool,
 ) -> Option<&'a mut SetWindow> {
     if op.is_periodic() {
         return None;
@@ -56,7 +58,12 @@ pub(super) fn place<'a, C: GridForms>(
     let (x_lo, x_hi, y_lo, y_hi) = bounds(nx, on)?;
     let (bw, bh) = (x_hi - x_lo + 1, y_hi - y_lo + 1);
     let widen = |b: usize, len: usize| {
-        smooth(b + 2 * ((MARGIN * b as f64).ceil() as usize).max(1)).min(len)
+        let margin = if shrinks {
+            0
+        } else {
+            ((MARGIN * b as f64).ceil() as usize).max(1)
+        };
+        smooth(b + 2 * margin).min(len)
     };
     let (wx, wy) = (widen(bw, nx), widen(bh, ny));
     if (wx * wy) as f64 > MAX_FRACTION * (nx * ny) as f64 {
@@ -153,7 +160,7 @@ mod tests {
             on[y * 64 + x] = true;
         }
         let mut kept = None;
-        let w = place(&op, &mut kept, &on).unwrap();
+        let w = place(&op, &mut kept, &on, false).unwrap();
         assert!(w.x0 <= 55 && w.x0 + w.wx >= 64 && w.y0 == 0 && w.wy >= 10);
         let g: Vec<f64> = (0..64 * 48).map(|i| i as f64).collect();
         let mut back = vec![0.0; 64 * 48];
@@ -164,8 +171,8 @@ mod tests {
             assert_eq!(b, if inside { a } else { 0.0 });
         }
         // Spread over the grid: no window; periodic: none.
-        assert!(place(&op, &mut kept, &[true; 64 * 48]).is_none());
+        assert!(place(&op, &mut kept, &[true; 64 * 48], false).is_none());
         let periodic = crate::operator::PeriodicHalfSpace::new(64, 48, 1.0, 0.75, 1.0);
-        assert!(place(&periodic, &mut None, &on).is_none());
+        assert!(place(&periodic, &mut None, &on, false).is_none());
     }
 }
