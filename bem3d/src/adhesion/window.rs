@@ -13,11 +13,13 @@
 //! by at least what the set's lift, at most the decrease, closes: the potential of
 //! the set's equilibrium pressure is at most its value on the set. A cell that leaves
 //! only opens gaps: the potential of a positive load swept onto the set, its balayage,
-//! lies below the load's own everywhere.)
+//! lies below the load's own everywhere. Both hold for the continuous half-space; on
+//! the grid, the tests compare whole cycles on the box and on the grid cell by cell.)
+//!
 //! A sphere's contact covers 10-50 % of the benchmark grid while it unloads: the box's
-//! padded transforms cost about that fraction of the grid's. A
-//! periodic operator has no window (its cells couple to their images), nor does a set
-//! whose box would cover more than [`MAX_FRACTION`] of the grid.
+//! padded transforms cost about that fraction of the grid's. A periodic operator has no
+//! window (its cells couple to their images), nor does a set whose box would cover more
+//! than [`MAX_FRACTION`] of the grid.
 
 use crate::operator::{GridForms, NonPeriodicHalfSpace};
 use crate::solver::window::smooth;
