@@ -42,6 +42,7 @@
 
 use crate::error::{BemError, Result};
 use crate::operator::{GridForms, Preconditioner};
+use crate::solver::window::Window;
 use crate::solver::Load;
 
 mod window;
@@ -297,7 +298,7 @@ impl<C: Preconditioner + GridForms> AdhesiveContact<C> {
 
     /// Cells in tension beyond the critical stress leave, cells that penetrate join (in
     /// `only` if given: where `u` is current); returns (left, joined).
-    fn update_set(&mut self, only: Option<&window::Rect>) -> (usize, usize) {
+    fn update_set(&mut self, only: Option<&Window>) -> (usize, usize) {
         let (mut left, mut came) = (0, 0);
         let d = self.approach;
         let nx = self.op.nx();
@@ -361,7 +362,7 @@ impl<C: Preconditioner + GridForms> AdhesiveContact<C> {
         tolerance: f64,
         box_only: bool,
         w: &mut Work,
-    ) -> Result<(usize, f64, Option<window::Rect>)> {
+    ) -> Result<(usize, f64, Option<Window>)> {
         let on = self.contact.clone();
         let Some(win) = window::place(&self.op, &mut self.window, &on, box_only) else {
             let set = OnSet {
@@ -389,12 +390,12 @@ impl<C: Preconditioner + GridForms> AdhesiveContact<C> {
         // The set lies in the window: p vanishes outside it, and K p in it is the grid's.
         win.scatter(&mut self.p, &p);
         win.scatter(&mut self.u, &u);
-        let rect = win.rect();
+        let cells = win.cells;
         if !(box_only && solved.is_ok()) {
             self.op.apply(&self.p, &mut self.u);
         }
         let (it, res) = solved?;
-        Ok((it, res, box_only.then_some(rect)))
+        Ok((it, res, box_only.then_some(cells)))
     }
 }
 

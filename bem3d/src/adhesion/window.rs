@@ -22,7 +22,7 @@
 //! than [`MAX_FRACTION`] of the grid.
 
 use crate::operator::{GridForms, NonPeriodicHalfSpace};
-use crate::solver::window::smooth;
+use crate::solver::window::{bounding_box_where, gather, smooth, Window};
 
 /// Largest window, as a fraction of the grid's cells.
 const MAX_FRACTION: f64 = 0.7;
@@ -33,12 +33,9 @@ const MARGIN: f64 = 1.0 / 16.0;
 /// shrinking contact: unloading).
 const SHRINK: f64 = 1.25;
 
-/// A box of `wx x wy` cells of the grid from `(x0, y0)` and the operator on it.
+/// A box of cells of the grid (of row length `nx`) and the operator on it.
 pub(super) struct SetWindow {
-    x0: usize,
-    y0: usize,
-    wx: usize,
-    wy: usize,
+    pub(super) cells: Window,
     nx: usize,
     pub(super) op: NonPeriodicHalfSpace,
 }
@@ -57,7 +54,7 @@ pub(super) fn place<'a, C: GridForms>(
         return None;
     }
     let (nx, ny) = (op.nx(), op.ny());
-    let (x_lo, x_hi, y_lo, y_hi) = bounds(nx, on)?;
+    let (x_lo, x_hi, y_lo, y_hi) = bounding_box_where(nx, on.len(), |i| on[i])?;
     let (bw, bh) = (x_hi - x_lo + 1, y_hi - y_lo + 1);
     let widen = |b: usize, len: usize| {
         let margin = if shrinks {
@@ -72,82 +69,43 @@ pub(super) fn place<'a, C: GridForms>(
         return None;
     }
     let fits = |w: &SetWindow| {
-        w.wx >= bw && w.wy >= bh && (w.wx * w.wy) as f64 <= SHRINK * (wx * wy) as f64
+        let c = w.cells;
+        c.wx >= bw && c.wy >= bh && (c.wx * c.wy) as f64 <= SHRINK * (wx * wy) as f64
     };
     if !kept.as_ref().is_some_and(fits) {
         *kept = Some(SetWindow {
-            x0: 0,
-            y0: 0,
-            wx,
-            wy,
+            cells: Window {
+                x0: 0,
+                y0: 0,
+                wx,
+                wy,
+            },
             nx,
             op: op.window(wx, wy)?,
         });
     }
     let w = kept.as_mut()?;
     // Centre the box on the set, inside the grid.
-    w.x0 = x_lo.saturating_sub((w.wx - bw) / 2).min(nx - w.wx);
-    w.y0 = y_lo.saturating_sub((w.wy - bh) / 2).min(ny - w.wy);
+    let c = &mut w.cells;
+    c.x0 = x_lo.saturating_sub((c.wx - bw) / 2).min(nx - c.wx);
+    c.y0 = y_lo.saturating_sub((c.wy - bh) / 2).min(ny - c.wy);
     Some(w)
 }
 
-/// A box of cells: `[x0, x0 + wx) x [y0, y0 + wy)`.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Rect {
-    x0: usize,
-    y0: usize,
-    wx: usize,
-    wy: usize,
-}
-
-impl Rect {
-    /// Whether the cell (x, y) lies in the box.
-    pub(super) fn holds(&self, x: usize, y: usize) -> bool {
-        (self.x0..self.x0 + self.wx).contains(&x) && (self.y0..self.y0 + self.wy).contains(&y)
-    }
-}
-
 impl SetWindow {
-    /// The box of the grid the window covers.
-    pub(super) fn rect(&self) -> Rect {
-        Rect {
-            x0: self.x0,
-            y0: self.y0,
-            wx: self.wx,
-            wy: self.wy,
-        }
-    }
-
     /// The window's values of a grid, row-major.
     pub(super) fn gather<T: Copy>(&self, grid: &[T]) -> Vec<T> {
-        (self.y0..self.y0 + self.wy)
-            .flat_map(|y| {
-                let row = y * self.nx + self.x0;
-                grid[row..row + self.wx].iter().copied()
-            })
-            .collect()
+        gather(grid, self.nx, self.cells)
     }
 
     /// Writes the window's `values` (row-major) into the grid.
     pub(super) fn scatter(&self, grid: &mut [f64], values: &[f64]) {
-        for (r, y) in (self.y0..self.y0 + self.wy).enumerate() {
-            let row = y * self.nx + self.x0;
-            grid[row..row + self.wx].copy_from_slice(&values[r * self.wx..(r + 1) * self.wx]);
+        let c = self.cells;
+        for (r, y) in (c.y0..c.y0 + c.wy).enumerate() {
+            let row = y * self.nx + c.x0;
+            grid[row..row + c.wx].copy_from_slice(&values[r * c.wx..(r + 1) * c.wx]);
         }
     }
-}
-
-/// Inclusive bounding box `(x_lo, x_hi, y_lo, y_hi)` of the cells `on` of a grid of row
-/// length `nx`; None: no cell.
-fn bounds(nx: usize, on: &[bool]) -> Option<(usize, usize, usize, usize)> {
-    on.chunks_exact(nx)
-        .enumerate()
-        .filter_map(|(y, row)| {
-            let first = row.iter().position(|&c| c)?;
-            let last = row.iter().rposition(|&c| c)?;
-            Some((first, last, y, y))
-        })
-        .reduce(|a, b| (a.0.min(b.0), a.1.max(b.1), a.2.min(b.2), a.3.max(b.3)))
 }
 
 #[cfg(test)]
@@ -163,14 +121,14 @@ mod tests {
         }
         let mut kept = None;
         let w = place(&op, &mut kept, &on, false).unwrap();
-        assert!(w.x0 <= 55 && w.x0 + w.wx >= 64 && w.y0 == 0 && w.wy >= 10);
+        let c = w.cells;
+        assert!(c.x0 <= 55 && c.x0 + c.wx >= 64 && c.y0 == 0 && c.wy >= 10);
         let g: Vec<f64> = (0..64 * 48).map(|i| i as f64).collect();
         let mut back = vec![0.0; 64 * 48];
         w.scatter(&mut back, &w.gather(&g));
         for (i, (&a, &b)) in g.iter().zip(&back).enumerate() {
             let (x, y) = (i % 64, i / 64);
-            let inside = (w.x0..w.x0 + w.wx).contains(&x) && (w.y0..w.y0 + w.wy).contains(&y);
-            assert_eq!(b, if inside { a } else { 0.0 });
+            assert_eq!(b, if c.holds(x, y) { a } else { 0.0 });
         }
         // Spread over the grid: no window; periodic: none.
         assert!(place(&op, &mut kept, &[true; 64 * 48], false).is_none());

@@ -51,16 +51,16 @@ const MIN_MARGIN: usize = 2;
 
 /// A box of cells `[x0, x0 + wx) x [y0, y0 + wy)`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct Window {
-    x0: usize,
-    y0: usize,
-    wx: usize,
-    wy: usize,
+pub(crate) struct Window {
+    pub(crate) x0: usize,
+    pub(crate) y0: usize,
+    pub(crate) wx: usize,
+    pub(crate) wy: usize,
 }
 
 impl Window {
     /// Whether the cell (x, y) lies in the box.
-    fn holds(&self, x: usize, y: usize) -> bool {
+    pub(crate) fn holds(&self, x: usize, y: usize) -> bool {
         (self.x0..self.x0 + self.wx).contains(&x) && (self.y0..self.y0 + self.wy).contains(&y)
     }
 }
@@ -302,7 +302,7 @@ fn on_window<K: SolverOperator>(
 }
 
 /// The values of a window of a grid of row length `nx`, row-major.
-fn gather<T: Copy>(grid: &[T], nx: usize, win: Window) -> Vec<T> {
+pub(crate) fn gather<T: Copy>(grid: &[T], nx: usize, win: Window) -> Vec<T> {
     (win.y0..win.y0 + win.wy)
         .flat_map(|y| {
             grid[y * nx + win.x0..y * nx + win.x0 + win.wx]
@@ -334,7 +334,7 @@ fn scatter(p: &mut [f64], nx: usize, win: Window, values: &[f64]) {
 
 /// [`bounding_box`] of the cells `i < n` of a grid of row length `nx` for which
 /// `on(i)`, rows in parallel.
-fn bounding_box_where(
+pub(crate) fn bounding_box_where(
     nx: usize,
     n: usize,
     on: impl Fn(usize) -> bool + Sync,
