@@ -45,7 +45,7 @@ use crate::operator::{GridForms, Preconditioner};
 use crate::solver::window::Window;
 use crate::solver::Load;
 
-mod passes;
+pub(crate) mod passes;
 mod window;
 
 /// Rounds of set updates in one step (a jump-out detaches the contact ring by ring:

@@ -11,11 +11,11 @@
 use rayon::prelude::*;
 
 /// Cells per chunk of a pass (small in the unit tests, so that their grids split).
-const CHUNK: usize = if cfg!(test) { 128 } else { 8192 };
+pub(crate) const CHUNK: usize = if cfg!(test) { 128 } else { 8192 };
 
 /// `max(a, b)` as a select (vectorizes); a NaN `b` leaves `a`.
 #[inline(always)]
-fn max(a: f64, b: f64) -> f64 {
+pub(crate) fn max(a: f64, b: f64) -> f64 {
     if b > a {
         b
     } else {
@@ -140,7 +140,7 @@ pub(super) fn products(on: &[bool], r: &[f64], y: &[f64]) -> (f64, f64, f64) {
 }
 
 /// The new direction `t = (y - mean) + beta t` on the set, 0 off it.
-pub(super) fn direction(on: &[bool], y: &[f64], mean: f64, beta: f64, t: &mut [f64]) {
+pub(crate) fn direction(on: &[bool], y: &[f64], mean: f64, beta: f64, t: &mut [f64]) {
     let n = on.len();
     t[..n].par_chunks_mut(CHUNK).enumerate().for_each(|(k, t)| {
         let lo = k * CHUNK;
@@ -156,7 +156,7 @@ pub(super) fn direction(on: &[bool], y: &[f64], mean: f64, beta: f64, t: &mut [f
 }
 
 /// `sum a b`.
-pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     let parts: Vec<f64> = a
         .par_chunks(CHUNK)
         .zip(b.par_chunks(CHUNK))
