@@ -287,6 +287,12 @@ impl From<String> for Failure {
     }
 }
 
+impl From<bench::common::Failed> for Failure {
+    fn from(e: bench::common::Failed) -> Self {
+        Failure::Error(format!("benchmark: {e}"), 2)
+    }
+}
+
 impl From<std::io::Error> for Failure {
     fn from(e: std::io::Error) -> Self {
         Failure::Error(format!("writing to standard output: {e}"), 2)

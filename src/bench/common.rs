@@ -3,25 +3,36 @@
 
 use std::time::Instant;
 
+/// A benchmark's failure: a write to its output, or a case a solver refused (named by
+/// [`Case::case`]).
+pub type Failed = Box<dyn std::error::Error + Send + Sync>;
+/// The result of a benchmark target.
+pub type Result<T> = std::result::Result<T, Failed>;
+
+/// Names the benchmark case of a failure.
+pub trait Case<T> {
+    fn case(self, what: impl std::fmt::Display) -> Result<T>;
+}
+
+impl<T, E: std::fmt::Display> Case<T> for std::result::Result<T, E> {
+    fn case(self, what: impl std::fmt::Display) -> Result<T> {
+        self.map_err(|e| format!("{what}: {e}").into())
+    }
+}
+
 /// The periodic reference problem shared with the Tamaas comparison: self-affine,
 /// H = 0.8, spectrum from 2 pi/L (roll-off at 4 pi/L) to n/4 x 2 pi/L, rms slope 0.1,
 /// L = 1, seed 2026, realisation 0.
-pub fn reference_surface(n: usize) -> Vec<f64> {
+pub fn reference_surface(n: usize) -> std::result::Result<Vec<f64>, mrd::MrdError> {
     use mrd::roughness::synthesis::{surface, Amplitudes, Grid};
     use mrd::roughness::SelfAffine;
     use std::f64::consts::PI;
-    let spec = SelfAffine::new(0.8, 2.0 * PI, 4.0 * PI, 2.0 * PI * (n / 4) as f64).unwrap();
-    let mut h = surface(
-        &spec,
-        &Grid::square(n, 1.0),
-        2026,
-        0,
-        Amplitudes::Deterministic,
-    )
-    .unwrap();
+    let spec = SelfAffine::new(0.8, 2.0 * PI, 4.0 * PI, 2.0 * PI * (n / 4) as f64)?;
+    let grid = Grid::square(n, 1.0);
+    let mut h = surface(&spec, &grid, 2026, 0, Amplitudes::Deterministic)?;
     let m = mrd::roughness::stats::surface_moments(&h, n, n, 1.0, 1.0);
     h.iter_mut().for_each(|v| *v *= 0.1 / m.rms_slope);
-    h
+    Ok(h)
 }
 
 /// Peak resident memory of this process in MiB (Linux VmHWM), if readable.

@@ -58,7 +58,7 @@ pub fn run_large_case(
     sysmem::check_estimate(estimate, &format!("a {n} x {n} contact")).map_err(|e| e.to_string())?;
     let failed = |e: BemError| e.to_string();
     let t0 = Instant::now();
-    let heights = reference_surface(n);
+    let heights = reference_surface(n).map_err(|e| e.to_string())?;
     let synthesis = t0.elapsed().as_secs_f64();
     let synthesis_mem = peak_memory_mib().unwrap_or(0.0);
     let t1 = Instant::now();

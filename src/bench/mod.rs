@@ -13,7 +13,7 @@ pub use large::{run_large, run_large_case};
 pub use tangential::run_tangential;
 pub use viscoelastic::run_viscoelastic;
 
-use common::{child_error, field, peak_memory_mib, reference_surface};
+use common::{child_error, field, peak_memory_mib, reference_surface, Case, Result};
 use mrd::discrete::DiscreteAxisymmetric;
 use mrd::oscillation::OscillatingContact;
 use mrd::reference as rf;
@@ -39,9 +39,9 @@ fn time_it<F: FnMut()>(mut f: F, budget: f64) -> f64 {
 }
 
 /// Prints the MRD benchmark table; `max_exp` is the largest log10(N).
-pub fn run_mrd(w: &mut dyn Write, max_exp: u32) -> std::io::Result<()> {
+pub fn run_mrd(w: &mut dyn Write, max_exp: u32) -> Result<()> {
     let (r, e, g, mu, d) = (1.0, 1.0, 0.8, 0.3, 0.01);
-    let sphere = Profile::single(Shape::paraboloid(r).unwrap());
+    let sphere = Profile::single(Shape::paraboloid(r).case("sphere")?);
     let a = rf::hertz::radius(r, d);
     let f_target = rf::hertz::force(e, r, d);
     writeln!(
@@ -58,32 +58,34 @@ pub fn run_mrd(w: &mut dyn Write, max_exp: u32) -> std::io::Result<()> {
     for k in 3..=max_exp {
         let n = 10usize.pow(k);
         let l = 1.2 * a;
+        let case = format!("{n} springs");
+        // Each timed call ran once, checked, before it is timed.
+        let disc = DiscreteAxisymmetric::new(&sphere, e, n, l).case(&case)?;
         let setup = time_it(
-            || drop(DiscreteAxisymmetric::new(&sphere, e, n, l).unwrap()),
+            || {
+                drop(std::hint::black_box(DiscreteAxisymmetric::new(
+                    &sphere, e, n, l,
+                )))
+            },
             0.3,
         );
-        let disc = DiscreteAxisymmetric::new(&sphere, e, n, l).unwrap();
+        let at_depth = disc.state_at_depth(d, false).case(&case)?;
+        disc.state_at_force(f_target, false).case(&case)?;
         let t_depth = time_it(
-            || {
-                std::hint::black_box(disc.state_at_depth(d, false).unwrap());
-            },
+            || drop(std::hint::black_box(disc.state_at_depth(d, false))),
             0.1,
         );
         let t_force = time_it(
-            || {
-                std::hint::black_box(disc.state_at_force(f_target, false).unwrap());
-            },
+            || drop(std::hint::black_box(disc.state_at_force(f_target, false))),
             0.1,
         );
-        let err_f = (disc.state_at_depth(d, false).unwrap().force / f_target - 1.0).abs();
+        let err_f = (at_depth.force / f_target - 1.0).abs();
         let beta = e / g;
         let amp = 0.5 * mu * beta * d;
-        let osc = OscillatingContact::new(&sphere, e, g, mu, d, n / 2, l).unwrap();
-        let t_cycle = time_it(
-            || drop(std::hint::black_box(osc.simulate(amp, 1, 8).unwrap())),
-            0.3,
-        );
-        let w_sim = osc.simulate(amp, 2, 8).unwrap().dissipation;
+        let osc = OscillatingContact::new(&sphere, e, g, mu, d, n / 2, l).case(&case)?;
+        osc.simulate(amp, 1, 8).case(&case)?;
+        let t_cycle = time_it(|| drop(std::hint::black_box(osc.simulate(amp, 1, 8))), 0.3);
+        let w_sim = osc.simulate(amp, 2, 8).case(&case)?.dissipation;
         let w_exact = rf::mindlin_damping::dissipation_exact(e, beta, r, mu, d, amp);
         writeln!(
             w,
@@ -134,7 +136,7 @@ pub fn run_bem_case(
     kind: &str,
     n: usize,
     write_dir: Option<&std::path::Path>,
-) -> Result<(), String> {
+) -> std::result::Result<(), String> {
     use bem3d::*;
     let opts = SolverOptions {
         tolerance: 1e-10,
@@ -182,7 +184,7 @@ pub fn run_bem_case(
     };
     let base_mem = peak_memory_mib().unwrap_or(0.0);
     let (t, sol, err) = if periodic {
-        let h = reference_surface(n);
+        let h = reference_surface(n).map_err(|e| e.to_string())?;
         let t0 = Instant::now();
         let mut s = ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None)
             .map_err(failed)?;
@@ -261,7 +263,7 @@ pub fn run_bem(
     w: &mut dyn Write,
     max_n: usize,
     write_surfaces: Option<&std::path::Path>,
-) -> Result<(), String> {
+) -> std::result::Result<(), String> {
     let exe = std::env::current_exe().map_err(|e| e.to_string())?;
     let mut lines = Vec::new();
     for kind in ["periodic", "sparse", "hertz"] {
@@ -414,7 +416,7 @@ fn print_bem_table(w: &mut dyn Write, lines: &[String]) -> std::io::Result<()> {
 
 /// `mrdw bench rough`: a rough line of N points (generation) and a 100-point k(F) curve
 /// on it, N = 1e3 .. 10^max_exp, single thread.
-pub fn run_rough(w: &mut dyn Write, max_exp: u32) -> std::io::Result<()> {
+pub fn run_rough(w: &mut dyn Write, max_exp: u32) -> Result<()> {
     use mrd::rough_contact::RoughLine;
     use mrd::roughness::synthesis::{line, Amplitudes};
     use mrd::roughness::SelfAffine;
@@ -430,39 +432,45 @@ pub fn run_rough(w: &mut dyn Write, max_exp: u32) -> std::io::Result<()> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
-        .unwrap();
+        .case("a one-thread pool")?;
     // Rows are collected in the single-thread pool and printed after it.
     let mut buf: Vec<u8> = Vec::new();
-    pool.install(|| -> std::io::Result<()> {
+    pool.install(|| -> Result<()> {
         for e in 3..=max_exp {
             let n = 10usize.pow(e);
+            let case = format!("a rough line of {n} points");
             let spec = SelfAffine::new(0.7, 2.0 * PI, 2.0 * PI, PI * n as f64 * 0.5)
-                .unwrap()
-                .to_line(PI)
-                .with_rms_height(1.0)
-                .unwrap();
+                .and_then(|s| s.to_line(PI).with_rms_height(1.0))
+                .case(&case)?;
             let budget = if e >= 7 { 0.5 } else { 0.3 };
+            // Each timed call ran once, checked, before it is timed.
+            let h = line(&spec, n, 1.0, 1, 0, Amplitudes::Deterministic).case(&case)?;
             let t_gen = time_it(
                 || {
-                    std::hint::black_box(
-                        line(&spec, n, 1.0, 1, 0, Amplitudes::Deterministic).unwrap(),
-                    );
+                    drop(std::hint::black_box(line(
+                        &spec,
+                        n,
+                        1.0,
+                        1,
+                        0,
+                        Amplitudes::Deterministic,
+                    )))
                 },
                 budget,
             );
-            let h = line(&spec, n, 1.0, 1, 0, Amplitudes::Deterministic).unwrap();
+            let rl = RoughLine::new(&h, 1.0, 1.0).case(&case)?;
             let t_setup = time_it(
-                || {
-                    std::hint::black_box(RoughLine::new(&h, 1.0, 1.0).unwrap());
-                },
+                || drop(std::hint::black_box(RoughLine::new(&h, 1.0, 1.0))),
                 budget,
             );
-            let rl = RoughLine::new(&h, 1.0, 1.0).unwrap();
             let fs = mrd::friction::log_space(1e-6, 1e-1, 100);
+            for &f in &fs {
+                rl.at_force(f * rl.rms_height).case(&case)?;
+            }
             let t_curve = time_it(
                 || {
                     for &f in &fs {
-                        std::hint::black_box(rl.at_force(f * rl.rms_height).unwrap());
+                        drop(std::hint::black_box(rl.at_force(f * rl.rms_height)));
                     }
                 },
                 0.1,
@@ -490,12 +498,12 @@ pub fn run_rough(w: &mut dyn Write, max_exp: u32) -> std::io::Result<()> {
 /// steps per second for N = 1e4 .. 10^max_exp springs with 20 Prony terms (Eq. 84), and
 /// the time of one velocity point of the `fig7` scene (one line, to its steady state),
 /// single thread.
-pub fn run_sliding(w: &mut dyn Write, max_exp: u32) -> std::io::Result<()> {
+pub fn run_sliding(w: &mut dyn Write, max_exp: u32) -> Result<()> {
     use mrd::rheology::Eq84;
     use mrd::roughness::synthesis::{line_from, Amplitudes};
     use mrd::sliding::{slide, Line, Slider, Sliding};
     use std::f64::consts::TAU;
-    let band_line = |n: usize, waves: f64| -> Line {
+    let band_line = |n: usize, waves: f64| -> Result<Line> {
         let k0 = TAU * waves;
         let (lo, hi) = (k0 / 2f64.sqrt(), k0 * 2f64.sqrt());
         let z = line_from(
@@ -506,12 +514,14 @@ pub fn run_sliding(w: &mut dyn Write, max_exp: u32) -> std::io::Result<()> {
             0,
             Amplitudes::Deterministic,
         )
-        .expect("band line");
-        Line::new(&z, 1.0).expect("line")
+        .case(format!("a band line of {n} springs"))?;
+        Line::new(&z, 1.0).case(format!("a band line of {n} springs"))
     };
-    let setup = |terms: usize, line: &Line, kv: f64| -> Sliding {
-        let g = Eq84::PAPER.prony(terms).expect("prony");
-        Sliding {
+    let setup = |terms: usize, line: &Line, kv: f64| -> Result<Sliding> {
+        let g = Eq84::PAPER
+            .prony(terms)
+            .case(format!("{terms} Prony terms"))?;
+        Ok(Sliding {
             normal_force: 4.0 * g.relaxed * line.rms_height,
             modulus: g.scaled(4.0),
             springs: line.len(),
@@ -520,12 +530,12 @@ pub fn run_sliding(w: &mut dyn Write, max_exp: u32) -> std::io::Result<()> {
             tolerance: 1e-4,
             max_passes: 400,
             accelerate: true,
-        }
+        })
     };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
-        .expect("pool");
+        .case("a one-thread pool")?;
     writeln!(
         w,
         "Sliding on viscoelastic springs: band line (4 waves), Eq. (84) with 20 Prony terms, k v = 1 rad/s, single thread\n"
@@ -537,12 +547,12 @@ pub fn run_sliding(w: &mut dyn Write, max_exp: u32) -> std::io::Result<()> {
     )?;
     writeln!(w, "{}", "-".repeat(44))?;
     let mut rows = Vec::new();
-    pool.install(|| {
+    pool.install(|| -> Result<()> {
         for e in 4..=max_exp.max(4) {
             let n = 10usize.pow(e);
-            let line = band_line(n, 4.0);
-            let p = setup(20, &line, 1.0);
-            let mut sl = Slider::new(&line, &p).expect("slider");
+            let line = band_line(n, 4.0)?;
+            let p = setup(20, &line, 1.0)?;
+            let mut sl = Slider::new(&line, &p).case(format!("a slider of {n} springs"))?;
             for _ in 0..3 {
                 sl.step(); // warm-up
             }
@@ -554,21 +564,23 @@ pub fn run_sliding(w: &mut dyn Write, max_exp: u32) -> std::io::Result<()> {
             let t = t0.elapsed().as_secs_f64() / steps as f64;
             rows.push((n, 1.0 / t, t / n as f64 * 1e9));
         }
-    });
+        Ok(())
+    })?;
     for (n, rate, ns) in rows {
         writeln!(w, "{n:>9} | {rate:>12.3e} | {ns:>16.2}")?;
     }
     // One velocity point of fig7: 2048 springs, 16 terms, to the steady state.
-    let line = band_line(2048, 4.0);
+    let line = band_line(2048, 4.0)?;
     let mut out = Vec::new();
-    pool.install(|| {
+    pool.install(|| -> Result<()> {
         for kv in [1e-2, 1e0, 1e2] {
-            let p = setup(16, &line, kv);
+            let p = setup(16, &line, kv)?;
             let t0 = Instant::now();
-            let r = slide(&line, &p).expect("slide");
+            let r = slide(&line, &p).case(format!("fig7 at k v = {kv:e} rad/s"))?;
             out.push((kv, t0.elapsed().as_secs_f64(), r.history.len()));
         }
-    });
+        Ok(())
+    })?;
     writeln!(
         w,
         "\nfig7 velocity point (one line, 2048 springs, 16 terms, to the steady state):"
@@ -584,19 +596,16 @@ pub fn run_sliding(w: &mut dyn Write, max_exp: u32) -> std::io::Result<()> {
 /// pressure 4 G0 h / L, tolerance 1e-6): wall time, outer and inner iterations of one
 /// cold-started velocity point at k v = 1e-2 .. 1e2 rad/s on grids 128^2 .. max_n^2, and
 /// the change of mu against the finest grid (all threads of the pool).
-pub fn run_sliding_3d(w: &mut dyn Write, max_n: usize) -> Result<(), String> {
-    let (cases, failures) =
-        sliding_3d_table(w, max_n).map_err(|e| format!("writing to standard output: {e}"))?;
+pub fn run_sliding_3d(w: &mut dyn Write, max_n: usize) -> Result<()> {
+    let (cases, failures) = sliding_3d_table(w, max_n)?;
     if cases > 0 && failures == cases {
-        return Err(format!(
-            "every case of the benchmark failed ({failures} of {cases})"
-        ));
+        return Err(format!("every case of the benchmark failed ({failures} of {cases})").into());
     }
     Ok(())
 }
 
 /// The table of [`run_sliding_3d`]; returns the number of cases and of failed ones.
-fn sliding_3d_table(w: &mut dyn Write, max_n: usize) -> std::io::Result<(usize, usize)> {
+fn sliding_3d_table(w: &mut dyn Write, max_n: usize) -> Result<(usize, usize)> {
     use bem3d::{SlidingContact, SolverOptions};
     use mrd::rheology::Eq84;
     use mrd::roughness::stats::surface_moments;
@@ -607,7 +616,7 @@ fn sliding_3d_table(w: &mut dyn Write, max_n: usize) -> std::io::Result<(usize, 
     let (lo, hi) = (k0 / 2f64.sqrt(), k0 * 2f64.sqrt());
     let base = Grid::square(16, l);
     let band = |q: f64| if (lo..=hi).contains(&q) { 1.0 } else { 0.0 };
-    let h0 = surface_from(&band, &base, 7, 0, Amplitudes::Deterministic).expect("surface");
+    let h0 = surface_from(&band, &base, 7, 0, Amplitudes::Deterministic).case("fig7-3d surface")?;
     let m = surface_moments(&h0, 16, 16, l, l);
     let k = m.rms_slope / m.rms_height;
     let g = Eq84::PAPER;
@@ -641,14 +650,14 @@ fn sliding_3d_table(w: &mut dyn Write, max_n: usize) -> std::io::Result<(usize, 
     let (mut cases, mut failures) = (0, 0);
     for &n in &grids {
         let h: Vec<f64> = upsample(&h0, &base, &Grid::square(n, l))
-            .expect("upsample")
+            .case(format!("fig7-3d surface on {n}^2 cells"))?
             .iter()
             .map(|v| v * h_rms / m.rms_height)
             .collect();
         for kv in [1e-2, 1e-1, 1e0, 1e1, 1e2] {
             let t0 = Instant::now();
-            let mut s =
-                SlidingContact::new(n, n, l, l, &h, kv / k, &modulus).expect("sliding contact");
+            let mut s = SlidingContact::new(n, n, l, l, &h, kv / k, &modulus)
+                .case(format!("sliding contact on {n}^2 cells"))?;
             cases += 1;
             let solved = s.solve(pm, &opts, None);
             failures += solved.is_err() as usize;

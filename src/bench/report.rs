@@ -16,7 +16,7 @@
 
 use super::common::{log_slope, reference_surface, timed, Options, Timing};
 use bem3d::{ContactSolver, Load, NonPeriodicHalfSpace, PeriodicHalfSpace, SolverOptions};
-use compare::error::Result;
+use compare::error::{Context as _, Result};
 use compare::report::figure::{Figure, Series, Style};
 use compare::report::table::Table;
 use compare::report::{Report, Section};
@@ -148,24 +148,29 @@ fn rungs(
     resolutions: Vec<usize>,
     budget: f64,
     reference: f64,
-    value: impl Fn(usize) -> f64,
-) -> Vec<Point> {
+    value: impl Fn(usize) -> Result<f64>,
+) -> Result<Vec<Point>> {
     resolutions
         .into_iter()
         .map(|n| {
             let (t, v) = timed(budget, || value(n));
-            Point {
+            Ok(Point {
                 resolution: n as f64,
                 time: t,
-                error: rel(v, reference),
-            }
+                error: rel(v?, reference),
+            })
         })
         .collect()
 }
 
 /// A non-periodic 3D solve of heights h(x, y) (apex at the centre cell), under a mask
 /// or not, at force `f` on the unit square: the approach from first contact.
-fn solve_3d(n: usize, h: impl Fn(f64, f64) -> f64, mask_radius: Option<f64>, f: f64) -> f64 {
+fn solve_3d(
+    n: usize,
+    h: impl Fn(f64, f64) -> f64,
+    mask_radius: Option<f64>,
+    f: f64,
+) -> Result<f64> {
     let dx = 1.0 / n as f64;
     let c = |k: usize| (k as f64 - (n / 2) as f64) * dx;
     let heights: Vec<f64> = (0..n * n).map(|k| h(c(k % n), c(k / n))).collect();
@@ -179,11 +184,10 @@ fn solve_3d(n: usize, h: impl Fn(f64, f64) -> f64, mask_radius: Option<f64>, f: 
         max_iterations: 20_000,
         ..Default::default()
     };
+    let what = format!("3D benchmark solve on {n}^2 cells");
     let mut s = ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, E), &heights, mask)
-        .expect("valid benchmark problem");
-    s.solve(Load::Force(f), &opts, None)
-        .expect("benchmark solve converges")
-        .approach
+        .ctx(what.clone())?;
+    Ok(s.solve(Load::Force(f), &opts, None).ctx(what)?.approach)
 }
 
 /// The depth-at-given-force ladders of an indenter: semi-analytic, springs, 3D.
@@ -199,18 +203,17 @@ struct Indenter {
     half_length: f64,
 }
 
-fn indenter_ladders(ind: &Indenter, o: Options) -> Vec<Ladder> {
+fn indenter_ladders(ind: &Indenter, o: Options) -> Result<Vec<Ladder>> {
     let has_rim = ind.profile.rim().is_some();
-    let semi = AxisymmetricContact::new(ind.profile.clone(), E).expect("valid profile");
-    let (t, d) = timed(budget(o), || semi.state_at_force(ind.force).unwrap().depth);
+    let semi = AxisymmetricContact::new(ind.profile.clone(), E).ctx(ind.case)?;
+    let (t, d) = timed(budget(o), || semi.state_at_force(ind.force));
+    let d = d.ctx(ind.case)?.depth;
     let mut out = vec![semi_analytic(ind.case, t, rel(d, ind.depth))];
     let points = rungs(springs(o), budget(o), ind.depth, |n| {
-        DiscreteAxisymmetric::new(&ind.profile, E, n, ind.half_length)
-            .unwrap()
-            .state_at_force(ind.force, has_rim)
-            .unwrap()
-            .depth
-    });
+        let springs = DiscreteAxisymmetric::new(&ind.profile, E, n, ind.half_length);
+        let state = springs.and_then(|s| s.state_at_force(ind.force, has_rim));
+        Ok(state.ctx(format!("{}, {n} springs", ind.case))?.depth)
+    })?;
     out.push(Ladder {
         case: ind.case,
         method: "MRD springs",
@@ -219,24 +222,24 @@ fn indenter_ladders(ind: &Indenter, o: Options) -> Vec<Ladder> {
     });
     let points = rungs(grids(o), budget(o), ind.depth, |n| {
         solve_3d(n, ind.h3d, ind.mask, ind.force)
-    });
+    })?;
     out.push(Ladder {
         case: ind.case,
         method: "3D non-periodic",
         resolution: "cells per side",
         points,
     });
-    out
+    Ok(out)
 }
 
 /// Hertz, cone and flat punch: contact radius a = L/4 on the 3D grid.
-fn indenters() -> Vec<Indenter> {
+fn indenters() -> Result<Vec<Indenter>> {
     let a = 0.25;
     let tan = 0.2;
-    vec![
+    Ok(vec![
         Indenter {
             case: "hertz",
-            profile: Profile::single(Shape::paraboloid(1.0).unwrap()),
+            profile: Profile::single(Shape::paraboloid(1.0).ctx("hertz")?),
             h3d: |x, y| -(x * x + y * y) / 2.0,
             mask: None,
             force: rf::hertz::force(E, 1.0, a * a),
@@ -245,7 +248,7 @@ fn indenters() -> Vec<Indenter> {
         },
         Indenter {
             case: "cone",
-            profile: Profile::single(Shape::cone(tan).unwrap()),
+            profile: Profile::single(Shape::cone(tan).ctx("cone")?),
             h3d: |x, y| -0.2 * (x * x + y * y).sqrt(),
             mask: None,
             force: PI / 2.0 * E * tan * a * a,
@@ -254,32 +257,31 @@ fn indenters() -> Vec<Indenter> {
         },
         Indenter {
             case: "flat_punch",
-            profile: Profile::flat_punch(a).unwrap(),
+            profile: Profile::flat_punch(a).ctx("flat punch")?,
             h3d: |_, _| 0.0,
             mask: Some(a),
             force: 1e-3,
             depth: 1e-3 / (2.0 * a * E),
             half_length: a,
         },
-    ]
+    ])
 }
 
 /// JKR pull-off under force control: semi-analytic and event-driven springs.
-fn jkr_ladders(o: Options) -> Vec<Ladder> {
+fn jkr_ladders(o: Options) -> Result<Vec<Ladder>> {
     let (r, gamma, a_max) = (1.0, 1e-3, 0.5);
     let reference = -rf::jkr::pull_off_force_control(r, gamma);
-    let sphere = Profile::single(Shape::paraboloid(r).unwrap());
-    let adh = AdhesiveContact::new(AxisymmetricContact::new(sphere, E).unwrap(), gamma).unwrap();
-    let (t, p) = timed(budget(o), || adh.pull_off(a_max, Control::Force).unwrap());
-    let semi = semi_analytic("jkr", t, rel(p.force, reference));
-    let d_max = adh.depth_at_radius(a_max).unwrap();
+    let sphere = Profile::single(Shape::paraboloid(r).ctx("jkr")?);
+    let adh = AxisymmetricContact::new(sphere, E).and_then(|c| AdhesiveContact::new(c, gamma));
+    let adh = adh.ctx("jkr")?;
+    let (t, p) = timed(budget(o), || adh.pull_off(a_max, Control::Force));
+    let semi = semi_analytic("jkr", t, rel(p.ctx("jkr pull-off")?.force, reference));
+    let d_max = adh.depth_at_radius(a_max).ctx("jkr")?;
     let points = rungs(springs(o), budget(o), reference, |n| {
-        simulate_cycle(&adh, n / 2, 1.5 * a_max, d_max, Control::Force)
-            .unwrap()
-            .pull_off
-            .force
-    });
-    vec![
+        let cycle = simulate_cycle(&adh, n / 2, 1.5 * a_max, d_max, Control::Force);
+        Ok(cycle.ctx(format!("jkr, {n} springs"))?.pull_off.force)
+    })?;
+    Ok(vec![
         semi,
         Ladder {
             case: "jkr",
@@ -287,42 +289,37 @@ fn jkr_ladders(o: Options) -> Vec<Ladder> {
             resolution: "springs",
             points,
         },
-    ]
+    ])
 }
 
 /// Cattaneo-Mindlin (displacement at F_x = mu F_N / 2) and Mindlin's damping
 /// (dissipation per cycle at A = A_c0 / 2).
-fn tangential_ladders(o: Options) -> Vec<Ladder> {
+fn tangential_ladders(o: Options) -> Result<Vec<Ladder>> {
     let (r, g, mu, d) = (1.0, 0.8, 0.3, 0.01);
-    let sphere = Profile::single(Shape::paraboloid(r).unwrap());
-    let contact = AxisymmetricContact::new(sphere.clone(), E).unwrap();
+    let sphere = Profile::single(Shape::paraboloid(r).ctx("cattaneo_mindlin")?);
+    let contact = AxisymmetricContact::new(sphere.clone(), E).ctx("cattaneo_mindlin")?;
     let fn_ = rf::hertz::force(E, r, d);
     let fx = 0.5 * mu * fn_;
     let u_ref = rf::cattaneo_mindlin::displacement(mu, E, g, d, fx, fn_);
     let (t, u) = timed(budget(o), || {
-        TangentialContact::new(contact.clone(), g, mu, fn_)
-            .unwrap()
-            .at_force(fx)
-            .unwrap()
-            .displacement
+        TangentialContact::new(contact.clone(), g, mu, fn_).and_then(|c| c.at_force(fx))
     });
+    let u = u.ctx("cattaneo_mindlin")?.displacement;
     let cm = semi_analytic("cattaneo_mindlin", t, rel(u, u_ref));
     let beta = E / g;
     let amp = 0.5 * mu * beta * d;
     let w_ref = rf::mindlin_damping::dissipation_exact(E, beta, r, mu, d, amp);
     let (t, w) = timed(budget(o), || {
-        dissipation_semi_analytic(&sphere, E, g, mu, d, amp).unwrap()
+        dissipation_semi_analytic(&sphere, E, g, mu, d, amp)
     });
-    let semi = semi_analytic("damping", t, rel(w, w_ref));
+    let semi = semi_analytic("damping", t, rel(w.ctx("damping")?, w_ref));
     let a = rf::hertz::radius(r, d);
     let points = rungs(springs(o), budget(o), w_ref, |n| {
-        OscillatingContact::new(&sphere, E, g, mu, d, n / 2, 1.2 * a)
-            .unwrap()
-            .simulate(amp, 2, 8)
-            .unwrap()
-            .dissipation
-    });
-    vec![
+        let springs = OscillatingContact::new(&sphere, E, g, mu, d, n / 2, 1.2 * a);
+        let cycle = springs.and_then(|s| s.simulate(amp, 2, 8));
+        Ok(cycle.ctx(format!("damping, {n} springs"))?.dissipation)
+    })?;
+    Ok(vec![
         cm,
         semi,
         Ladder {
@@ -331,18 +328,18 @@ fn tangential_ladders(o: Options) -> Vec<Ladder> {
             resolution: "springs",
             points,
         },
-    ]
+    ])
 }
 
 /// Every axisymmetric ladder.
-pub fn axisymmetric(o: Options) -> Vec<Ladder> {
+pub fn axisymmetric(o: Options) -> Result<Vec<Ladder>> {
     let mut all = Vec::new();
-    for ind in indenters() {
-        all.extend(indenter_ladders(&ind, o));
+    for ind in indenters()? {
+        all.extend(indenter_ladders(&ind, o)?);
     }
-    all.extend(jkr_ladders(o));
-    all.extend(tangential_ladders(o));
-    all
+    all.extend(jkr_ladders(o)?);
+    all.extend(tangential_ladders(o)?);
+    Ok(all)
 }
 
 /// Time against problem size for one solver.
@@ -365,75 +362,73 @@ impl Scaling {
 
 /// Scaling ladders: MRD springs (set-up and one force-controlled solve), rough lines
 /// (synthesis, set-up, 100 k(F) points), the periodic and non-periodic 3D solvers.
-pub fn scaling(o: Options) -> Vec<Scaling> {
+pub fn scaling(o: Options) -> Result<Vec<Scaling>> {
     use mrd::rough_contact::RoughLine;
     use mrd::roughness::synthesis::{line, Amplitudes};
     use mrd::roughness::SelfAffine;
     let b = budget(o);
     let top = if o.quick { 5 } else { 7 };
-    let sphere = Profile::single(Shape::paraboloid(1.0).unwrap());
+    let sphere = Profile::single(Shape::paraboloid(1.0).ctx("scaling")?);
     let f = rf::hertz::force(E, 1.0, 0.01);
     let springs_pts = (3..=top)
         .map(|k| {
             let n = 10usize.pow(k);
-            let (t, _) = timed(b, || {
+            let (t, state) = timed(b, || {
                 DiscreteAxisymmetric::new(&sphere, E, n, 0.12)
-                    .unwrap()
-                    .state_at_force(f, false)
-                    .unwrap()
+                    .and_then(|s| s.state_at_force(f, false))
             });
-            (n as f64, t)
+            state.ctx(format!("scaling, {n} springs"))?;
+            Ok((n as f64, t))
         })
-        .collect();
+        .collect::<Result<_>>()?;
     let rough_pts = (3..=top)
         .map(|k| {
             let n = 10usize.pow(k);
             let spec = SelfAffine::new(0.7, 2.0 * PI, 2.0 * PI, PI * n as f64 * 0.5)
-                .unwrap()
-                .to_line(PI)
-                .with_rms_height(1.0)
-                .unwrap();
-            let (t, _) = timed(b, || {
-                let h = line(&spec, n, 1.0, 1, 0, Amplitudes::Deterministic).unwrap();
-                let rl = RoughLine::new(&h, 1.0, 1.0).unwrap();
+                .and_then(|s| s.to_line(PI).with_rms_height(1.0))
+                .ctx("scaling, rough line")?;
+            let (t, k) = timed(b, || {
+                let h = line(&spec, n, 1.0, 1, 0, Amplitudes::Deterministic)?;
+                let rl = RoughLine::new(&h, 1.0, 1.0)?;
                 mrd::friction::log_space(1e-6, 1e-1, 100)
                     .iter()
-                    .map(|&f| rl.at_force(f).unwrap().stiffness)
-                    .sum::<f64>()
+                    .map(|&f| rl.at_force(f).map(|s| s.stiffness))
+                    .sum::<std::result::Result<f64, _>>()
             });
-            (n as f64, t)
+            k.ctx(format!("scaling, rough line of {n} points"))?;
+            Ok((n as f64, t))
         })
-        .collect();
+        .collect::<Result<_>>()?;
     let grid_top = if o.quick { 128 } else { 1024 };
     let periodic_pts = std::iter::successors(Some(32usize), |n| Some(n * 2))
         .take_while(|&n| n <= grid_top)
         .map(|n| {
-            let h = reference_surface(n);
+            let h = reference_surface(n).ctx("scaling, reference surface")?;
             let opts = SolverOptions {
                 tolerance: 1e-10,
                 max_iterations: 20_000,
                 ..Default::default()
             };
-            let (t, _) = timed(b, || {
+            let (t, sol) = timed(b, || {
                 ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, E), &h, None)
-                    .unwrap()
-                    .solve(Load::MeanPressure(0.01), &opts, None)
-                    .unwrap()
+                    .and_then(|mut s| s.solve(Load::MeanPressure(0.01), &opts, None))
             });
-            ((n * n) as f64, t)
+            sol.ctx(format!("scaling, periodic {n}^2"))?;
+            Ok(((n * n) as f64, t))
         })
-        .collect();
+        .collect::<Result<_>>()?;
     let hertz_pts = std::iter::successors(Some(32usize), |n| Some(n * 2))
         .take_while(|&n| n <= grid_top)
         .map(|n| {
             let force = rf::hertz::force(E, 1.0, 1.0 / 16.0);
-            let (t, _) = timed(b, || {
+            let (t, d) = timed(b, || {
                 solve_3d(n, |x, y| -(x * x + y * y) / 2.0, None, force)
             });
-            ((n * n) as f64, t)
+            d?;
+            Ok(((n * n) as f64, t))
         })
-        .collect();
-    vec![
+        .collect::<Result<_>>()?;
+    Ok(vec![
         Scaling {
             solver: "MRD springs (set-up + solve)",
             size: "springs",
@@ -454,7 +449,7 @@ pub fn scaling(o: Options) -> Vec<Scaling> {
             size: "cells",
             points: hertz_pts,
         },
-    ]
+    ])
 }
 
 /// Header notes of every table: machine, tool, command.
@@ -709,11 +704,11 @@ fn conclusions(ladders: &[Ladder], command: &str) -> String {
 pub fn run(o: Options, command: &str, progress: &mut dyn FnMut(&str)) -> Result<Report> {
     let mut sec = Section::new("bench_report", "bench");
     progress("axisymmetric cases (MRD semi-analytic, springs, 3D)");
-    let ladders = axisymmetric(o);
+    let ladders = axisymmetric(o)?;
     progress("rough contacts (alpha, 3D and MRD)");
     let rough = super::rough_ladder::run(o)?;
     progress("scaling");
-    let sc = scaling(o);
+    let sc = scaling(o)?;
     sec.tables.push(ladder_table(&ladders, command));
     sec.files.push((
         "bench_summary.md".into(),

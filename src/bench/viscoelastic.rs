@@ -2,6 +2,7 @@
 //! contact (`bem3d::viscoelastic`) against elastic solves of the same grid, and of the
 //! MRD springs (`mrd::viscoelastic::SpringRow`) for the same history.
 
+use super::common::{Case, Result};
 use bem3d::viscoelastic::{Relaxation, TransientContact};
 use bem3d::{ContactSolver, Load, NonPeriodicHalfSpace, SolverOptions};
 use mrd::roughness::synthesis::Grid;
@@ -21,9 +22,9 @@ fn force(k: usize, full: f64) -> f64 {
 }
 
 /// The punch face's spectrum: H = 0.8, modes |k| in 1..=band (units 2 pi / L).
-fn spectrum(band: usize) -> SelfAffine {
+fn spectrum(band: usize) -> Result<SelfAffine> {
     let q0 = TAU * (1.0 - 1e-9);
-    SelfAffine::new(0.8, q0, q0, TAU * (band as f64 + 0.5)).expect("spectrum")
+    SelfAffine::new(0.8, q0, q0, TAU * (band as f64 + 0.5)).case("spectrum")
 }
 
 /// The rough punch of `viscoelastic-rough` (H = 0.8, 8 cells per shortest wavelength,
@@ -32,7 +33,7 @@ fn spectrum(band: usize) -> SelfAffine {
 /// elastic solve at the final force and per warm-started elastic solve along the same
 /// force history on grids 128^2 .. max_n^2; then 400 MRD lines of the same bandwidth
 /// through the same history.
-pub fn run_viscoelastic(w: &mut dyn Write, max_n: usize) -> std::io::Result<()> {
+pub fn run_viscoelastic(w: &mut dyn Write, max_n: usize) -> Result<()> {
     writeln!(
         w,
         "Transient viscoelastic contact (bem3d::viscoelastic): rough punch H = 0.8, 8 cells per shortest wavelength, E*(t) = 1 + 4 exp(-t), ramp to f = 0.05 over 2 tau and hold 2 tau in {} steps, tolerance 1e-8, {} threads, {}\n",
@@ -46,7 +47,7 @@ pub fn run_viscoelastic(w: &mut dyn Write, max_n: usize) -> std::io::Result<()> 
         "grid", "step [s]", "elastic warm", "elastic cold", "step / warm", "contact"
     )?;
     writeln!(w, "{}", "-".repeat(84))?;
-    let relaxation = Relaxation::new(1.0, vec![(4.0, 1.0)]).expect("modulus");
+    let relaxation = Relaxation::new(1.0, vec![(4.0, 1.0)]).case("modulus")?;
     let dt = 2.0 / STEPS as f64;
     let opts = SolverOptions::new(1e-8, 100_000);
     for n in [128usize, 256, 512, 1024, 2048, 4096] {
@@ -54,21 +55,21 @@ pub fn run_viscoelastic(w: &mut dyn Write, max_n: usize) -> std::io::Result<()> 
             break;
         }
         let band = n / 8;
-        let sa = spectrum(band);
-        let z =
-            nested::surface(&|q| sa.c2d(q), band, &Grid::square(n, 1.0), 2026, 0).expect("surface");
+        let sa = spectrum(band)?;
+        let z = nested::surface(&|q| sa.c2d(q), band, &Grid::square(n, 1.0), 2026, 0)
+            .case("surface")?;
         let mask = bem3d::mask::disc(n, n, 1.0, 1.0, 0.5);
         let op = || NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
-        let mut el = ContactSolver::new(op(), &z, Some(mask.clone())).expect("solver");
+        let mut el = ContactSolver::new(op(), &z, Some(mask.clone())).case("solver")?;
         let full = 0.05 * el.h_rms();
         let mut ve = TransientContact::new(op(), &z, Some(mask.clone()), relaxation.clone())
-            .expect("solver");
+            .case("solver")?;
         let t0 = Instant::now();
         let mut cells = 0;
         for k in 1..=2 * STEPS {
             cells = ve
                 .step(dt, Load::Force(force(k, full)), &opts)
-                .expect("step")
+                .case("step")?
                 .contact_cells;
         }
         let step = t0.elapsed().as_secs_f64() / (2 * STEPS) as f64;
@@ -77,13 +78,13 @@ pub fn run_viscoelastic(w: &mut dyn Write, max_n: usize) -> std::io::Result<()> 
         for k in 1..=2 * STEPS {
             warm = Some(
                 el.solve(Load::Force(force(k, full)), &opts, warm.as_ref())
-                    .expect("solve"),
+                    .case("solve")?,
             );
         }
         let warm_t = t0.elapsed().as_secs_f64() / (2 * STEPS) as f64;
-        let mut cold = ContactSolver::new(op(), &z, Some(mask)).expect("solver");
+        let mut cold = ContactSolver::new(op(), &z, Some(mask)).case("solver")?;
         let t0 = Instant::now();
-        cold.solve(Load::Force(full), &opts, None).expect("solve");
+        cold.solve(Load::Force(full), &opts, None).case("solve")?;
         let cold_t = t0.elapsed().as_secs_f64();
         let domain = bem3d::mask::disc(n, n, 1.0, 1.0, 0.5)
             .iter()
@@ -99,20 +100,20 @@ pub fn run_viscoelastic(w: &mut dyn Write, max_n: usize) -> std::io::Result<()> 
     // MRD: 400 lines of the largest bandwidth, 16 springs per 3D cell.
     let n = max_n.clamp(128, 4096);
     let band = n / 8;
-    let line = spectrum(band).to_line(PI);
-    let prony = Prony::new(1.0, vec![(4.0, 1.0)]).expect("modulus");
+    let line = spectrum(band)?.to_line(PI);
+    let prony = Prony::new(1.0, vec![(4.0, 1.0)]).case("modulus")?;
     let points = 16 * n;
     let t0 = Instant::now();
     for r in 0..400u64 {
-        let z = nested::line(&|q| line.c1d(q), band, points, 1.0, 2026, r).expect("line");
+        let z = nested::line(&|q| line.c1d(q), band, points, 1.0, 2026, r).case("line")?;
         let top = z.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
         let gaps: Vec<f64> = z.iter().map(|v| top - v).collect();
         let mean = z.iter().sum::<f64>() / points as f64;
         let h = (z.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / points as f64).sqrt();
-        let mut row = SpringRow::new(&gaps, 1.0 / points as f64, &prony).expect("row");
+        let mut row = SpringRow::new(&gaps, 1.0 / points as f64, &prony).case("row")?;
         for k in 1..=2 * STEPS {
             row.step(dt, RowLoad::Force(force(k, 0.05 * h)))
-                .expect("step");
+                .case("step")?;
         }
     }
     let total = t0.elapsed().as_secs_f64();
@@ -139,30 +140,30 @@ fn stats(v: &[f64]) -> (f64, f64, f64) {
 /// target error e is n c = (z s / e)^2 c per method: the speed-up at equal error is
 /// c3 s3^2 / (c1 s1^2), valid for e above MRD's own systematic error (its offset from the
 /// 3D mean, stated with the 3D interval), below which MRD cannot reach e at any cost.
-fn equal_error(w: &mut dyn Write) -> std::io::Result<()> {
+fn equal_error(w: &mut dyn Write) -> Result<()> {
     const BAND: usize = 16;
     let (n, surfaces, lines) = (8 * BAND, 16u64, 400u64);
-    let relaxation = Relaxation::new(1.0, vec![(4.0, 1.0)]).expect("modulus");
-    let prony = Prony::new(1.0, vec![(4.0, 1.0)]).expect("modulus");
+    let relaxation = Relaxation::new(1.0, vec![(4.0, 1.0)]).case("modulus")?;
+    let prony = Prony::new(1.0, vec![(4.0, 1.0)]).case("modulus")?;
     let (dt, opts) = (2.0 / STEPS as f64, SolverOptions::new(1e-8, 100_000));
-    let sa = spectrum(BAND);
+    let sa = spectrum(BAND)?;
     let mask = bem3d::mask::disc(n, n, 1.0, 1.0, 0.5);
     let (mut d3, mut c3) = (Vec::new(), 0.0);
     for r in 0..surfaces {
-        let z =
-            nested::surface(&|q| sa.c2d(q), BAND, &Grid::square(n, 1.0), 2026, r).expect("surface");
+        let z = nested::surface(&|q| sa.c2d(q), BAND, &Grid::square(n, 1.0), 2026, r)
+            .case("surface")?;
         let on: Vec<f64> = z.iter().zip(&mask).filter(|p| *p.1).map(|p| *p.0).collect();
         let mean = on.iter().sum::<f64>() / on.len() as f64;
         let h = (on.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / on.len() as f64).sqrt();
         let op = NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
         let t0 = Instant::now();
         let mut ve =
-            TransientContact::new(op, &z, Some(mask.clone()), relaxation.clone()).expect("solver");
+            TransientContact::new(op, &z, Some(mask.clone()), relaxation.clone()).case("solver")?;
         let mut d = 0.0;
         for k in 1..=2 * STEPS {
             d = ve
                 .step(dt, Load::Force(force(k, 0.05 * h)), &opts)
-                .expect("step")
+                .case("step")?
                 .approach;
         }
         c3 += t0.elapsed().as_secs_f64();
@@ -195,10 +196,10 @@ fn equal_error(w: &mut dyn Write) -> std::io::Result<()> {
     )?;
     let table =
         mrd::roughness::LambdaTable::from_csv(compare::experiment::lambda::DEFAULT_LAMBDA_CSV)
-            .expect("embedded lambda table");
+            .case("embedded lambda table")?;
     let calibrated = mrd::roughness::Lambda::Table(table)
         .at(0.8)
-        .expect("lambda at 0.8");
+        .case("lambda at 0.8")?;
     for (name, lambda) in [("pi", PI), ("calibrated", calibrated)] {
         // The face's rms height h3 as the line of Eq. (76) carries it (lambda_meaning).
         let shift = compare::experiment::lambda_meaning::rms_matched(
@@ -212,19 +213,19 @@ fn equal_error(w: &mut dyn Write) -> std::io::Result<()> {
         let points = 16 * n;
         let (mut d1, mut c1) = (Vec::new(), 0.0);
         for r in 0..lines {
-            let z = nested::line(&|q| line.c1d(q), BAND, points, 1.0, 2026, r).expect("line");
+            let z = nested::line(&|q| line.c1d(q), BAND, points, 1.0, 2026, r).case("line")?;
             let t0 = Instant::now();
             let top = z.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
             let gaps: Vec<f64> = z.iter().map(|v| top - v).collect();
             let mean = z.iter().sum::<f64>() / points as f64;
             let h1 = (z.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / points as f64).sqrt();
             let h3 = h1 * (PI / shift).sqrt();
-            let mut row = SpringRow::new(&gaps, 1.0 / points as f64, &prony).expect("row");
+            let mut row = SpringRow::new(&gaps, 1.0 / points as f64, &prony).case("row")?;
             let mut d = 0.0;
             for k in 1..=2 * STEPS {
                 d = row
                     .step(dt, RowLoad::Force(force(k, 0.05 * h3)))
-                    .expect("step")
+                    .case("step")?
                     .depth;
             }
             c1 += t0.elapsed().as_secs_f64();
@@ -243,5 +244,6 @@ fn equal_error(w: &mut dyn Write) -> std::io::Result<()> {
     writeln!(
         w,
         "\nThe speed-up holds for a target error above MRD's offset; an offset inside the 3D interval is not resolved by these {surfaces} surfaces."
-    )
+    )?;
+    Ok(())
 }

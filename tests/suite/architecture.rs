@@ -1,7 +1,8 @@
 //! The shape of the workspace, checked on its sources: no function longer than 150 lines
 //! in any crate; a budget for bem3d's public API; no import cycle among the top-level modules of `bem3d` and `compare`
 //! (through `crate::`) nor among the solver's files (through `super::`); `compare`'s
-//! documented module order; the registry as the one place that lists output kinds.
+//! documented module order; the registry as the one place that lists output kinds; no
+//! `unwrap()` or `expect(..)` in the benchmarks.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -506,6 +507,25 @@ fn no_function_longer_than_150_lines() {
         }
     }
     assert!(long.is_empty(), "functions over 150 lines: {long:?}");
+}
+
+/// The benchmarks (`mrdw bench`) report a failed case as an error naming it, never by a
+/// panic: no `unwrap()` or `expect(..)` outside their unit tests.
+#[test]
+fn benchmarks_do_not_panic_on_a_failed_case() {
+    let mut found = Vec::new();
+    for f in files(&src("").join("bench")) {
+        let text = code(&std::fs::read_to_string(&f).unwrap());
+        for (i, l) in text.lines().enumerate() {
+            if l.contains(".unwrap()") || l.contains(".expect(") {
+                found.push(format!("{}:{}", f.display(), i + 1));
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "unwrap or expect in the benchmarks: {found:?}"
+    );
 }
 
 #[test]
