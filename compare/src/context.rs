@@ -5,7 +5,10 @@
 use crate::error::{CompareError, Context as _, Result};
 use mrd::{ElasticBody, Material, Profile, Shape, TabulatedProfile};
 use serde::Deserialize;
+use std::any::Any;
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
 
 /// What outputs see of the scene.
 #[derive(Debug, Clone)]
@@ -17,6 +20,21 @@ pub struct Context {
     pub profile: Option<Profile>,
     /// Folder of the scene file (None for embedded scenes).
     pub base_dir: Option<PathBuf>,
+    /// What outputs computed from the scene's files once ([`Context::memo`]).
+    pub memo: Memo,
+}
+
+/// Values an output derives from the scene's files (a measured map read and
+/// transformed) once, for its validation and its run: keyed by the output, shared by
+/// the clones of a context, dropped with the scene.
+#[derive(Clone, Default)]
+pub struct Memo(Arc<Mutex<HashMap<String, Arc<dyn Any + Send + Sync>>>>);
+
+impl std::fmt::Debug for Memo {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let held = self.0.lock().map_or(0, |m| m.len());
+        write!(f, "Memo({held} values)")
+    }
 }
 
 impl Context {
@@ -25,6 +43,28 @@ impl Context {
         self.profile.as_ref().ok_or_else(|| {
             CompareError::Scene(format!("{}: this output needs a [profile]", self.origin))
         })
+    }
+
+    /// The value stored under `key`, made by `make` the first time (a failure is not
+    /// stored: the next call tries again).
+    pub fn memo<T: Any + Send + Sync>(
+        &self,
+        key: &str,
+        make: impl FnOnce() -> Result<T>,
+    ) -> Result<Arc<T>> {
+        let held = |m: &Memo| {
+            m.0.lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .get(key)
+                .cloned()
+        };
+        if let Some(v) = held(&self.memo).and_then(|v| v.downcast::<T>().ok()) {
+            return Ok(v);
+        }
+        let v = Arc::new(make()?);
+        let mut m = self.memo.0.lock().unwrap_or_else(|e| e.into_inner());
+        m.insert(key.to_string(), v.clone());
+        Ok(v)
     }
 
     /// A file named in the scene: relative paths are relative to the scene's folder
@@ -234,4 +274,34 @@ pub enum ControlSpec {
     #[default]
     Force,
     Displacement,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A memo makes its value once per key and type, keeps no failure, and is shared by
+    /// the clones of a context.
+    #[test]
+    fn a_memo_makes_each_value_once() {
+        let ctx = Context {
+            origin: "test".into(),
+            units: Units::default(),
+            material: Material::from_e_star(1.0).unwrap(),
+            profile: None,
+            base_dir: None,
+            memo: Memo::default(),
+        };
+        let made = std::cell::Cell::new(0);
+        let make = || {
+            made.set(made.get() + 1);
+            Ok(vec![1.0, 2.0])
+        };
+        let a = ctx.memo("map", make).unwrap();
+        let b = ctx.clone().memo("map", make).unwrap();
+        assert!(Arc::ptr_eq(&a, &b) && made.get() == 1);
+        let failed: Result<Arc<f64>> = ctx.memo("bad", || Err(CompareError::Scene("no".into())));
+        assert!(failed.is_err());
+        assert_eq!(*ctx.memo("bad", || Ok(2.0)).unwrap(), 2.0);
+    }
 }

@@ -86,6 +86,7 @@ impl Scene {
                 .map(|p| p.build(base_dir))
                 .transpose()?,
             base_dir: base_dir.map(Path::to_path_buf),
+            memo: Default::default(),
         };
         let mut entries: Vec<Entry> = Vec::new();
         for (i, spanned) in file.outputs.iter().enumerate() {

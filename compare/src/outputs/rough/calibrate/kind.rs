@@ -29,7 +29,7 @@ impl Output for Calibrate {
         if !(self.target > 0.0 && self.target < 1.0) {
             return bad(format!("target = {} must lie in (0, 1)", self.target));
         }
-        let case = Case::new(self, ctx)?;
+        let case = self.case(ctx)?;
         let g = case.grid.max(case.map.as_ref().map_or(0, |m| m.n));
         if g > 4096 {
             return bad(format!(
@@ -61,7 +61,9 @@ impl Output for Calibrate {
     }
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
-        let make = || Case::new(self, env.ctx);
+        // The source was read and its spectrum computed when the scene was validated:
+        // the stage takes them from the scene's memo.
+        let make = || self.case(env.ctx);
         let case = if self.topography.is_some() || self.psd.is_some() {
             out.stage(Stage::Psd, make)?
         } else {
@@ -90,6 +92,13 @@ impl Output for Calibrate {
 }
 
 impl Calibrate {
+    /// The source read and checked once per scene (validation and run share it), keyed
+    /// by every field `Case::new` reads.
+    fn case(&self, ctx: &Context) -> Result<std::sync::Arc<Case>> {
+        let key = format!("calibrate {} solve_map={:?}", self.key(), self.solve_map);
+        ctx.memo(&key, || Case::new(self, ctx))
+    }
+
     /// Computes (unless `report_only`) and calibrates on `min` realisations, then on
     /// batches more while lambda's interval is wider than the target; a sharded run
     /// computes every realisation up to `max` and reports nothing. Each punch's curve is
@@ -169,7 +178,7 @@ impl Checkpointed for Calibrate {
     }
 
     fn compute(&self, ctx: &Context, dir: &Path, control: &RunControl) -> Result<()> {
-        let case = Case::new(self, ctx)?;
+        let case = self.case(ctx)?;
         tasks::compute(self, &case, dir, tasks::all(self).len(), true, control)
     }
 }
