@@ -686,6 +686,16 @@ mod tests {
         branch
     }
 
+    /// A JKR sphere (R = 1, w = 0.002) on `n`^2 cells over 3 zero-load radii a0:
+    /// (heights, apex, a0, side).
+    fn jkr_sphere(n: usize) -> (Vec<f64>, f64, f64, f64) {
+        let a0 = (4.5 * PI * 0.002f64).cbrt();
+        let l = 3.0 * a0;
+        let heights = crate::mask::centred(n, l, |x, y| -(x * x + y * y) / 2.0);
+        let apex = heights.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+        (heights, apex, a0, l)
+    }
+
     /// The rounds on the box that holds the contact (module `window`) against the same
     /// cycle on the grid (Love's dense matrix: no window): the same contact cells at
     /// every step of a JKR sphere's loading and unloading, forces within 1e-6 of the
@@ -693,10 +703,7 @@ mod tests {
     #[test]
     fn a_round_on_the_box_is_the_round_on_the_grid() {
         let (n, w, r) = (40, 0.002, 1.0);
-        let a0 = (4.5 * PI * w * r * r).cbrt();
-        let l = 3.0 * a0;
-        let heights = crate::mask::centred(n, l, |x, y| -(x * x + y * y) / (2.0 * r));
-        let apex = heights.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+        let (heights, apex, a0, l) = jkr_sphere(n);
         let boxed = NonPeriodicHalfSpace::new(n, n, l, l, 1.0);
         let grid = crate::operator::DenseCompliance::love(n, n, l, l, 1.0);
         let mut a = AdhesiveContact::new(boxed, &heights, None, w).unwrap();
@@ -726,12 +733,9 @@ mod tests {
     /// bit for bit (the unit tests' chunks are 128 cells: the 48^2 box splits).
     #[test]
     fn a_cycle_is_the_same_whatever_the_threads() {
-        let (n, w, r) = (48, 0.002, 1.0);
-        let a0 = (4.5 * PI * w * r * r).cbrt();
-        let l = 3.0 * a0;
-        let heights = crate::mask::centred(n, l, |x, y| -(x * x + y * y) / (2.0 * r));
-        let apex = heights.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
-        let dd = (1.2 * a0).powi(2) / r / 20.0;
+        let (n, w) = (48, 0.002);
+        let (heights, apex, a0, l) = jkr_sphere(n);
+        let dd = (1.2 * a0).powi(2) / 20.0;
         let run = |threads: usize| {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build();
             pool.expect("a thread pool").install(|| {
