@@ -2,11 +2,11 @@
 //! the cells, run on the pool's threads in chunks of [`CHUNK`] cells whose results are
 //! combined in chunk order: the sums do not depend on the number of threads.
 //!
-//! An iteration reads and writes eight vectors of the box; written as seven separate
-//! loops on one thread they were a fifth of a round's time at 512^2 while the other
-//! thread waited for the next transform (bench/HISTORY.md). Here the update of `p` and
-//! `u` and the next residual are one pass, as are the restriction of the preconditioned
-//! residual and the new direction.
+//! Between its transforms an iteration reads and writes eight vectors of the box, a
+//! cost set by memory traffic: the passes are few (the update of `p` and `u` and the
+//! next residual are one pass, as are the restriction of the preconditioned residual
+//! and the new direction) and use every thread of the pool, which would otherwise wait
+//! for the next transform (measurements: bench/HISTORY.md).
 
 use rayon::prelude::*;
 
@@ -140,7 +140,7 @@ pub(super) fn products(on: &[bool], r: &[f64], y: &[f64]) -> (f64, f64, f64) {
 }
 
 /// The new direction `t = (y - mean) + beta t` on the set, 0 off it.
-pub(crate) fn direction(on: &[bool], y: &[f64], mean: f64, beta: f64, t: &mut [f64]) {
+pub(super) fn direction(on: &[bool], y: &[f64], mean: f64, beta: f64, t: &mut [f64]) {
     let n = on.len();
     t[..n].par_chunks_mut(CHUNK).enumerate().for_each(|(k, t)| {
         let lo = k * CHUNK;
