@@ -450,7 +450,7 @@ fn solve_set<O: Preconditioner>(
         let mut step = None;
         if let Some(alpha) = pending.take() {
             if mean_free || refresh {
-                passes::advance(on, s.z, s.p, s.u, alpha, t, kt);
+                passes::advance(s.p, s.u, alpha, t, kt);
                 if refresh {
                     op.apply(s.p, s.u);
                 }

@@ -80,37 +80,20 @@ pub(super) fn residual(
         .fold((0.0, 0.0), |(a, b), (w, l)| (max(a, w), max(b, l)))
 }
 
-/// `p += alpha t`, `u += alpha kt`; returns the sum of `u + z` on the set (the force
-/// control's multiplier times the set's cells).
-pub(super) fn advance(
-    on: &[bool],
-    z: &[f64],
-    p: &mut [f64],
-    u: &mut [f64],
-    alpha: f64,
-    t: &[f64],
-    kt: &[f64],
-) -> f64 {
-    let n = on.len();
-    let parts: Vec<f64> = p[..n]
+/// `p += alpha t`, `u += alpha kt`.
+pub(super) fn advance(p: &mut [f64], u: &mut [f64], alpha: f64, t: &[f64], kt: &[f64]) {
+    let n = t.len();
+    p[..n]
         .par_chunks_mut(CHUNK)
         .zip(u[..n].par_chunks_mut(CHUNK))
         .enumerate()
-        .map(|(k, (p, u))| {
+        .for_each(|(k, (p, u))| {
             let lo = k * CHUNK;
-            let mut s = 0.0;
             for i in 0..p.len() {
-                let j = lo + i;
-                p[i] += alpha * t[j];
-                u[i] += alpha * kt[j];
-                if on[j] {
-                    s += u[i] + z[j];
-                }
+                p[i] += alpha * t[lo + i];
+                u[i] += alpha * kt[lo + i];
             }
-            s
-        })
-        .collect();
-    parts.into_iter().sum()
+        });
 }
 
 /// The sums on the set of `r y`, `y` and `r` (the restriction's terms).
