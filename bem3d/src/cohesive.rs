@@ -313,7 +313,8 @@ impl<C: Preconditioner> CohesiveContact<C> {
         let n = self.z.len();
         let scale = self.rms.max(d.abs()).max(self.range);
         let (mut t, mut kt, mut y) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-        let (mut free, mut free_old) = (vec![false; n], Vec::new());
+        // The first iteration's beta is 0 (rho_old = 0), whatever free_old holds.
+        let (mut free, mut free_old) = (vec![false; n], vec![false; n]);
         let mut rho_old = 0.0;
         self.op.apply(&self.p, &mut self.u);
         for it in 0..MAX_ITERATIONS {
@@ -339,9 +340,6 @@ impl<C: Preconditioner> CohesiveContact<C> {
             };
             rho_old = rho;
             std::mem::swap(&mut free, &mut free_old);
-            if free.len() != n {
-                free = vec![false; n];
-            }
             passes::direction(&y, beta, &mut t);
             self.op.apply(&t, &mut kt);
             let curvature = crate::adhesion::passes::dot(&t, &kt);

@@ -57,19 +57,20 @@ pub fn run_viscoelastic(w: &mut dyn Write, max_n: usize) -> Result<()> {
         let band = n / 8;
         let sa = spectrum(band)?;
         let z = nested::surface(&|q| sa.c2d(q), band, &Grid::square(n, 1.0), 2026, 0)
-            .case("surface")?;
+            .case(format!("rough punch on {n}^2 cells"))?;
         let mask = bem3d::mask::disc(n, n, 1.0, 1.0, 0.5);
         let op = || NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
-        let mut el = ContactSolver::new(op(), &z, Some(mask.clone())).case("solver")?;
+        let mut el = ContactSolver::new(op(), &z, Some(mask.clone()))
+            .case(format!("elastic solver on {n}^2 cells"))?;
         let full = 0.05 * el.h_rms();
         let mut ve = TransientContact::new(op(), &z, Some(mask.clone()), relaxation.clone())
-            .case("solver")?;
+            .case(format!("viscoelastic solver on {n}^2 cells"))?;
         let t0 = Instant::now();
         let mut cells = 0;
         for k in 1..=2 * STEPS {
             cells = ve
                 .step(dt, Load::Force(force(k, full)), &opts)
-                .case("step")?
+                .case(format!("viscoelastic step {k} on {n}^2 cells"))?
                 .contact_cells;
         }
         let step = t0.elapsed().as_secs_f64() / (2 * STEPS) as f64;
@@ -78,13 +79,15 @@ pub fn run_viscoelastic(w: &mut dyn Write, max_n: usize) -> Result<()> {
         for k in 1..=2 * STEPS {
             warm = Some(
                 el.solve(Load::Force(force(k, full)), &opts, warm.as_ref())
-                    .case("solve")?,
+                    .case(format!("elastic solve {k} on {n}^2 cells"))?,
             );
         }
         let warm_t = t0.elapsed().as_secs_f64() / (2 * STEPS) as f64;
-        let mut cold = ContactSolver::new(op(), &z, Some(mask)).case("solver")?;
+        let mut cold =
+            ContactSolver::new(op(), &z, Some(mask)).case(format!("cold solver on {n}^2 cells"))?;
         let t0 = Instant::now();
-        cold.solve(Load::Force(full), &opts, None).case("solve")?;
+        cold.solve(Load::Force(full), &opts, None)
+            .case(format!("cold solve on {n}^2 cells"))?;
         let cold_t = t0.elapsed().as_secs_f64();
         let domain = bem3d::mask::disc(n, n, 1.0, 1.0, 0.5)
             .iter()

@@ -43,7 +43,7 @@ pub(super) fn free_set(
                     worst = max(worst, (-g).max(0.0));
                 }
                 *y = if *f { g } else { 0.0 };
-                same &= old.get(i) == Some(f);
+                same &= old[i] == *f;
             }
             (worst, same)
         })
