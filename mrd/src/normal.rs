@@ -190,12 +190,9 @@ impl AxisymmetricContact {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::numerics::rel;
     use crate::profile::Shape;
     use crate::reference::{cone, ejike, flat_punch, hertz, power_law};
-
-    fn rel(a: f64, b: f64) -> f64 {
-        ((a - b) / b).abs()
-    }
 
     #[test]
     fn hertz_depth_and_force_control() {

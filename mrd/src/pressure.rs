@@ -152,12 +152,9 @@ pub fn integrate_force<F: Fn(f64) -> Result<f64>>(p: F, a: f64, breaks: &[f64]) 
 mod tests {
     use super::*;
     use crate::normal::AxisymmetricContact;
+    use crate::numerics::rel;
     use crate::profile::Shape;
     use crate::reference::{cone, flat_punch, hertz};
-
-    fn rel(a: f64, b: f64) -> f64 {
-        ((a - b) / b).abs()
-    }
 
     #[test]
     fn hertz_pressure_eq30() {

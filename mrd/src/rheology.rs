@@ -251,10 +251,7 @@ impl Eq84 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn rel(a: f64, b: f64) -> f64 {
-        ((a - b) / b).abs()
-    }
+    use crate::numerics::rel;
 
     #[test]
     fn eq84_closed_forms_agree_with_quadrature() {

@@ -514,11 +514,8 @@ pub fn slide(line: &Line, p: &Sliding) -> Result<SlidingResult> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::numerics::rel;
     use std::f64::consts::{PI, TAU};
-
-    fn rel(a: f64, b: f64) -> f64 {
-        ((a - b) / b).abs()
-    }
 
     /// One spring driven by u = u0 sin(omega t) settles to f = u0 |M| sin(omega t + phi)
     /// with M' + i M'' the complex modulus: to 1e-9 at 2e5 steps per period, and the

@@ -3,7 +3,7 @@
 //! the thread count; shards merge to the single run; checkpoints of another map are
 //! refused.
 
-use crate::common::{csvs, mrdw_env as mrdw, ok, run_written_scene, stderr, summary};
+use crate::common::{csvs, merge, mrdw_env as mrdw, ok, run_written_scene, stderr, summary};
 use std::path::Path;
 
 const SMALL: &str = "bandwidth = 16\ncells = 4\nrealisations = { min = 8, max = 16, batch = 8 }\nlines = 100\nloads = 10\nseed = 2\n";
@@ -125,16 +125,7 @@ fn killed_run_resumes_and_shards_merge_to_identical_csvs() {
         ));
     }
     let merged = tmp.path().join("merged");
-    ok(&mrdw(
-        &[
-            "merge",
-            shard(0).to_str().unwrap(),
-            shard(1).to_str().unwrap(),
-            "--out",
-            merged.to_str().unwrap(),
-        ],
-        &[],
-    ));
+    ok(&merge(&[&shard(0), &shard(1)], &merged));
     assert_eq!(csvs(&full), csvs(&merged));
 }
 

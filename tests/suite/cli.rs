@@ -961,15 +961,7 @@ fn bem_contact_on_an_npy_height_map() {
         "{w}"
     );
     // Bad maps: NaN inside, missing file.
-    let mut bad = vec![0.0; 16];
-    bad[5] = f64::NAN;
-    mrd::topography::HeightMap {
-        rows: 4,
-        cols: 4,
-        data: bad,
-    }
-    .write_npy(&tmp.path().join("nan.npy"))
-    .unwrap();
+    crate::common::write_nan_map(&tmp.path().join("nan.npy"));
     expect_failure(
         &text.replace(
             "sphere.npy",

@@ -67,3 +67,41 @@ pub fn run_written_scene(dir: &Path, text: &str) -> (PathBuf, PathBuf, Value) {
     let s = summary(&out);
     (scene, out, s)
 }
+
+/// `mrdw merge PARTS --out OUT`.
+pub fn merge(parts: &[&Path], out: &Path) -> Output {
+    let mut args = vec!["merge"];
+    args.extend(parts.iter().map(|p| p.to_str().unwrap()));
+    args.extend(["--out", out.to_str().unwrap()]);
+    mrdw_env(&args, &[])
+}
+
+/// Writes a 4 x 4 height map with a NaN inside to `path` (`.npy`).
+pub fn write_nan_map(path: &Path) {
+    let mut heights = vec![0.0; 16];
+    heights[5] = f64::NAN;
+    mrd::topography::HeightMap {
+        rows: 4,
+        cols: 4,
+        data: heights,
+    }
+    .write_npy(path)
+    .unwrap();
+}
+
+/// `mrdw ARGS` with `/dev/full` (a full disk) as its standard output or, when `on_stderr`,
+/// its standard error.
+pub fn mrdw_to_full_disk(args: &[&str], on_stderr: bool) -> Output {
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .unwrap();
+    let mut c = Command::new(env!("CARGO_BIN_EXE_mrdw"));
+    c.args(args);
+    if on_stderr {
+        c.stderr(full);
+    } else {
+        c.stdout(full);
+    }
+    c.output().unwrap()
+}

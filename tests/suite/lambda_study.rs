@@ -147,29 +147,18 @@ fn the_study_machinery_runs_pairs_and_reproduces() {
         &[],
     ));
     same_csvs(&p("a"), &p("b"));
-    let o = mrdw(
-        &[
-            "run",
-            "fig6-converged-ci",
-            "--out",
-            &s("c"),
-            "--work",
-            &s("w"),
-        ],
-        &[("MRDW_STOP_AFTER_TASKS", "7")],
-    );
+    // Interrupted after 7 tasks (exit code 3), then resumed from the checkpoints.
+    let into_c = [
+        "run",
+        "fig6-converged-ci",
+        "--out",
+        &s("c"),
+        "--work",
+        &s("w"),
+    ];
+    let o = mrdw(&into_c, &[("MRDW_STOP_AFTER_TASKS", "7")]);
     assert_eq!(o.status.code(), Some(3));
-    ok(&mrdw(
-        &[
-            "run",
-            "fig6-converged-ci",
-            "--out",
-            &s("c"),
-            "--work",
-            &s("w"),
-        ],
-        &[],
-    ));
+    ok(&mrdw(&into_c, &[]));
     same_csvs(&p("a"), &p("c"));
     // A report from the kept checkpoints, computing nothing, is the same report; with
     // checkpoints missing it reports what is there.

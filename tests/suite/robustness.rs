@@ -408,15 +408,7 @@ fn benchmark_commands_refuse_what_they_cannot_do() {
     );
     refused(&o, "--write-surfaces /proc/none");
     // Any error with a full standard error: still exit code 2.
-    let full = std::fs::OpenOptions::new()
-        .write(true)
-        .open("/dev/full")
-        .unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_mrdw"))
-        .args(["run", "no-such-scene"])
-        .stderr(full)
-        .output()
-        .unwrap();
+    let o = crate::common::mrdw_to_full_disk(&["run", "no-such-scene"], true);
     assert_eq!(o.status.code(), Some(2));
 }
 

@@ -136,15 +136,7 @@ fn a_second_run_into_a_locked_folder_is_told_plainly() {
 #[test]
 fn a_failed_run_leaves_nothing_behind() {
     let tmp = tempfile::tempdir().unwrap();
-    let mut bad = vec![0.0; 16];
-    bad[5] = f64::NAN;
-    mrd::topography::HeightMap {
-        rows: 4,
-        cols: 4,
-        data: bad,
-    }
-    .write_npy(&tmp.path().join("nan.npy"))
-    .unwrap();
+    crate::common::write_nan_map(&tmp.path().join("nan.npy"));
     std::fs::write(
         tmp.path().join("b.toml"),
         "name = \"b\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"bem_contact\"\nheights = \"nan.npy\"\nsize = [1.0, 1.0]\nmean_pressures = [0.1]\n",
@@ -203,15 +195,7 @@ fn two_outputs_of_one_kind_write_distinct_files() {
 #[test]
 fn write_errors_on_stdout_are_one_line_not_a_panic() {
     // A full disk.
-    let full = std::fs::OpenOptions::new()
-        .write(true)
-        .open("/dev/full")
-        .unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_mrdw"))
-        .args(["show", "hertz"])
-        .stdout(full)
-        .output()
-        .unwrap();
+    let o = crate::common::mrdw_to_full_disk(&["show", "hertz"], false);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(
         stderr(&o).starts_with("error: writing to standard output"),

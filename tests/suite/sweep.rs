@@ -1,7 +1,7 @@
 //! The Hurst sweep end to end: fitted exponents in 3D and 1D agree (fig6-ci), a killed
 //! run resumes to the same bytes, and shards merge to the same bytes as one run.
 
-use crate::common::{csvs, mrdw_env as mrdw, ok, run_written_scene, summary};
+use crate::common::{csvs, merge, mrdw_env as mrdw, ok, run_written_scene, summary};
 use serde_json::Value;
 
 #[test]
@@ -149,30 +149,11 @@ fn shards_merge_to_the_single_run() {
         ));
     }
     // Incomplete: one shard missing.
-    let o = mrdw(
-        &[
-            "merge",
-            shard("0").to_str().unwrap(),
-            shard("1").to_str().unwrap(),
-            "--out",
-            tmp.path().join("bad").to_str().unwrap(),
-        ],
-        &[],
-    );
+    let o = merge(&[&shard("0"), &shard("1")], &tmp.path().join("bad"));
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("all are needed"));
     let merged = tmp.path().join("merged");
-    ok(&mrdw(
-        &[
-            "merge",
-            shard("0").to_str().unwrap(),
-            shard("1").to_str().unwrap(),
-            shard("2").to_str().unwrap(),
-            "--out",
-            merged.to_str().unwrap(),
-        ],
-        &[],
-    ));
+    ok(&merge(&[&shard("0"), &shard("1"), &shard("2")], &merged));
     // The origin recorded in the CSVs is the scene path in both runs.
     assert_eq!(csvs(&full), csvs(&merged));
 }

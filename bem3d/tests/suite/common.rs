@@ -228,6 +228,14 @@ pub fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// Asserts that `f` gives the same result, bit for bit, on a pool of one thread and on
+/// a pool of three (sums whose order followed the thread count would differ).
+pub fn same_on_1_and_3_threads<R: Send + PartialEq + std::fmt::Debug>(
+    f: impl Fn() -> R + Send + Sync,
+) {
+    assert_eq!(on_threads(1, &f), on_threads(3, &f));
+}
+
 /// `f` on a rayon pool of `threads` threads (for the thread-count determinism tests).
 pub fn on_threads<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) -> R {
     rayon::ThreadPoolBuilder::new()

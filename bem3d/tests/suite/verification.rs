@@ -420,17 +420,13 @@ fn errors_are_typed() {
 fn bit_identical_whatever_the_thread_count() {
     let n = 64;
     let h = rough(n, n, 11);
-    let run = |threads: usize| {
-        common::on_threads(threads, || {
-            let mut s =
-                ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None)
-                    .unwrap();
-            s.solve(Load::Force(0.05), &SolverOptions::default(), None)
-                .unwrap()
-                .pressure
-        })
-    };
-    assert_eq!(run(1), run(3));
+    common::same_on_1_and_3_threads(|| {
+        let mut s =
+            ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None).unwrap();
+        s.solve(Load::Force(0.05), &SolverOptions::default(), None)
+            .unwrap()
+            .pressure
+    });
 }
 
 /// Polonsky & Keer's iteration as published (`bem3d::solver::reference`), at 1e-12.
@@ -639,17 +635,14 @@ fn matches_full_grid(a: &Solution, b: &Solution, what: &str) {
 fn restricted_solve_is_bit_identical_whatever_the_thread_count() {
     let n = 96;
     let h = common::self_affine(n, 0.8, 7);
-    let run = |threads: usize| {
-        common::on_threads(threads, || {
-            let sol = ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None)
-                .unwrap()
-                .solve(Load::MeanPressure(2e-4), &SolverOptions::default(), None)
-                .unwrap();
-            assert!(sol.restricted());
-            (sol.pressure, sol.approach.to_bits())
-        })
-    };
-    assert_eq!(run(1), run(3));
+    common::same_on_1_and_3_threads(|| {
+        let sol = ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None)
+            .unwrap()
+            .solve(Load::MeanPressure(2e-4), &SolverOptions::default(), None)
+            .unwrap();
+        assert!(sol.restricted());
+        (sol.pressure, sol.approach.to_bits())
+    });
 }
 
 /// The windowed solve (compact contacts on the non-periodic half-space: the iteration
@@ -729,18 +722,15 @@ fn windowed_solve_matches_the_full_grid_solve() {
 fn windowed_solve_is_bit_identical_whatever_the_thread_count() {
     let n = 96;
     let ball = sphere(n, 1.0, 1.0);
-    let run = |threads: usize| {
-        common::on_threads(threads, || {
-            let op = NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
-            let sol = ContactSolver::new(op, &ball, None)
-                .unwrap()
-                .solve(Load::Force(3e-3), &SolverOptions::default(), None)
-                .unwrap();
-            assert!(sol.restricted() && sol.contact_cells > 3 * n);
-            (sol.pressure, sol.approach.to_bits())
-        })
-    };
-    assert_eq!(run(1), run(3));
+    common::same_on_1_and_3_threads(|| {
+        let op = NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
+        let sol = ContactSolver::new(op, &ball, None)
+            .unwrap()
+            .solve(Load::Force(3e-3), &SolverOptions::default(), None)
+            .unwrap();
+        assert!(sol.restricted() && sol.contact_cells > 3 * n);
+        (sol.pressure, sol.approach.to_bits())
+    });
 }
 
 /// The preconditioner's transforms run in single precision by default, and so do K's in
@@ -912,13 +902,10 @@ fn nested_start_reaches_the_cold_starts_solution_in_fewer_iterations() {
         solve(free(), &h, 5e-4, false, &o),
         "free at 5e-4",
     );
-    let run = |threads: usize| {
-        common::on_threads(threads, || {
-            let sol = solve(periodic(), &h, 5e-4, true, &SolverOptions::default());
-            (sol.pressure, sol.approach.to_bits(), sol.iterations)
-        })
-    };
-    assert_eq!(run(1), run(3));
+    common::same_on_1_and_3_threads(|| {
+        let sol = solve(periodic(), &h, 5e-4, true, &SolverOptions::default());
+        (sol.pressure, sol.approach.to_bits(), sol.iterations)
+    });
     // With a mask (here every cell but one) the start is the cold one: the same solve,
     // bit for bit, with nesting on or off.
     let mut mask = vec![true; n * n];
@@ -1083,13 +1070,10 @@ fn scaled_directions_reach_the_same_solution() {
     let single = solve(free(), &hf, 1e-2, &o(Choice::Forbid));
     assert!(scaled.scaled_directions && !single.scaled_directions);
     same_solution(&scaled, &single, "free at 1e-2");
-    let run = |threads: usize| {
-        common::on_threads(threads, || {
-            let sol = solve(periodic(), &h, 1e-2, &o(Choice::Force));
-            (sol.pressure, sol.approach.to_bits(), sol.iterations)
-        })
-    };
-    assert_eq!(run(1), run(3));
+    common::same_on_1_and_3_threads(|| {
+        let sol = solve(periodic(), &h, 1e-2, &o(Choice::Force));
+        (sol.pressure, sol.approach.to_bits(), sol.iterations)
+    });
     // A candidate set's rounds scale only when forced, and the solution says so.
     let low = |scaled: Choice| {
         let paths = Paths {

@@ -1,6 +1,8 @@
 //! A body of revolution pressed on the 3D grid: the held normal pressure that the 3D
 //! tangential outputs (elastic and viscoelastic partial slip) load tangentially.
 
+use crate::checks::{bad, check_memory, check_tolerance, positive};
+use crate::error::Result;
 use bem3d::{
     ContactSolver, Load, NonPeriodicHalfSpace, PeriodicHalfSpace, Solution, SolverOptions,
 };
@@ -79,4 +81,62 @@ impl AxisymGrid {
             ContactSolver::new(op, &z, mask)?.solve(Load::Force(force), opts, None)
         }
     }
+}
+
+/// Peak bytes per cell of an adhesive sphere's 3D cycle: the non-periodic operator and a
+/// dozen grids.
+const ADHESIVE_BYTES_PER_CELL: f64 = crate::checks::BYTES_PER_CELL_NON_PERIODIC + 100.0;
+
+/// The grid's side over the contact diameter of an adhesive sphere's 3D cycle, unless
+/// the scene gives `extent`.
+pub fn default_adhesive_extent() -> f64 {
+    1.25
+}
+
+/// Approach steps of an adhesive sphere's loading, unless the scene gives `steps`.
+pub fn default_adhesive_steps() -> usize {
+    100
+}
+
+/// Checks the settings an adhesive sphere's 3D cycles share (the JKR-limit and the
+/// cohesive outputs): the work of adhesion, the deepest approach, the refinement ladder
+/// (and the memory of its finest grid), the grid's extent, the steps and the tolerance.
+pub fn check_adhesive_cycle(
+    gamma: f64,
+    depth_max: f64,
+    cells: &[usize],
+    extent: f64,
+    steps: usize,
+    tolerance: f64,
+) -> Result<()> {
+    if !positive(gamma) {
+        return bad("gamma (work of adhesion) must be > 0");
+    }
+    if !positive(depth_max) {
+        return bad("depth_max must be > 0");
+    }
+    if cells.is_empty() || cells.iter().any(|n| !(16..=2048).contains(n)) {
+        return bad(format!(
+            "cells = {cells:?}: give grid sizes in 16..=2048, coarse to fine"
+        ));
+    }
+    if cells.windows(2).any(|w| w[1] <= w[0]) {
+        return bad(format!(
+            "cells = {cells:?} must increase (a refinement ladder)"
+        ));
+    }
+    let n = *cells.last().unwrap_or(&16);
+    check_memory(
+        (n * n) as f64 * ADHESIVE_BYTES_PER_CELL,
+        &format!("cells = {n}"),
+    )?;
+    if !(extent.is_finite() && (1.1..=100.0).contains(&extent)) {
+        return bad(format!(
+            "extent = {extent}: the grid's side over the contact's diameter at depth_max (the cohesive zone's, for a cohesive law) must lie in [1.1, 100]"
+        ));
+    }
+    if !(2..=10_000).contains(&steps) {
+        return bad(format!("steps = {steps} must lie in 2..=10000"));
+    }
+    check_tolerance(tolerance)
 }

@@ -61,6 +61,14 @@ impl LambdaSpec {
             .collect()
     }
 
+    /// lambda of each of `specs` at the one Hurst exponent `hurst`.
+    pub fn at_hurst(specs: &[LambdaSpec], ctx: &Context, hurst: f64) -> Result<Vec<f64>> {
+        specs
+            .iter()
+            .map(|l| l.build(ctx)?.at(hurst).ctx("lambda"))
+            .collect()
+    }
+
     /// The lambda law this names (tables are read through the scene's path resolver).
     pub fn build(&self, ctx: &Context) -> Result<Lambda> {
         Ok(match self {

@@ -27,3 +27,14 @@ pub mod rough_sphere;
 pub mod sliding_line;
 pub mod tangential_map;
 pub mod tasks;
+
+/// The options of a study's 3D normal solves on `n x n` cells: the scene's `tolerance`
+/// and at most 20 n + 2000 iterations (the conjugate gradient's count grows about
+/// linearly with the grid's side; the constant covers the small grids).
+pub fn solve_options(tolerance: f64, n: usize) -> bem3d::SolverOptions {
+    bem3d::SolverOptions {
+        tolerance,
+        max_iterations: 20 * n + 2000,
+        ..Default::default()
+    }
+}

@@ -8,6 +8,7 @@ use crate::checks::{
     bad, check_memory_per_thread, count_in, BYTES_PER_CELL_PERIODIC, MAX_REALISATIONS,
 };
 use crate::error::{Context as _, Result};
+use bem3d::{ContactSolver, PeriodicHalfSpace};
 use mrd::roughness::synthesis::Grid;
 use mrd::roughness::{nested, SelfAffine};
 use rayon::prelude::*;
@@ -30,6 +31,15 @@ pub fn patch(hurst: f64, bandwidth: usize, n: usize, seed: u64, r: u64) -> Resul
         heights,
         rms_slope: rms_slope(c2d, bandwidth),
     })
+}
+
+impl Patch {
+    /// The periodic normal solver on this patch of `n x n` cells (period 1) for a
+    /// substrate of modulus `e_star`.
+    pub fn solver(&self, n: usize, e_star: f64) -> Result<ContactSolver<PeriodicHalfSpace>> {
+        let op = PeriodicHalfSpace::new(n, n, 1.0, 1.0, e_star);
+        ContactSolver::new(op, &self.heights, None).ctx("3D solver set-up")
+    }
 }
 
 /// The ensembles of a study on periodic patches: Hurst exponents, the substrates'

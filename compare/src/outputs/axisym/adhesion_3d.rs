@@ -11,9 +11,12 @@
 //! load without adhesion at a distance (cells and springs join on touching) and unload
 //! through the adhesive branch, so their loops are the same construction.
 
-use crate::checks::{bad, check_memory, check_tolerance, default_tolerance, positive};
+use crate::checks::default_tolerance;
 use crate::context::Context;
 use crate::error::{Context as _, Result};
+use crate::experiment::axisym_3d::{
+    check_adhesive_cycle, default_adhesive_extent, default_adhesive_steps,
+};
 use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
@@ -37,11 +40,11 @@ pub struct Adhesion3d {
     cells: Vec<usize>,
     /// Side of the 3D grid over the contact diameter at `depth_max` (the free
     /// half-space needs no margin for images; >= 1.1 keeps the rim inside).
-    #[serde(default = "default_extent")]
+    #[serde(default = "default_adhesive_extent")]
     extent: f64,
     /// Approach steps of the loading; the unloading goes down by the same step until
     /// the body separates.
-    #[serde(default = "default_steps")]
+    #[serde(default = "default_adhesive_steps")]
     steps: usize,
     #[serde(default = "default_tolerance")]
     tolerance: f64,
@@ -50,15 +53,6 @@ pub struct Adhesion3d {
 fn default_cells() -> Vec<usize> {
     vec![32, 64, 128]
 }
-fn default_extent() -> f64 {
-    1.25
-}
-fn default_steps() -> usize {
-    100
-}
-
-/// Peak bytes per cell of the 3D side: the non-periodic operator and a dozen grids.
-const BYTES_PER_CELL: f64 = crate::checks::BYTES_PER_CELL_NON_PERIODIC + 100.0;
 
 /// One grid's cycle: the unloading branch's points and its pull-off measures.
 struct Cycle3d {
@@ -86,36 +80,14 @@ struct Mrd {
 impl Output for Adhesion3d {
     fn validate(&self, ctx: &Context) -> Result<()> {
         ctx.profile()?;
-        if !positive(self.gamma) {
-            return bad("gamma (work of adhesion) must be > 0");
-        }
-        if !positive(self.depth_max) {
-            return bad("depth_max must be > 0");
-        }
-        if self.cells.is_empty() || self.cells.iter().any(|n| !(16..=2048).contains(n)) {
-            return bad(format!(
-                "cells = {:?}: give grid sizes in 16..=2048, coarse to fine",
-                self.cells
-            ));
-        }
-        if self.cells.windows(2).any(|w| w[1] <= w[0]) {
-            return bad(format!(
-                "cells = {:?} must increase (a refinement ladder)",
-                self.cells
-            ));
-        }
-        let n = *self.cells.last().unwrap_or(&16);
-        check_memory((n * n) as f64 * BYTES_PER_CELL, &format!("cells = {n}"))?;
-        if !(self.extent.is_finite() && (1.1..=100.0).contains(&self.extent)) {
-            return bad(format!(
-                "extent = {}: the grid's side over the contact diameter must lie in [1.1, 100]",
-                self.extent
-            ));
-        }
-        if !(2..=10_000).contains(&self.steps) {
-            return bad(format!("steps = {} must lie in 2..=10000", self.steps));
-        }
-        check_tolerance(self.tolerance)
+        check_adhesive_cycle(
+            self.gamma,
+            self.depth_max,
+            &self.cells,
+            self.extent,
+            self.steps,
+            self.tolerance,
+        )
     }
 
     fn stages(&self, ctx: &Context) -> Vec<Stage> {

@@ -56,20 +56,7 @@ impl Output for Damping {
     }
 
     fn stages(&self, ctx: &Context) -> Vec<Stage> {
-        let mut s = vec![
-            Stage::HessTransform,
-            Stage::NormalSemiAnalytic,
-            Stage::OscillationDiscrete,
-        ];
-        if ctx
-            .profile
-            .as_ref()
-            .and_then(for_profile::sphere_radius)
-            .is_some()
-        {
-            s.push(Stage::ClosedForm);
-        }
-        s
+        hess::stages(Stage::OscillationDiscrete, hess::is_sphere(ctx))
     }
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {

@@ -31,15 +31,8 @@ impl Output for Pressure {
     }
 
     fn stages(&self, ctx: &Context) -> Vec<Stage> {
-        let mut s = vec![
-            Stage::HessTransform,
-            Stage::NormalSemiAnalytic,
-            Stage::AbelPressure,
-        ];
-        if ctx.profile.as_ref().is_some_and(for_profile::has_pressure) {
-            s.push(Stage::ClosedForm);
-        }
-        s
+        let closed_form = ctx.profile.as_ref().is_some_and(for_profile::has_pressure);
+        hess::stages(Stage::AbelPressure, closed_form)
     }
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {

@@ -13,9 +13,12 @@
 //! one of `adhesion_3d` (approach steps in, and out until the cohesive zone is gone);
 //! the pull-off is the smallest force of the unloading.
 
-use crate::checks::{bad, check_memory, check_tolerance, default_tolerance, positive};
+use crate::checks::{bad, default_tolerance};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
+use crate::experiment::axisym_3d::{
+    check_adhesive_cycle, default_adhesive_extent, default_adhesive_steps,
+};
 use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
@@ -40,10 +43,10 @@ pub struct Tabor3d {
     #[serde(default = "default_cells")]
     cells: Vec<usize>,
     /// Side of the grid over the cohesive zone's diameter at `depth_max`.
-    #[serde(default = "default_extent")]
+    #[serde(default = "default_adhesive_extent")]
     extent: f64,
     /// Approach steps of the loading (the unloading goes by the same step).
-    #[serde(default = "default_steps")]
+    #[serde(default = "default_adhesive_steps")]
     steps: usize,
     #[serde(default = "default_tolerance")]
     tolerance: f64,
@@ -87,14 +90,6 @@ impl Law {
 fn default_cells() -> Vec<usize> {
     vec![64, 128]
 }
-fn default_extent() -> f64 {
-    1.25
-}
-fn default_steps() -> usize {
-    100
-}
-
-const BYTES_PER_CELL: f64 = crate::checks::BYTES_PER_CELL_NON_PERIODIC + 100.0;
 
 /// One 3D run: lambda, cells, cell size, Dugdale length, pull-off force.
 struct Run {
@@ -110,39 +105,20 @@ impl Output for Tabor3d {
         if for_profile::sphere_radius(ctx.profile()?).is_none() {
             return bad("tabor_3d needs a sphere (profile = paraboloid): Maugis' closed form is the sphere's");
         }
-        if !positive(self.gamma) {
-            return bad("gamma (work of adhesion) must be > 0");
-        }
-        if !positive(self.depth_max) {
-            return bad("depth_max must be > 0");
-        }
         if self.lambdas.is_empty() || self.lambdas.iter().any(|l| !(*l >= 0.01 && *l <= 100.0)) {
             return bad(format!(
                 "lambdas = {:?}: give Tabor-Maugis parameters in [0.01, 100]",
                 self.lambdas
             ));
         }
-        if self.cells.is_empty() || self.cells.iter().any(|n| !(16..=2048).contains(n)) {
-            return bad(format!(
-                "cells = {:?}: give grid sizes in 16..=2048",
-                self.cells
-            ));
-        }
-        if self.cells.windows(2).any(|w| w[1] <= w[0]) {
-            return bad(format!(
-                "cells = {:?} must increase (a refinement ladder)",
-                self.cells
-            ));
-        }
-        let n = *self.cells.last().unwrap_or(&16);
-        check_memory((n * n) as f64 * BYTES_PER_CELL, &format!("cells = {n}"))?;
-        if !(self.extent.is_finite() && (1.1..=100.0).contains(&self.extent)) {
-            return bad(format!("extent = {} must lie in [1.1, 100]", self.extent));
-        }
-        if !(2..=10_000).contains(&self.steps) {
-            return bad(format!("steps = {} must lie in 2..=10000", self.steps));
-        }
-        check_tolerance(self.tolerance)
+        check_adhesive_cycle(
+            self.gamma,
+            self.depth_max,
+            &self.cells,
+            self.extent,
+            self.steps,
+            self.tolerance,
+        )
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {

@@ -43,19 +43,7 @@ impl Output for Tangential {
     }
 
     fn stages(&self, ctx: &Context) -> Vec<Stage> {
-        let mut s = vec![
-            Stage::HessTransform,
-            Stage::NormalSemiAnalytic,
-            Stage::Tangential,
-        ];
-        if ctx
-            .profile
-            .as_ref()
-            .and_then(for_profile::sphere_radius)
-            .is_some()
-        {
-            s.push(Stage::ClosedForm);
-        }
+        let mut s = hess::stages(Stage::Tangential, hess::is_sphere(ctx));
         if !self.traction_at.is_empty() {
             s.push(Stage::AbelTraction);
         }

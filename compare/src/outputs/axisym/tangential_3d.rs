@@ -156,19 +156,7 @@ impl Output for Tangential3d {
     }
 
     fn stages(&self, ctx: &Context) -> Vec<Stage> {
-        let sphere = ctx
-            .profile
-            .as_ref()
-            .and_then(for_profile::sphere_radius)
-            .is_some();
-        let mut s = vec![
-            Stage::HessTransform,
-            Stage::NormalSemiAnalytic,
-            Stage::Tangential,
-        ];
-        if sphere {
-            s.push(Stage::ClosedForm);
-        }
+        let mut s = hess::stages(Stage::Tangential, hess::is_sphere(ctx));
         s.extend([Stage::Bem3d, Stage::Tangential3d]);
         s
     }

@@ -33,7 +33,7 @@ use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
 use bem3d::tangential::{CerrutiPeriodic, PartialSlip};
-use bem3d::{ContactSolver, Load, PeriodicHalfSpace, SolverOptions};
+use bem3d::Load;
 use mrd::rough_contact::Stat;
 use serde::Deserialize;
 
@@ -82,6 +82,15 @@ struct Run {
     energy_mrd: Vec<Vec<f64>>,
 }
 
+/// The stages of a case (3D and MRD), run together on the pool.
+const STAGES: &[Stage] = &[
+    Stage::RoughSynthesis,
+    Stage::Bem3d,
+    Stage::Bem3dStiffness,
+    Stage::Tangential,
+    Stage::Tangential3d,
+];
+
 impl Output for RoughPartialSlip3d {
     fn validate(&self, _: &Context) -> Result<()> {
         // Beside the normal solver: a partial-slip state (a dozen double arrays).
@@ -115,13 +124,7 @@ impl Output for RoughPartialSlip3d {
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
-        vec![
-            Stage::RoughSynthesis,
-            Stage::Bem3d,
-            Stage::Bem3dStiffness,
-            Stage::Tangential,
-            Stage::Tangential3d,
-        ]
+        STAGES.to_vec()
     }
 
     fn seed(&self) -> Option<u64> {
@@ -130,14 +133,7 @@ impl Output for RoughPartialSlip3d {
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
         let e_star = env.ctx.material.e_star;
-        let stages = [
-            Stage::RoughSynthesis,
-            Stage::Bem3d,
-            Stage::Bem3dStiffness,
-            Stage::Tangential,
-            Stage::Tangential3d,
-        ];
-        let runs = out.stages_together(&stages, || {
+        let runs = out.stages_together(STAGES, || {
             self.ladder()
                 .run(|h, cells, r| self.run_one(h, cells, r, e_star))
         })?;
@@ -160,13 +156,8 @@ impl RoughPartialSlip3d {
     fn run_one(&self, hurst: f64, cells: usize, r: u64, e_star: f64) -> Result<Run> {
         let n = cells * self.bandwidth;
         let p = patch(hurst, self.bandwidth, n, self.seed, r)?;
-        let op = PeriodicHalfSpace::new(n, n, 1.0, 1.0, e_star);
-        let mut solver = ContactSolver::new(op, &p.heights, None).ctx("3D solver set-up")?;
-        let opts = SolverOptions {
-            tolerance: self.tolerance,
-            max_iterations: 20 * n + 2000,
-            ..Default::default()
-        };
+        let mut solver = p.solver(n, e_star)?;
+        let opts = crate::experiment::solve_options(self.tolerance, n);
         let force = self.pressure * e_star * p.rms_slope;
         let sol = solver
             .solve(Load::Force(force), &opts, None)

@@ -26,12 +26,12 @@
 use crate::checks::{bad, check_tolerance, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
-use crate::experiment::periodic::{patch, Ensemble, Ladder, Patch};
+use crate::experiment::periodic::{patch, Ensemble, Ladder};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
 use bem3d::tangential::CerrutiPeriodic;
-use bem3d::{ContactSolver, Load, PeriodicHalfSpace, SolverOptions};
+use bem3d::Load;
 use mrd::material::{ElasticBody, Material};
 use mrd::rough_contact::Stat;
 use serde::Deserialize;
@@ -65,6 +65,9 @@ struct Run {
     ratio_along_only: Vec<Vec<f64>>,
 }
 
+/// The stages of the 3D realisations, run together on the pool.
+const STAGES_3D: &[Stage] = &[Stage::RoughSynthesis, Stage::Bem3d, Stage::Bem3dStiffness];
+
 impl Output for TangentialStiffness3d {
     fn validate(&self, _: &Context) -> Result<()> {
         // Beside the normal solver: the Cerruti tensor (14 double arrays).
@@ -85,12 +88,7 @@ impl Output for TangentialStiffness3d {
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
-        vec![
-            Stage::RoughSynthesis,
-            Stage::Bem3d,
-            Stage::Bem3dStiffness,
-            Stage::Tangential,
-        ]
+        [STAGES_3D, &[Stage::Tangential]].concat()
     }
 
     fn seed(&self) -> Option<u64> {
@@ -99,8 +97,7 @@ impl Output for TangentialStiffness3d {
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
         let e_star = env.ctx.material.e_star;
-        let stages = [Stage::RoughSynthesis, Stage::Bem3d, Stage::Bem3dStiffness];
-        let runs = out.stages_together(&stages, || {
+        let runs = out.stages_together(STAGES_3D, || {
             self.ladder()
                 .run(|h, cells, r| self.run_3d(h, cells, r, e_star))
         })?;
@@ -136,17 +133,10 @@ impl TangentialStiffness3d {
 
     fn run_3d(&self, hurst: f64, cells: usize, r: u64, e_star: f64) -> Result<Run> {
         let n = cells * self.bandwidth;
-        let Patch {
-            heights: z,
-            rms_slope: slope,
-        } = patch(hurst, self.bandwidth, n, self.seed, r)?;
-        let op = PeriodicHalfSpace::new(n, n, 1.0, 1.0, e_star);
-        let mut solver = ContactSolver::new(op, &z, None).ctx("3D solver set-up")?;
-        let opts = SolverOptions {
-            tolerance: self.tolerance,
-            max_iterations: 20 * n + 2000,
-            ..Default::default()
-        };
+        let p = patch(hurst, self.bandwidth, n, self.seed, r)?;
+        let slope = p.rms_slope;
+        let mut solver = p.solver(n, e_star)?;
+        let opts = crate::experiment::solve_options(self.tolerance, n);
         let mut cerruti: Vec<CerrutiPeriodic> = self
             .poisson
             .iter()

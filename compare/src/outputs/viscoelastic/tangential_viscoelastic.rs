@@ -169,11 +169,7 @@ impl Output for TangentialViscoelastic {
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
-        let mut s = vec![
-            Stage::HessTransform,
-            Stage::NormalSemiAnalytic,
-            Stage::Viscoelastic,
-        ];
+        let mut s = hess::stages(Stage::Viscoelastic, false);
         if self.cells_3d.is_some() {
             s.extend([Stage::Bem3d, Stage::Tangential3d]);
         }

@@ -72,12 +72,7 @@ impl Output for Viscoelastic {
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
-        vec![
-            Stage::HessTransform,
-            Stage::NormalSemiAnalytic,
-            Stage::Viscoelastic,
-            Stage::ClosedForm,
-        ]
+        hess::stages(Stage::Viscoelastic, true)
     }
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {

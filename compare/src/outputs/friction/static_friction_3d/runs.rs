@@ -95,11 +95,7 @@ pub fn solve_3d(
         .iter()
         .map(|f| f * 2.0 * rms_height * geometry.area().sqrt() / PI.sqrt())
         .collect();
-    let opts = SolverOptions {
-        tolerance: spec.tolerance,
-        max_iterations: 20 * n + 2000,
-        ..Default::default()
-    };
+    let opts = crate::experiment::solve_options(spec.tolerance, n);
     let slopes = Slopes {
         domain: &domain,
         g2,

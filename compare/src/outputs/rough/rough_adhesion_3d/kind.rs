@@ -17,6 +17,9 @@ use rayon::prelude::*;
 /// Peak bytes per cell of one 3D cycle: the non-periodic operator and a dozen grids.
 const BYTES_PER_CELL: f64 = BYTES_PER_CELL_NON_PERIODIC + 100.0;
 
+/// The stages of the 3D cycles, run together on the pool.
+const STAGES_3D: &[Stage] = &[Stage::RoughSynthesis, Stage::Adhesion3d];
+
 impl Output for RoughAdhesion3d {
     fn validate(&self, ctx: &Context) -> Result<()> {
         let (lo, hi) = mrd::error::MAGNITUDE_RANGE;
@@ -72,11 +75,7 @@ impl Output for RoughAdhesion3d {
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
-        vec![
-            Stage::RoughSynthesis,
-            Stage::Adhesion3d,
-            Stage::AdhesionDiscrete,
-        ]
+        [STAGES_3D, &[Stage::AdhesionDiscrete]].concat()
     }
 
     fn seed(&self) -> Option<u64> {
@@ -108,29 +107,28 @@ impl Output for RoughAdhesion3d {
             "3D adhesive cycles (case x grid x surface)",
             "cycles",
         );
-        let all_3d: Cases =
-            out.stages_together(&[Stage::RoughSynthesis, Stage::Adhesion3d], || {
-                cases
-                    .iter()
-                    .map(|&(h, rough)| {
-                        let per_grid = self
-                            .cells
-                            .iter()
-                            .map(|&n| {
-                                (0..realisations(rough, self.realisations_3d))
-                                    .into_par_iter()
-                                    .map(|r| {
-                                        let c = cycle_3d(self, h, rough, n, r, e_star);
-                                        bar.inc();
-                                        c
-                                    })
-                                    .collect::<Result<Vec<_>>>()
-                            })
-                            .collect::<Result<Vec<_>>>()?;
-                        Ok(((h, rough), per_grid))
-                    })
-                    .collect::<Result<_>>()
-            })?;
+        let all_3d: Cases = out.stages_together(STAGES_3D, || {
+            cases
+                .iter()
+                .map(|&(h, rough)| {
+                    let per_grid = self
+                        .cells
+                        .iter()
+                        .map(|&n| {
+                            (0..realisations(rough, self.realisations_3d))
+                                .into_par_iter()
+                                .map(|r| {
+                                    let c = cycle_3d(self, h, rough, n, r, e_star);
+                                    bar.inc();
+                                    c
+                                })
+                                .collect::<Result<Vec<_>>>()
+                        })
+                        .collect::<Result<Vec<_>>>()?;
+                    Ok(((h, rough), per_grid))
+                })
+                .collect::<Result<_>>()
+        })?;
         bar.finish();
         let all_1d: Cases = out.stage(Stage::AdhesionDiscrete, || {
             cases

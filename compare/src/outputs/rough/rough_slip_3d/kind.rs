@@ -32,6 +32,16 @@ fn check_fractions(name: &str, v: &[f64], increasing: bool) -> Result<()> {
     Ok(())
 }
 
+/// The stages of the 3D realisations, run together on the pool.
+const STAGES_3D: &[Stage] = &[
+    Stage::RoughSynthesis,
+    Stage::Bem3d,
+    Stage::Bem3dStiffness,
+    Stage::Tangential3d,
+];
+/// The stages of the MRD lines, after the 3D ones.
+const STAGES_MRD: &[Stage] = &[Stage::RoughContact, Stage::Tangential];
+
 impl Output for RoughSlip3d {
     fn validate(&self, ctx: &Context) -> Result<()> {
         let (lo, hi) = mrd::error::MAGNITUDE_RANGE;
@@ -92,14 +102,7 @@ impl Output for RoughSlip3d {
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
-        vec![
-            Stage::RoughSynthesis,
-            Stage::Bem3d,
-            Stage::Bem3dStiffness,
-            Stage::Tangential3d,
-            Stage::RoughContact,
-            Stage::Tangential,
-        ]
+        [STAGES_3D, STAGES_MRD].concat()
     }
 
     fn seed(&self) -> Option<u64> {
@@ -122,13 +125,7 @@ impl Output for RoughSlip3d {
             "3D partial slip (case x grid x surface)",
             "surfaces",
         );
-        let stages_3d = [
-            Stage::RoughSynthesis,
-            Stage::Bem3d,
-            Stage::Bem3dStiffness,
-            Stage::Tangential3d,
-        ];
-        let mut all: Vec<Case> = out.stages_together(&stages_3d, || {
+        let mut all: Vec<Case> = out.stages_together(STAGES_3D, || {
             cases
                 .iter()
                 .map(|&(hurst, roughness)| {
@@ -159,7 +156,7 @@ impl Output for RoughSlip3d {
                 .collect::<Result<_>>()
         })?;
         bar.finish();
-        out.stages_together(&[Stage::RoughContact, Stage::Tangential], || {
+        out.stages_together(STAGES_MRD, || {
             for case in all.iter_mut() {
                 let hi = self.hurst.iter().position(|&x| x == case.hurst);
                 let how = (

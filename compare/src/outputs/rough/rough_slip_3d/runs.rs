@@ -5,7 +5,7 @@ use super::RoughSlip3d;
 use crate::error::{Context as _, Result};
 use crate::experiment::tangential_map::Mapping;
 use bem3d::tangential::{CerrutiFree, PartialSlip};
-use bem3d::{ContactSolver, Load, NonPeriodicHalfSpace, SolverOptions};
+use bem3d::{ContactSolver, Load, NonPeriodicHalfSpace};
 use mrd::foundation::Foundation;
 
 /// The friction bound of the stick solve, over mu: far above any traction the held
@@ -129,11 +129,7 @@ pub fn run_3d(
     let mask: Vec<bool> = (0..n * n).map(|c| geometry.r2(c) < reach2).collect();
     let op = NonPeriodicHalfSpace::new(n, n, spec.side, spec.side, e_star);
     let mut solver = ContactSolver::new(op, &z, Some(mask)).ctx("3D solver set-up")?;
-    let opts = SolverOptions {
-        tolerance: spec.tolerance,
-        max_iterations: 20 * n + 2000,
-        ..Default::default()
-    };
+    let opts = crate::experiment::solve_options(spec.tolerance, n);
     let sol = solver
         .solve(Load::Force(spec.force), &opts, None)
         .ctx("3D normal solve")?;

@@ -5,12 +5,15 @@ use super::RoughSphere;
 use super::{report, runs};
 use crate::checks::{bad, check_memory_per_thread, count_in, BYTES_PER_CELL_NON_PERIODIC};
 use crate::context::Context;
-use crate::error::{Context as _, Result};
+use crate::error::Result;
 use crate::experiment::lambda::LambdaSpec;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::Section;
 use rayon::prelude::*;
+
+/// The stages of the 3D realisations, run together on the pool.
+const STAGES_3D: &[Stage] = &[Stage::RoughSynthesis, Stage::Bem3d, Stage::Bem3dStiffness];
 
 impl Output for RoughSphere {
     fn validate(&self, ctx: &Context) -> Result<()> {
@@ -51,12 +54,7 @@ impl Output for RoughSphere {
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
-        vec![
-            Stage::RoughSynthesis,
-            Stage::Bem3d,
-            Stage::Bem3dStiffness,
-            Stage::RoughContact,
-        ]
+        [STAGES_3D, &[Stage::RoughContact]].concat()
     }
 
     fn seed(&self) -> Option<u64> {
@@ -64,14 +62,9 @@ impl Output for RoughSphere {
     }
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
-        let lambdas: Vec<f64> = self
-            .lambda
-            .iter()
-            .map(|l| l.build(env.ctx)?.at(self.hurst).ctx("lambda"))
-            .collect::<Result<_>>()?;
+        let lambdas = LambdaSpec::at_hurst(&self.lambda, env.ctx, self.hurst)?;
         let scale = runs::roughness_scale(self)?;
-        let stages = [Stage::RoughSynthesis, Stage::Bem3d, Stage::Bem3dStiffness];
-        let all_3d = out.stages_together(&stages, || {
+        let all_3d = out.stages_together(STAGES_3D, || {
             self.alpha
                 .iter()
                 .map(|&a| {

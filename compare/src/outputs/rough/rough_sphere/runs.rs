@@ -49,11 +49,7 @@ pub fn press_3d(spec: &RoughSphere, alpha: f64, scale: f64, r: u64) -> Result<Ru
     let top = z.iter().fold(f64::NEG_INFINITY, |m, &v| m.max(v));
     let op = NonPeriodicHalfSpace::new(n, n, side, side, 1.0);
     let mut solver = ContactSolver::new(op, &z, None).ctx("3D solver set-up")?;
-    let opts = SolverOptions {
-        tolerance: spec.tolerance,
-        max_iterations: 20 * n + 2000,
-        ..Default::default()
-    };
+    let opts = crate::experiment::solve_options(spec.tolerance, n);
     let stiffness_opts = SolverOptions {
         tolerance: 1e-9,
         ..opts.clone()

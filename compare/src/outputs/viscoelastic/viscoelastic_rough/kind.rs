@@ -5,12 +5,15 @@ use super::{radok, report, runs};
 use super::{ViscoelasticRough, MAX_STEPS};
 use crate::checks::{bad, check_memory_per_thread, count_in, BYTES_PER_CELL_NON_PERIODIC};
 use crate::context::Context;
-use crate::error::{Context as _, Result};
+use crate::error::Result;
 use crate::experiment::lambda::LambdaSpec;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::Section;
 use rayon::prelude::*;
+
+/// The stages of the 3D histories, run together on the pool.
+const STAGES_3D: &[Stage] = &[Stage::RoughSynthesis, Stage::Viscoelastic3d, Stage::Bem3d];
 
 impl Output for ViscoelasticRough {
     fn validate(&self, ctx: &Context) -> Result<()> {
@@ -79,12 +82,7 @@ impl Output for ViscoelasticRough {
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
-        vec![
-            Stage::RoughSynthesis,
-            Stage::Viscoelastic3d,
-            Stage::Bem3d,
-            Stage::Viscoelastic,
-        ]
+        [STAGES_3D, &[Stage::Viscoelastic]].concat()
     }
 
     fn seed(&self) -> Option<u64> {
@@ -92,14 +90,9 @@ impl Output for ViscoelasticRough {
     }
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
-        let lambdas: Vec<f64> = self
-            .lambda
-            .iter()
-            .map(|l| l.build(env.ctx)?.at(self.hurst).ctx("lambda"))
-            .collect::<Result<_>>()?;
+        let lambdas = LambdaSpec::at_hurst(&self.lambda, env.ctx, self.hurst)?;
         let (relaxation, prony) = (self.relaxation()?, self.prony()?);
-        let stages = [Stage::RoughSynthesis, Stage::Viscoelastic3d, Stage::Bem3d];
-        let runs_3d = out.stages_together(&stages, || {
+        let runs_3d = out.stages_together(STAGES_3D, || {
             (0..self.realisations_3d)
                 .into_par_iter()
                 .map(|r| runs::run_3d(self, &relaxation, r))
