@@ -156,3 +156,28 @@ pub(crate) fn check_line(hurst: f64, points: usize, length: f64, realisations: u
         &format!("points = {points} per line"),
     )
 }
+
+/// Each (key, value) of `values` must lie in the range of magnitudes the solvers take
+/// (`mrd::error::MAGNITUDE_RANGE`); the message names the first key outside it.
+pub(crate) fn check_magnitudes(values: &[(&str, f64)]) -> Result<()> {
+    let (lo, hi) = mrd::error::MAGNITUDE_RANGE;
+    match values.iter().find(|(_, v)| !(lo..=hi).contains(v)) {
+        Some((name, v)) => bad(format!("{name} = {v:e} must lie in [{lo:e}, {hi:e}]")),
+        None => Ok(()),
+    }
+}
+
+/// `name` = `v`: tangential forces as fractions of mu F_N in (0, 1), increasing if
+/// asked.
+pub(crate) fn check_fractions(name: &str, v: &[f64], increasing: bool) -> Result<()> {
+    if v.is_empty()
+        || v.iter().any(|x| !(*x > 0.0 && *x < 1.0))
+        || (increasing && v.windows(2).any(|w| w[1] <= w[0]))
+    {
+        return bad(format!(
+            "{name} = {v:?}: give{} fractions of mu F_N in (0, 1) (at 1 the body slides)",
+            if increasing { " increasing" } else { "" }
+        ));
+    }
+    Ok(())
+}

@@ -5,6 +5,7 @@
 
 use crate::error::{Context as _, Result};
 use crate::plan::Stage;
+use crate::report::Section;
 use bem3d::{BemError, ContactSolver, Load, NonPeriodicHalfSpace, SolverOptions};
 use serde::{Deserialize, Serialize};
 
@@ -17,6 +18,24 @@ pub const STAGES: [Stage; 4] = [
     Stage::Bem3dStiffness,
     Stage::RoughContact,
 ];
+
+/// The stages of a checkpointed study of rough punches: the spectrum of its measured
+/// source where it has one (`psd`), the punches' [`STAGES`], then the fit.
+pub fn study_stages(psd: bool) -> Vec<Stage> {
+    let mut s = Vec::new();
+    if psd {
+        s.push(Stage::Psd);
+    }
+    s.extend(STAGES);
+    s.push(Stage::SweepFit);
+    s
+}
+
+/// Runs a study's checkpointed tasks `compute`, recorded as the [`STAGES`] they
+/// interleave.
+pub fn run_tasks<T>(out: &mut Section, compute: impl FnOnce() -> T) -> T {
+    out.stages_together(&STAGES, compute)
+}
 
 /// One 3D solve of a realisation's load ladder, as recorded in the solves table.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]

@@ -15,6 +15,22 @@ use mrd::roughness::synthesis::{line_from, Amplitudes};
 use mrd::sliding::{slide, Line, Sliding, SlidingResult};
 use rand::RngExt;
 use rayon::prelude::*;
+
+/// The MRD lines' steady state, unless the scene says otherwise: mu and the mean
+/// approach change by less than this between passes.
+pub(crate) fn default_line_tolerance() -> f64 {
+    1e-4
+}
+
+/// Passes over a line at most before its steady state counts as not reached.
+pub(crate) fn default_max_passes() -> usize {
+    400
+}
+
+/// A velocity is resolved where the two routes to mu agree within this, relatively.
+pub(crate) fn default_error_limit() -> f64 {
+    0.1
+}
 use serde::Deserialize;
 use std::f64::consts::{PI, TAU};
 

@@ -2,7 +2,7 @@
 //! 24, 25), semi-analytic; optionally on N discrete springs; the closed form where the
 //! profile has one; the electrical conductance for a resistivity sum.
 
-use crate::checks::{bad, check_points, check_springs, default_points, rel};
+use crate::checks::{check_points, check_springs, default_points, rel};
 use crate::context::{Context, Drive};
 use crate::error::{Context as _, Result};
 use crate::experiment::hess;
@@ -32,10 +32,7 @@ impl Output for ForceDepth {
     fn validate(&self, ctx: &Context) -> Result<()> {
         ctx.profile()?;
         check_points(self.points)?;
-        let (lo, hi) = mrd::error::MAGNITUDE_RANGE;
-        if !(lo..=hi).contains(&self.max) {
-            return bad(format!("max = {:e} must lie in [{lo:e}, {hi:e}]", self.max));
-        }
+        crate::checks::check_magnitudes(&[("max", self.max)])?;
         if let Some(n) = self.springs {
             check_springs(n, crate::checks::spring_bytes::FORCE_DEPTH)?;
         }

@@ -53,28 +53,19 @@ pub struct SlidingFriction {
     pub(super) seed: u64,
     /// Steady state: mu and the mean approach change by less than this between passes
     /// (relative to mu and to the rms height).
-    #[serde(default = "tolerance")]
+    #[serde(default = "crate::experiment::sliding_line::default_line_tolerance")]
     pub(super) tolerance: f64,
-    #[serde(default = "max_passes")]
+    #[serde(default = "crate::experiment::sliding_line::default_max_passes")]
     pub(super) max_passes: usize,
     /// A velocity is resolved where the two routes to mu (the friction force and the
     /// dissipated energy per unit distance) agree within this, relatively, on every
     /// line; Eq. (82) is fitted over the resolved velocities only.
-    #[serde(default = "error_limit")]
+    #[serde(default = "crate::experiment::sliding_line::default_error_limit")]
     pub(super) error_limit: f64,
 }
 
 fn one() -> usize {
     1
-}
-fn tolerance() -> f64 {
-    1e-4
-}
-fn max_passes() -> usize {
-    400
-}
-fn error_limit() -> f64 {
-    0.1
 }
 
 impl SlidingFriction {

@@ -68,7 +68,7 @@ pub struct SlidingFriction3d {
     /// of the relative change of mean mu from grid / 2 to grid (the fine grid's error by
     /// Richardson for the measured order 2). Eq. (82) is fitted, to both sides, over the
     /// resolved velocities only.
-    #[serde(default = "error_limit")]
+    #[serde(default = "crate::experiment::sliding_line::default_error_limit")]
     error_limit: f64,
     /// The MRD side; omitted: 3D and Eq. (82) only.
     mrd: Option<MrdSide>,
@@ -83,9 +83,9 @@ struct MrdSide {
     refine: usize,
     #[serde(default = "one")]
     stride: usize,
-    #[serde(default = "mrd_tolerance")]
+    #[serde(default = "crate::experiment::sliding_line::default_line_tolerance")]
     tolerance: f64,
-    #[serde(default = "max_passes")]
+    #[serde(default = "crate::experiment::sliding_line::default_max_passes")]
     max_passes: usize,
 }
 
@@ -100,15 +100,6 @@ fn tolerance() -> f64 {
 }
 fn max_iterations() -> usize {
     2000
-}
-fn error_limit() -> f64 {
-    0.1
-}
-fn mrd_tolerance() -> f64 {
-    1e-4
-}
-fn max_passes() -> usize {
-    400
 }
 
 /// One steady 3D solve; NaN results where it did not converge.

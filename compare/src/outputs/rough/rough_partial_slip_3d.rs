@@ -95,20 +95,8 @@ impl Output for RoughPartialSlip3d {
     fn validate(&self, _: &Context) -> Result<()> {
         // Beside the normal solver: a partial-slip state (a dozen double arrays).
         self.ladder().check(100.0)?;
-        let fractions = |name: &str, v: &[f64], increasing: bool| -> Result<()> {
-            if v.is_empty()
-                || v.iter().any(|x| !(*x > 0.0 && *x < 1.0))
-                || (increasing && v.windows(2).any(|w| w[1] <= w[0]))
-            {
-                return bad(format!(
-                    "{name} = {v:?}: give{} fractions of mu F_N in (0, 1) (at 1 the body slides)",
-                    if increasing { " increasing" } else { "" }
-                ));
-            }
-            Ok(())
-        };
-        fractions("fractions", &self.fractions, true)?;
-        fractions("amplitudes", &self.amplitudes, false)?;
+        crate::checks::check_fractions("fractions", &self.fractions, true)?;
+        crate::checks::check_fractions("amplitudes", &self.amplitudes, false)?;
         if !(positive(self.pressure) && self.pressure <= 1.0) {
             return bad(format!(
                 "pressure = {} (mean pressure over E* h') must lie in (0, 1]",
@@ -349,6 +337,28 @@ impl RoughPartialSlip3d {
         out.tables.push(cycles);
     }
 
+    /// Per ensemble on the grid `grid`: (index of Poisson's ratio, the ratio, index of
+    /// the Hurst exponent, the exponent, the table's rows of the ensemble).
+    #[allow(clippy::type_complexity)]
+    fn ensembles<'t>(
+        &self,
+        t: &'t Table,
+        grid: f64,
+    ) -> Vec<(usize, f64, usize, f64, Vec<&'t Vec<f64>>)> {
+        let mut all = Vec::new();
+        for (k, &nu) in self.poisson.iter().enumerate() {
+            for (i, &h) in self.hurst.iter().enumerate() {
+                let rows = t
+                    .rows
+                    .iter()
+                    .filter(|r| r[0] == h && r[1] == nu && r[2] == grid)
+                    .collect();
+                all.push((k, nu, i, h, rows));
+            }
+        }
+        all
+    }
+
     /// 3D over MRD (column stem `stem`) against the force or amplitude, one colour per
     /// Poisson's ratio, one marker per Hurst exponent, on the grid `grid`.
     fn ratio_figure(
@@ -366,31 +376,24 @@ impl RoughPartialSlip3d {
         ));
         let [mean, lo, hi] =
             ["mean", "ci95_low", "ci95_high"].map(|s| t.index(&format!("{stem}_{s}")));
-        for (k, &nu) in self.poisson.iter().enumerate() {
-            for (i, &h) in self.hurst.iter().enumerate() {
-                let rows: Vec<&Vec<f64>> = t
-                    .rows
-                    .iter()
-                    .filter(|r| r[0] == h && r[1] == nu && r[2] == grid)
-                    .collect();
-                let style = if i % 2 == 0 {
-                    Style::Markers
-                } else {
-                    Style::Crosses
-                };
-                fig = fig.with(
-                    Series::new(
-                        format!(
-                            "3D, H = {h}, nu = {nu}: mean of {} surfaces on {grid}^2 cells, 95 % interval",
-                            self.realisations
-                        ),
-                        rows.iter().map(|r| (r[3], r[mean])).collect(),
-                        style,
-                    )
-                    .with_bars(rows.iter().map(|r| (r[3], r[lo], r[hi])).collect())
-                    .colored(k + 1),
-                );
-            }
+        for (k, nu, i, h, rows) in self.ensembles(t, grid) {
+            let style = if i % 2 == 0 {
+                Style::Markers
+            } else {
+                Style::Crosses
+            };
+            fig = fig.with(
+                Series::new(
+                    format!(
+                        "3D, H = {h}, nu = {nu}: mean of {} surfaces on {grid}^2 cells, 95 % interval",
+                        self.realisations
+                    ),
+                    rows.iter().map(|r| (r[3], r[mean])).collect(),
+                    style,
+                )
+                .with_bars(rows.iter().map(|r| (r[3], r[lo], r[hi])).collect())
+                .colored(k + 1),
+            );
         }
         fig
     }
@@ -409,42 +412,35 @@ impl RoughPartialSlip3d {
             t.index("dissipation_3d_over_scale_mean"),
             t.index("dissipation_mrd_over_scale_mean"),
         );
-        for (k, &nu) in self.poisson.iter().enumerate() {
-            for (i, &h) in self.hurst.iter().enumerate() {
-                let rows: Vec<&Vec<f64>> = t
-                    .rows
-                    .iter()
-                    .filter(|r| r[0] == h && r[1] == nu && r[2] == grid)
-                    .collect();
-                let style = if i % 2 == 0 {
-                    Style::Markers
-                } else {
-                    Style::Crosses
-                };
-                fig = fig.with(
-                    Series::new(
-                        format!("MRD, H = {h}, nu = {nu}"),
-                        rows.iter().map(|r| (r[3], r[wm])).collect(),
-                        if i % 2 == 0 {
-                            Style::Line
-                        } else {
-                            Style::Dashed
-                        },
-                    )
-                    .colored(k),
-                );
-                fig = fig.with(
-                    Series::new(
-                        format!(
-                            "3D, H = {h}, nu = {nu} ({grid}^2 cells, mean of {} surfaces)",
-                            self.realisations
-                        ),
-                        rows.iter().map(|r| (r[3], r[w3])).collect(),
-                        style,
-                    )
-                    .colored(k),
-                );
-            }
+        for (k, nu, i, h, rows) in self.ensembles(t, grid) {
+            let style = if i % 2 == 0 {
+                Style::Markers
+            } else {
+                Style::Crosses
+            };
+            fig = fig.with(
+                Series::new(
+                    format!("MRD, H = {h}, nu = {nu}"),
+                    rows.iter().map(|r| (r[3], r[wm])).collect(),
+                    if i % 2 == 0 {
+                        Style::Line
+                    } else {
+                        Style::Dashed
+                    },
+                )
+                .colored(k),
+            );
+            fig = fig.with(
+                Series::new(
+                    format!(
+                        "3D, H = {h}, nu = {nu} ({grid}^2 cells, mean of {} surfaces)",
+                        self.realisations
+                    ),
+                    rows.iter().map(|r| (r[3], r[w3])).collect(),
+                    style,
+                )
+                .colored(k),
+            );
         }
         fig
     }

@@ -7,7 +7,7 @@ use super::{report, Calibrate};
 use crate::checks::{bad, count_in, MAX_LOADS, MAX_REALISATIONS};
 use crate::context::Context;
 use crate::error::{CompareError, Result};
-use crate::experiment::rough_punch::BemCurve;
+use crate::experiment::rough_punch::{self, BemCurve};
 use crate::output::{Checkpointed, Env, Output, RunControl};
 use crate::plan::Stage;
 use crate::report::Section;
@@ -43,13 +43,7 @@ impl Output for Calibrate {
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
-        let mut s = Vec::new();
-        if self.topography.is_some() || self.psd.is_some() {
-            s.push(Stage::Psd);
-        }
-        s.extend(crate::experiment::rough_punch::STAGES);
-        s.push(Stage::SweepFit);
-        s
+        rough_punch::study_stages(self.topography.is_some() || self.psd.is_some())
     }
 
     fn seed(&self) -> Option<u64> {
@@ -73,9 +67,7 @@ impl Output for Calibrate {
             out.warn(w.clone());
         }
         let work = env.work_root.join(self.key());
-        let plan = out.stages_together(&crate::experiment::rough_punch::STAGES, || {
-            self.realise(&case, &work, env.control)
-        })?;
+        let plan = rough_punch::run_tasks(out, || self.realise(&case, &work, env.control))?;
         let (cal, map) = out.stage(Stage::SweepFit, || -> Result<_> {
             let map = match (&case.map, self.solves_map()) {
                 (Some(_), true) => Some(report::MapCurves {

@@ -5,6 +5,7 @@ use super::HurstSweep;
 use super::{aggregate, figures, tasks};
 use crate::context::Context;
 use crate::error::{CompareError, Result};
+use crate::experiment::rough_punch;
 use crate::output::{Checkpointed, Env, Output, RunControl};
 use crate::plan::Stage;
 use crate::report::Section;
@@ -39,9 +40,7 @@ impl Output for HurstSweep {
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
-        let mut s = crate::experiment::rough_punch::STAGES.to_vec();
-        s.push(Stage::SweepFit);
-        s
+        rough_punch::study_stages(false)
     }
 
     fn seed(&self) -> Option<u64> {
@@ -56,9 +55,7 @@ impl Output for HurstSweep {
         let work = env.work_root.join(self.key());
         // Each 3D task synthesises a surface, solves it and its stiffness at every load;
         // each 1D task synthesises and loads its lines: the stages run interleaved.
-        out.stages_together(&crate::experiment::rough_punch::STAGES, || {
-            self.compute(env.ctx, &work, env.control)
-        })?;
+        rough_punch::run_tasks(out, || self.compute(env.ctx, &work, env.control))?;
         let results = out.stage(Stage::SweepFit, || aggregate::aggregate(self, &work))?;
         figures::report(self, &results, out);
         Ok(())

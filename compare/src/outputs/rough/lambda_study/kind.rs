@@ -6,6 +6,7 @@ use super::{analysis, report, scatter, schedule};
 use crate::checks::{bad, count_in};
 use crate::context::Context;
 use crate::error::{CompareError, Result};
+use crate::experiment::rough_punch;
 use crate::output::{Checkpointed, Env, Output, RunControl};
 use crate::plan::Stage;
 use crate::report::Section;
@@ -128,9 +129,7 @@ impl Output for LambdaStudy {
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
-        let mut s = crate::experiment::rough_punch::STAGES.to_vec();
-        s.push(Stage::SweepFit);
-        s
+        rough_punch::study_stages(false)
     }
 
     fn seed(&self) -> Option<u64> {
@@ -143,9 +142,7 @@ impl Output for LambdaStudy {
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
         let work = env.work_root.join(self.key());
-        out.stages_together(&crate::experiment::rough_punch::STAGES, || {
-            self.compute(env.ctx, &work, env.control)
-        })?;
+        rough_punch::run_tasks(out, || self.compute(env.ctx, &work, env.control))?;
         let (results, scatter) = out.stage(Stage::SweepFit, || {
             Ok::<_, CompareError>((
                 analysis::analyse(self, &work)?,

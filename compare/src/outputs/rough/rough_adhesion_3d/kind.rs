@@ -22,18 +22,13 @@ const STAGES_3D: &[Stage] = &[Stage::RoughSynthesis, Stage::Adhesion3d];
 
 impl Output for RoughAdhesion3d {
     fn validate(&self, ctx: &Context) -> Result<()> {
-        let (lo, hi) = mrd::error::MAGNITUDE_RANGE;
         let size = Body::check(self.radius, self.punch_radius)?;
-        for (name, v) in [
+        crate::checks::check_magnitudes(&[
             ("radius or punch_radius", size),
             ("work", self.work),
             ("depth_max", self.depth_max),
             ("side", self.side),
-        ] {
-            if !(lo..=hi).contains(&v) {
-                return bad(format!("{name} = {v:e} must lie in [{lo:e}, {hi:e}]"));
-            }
-        }
+        ])?;
         if self.depth_max > 0.1 * size {
             return bad("depth_max must be <= 0.1 of the body's radius (small slopes)");
         }

@@ -18,20 +18,6 @@ use rayon::prelude::*;
 /// state on a padded grid beside it.
 const BYTES_PER_CELL: f64 = BYTES_PER_CELL_NON_PERIODIC + 200.0;
 
-/// `name` = `v`: fractions of mu F_N in (0, 1), increasing if asked.
-fn check_fractions(name: &str, v: &[f64], increasing: bool) -> Result<()> {
-    if v.is_empty()
-        || v.iter().any(|x| !(*x > 0.0 && *x < 1.0))
-        || (increasing && v.windows(2).any(|w| w[1] <= w[0]))
-    {
-        return bad(format!(
-            "{name} = {v:?}: give{} fractions of mu F_N in (0, 1) (at 1 the body slides)",
-            if increasing { " increasing" } else { "" }
-        ));
-    }
-    Ok(())
-}
-
 /// The stages of the 3D realisations, run together on the pool.
 const STAGES_3D: &[Stage] = &[
     Stage::RoughSynthesis,
@@ -44,17 +30,12 @@ const STAGES_MRD: &[Stage] = &[Stage::RoughContact, Stage::Tangential];
 
 impl Output for RoughSlip3d {
     fn validate(&self, ctx: &Context) -> Result<()> {
-        let (lo, hi) = mrd::error::MAGNITUDE_RANGE;
         let size = Body::check(self.radius, self.punch_radius)?;
-        for (name, v) in [
+        crate::checks::check_magnitudes(&[
             ("radius or punch_radius", size),
             ("force", self.force),
             ("side", self.side),
-        ] {
-            if !(lo..=hi).contains(&v) {
-                return bad(format!("{name} = {v:e} must lie in [{lo:e}, {hi:e}]"));
-            }
-        }
+        ])?;
         let e_star = ctx.material.e_star;
         if self.smooth_approach(e_star) > 0.1 * size {
             return bad(format!(
@@ -87,8 +68,8 @@ impl Output for RoughSlip3d {
                 2.2 * a
             ));
         }
-        check_fractions("fractions", &self.fractions, true)?;
-        check_fractions("amplitudes", &self.amplitudes, false)?;
+        crate::checks::check_fractions("fractions", &self.fractions, true)?;
+        crate::checks::check_fractions("amplitudes", &self.amplitudes, false)?;
         check_ensembles(self.realisations_3d, self.realisations_1d)?;
         count_in("points_1d_factor", self.points_1d_factor as u64, 1..=64)?;
         count_in("steps", self.steps as u64, 2..=1000)?;

@@ -17,12 +17,10 @@ const STAGES_3D: &[Stage] = &[Stage::RoughSynthesis, Stage::Bem3d, Stage::Bem3dS
 
 impl Output for RoughSphere {
     fn validate(&self, ctx: &Context) -> Result<()> {
-        let (lo, hi) = mrd::error::MAGNITUDE_RANGE;
-        for (name, v) in [("radius", self.radius), ("hertz_depth", self.hertz_depth)] {
-            if !(lo..=hi).contains(&v) {
-                return bad(format!("{name} = {v:e} must lie in [{lo:e}, {hi:e}]"));
-            }
-        }
+        crate::checks::check_magnitudes(&[
+            ("radius", self.radius),
+            ("hertz_depth", self.hertz_depth),
+        ])?;
         if self.hertz_depth > 0.1 * self.radius {
             return bad("hertz_depth must be <= 0.1 radius (Hertz: small slopes)");
         }
