@@ -75,6 +75,11 @@ impl Figure {
         self.series.push(s);
         self
     }
+    /// Adds the series `label` of `points` drawn as `style` (a series needing bars or a
+    /// colour of its own goes through [`Self::with`]).
+    pub fn plot(self, label: impl Into<String>, points: Vec<(f64, f64)>, style: Style) -> Self {
+        self.with(Series::new(label, points, style))
+    }
     pub fn log_log(mut self) -> Self {
         self.log_x = true;
         self.log_y = true;

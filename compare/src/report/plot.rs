@@ -490,7 +490,7 @@ mod tests {
         assert_eq!(fmt_tick(0.25, 1e-9), "0.25");
         assert_eq!(fmt_tick(2.0e-4, 1e-9 * 1e-3), "2.0e-4");
     }
-    use crate::report::figure::{Figure, Series, Style};
+    use crate::report::figure::{Figure, Style};
 
     /// Eighteen lines across the whole plot: every corner covers data and headroom for
     /// an 18-row legend would squeeze them into 3/10 of the height, so the legend goes
@@ -502,7 +502,7 @@ mod tests {
             (0..n).fold(Figure::new("f", "t", "x", "y"), |f, k| {
                 let y = k as f64;
                 let pts = (0..=10).map(|i| (i as f64, y + 0.1 * i as f64)).collect();
-                f.with(Series::new(format!("line {k}"), pts, Style::Line))
+                f.plot(format!("line {k}"), pts, Style::Line)
             })
         };
         let (((_, _), (_, y1)), corner) = layout(&lines(18));

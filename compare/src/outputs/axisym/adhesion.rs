@@ -8,7 +8,7 @@ use crate::error::{Context as _, Result};
 use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
-use crate::report::{Figure, Section, Series, Style, Table};
+use crate::report::{Figure, Section, Style, Table};
 use mrd::adhesion::{simulate_cycle, AdhesiveContact, Control};
 use mrd::reference::{for_profile, jkr};
 use serde::Deserialize;
@@ -136,16 +136,16 @@ impl Output for Adhesion {
             &format!("depth d [{len}]"),
             &format!("normal force F [{force}]"),
         )
-        .with(Series::new(
+        .plot(
             "MRD loading (springs attach on touch)",
             branch(0.0),
             Style::Line,
-        ))
-        .with(Series::new(
+        )
+        .plot(
             "MRD unloading (rule of Hess, Eq. 33)",
             branch(1.0),
             Style::Line,
-        ));
+        );
         out.tables.push(t);
         if let Some(n) = self.springs {
             let l = crate::checks::row_half_length(self.half_length, a_max, 1.5)?;
@@ -166,11 +166,11 @@ impl Output for Adhesion {
                 "pull_off_rel_dev_discrete_vs_semi_analytic",
                 rel(cyc.pull_off.force, po.force),
             );
-            fig = fig.with(Series::new(
+            fig = fig.plot(
                 format!("MRD, {n} discrete springs"),
                 td.xy_sampled("depth", "force", 60),
                 Style::Markers,
-            ));
+            );
             out.tables.push(td);
         }
         let e = env.ctx.material.e_star;
@@ -193,13 +193,13 @@ impl Output for Adhesion {
             out.scalar("pull_off_force_closed_form", -f_a);
             out.scalar("pull_off_rel_error_vs_closed_form", rel(po.force, -f_a));
             if let Some(pts) = jkr_curve {
-                fig = fig.with(Series::new("JKR (Johnson et al. 1971)", pts, Style::Dashed));
+                fig = fig.plot("JKR (Johnson et al. 1971)", pts, Style::Dashed);
             }
-            fig = fig.with(Series::new(
+            fig = fig.plot(
                 format!("pull-off, {source}: F = {:.4e}", -f_a),
                 vec![(po.depth, -f_a)],
                 Style::Crosses,
-            ));
+            );
         }
         out.figures.push(fig);
         Ok(())

@@ -20,7 +20,7 @@ use crate::experiment::axisym_3d::{
 use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
-use crate::report::{Figure, Section, Series, Style, Table};
+use crate::report::{Figure, Section, Style, Table};
 use bem3d::adhesion::AdhesiveContact;
 use bem3d::{Load, NonPeriodicHalfSpace};
 use mrd::adhesion::{AdhesiveContact as AdhesiveRow, Control, PullOff};
@@ -303,7 +303,7 @@ impl Adhesion3d {
             } else {
                 Style::Crosses
             };
-            fig = fig.with(Series::new(
+            fig = fig.plot(
                 format!(
                     "3D, {}^2 cells ({:.0} per pull-off radius), every {stride} steps",
                     g.cells,
@@ -311,19 +311,19 @@ impl Adhesion3d {
                 ),
                 pts,
                 style,
-            ));
+            );
         }
         fig = fig
-            .with(Series::new(
+            .plot(
                 "MRD loading (springs join on touching)",
                 branch(0, false),
                 Style::Line,
-            ))
-            .with(Series::new(
+            )
+            .plot(
                 "MRD unloading (rule of Hess, Eq. 33)",
                 branch(0, true),
                 Style::Line,
-            ));
+            );
         out.tables.push(t);
         out.figures.push(fig);
         self.report_pull_off(env, out, mrd, (closed_force, closed_approach), grids);
@@ -417,17 +417,13 @@ impl Adhesion3d {
             "cells per pull-off radius [1]",
             "relative error against MRD [1]",
         )
-        .with(Series::new(
-            "pull-off force (force control)",
-            err_po,
-            Style::Markers,
-        ))
-        .with(Series::new(
+        .plot("pull-off force (force control)", err_po, Style::Markers)
+        .plot(
             "jump-out depth (approach control)",
             err_jump.clone(),
             Style::Crosses,
-        ))
-        .with(Series::new(
+        )
+        .plot(
             "one approach step over the jump-out depth (the depth's resolution)",
             vec![
                 (
@@ -440,7 +436,7 @@ impl Adhesion3d {
                 ),
             ],
             Style::Dashed,
-        ))
+        )
         .log_log();
         out.tables.push(t);
         out.figures.push(fig);

@@ -11,7 +11,7 @@ use crate::error::{Context as _, Result};
 use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
-use crate::report::{Figure, Section, Series, Style, Table};
+use crate::report::{Figure, Section, Style, Table};
 use mrd::oscillation::{dissipation_semi_analytic, OscillatingContact};
 use mrd::reference::{for_profile, mindlin_damping as md};
 use serde::Deserialize;
@@ -155,28 +155,28 @@ impl Output for Damping {
             &format!("displacement amplitude A [{len}]"),
             &format!("dissipated energy per cycle W [{energy}]"),
         )
-        .with(Series::new(
+        .plot(
             format!("MRD, time-stepped ({} springs)", self.springs),
             t.xy_sampled("amplitude", "dissipation_time_stepped", 25),
             Style::Markers,
-        ))
-        .with(Series::new(
+        )
+        .plot(
             "MRD, semi-analytic",
             t.xy("amplitude", "dissipation_semi_analytic"),
             Style::Line,
-        ));
+        );
         if closed.is_some() {
             fig = fig
-                .with(Series::new(
+                .plot(
                     "Eq. 58 (Mindlin et al. 1952)",
                     t.xy("amplitude", "dissipation_eq58_exact"),
                     Style::Dashed,
-                ))
-                .with(Series::new(
+                )
+                .plot(
                     "Eq. 61, small-amplitude limit",
                     t.xy("amplitude", "dissipation_eq61_small_amplitude"),
                     Style::Dashed,
-                ));
+                );
         }
         out.tables.push(t);
         out.figures.push(fig.log_log());

@@ -8,7 +8,7 @@ use crate::error::{Context as _, Result};
 use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
-use crate::report::{Figure, Section, Series, Style, Table};
+use crate::report::{Figure, Section, Style, Table};
 use mrd::discrete::DiscreteAxisymmetric;
 use mrd::reference::for_profile;
 use serde::Deserialize;
@@ -157,24 +157,16 @@ impl Output for ForceDepth {
             &format!("depth d [{len}]"),
             &format!("normal force F [{force}]"),
         )
-        .with(Series::new(
-            "MRD, semi-analytic",
-            t.xy("depth", "force"),
-            Style::Line,
-        ));
+        .plot("MRD, semi-analytic", t.xy("depth", "force"), Style::Line);
         if let Some(n) = self.springs {
-            fig = fig.with(Series::new(
+            fig = fig.plot(
                 format!("MRD, {n} discrete springs"),
                 t.xy_sampled("depth", "force_discrete", 20),
                 Style::Markers,
-            ));
+            );
         }
         if let Some(name) = for_profile::name(profile) {
-            fig = fig.with(Series::new(
-                name,
-                t.xy("depth", "force_closed_form"),
-                Style::Dashed,
-            ));
+            fig = fig.plot(name, t.xy("depth", "force_closed_form"), Style::Dashed);
         }
         out.tables.push(t);
         out.figures.push(fig);

@@ -7,7 +7,7 @@ use crate::error::{Context as _, Result};
 use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
-use crate::report::{Figure, Section, Series, Style, Table};
+use crate::report::{Figure, Section, Style, Table};
 use mrd::pressure::{abel_pressure, integrate_force};
 use mrd::reference::for_profile;
 use serde::Deserialize;
@@ -113,17 +113,9 @@ impl Output for Pressure {
             &format!("radius r [{len}]"),
             &format!("pressure p [{stress}]"),
         )
-        .with(Series::new(
-            "MRD + Abel transform",
-            t.xy("r", "pressure"),
-            Style::Line,
-        ));
+        .plot("MRD + Abel transform", t.xy("r", "pressure"), Style::Line);
         if let (Some(name), true) = (for_profile::name(profile), closed.is_some()) {
-            fig = fig.with(Series::new(
-                name,
-                t.xy("r", "pressure_closed_form"),
-                Style::Dashed,
-            ));
+            fig = fig.plot(name, t.xy("r", "pressure_closed_form"), Style::Dashed);
         }
         out.tables.push(t);
         out.figures.push(fig);

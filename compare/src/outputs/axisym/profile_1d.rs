@@ -7,7 +7,7 @@ use crate::error::{Context as _, Result};
 use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
-use crate::report::{Figure, Section, Series, Style, Table};
+use crate::report::{Figure, Section, Style, Table};
 use serde::Deserialize;
 
 #[derive(Debug, Clone, Deserialize)]
@@ -65,21 +65,17 @@ impl Output for Profile1d {
             &format!("r, x [{len}]"),
             &format!("height [{len}]"),
         )
-        .with(Series::new(
-            "3D profile z(r)",
-            t.xy("r_or_x", "z_3d"),
-            Style::Line,
-        ))
-        .with(Series::new(
+        .plot("3D profile z(r)", t.xy("r_or_x", "z_3d"), Style::Line)
+        .plot(
             "1D image z1d(x), closed form",
             t.xy("r_or_x", "z1d_closed_form"),
             Style::Line,
-        ))
-        .with(Series::new(
+        )
+        .plot(
             "1D image z1d(x), quadrature of Eq. 11",
             t.xy_sampled("r_or_x", "z1d_quadrature", 25),
             Style::Markers,
-        ));
+        );
         out.tables.push(t);
         out.figures.push(fig);
         Ok(())

@@ -22,7 +22,7 @@ use crate::experiment::axisym_3d::{
 use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
-use crate::report::{Figure, Section, Series, Style, Table};
+use crate::report::{Figure, Section, Style, Table};
 use bem3d::cohesive::{CohesiveContact, CohesiveLaw, RESOLVED_CELLS};
 use bem3d::NonPeriodicHalfSpace;
 use mrd::adhesion::{AdhesiveContact as AdhesiveRow, Control};
@@ -313,16 +313,8 @@ impl Tabor3d {
             "Tabor-Maugis parameter lambda [1]",
             "pull-off force -F / (pi w R) [1]",
         )
-        .with(Series::new(
-            "Maugis-Dugdale (closed form)",
-            curve,
-            Style::Line,
-        ))
-        .with(Series::new(
-            "MRD (rule of Hess, Eq. 33: JKR)",
-            ends,
-            Style::Dashed,
-        ));
+        .plot("Maugis-Dugdale (closed form)", curve, Style::Line)
+        .plot("MRD (rule of Hess, Eq. 33: JKR)", ends, Style::Dashed);
         for (k, &n) in self.cells.iter().enumerate() {
             let pts = |res: bool| -> Vec<(f64, f64)> {
                 t.rows
@@ -338,21 +330,17 @@ impl Tabor3d {
             };
             let resolved = pts(true);
             if !resolved.is_empty() {
-                fig = fig.with(Series::new(
-                    format!("3D,{law} {n}^2 cells"),
-                    resolved,
-                    style,
-                ));
+                fig = fig.plot(format!("3D,{law} {n}^2 cells"), resolved, style);
             }
             let rest = pts(false);
             if !rest.is_empty() {
-                fig = fig.with(Series::new(
+                fig = fig.plot(
                     format!(
                         "3D,{law} {n}^2 cells, unresolved (< {RESOLVED_CELLS} cells per Dugdale length)"
                     ),
                     rest,
                     Style::Crosses,
-                ));
+                );
             }
         }
         fig.log_x = true;

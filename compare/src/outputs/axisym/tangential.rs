@@ -8,7 +8,7 @@ use crate::error::{Context as _, Result};
 use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
-use crate::report::{Figure, Section, Series, Style, Table};
+use crate::report::{Figure, Section, Style, Table};
 use mrd::reference::{cattaneo_mindlin as cm, for_profile, hertz};
 use mrd::tangential::{TangentialContact, TangentialState};
 use serde::Deserialize;
@@ -141,17 +141,13 @@ impl Output for Tangential {
             &format!("tangential displacement u_x [{len}]"),
             &format!("tangential force F_x [{force}]"),
         )
-        .with(Series::new(
-            "MRD",
-            t.xy("displacement", "tangential_force"),
-            Style::Line,
-        ));
+        .plot("MRD", t.xy("displacement", "tangential_force"), Style::Line);
         if closed.is_some() {
-            fig = fig.with(Series::new(
+            fig = fig.plot(
                 "Cattaneo-Mindlin (Mindlin 1949)",
                 t.xy("displacement_closed_form", "tangential_force"),
                 Style::Dashed,
-            ));
+            );
         }
         out.tables.push(t);
         out.figures.push(fig);
@@ -238,19 +234,19 @@ impl Tangential {
             &format!("traction tau [{stress}]"),
         );
         for f in &self.traction_at {
-            fig = fig.with(Series::new(
+            fig = fig.plot(
                 format!("MRD, F_x = {f} mu F_N"),
                 t.xy("r", &format!("traction_at_{f}_muFN")),
                 Style::Line,
-            ));
+            );
         }
         if sphere.is_some() {
             for f in &self.traction_at {
-                fig = fig.with(Series::new(
+                fig = fig.plot(
                     format!("Cattaneo-Mindlin, {f} mu F_N"),
                     t.xy("r", &format!("traction_closed_form_at_{f}_muFN")),
                     Style::Dashed,
-                ));
+                );
             }
         }
         out.tables.push(t);

@@ -348,16 +348,16 @@ impl Tangential3d {
             "stick radius c / contact radius a [1]",
         );
         if c_cf.is_some() {
-            fig = fig.with(Series::new(
+            fig = fig.plot(
                 "Cattaneo-Mindlin (closed form)",
                 t.xy(x, "stick_radius_over_a_closed_form"),
                 Style::Line,
-            ));
+            );
         } else {
             fig.title = "Stick radius against tangential force: 3D and MRD (Jaeger)".into();
         }
         fig = fig
-            .with(Series::new(
+            .plot(
                 "MRD (tangential springs)",
                 t.xy(x, "stick_radius_over_a_mrd"),
                 if c_cf.is_some() {
@@ -365,12 +365,12 @@ impl Tangential3d {
                 } else {
                     Style::Line
                 },
-            ))
-            .with(Series::new(
+            )
+            .plot(
                 "3D boundary elements",
                 t.xy(x, "stick_radius_over_a_3d"),
                 Style::Crosses,
-            ));
+            );
         fig.title.push_str(self.half_space_note());
         out.tables.push(t);
         out.figures.push(fig);
@@ -424,16 +424,16 @@ impl Tangential3d {
             &format!("dissipation per cycle W [{energy}]"),
         );
         if w_cf.is_some() {
-            fig = fig.with(Series::new(
+            fig = fig.plot(
                 "Mindlin-Deresiewicz (closed form)",
                 t.xy(x, "dissipation_closed_form"),
                 Style::Line,
-            ));
+            );
         } else {
             fig.title = "Energy dissipated per cycle: 3D and MRD".into();
         }
         fig = fig
-            .with(Series::new(
+            .plot(
                 "MRD (tangential springs)",
                 t.xy(x, "dissipation_mrd"),
                 if w_cf.is_some() {
@@ -441,12 +441,12 @@ impl Tangential3d {
                 } else {
                     Style::Line
                 },
-            ))
-            .with(Series::new(
+            )
+            .plot(
                 "3D boundary elements",
                 t.xy(x, "dissipation_3d"),
                 Style::Crosses,
-            ))
+            )
             .log_log();
         fig.title.push_str(self.half_space_note());
         out.tables.push(t);

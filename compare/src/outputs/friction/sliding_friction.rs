@@ -359,12 +359,12 @@ impl SlidingFriction {
             )
             .with_bars(bars),
         )
-        .with(Series::new(eq82_label, eq82, Style::Line))
-        .with(Series::new(
+        .plot(eq82_label, eq82, Style::Line)
+        .plot(
             "MRD, dissipated energy per distance / F_N",
             t.xy("velocity", "mu_energy_mean"),
             Style::Crosses,
-        ));
+        );
         fig.log_x = true;
         fig
     }

@@ -886,11 +886,11 @@ impl SlidingFriction3d {
             &format!("sliding velocity v [{}/s]", u.length),
             "contact fraction [1]",
         )
-        .with(Series::new(
+        .plot(
             "3D, contact area / L^2",
             finite("contact_area_fraction_3d_mean"),
             Style::Markers,
-        ));
+        );
         if with_mrd {
             fig = fig.with(
                 Series::new(

@@ -156,21 +156,17 @@ impl Output for StaticFriction {
             "reduced force f = F/(E* h L) [1]",
             "xi = grad z_cont / grad z [1]",
         )
-        .with(Series::new(
+        .plot(
             format!("MRD, mean of {realisations} lines"),
             curve(&|k| xi[k]),
             Style::Markers,
-        ))
-        .with(Series::new(
+        )
+        .plot(
             format!("fit xi = {:.4} + {:.4} ln f", fitted.a, fitted.b),
             curve(&|k| fitted.a + fitted.b * f[k].ln()),
             Style::Line,
-        ))
-        .with(Series::new(
-            "mean +/- 95% CI",
-            curve(&|k| xi[k] + ci[k]),
-            Style::Dashed,
-        ))
+        )
+        .plot("mean +/- 95% CI", curve(&|k| xi[k] + ci[k]), Style::Dashed)
         .with(Series::new("", curve(&|k| xi[k] - ci[k]), Style::Dashed).colored(2));
         if let (Some(pa), Some(pb)) = (self.paper_a, self.paper_b) {
             out.scalar("paper_a", pa);

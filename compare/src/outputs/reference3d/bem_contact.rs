@@ -12,7 +12,7 @@ use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
-use crate::report::{Figure, Section, Series, Style, Table};
+use crate::report::{Figure, Section, Style, Table};
 use bem3d::{
     BemError, ContactSolver, Load, NonPeriodicHalfSpace, Path, PeriodicHalfSpace, Solution,
     SolverOperator, SolverOptions,
@@ -295,7 +295,7 @@ impl Output for BemContact {
             &format!("mean pressure [{}]", u.stress),
             "relative contact area [1]",
         )
-        .with(Series::new("bem3d", pts.clone(), Style::Markers));
+        .plot("bem3d", pts.clone(), Style::Markers);
         fig.log_x = pts.iter().all(|p| p.0 > 0.0) && pts.len() > 2;
         fig.log_y = pts.iter().all(|p| p.1 > 0.0) && pts.len() > 2;
         out.tables.push(t);

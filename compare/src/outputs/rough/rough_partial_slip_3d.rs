@@ -369,11 +369,11 @@ impl RoughPartialSlip3d {
         grid: f64,
     ) -> Figure {
         let mut fig = Figure::new(name, title, x_label, "3D over MRD [1]");
-        fig = fig.with(Series::new(
+        fig = fig.plot(
             "MRD (Ciavarella-Jaeger; Masing's rule for the cycles)",
             vec![(0.0, 1.0), (1.0, 1.0)],
             Style::Dashed,
-        ));
+        );
         let [mean, lo, hi] =
             ["mean", "ci95_low", "ci95_high"].map(|s| t.index(&format!("{stem}_{s}")));
         for (k, nu, i, h, rows) in self.ensembles(t, grid) {

@@ -9,7 +9,7 @@ use crate::error::{CompareError, Context as _, Result};
 use crate::experiment::lambda::LambdaSpec;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
-use crate::report::{Figure, Section, Series, Style, Table};
+use crate::report::{Figure, Section, Style, Table};
 use mrd::friction::log_space;
 use mrd::rough_contact::{ensemble, fit_line, RoughLine, Stat};
 use mrd::roughness::synthesis::Amplitudes;
@@ -248,18 +248,18 @@ impl RoughStiffness {
             "reduced force F/(E* h L) [1]",
             "reduced stiffness k/(E* L) [1]",
         )
-        .with(Series::new(
+        .plot(
             format!("MRD rough lines ({})", self.realisations),
             t.xy("f = F/(E* h L)", "k/(E* L) mean"),
             Style::Markers,
-        ))
-        .with(Series::new(
+        )
+        .plot(
             format!("fit: alpha = {:.3} +/- {:.3}", fit.b, 1.96 * fit.se_b),
             sel.iter()
                 .map(|&j| (f[j], (fit.a + fit.b * f[j].ln()).exp()))
                 .collect(),
             Style::Line,
-        ));
+        );
         // Table 1, dashed arrows: a power-law profile z = c r^n with n = H has
         // k ~ F^(1/(1+n)) exactly (Eqs. 20-21); drawn through the fit's centre.
         if hurst > 0.0 {
@@ -267,11 +267,11 @@ impl RoughStiffness {
             let mid = sel[sel.len() / 2];
             let c = k[mid] / f[mid].powf(alpha);
             out.scalar("alpha_power_law_profile_n_eq_H", alpha);
-            fig = fig.with(Series::new(
+            fig = fig.plot(
                 format!("power-law profile n = H: alpha = 1/(1+H) = {alpha:.3}"),
                 sel.iter().map(|&j| (f[j], c * f[j].powf(alpha))).collect(),
                 Style::Dashed,
-            ));
+            );
         }
         fig.log_log()
     }

@@ -8,7 +8,7 @@ use crate::error::{Context as _, Result};
 use crate::experiment::hess;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
-use crate::report::{Figure, Section, Series, Style, Table};
+use crate::report::{Figure, Section, Style, Table};
 use mrd::viscoelastic::{radok_force, simulate, Prony};
 use serde::Deserialize;
 
@@ -138,16 +138,12 @@ impl Output for Viscoelastic {
             "time t [s]",
             &format!("normal force F [{force}]"),
         )
-        .with(Series::new(
+        .plot(
             format!("MRD, {} Prony springs", self.springs),
             t.xy_sampled("time", "force", 40),
             Style::Markers,
-        ))
-        .with(Series::new(
-            "Radok (1957)",
-            t.xy("time", "force_radok"),
-            Style::Line,
-        ));
+        )
+        .plot("Radok (1957)", t.xy("time", "force_radok"), Style::Line);
         out.tables.push(t);
         out.figures.push(fig);
         Ok(())

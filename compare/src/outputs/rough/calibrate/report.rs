@@ -222,38 +222,38 @@ fn curves_figure(
         "reduced force F/(E* h L) [1]",
         "reduced stiffness k/(E* L) [1]",
     )
-    .with(Series::new(
+    .plot(
         format!("3D mean of {} punches", cal.realisations),
         pick("k3D/(E* L) mean", &all),
         Style::Line,
-    ))
+    )
     .with(Series::new("3D 95 % interval", pick("k3D lo95", &all), Style::Dashed).colored(0))
     .with(Series::new("", pick("k3D hi95", &all), Style::Dashed).colored(0))
-    .with(Series::new(
+    .plot(
         format!("MRD, {} lines, calibrated lambda", spec.lines),
         pick("kMRD/(E* L) at lambda", &all),
         Style::Line,
-    ))
-    .with(Series::new(
+    )
+    .plot(
         format!(
             "calibration range k/(E* L) in [{}, {}]",
             spec.window[0], spec.window[1]
         ),
         pick("k3D/(E* L) mean", &|j| inr[j] > 0.5),
         Style::Markers,
-    ));
+    );
     if with_map {
         fig = fig
-            .with(Series::new(
+            .plot(
                 "the measured map in 3D",
                 pick("k3D/(E* L) of the map", &all),
                 Style::Crosses,
-            ))
-            .with(Series::new(
+            )
+            .plot(
                 "MRD of the map's whole spectrum, same lambda",
                 pick("kMRD/(E* L) of the map's spectrum at lambda", &all),
                 Style::Dashed,
-            ));
+            );
     }
     fig.log_log()
 }
@@ -298,25 +298,25 @@ fn psd_figure(t: &Table, case: &Case, lambda: f64) -> Figure {
         &format!("wavenumber {q}"),
         &format!("C2D {}, C1D {}", unit(&t.columns[1]), unit(&t.columns[2])),
     )
-    .with(Series::new(
+    .plot(
         format!("C2D of the 3D punch faces (to B = {})", case.band),
         t.xy(&t.columns[0], &t.columns[1]),
         Style::Line,
-    ))
-    .with(Series::new(
+    )
+    .plot(
         format!("C1D = lambda q C2D, lambda = {lambda:.3} (MRD lines)"),
         t.xy(&t.columns[0], &t.columns[2]),
         Style::Dashed,
-    ));
+    );
     match &case.map {
-        Some(m) => fig.with(Series::new(
+        Some(m) => fig.plot(
             format!(
                 "the map's PSD ({0} x {0}, mean plane removed, Hann window, radial average)",
                 m.n
             ),
             m.psd.clone(),
             Style::Markers,
-        )),
+        ),
         None => fig,
     }
     .log_log()

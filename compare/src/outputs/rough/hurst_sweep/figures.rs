@@ -292,7 +292,7 @@ fn summary_figures(r: &Results, label: &str, bandwidth: f64) -> [Figure; 3] {
         )
         .with_bars(bars(|h| h.alpha_mrd)),
     )
-    .with(Series::new("1/(1+H), Eq. (80)", theory, Style::Dashed));
+    .plot("1/(1+H), Eq. (80)", theory, Style::Dashed);
     let lam_cut_pts: Vec<(f64, f64)> = (0..=70)
         .map(|i| -0.45 + 3.45 * i as f64 / 70.0)
         .map(|h| (h, lambda_cut(h).unwrap_or(f64::NAN)))
@@ -319,16 +319,12 @@ fn summary_figures(r: &Results, label: &str, bandwidth: f64) -> [Figure; 3] {
         )
         .with_bars(shipped.iter().map(|s| (s.0, s.2, s.3)).collect()),
     )
-    .with(Series::new(
-        "pi (Eq. 73)",
-        vec![(-1.0, PI), (3.0, PI)],
-        Style::Dashed,
-    ))
-    .with(Series::new(
+    .plot("pi (Eq. 73)", vec![(-1.0, PI), (3.0, PI)], Style::Dashed)
+    .plot(
         "straight cut sqrt(pi) G(H+1/2)/G(H+1)",
         lam_cut_pts,
         Style::Line,
-    ));
+    );
     figl.log_y = true;
     let figz = Figure::new(
         &format!("{label}_zeta"),
@@ -379,19 +375,19 @@ fn kf_figure(spec: &HurstSweep, r: &Results, h: &PerHurst, label: &str) -> Figur
         "F/(E* h L) [1]",
         "k/(E* L) [1]",
     )
-    .with(Series::new(
+    .plot(
         format!(
             "3D BEM, {}^2, {} realisations",
             spec.grid, h.realisations_3d
         ),
         pts(&h.mean_3d),
         Style::Crosses,
-    ))
-    .with(Series::new(
+    )
+    .plot(
         format!("MRD, {} lines, lambda = pi", h.realisations_mrd),
         pts(&h.mean_mrd),
         Style::Line,
-    ))
+    )
     .with(Series::new("3D mean +/- 95% CI", band(1.0), Style::Dashed).colored(0))
     .with(Series::new("", band(-1.0), Style::Dashed).colored(0));
     if let Some((a, z)) = h.fit_3d {
@@ -401,11 +397,7 @@ fn kf_figure(spec: &HurstSweep, r: &Results, h: &PerHurst, label: &str) -> Figur
             .filter(|p| p.1 >= lo && p.1 <= hi)
             .map(|(f, _)| (f, z * f.powf(a)))
             .collect();
-        fig = fig.with(Series::new(
-            format!("3D fit window: alpha = {a:.3}"),
-            w,
-            Style::Dashed,
-        ));
+        fig = fig.plot(format!("3D fit window: alpha = {a:.3}"), w, Style::Dashed);
     }
     if h.lambda.value.is_finite() {
         let l = h.lambda.value;
@@ -415,11 +407,11 @@ fn kf_figure(spec: &HurstSweep, r: &Results, h: &PerHurst, label: &str) -> Figur
             .iter()
             .filter_map(|&f| crate::experiment::fit::interp_loglog(&f1, &v1, f * s).map(|v| (f, v)))
             .collect();
-        fig = fig.with(Series::new(
+        fig = fig.plot(
             format!("MRD with calibrated lambda = {l:.3}"),
             shifted,
             Style::Dashed,
-        ));
+        );
     }
     fig.log_log()
 }
@@ -467,7 +459,7 @@ fn convergence(spec: &HurstSweep, r: &Results, label: &str) -> (Table, Figure) {
             pts.push((spec.grid as f64, h.alpha_3d.value));
         }
         pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-        fig = fig.with(Series::new(format!("H = {hurst}"), pts, Style::Line));
+        fig = fig.plot(format!("H = {hurst}"), pts, Style::Line);
     }
     (t, fig)
 }

@@ -380,11 +380,11 @@ fn against_bandwidth(s: &LambdaStudy, r: &Results, label: &str, what: &str) -> F
             bands.iter().copied().fold(f64::INFINITY, f64::min),
             bands.iter().copied().fold(0.0, f64::max),
         );
-        fig = fig.with(Series::new(
+        fig = fig.plot(
             "lambda = pi (Eq. 73)",
             vec![(b0, PI), (b1, PI)],
             Style::Dashed,
-        ));
+        );
     }
     fig
 }

@@ -495,11 +495,7 @@ fn ratio_figure(spec: &RoughSlip3d, t: &Table, q: &Quantity, grid: f64) -> Figur
         &format!("{} (series side by side, {step} apart)", q.x_label),
         "3D over MRD [1]",
     )
-    .with(Series::new(
-        "MRD exact",
-        vec![(0.0, 1.0), (1.0, 1.0)],
-        Style::Dashed,
-    ));
+    .plot("MRD exact", vec![(0.0, 1.0), (1.0, 1.0)], Style::Dashed);
     let [lm, lc] = [
         format!("{s}_3d_over_law_mean"),
         format!("{s}_3d_over_law_ci95"),
