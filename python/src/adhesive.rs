@@ -123,11 +123,7 @@ impl AdhesiveContact {
         }
         let grid = Grid::new(py, heights, (size, periodic), mask, e_star, false)?;
         let ((ny, nx), (lx, ly)) = (grid.shape, grid.size);
-        sysmem::check_estimate(
-            8.0 * 9.0 * (nx * ny) as f64,
-            &format!("an adhesive {ny} x {nx} contact"),
-        )
-        .map_err(|e| pyo3::exceptions::PyMemoryError::new_err(e.to_string()))?;
+        crate::errors::check_grid_memory("an adhesive", (ny, nx), 8.0 * 9.0)?;
         let (h, mask, periodic) = (grid.heights, grid.mask, grid.periodic);
         let built = py.detach(|| -> bem3d::Result<State> {
             Ok(if periodic {
@@ -164,25 +160,7 @@ impl AdhesiveContact {
         approach: Option<f64>,
         tolerance: f64,
     ) -> PyResult<AdhesiveStep> {
-        for (name, v) in [
-            ("mean_pressure", mean_pressure),
-            ("force", force),
-            ("approach", approach),
-        ] {
-            if let Some(v) = v.filter(|v| !v.is_finite()) {
-                return Err(value_error(format!("{name} = {v} must be finite")));
-            }
-        }
-        let load = match (mean_pressure, force, approach) {
-            (Some(p), None, None) => Load::MeanPressure(p),
-            (None, Some(f), None) => Load::Force(f),
-            (None, None, Some(d)) => Load::Approach(d),
-            _ => {
-                return Err(value_error(
-                    "give exactly one of mean_pressure, force and approach",
-                ))
-            }
-        };
+        let load = crate::contact::one_load(mean_pressure, force, approach, true)?;
         let state = &mut self.state;
         let out = py.detach(|| state.step(load, tolerance));
         let (ny, nx) = self.shape;

@@ -148,11 +148,7 @@ impl CohesiveContact {
         }
         let grid = Grid::new(py, heights, (size, Some(periodic)), mask, e_star, false)?;
         let ((ny, nx), (lx, ly)) = (grid.shape, grid.size);
-        sysmem::check_estimate(
-            8.0 * 9.0 * (nx * ny) as f64,
-            &format!("a cohesive {ny} x {nx} contact"),
-        )
-        .map_err(|e| pyo3::exceptions::PyMemoryError::new_err(e.to_string()))?;
+        crate::errors::check_grid_memory("a cohesive", (ny, nx), 8.0 * 9.0)?;
         let (h, mask) = (grid.heights, grid.mask);
         let built = py.detach(|| -> bem3d::Result<_> {
             Ok(if periodic {

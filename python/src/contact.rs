@@ -543,6 +543,35 @@ fn parse_paths(given: Option<&std::collections::HashMap<String, String>>) -> PyR
     Ok(paths)
 }
 
+/// The one load of the keywords `mean_pressure`, `force` and `approach` (exactly one
+/// given), finite and, unless `signed` (an adhesive contact pulls), >= 0; messages name
+/// the keyword.
+pub(crate) fn one_load(
+    mean_pressure: Option<f64>,
+    force: Option<f64>,
+    approach: Option<f64>,
+    signed: bool,
+) -> PyResult<Load> {
+    for (name, v) in [
+        ("mean_pressure", mean_pressure),
+        ("force", force),
+        ("approach", approach),
+    ] {
+        if let Some(v) = v.filter(|v| !(v.is_finite() && (signed || *v >= 0.0))) {
+            let need = if signed { "finite" } else { "finite and >= 0" };
+            return Err(value_error(format!("{name} = {v} must be {need}")));
+        }
+    }
+    match (mean_pressure, force, approach) {
+        (Some(p), None, None) => Ok(Load::MeanPressure(p)),
+        (None, Some(f), None) => Ok(Load::Force(f)),
+        (None, None, Some(d)) => Ok(Load::Approach(d)),
+        _ => Err(value_error(
+            "give exactly one of mean_pressure, force and approach",
+        )),
+    }
+}
+
 pub(crate) fn request(
     mean_pressure: Option<f64>,
     force: Option<f64>,
@@ -552,25 +581,7 @@ pub(crate) fn request(
     paths: Paths,
 ) -> PyResult<Request> {
     // Checked here, under the names the caller gave (a solver may see the load rescaled).
-    for (name, v) in [
-        ("mean_pressure", mean_pressure),
-        ("force", force),
-        ("approach", approach),
-    ] {
-        if let Some(v) = v.filter(|v| !(v.is_finite() && *v >= 0.0)) {
-            return Err(value_error(format!("{name} = {v} must be finite and >= 0")));
-        }
-    }
-    let load = match (mean_pressure, force, approach) {
-        (Some(p), None, None) => Load::MeanPressure(p),
-        (None, Some(f), None) => Load::Force(f),
-        (None, None, Some(d)) => Load::Approach(d),
-        _ => {
-            return Err(value_error(
-                "give exactly one of mean_pressure, force and approach",
-            ))
-        }
-    };
+    let load = one_load(mean_pressure, force, approach, false)?;
     // The command line's check (bem3d::SolverOptions::validate).
     let opts = SolverOptions {
         paths,

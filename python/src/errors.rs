@@ -77,6 +77,20 @@ pub fn memory_error(e: sysmem::MemoryError) -> PyErr {
     PyMemoryError::new_err(e.to_string())
 }
 
+/// MemoryError unless `bytes_per_cell` on the `(ny, nx)` grid fits the memory available;
+/// the message names "`what` ny x nx contact".
+pub fn check_grid_memory(
+    what: &str,
+    (ny, nx): (usize, usize),
+    bytes_per_cell: f64,
+) -> PyResult<()> {
+    sysmem::check_estimate(
+        bytes_per_cell * (nx * ny) as f64,
+        &format!("{what} {ny} x {nx} contact"),
+    )
+    .map_err(memory_error)
+}
+
 /// Errors of the 1D method.
 pub fn mrd_err(py: Python<'_>, e: mrd::MrdError) -> PyErr {
     match e {

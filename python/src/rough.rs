@@ -61,11 +61,17 @@ pub fn spectrum<'py>(
     rms_slope: Option<f64>,
 ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
     let s = spectrum_of(py, hurst, q0, qr, q1, rms_height, rms_slope)?;
+    at_wavenumbers(py, q, |q| s.c2d(q))
+}
+
+/// `f` at every wavenumber of `q` (no NaN), as an array of `q`'s shape.
+fn at_wavenumbers<'py>(
+    py: Python<'py>,
+    q: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    f: impl Fn(f64) -> f64,
+) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
     crate::errors::no_nan("q", q.as_array().iter())?;
-    Ok(PyArrayDyn::from_owned_array(
-        py,
-        q.as_array().mapv(|q| s.c2d(q)),
-    ))
+    Ok(PyArrayDyn::from_owned_array(py, q.as_array().mapv(f)))
 }
 
 /// line_spectrum(q, hurst, q0, qr, q1, *, lam=pi, rms_height=None, rms_slope=None) -> ndarray
@@ -91,11 +97,7 @@ pub fn line_spectrum<'py>(
 ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
     let lam = line_lambda(lam, hurst)?;
     let l = spectrum_of(py, hurst, q0, qr, q1, rms_height, rms_slope)?.to_line(lam);
-    crate::errors::no_nan("q", q.as_array().iter())?;
-    Ok(PyArrayDyn::from_owned_array(
-        py,
-        q.as_array().mapv(|q| l.c1d(q)),
-    ))
+    at_wavenumbers(py, q, |q| l.c1d(q))
 }
 
 /// calibrated_lambda(hurst) -> float

@@ -34,12 +34,8 @@ fn check_poisson(poisson: f64) -> PyResult<()> {
 }
 
 /// The memory of `bytes_per_cell` on the grid, checked.
-fn check_memory((ny, nx): (usize, usize), bytes_per_cell: f64) -> PyResult<()> {
-    sysmem::check_estimate(
-        bytes_per_cell * (nx * ny) as f64,
-        &format!("a tangential {ny} x {nx} contact"),
-    )
-    .map_err(|e| pyo3::exceptions::PyMemoryError::new_err(e.to_string()))
+fn check_memory(shape: (usize, usize), bytes_per_cell: f64) -> PyResult<()> {
+    crate::errors::check_grid_memory("a tangential", shape, bytes_per_cell)
 }
 
 /// The periodic Cerruti operator of a substrate of modulus E* and Poisson's ratio nu

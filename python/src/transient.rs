@@ -140,11 +140,7 @@ impl TransientContact {
         })?;
         let ((ny, nx), (lx, ly)) = (grid.shape, grid.size);
         let per_cell = 8.0 * (4 + modulus.terms.len()) as f64;
-        sysmem::check_estimate(
-            per_cell * (nx * ny) as f64,
-            &format!("the history of a {ny} x {nx} contact"),
-        )
-        .map_err(|e| pyo3::exceptions::PyMemoryError::new_err(e.to_string()))?;
+        crate::errors::check_grid_memory("the history of a", (ny, nx), per_cell)?;
         let (h, mask, periodic) = (grid.heights, grid.mask, grid.periodic);
         let built = py.detach(|| -> bem3d::Result<History> {
             Ok(if periodic {

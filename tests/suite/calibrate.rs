@@ -3,7 +3,9 @@
 //! the thread count; shards merge to the single run; checkpoints of another map are
 //! refused.
 
-use crate::common::{csvs, merge, mrdw_env as mrdw, ok, run_written_scene, stderr, summary};
+use crate::common::{
+    csvs, merge, mrdw_env as mrdw, ok, run_scene_text, run_written_scene, stderr, summary,
+};
 use std::path::Path;
 
 const SMALL: &str = "bandwidth = 16\ncells = 4\nrealisations = { min = 8, max = 16, batch = 8 }\nlines = 100\nloads = 10\nseed = 2\n";
@@ -26,13 +28,7 @@ fn write_map(path: &Path, seed: u64) {
     let data: Vec<f64> = (0..rows * 72)
         .map(|k| 1e-3 * h[k] + 2e-4 * (k % 72) as f64)
         .collect();
-    mrd::topography::HeightMap {
-        rows,
-        cols: 72,
-        data,
-    }
-    .write_npy(path)
-    .unwrap();
+    crate::common::write_map(path, rows, data);
 }
 
 #[test]
@@ -156,21 +152,9 @@ fn keys_without_effect_are_refused() {
             "exactly one of",
         ),
     ] {
-        let scene = tmp.path().join("c.toml");
-        std::fs::write(
-            &scene,
-            format!("name = \"c\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"calibrate\"\n{source}\n{SMALL}"),
-        )
-        .unwrap();
-        let out = tmp.path().join("o");
-        let o = mrdw(
-            &[
-                "run",
-                scene.to_str().unwrap(),
-                "--out",
-                out.to_str().unwrap(),
-            ],
-            &[],
+        let (o, out) = run_scene_text(
+            tmp.path(),
+            &format!("name = \"c\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"calibrate\"\n{source}\n{SMALL}"),
         );
         assert_eq!(o.status.code(), Some(2), "{source}: {}", stderr(&o));
         assert!(stderr(&o).contains(needle), "{source}: {}", stderr(&o));

@@ -701,15 +701,7 @@ fn force_depth_request_runs_no_pressure_stage() {
 
 fn expect_failure(toml: &str, needle: &str) {
     let tmp = tempfile::tempdir().unwrap();
-    let scene = tmp.path().join("bad.toml");
-    std::fs::write(&scene, toml).unwrap();
-    let out = tmp.path().join("out");
-    let o = mrdw(&[
-        "run",
-        scene.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let (o, out) = crate::common::run_scene_text(tmp.path(), toml);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(
         o.status.code(),
@@ -883,13 +875,7 @@ fn bem_contact_on_an_npy_height_map() {
             -(x * x + y * y) / 2.0
         })
         .collect();
-    mrd::topography::HeightMap {
-        rows: n,
-        cols: n,
-        data: h,
-    }
-    .write_npy(&tmp.path().join("sphere.npy"))
-    .unwrap();
+    crate::common::write_map(&tmp.path().join("sphere.npy"), n, h);
     let scene = tmp.path().join("b.toml");
     let text = "name = \"b\"\n[material]\ne_star = 2.0\n[[outputs]]\nkind = \"bem_contact\"\nheights = \"sphere.npy\"\nsize = [1.0, 1.0]\nperiodic = false\nstiffness = true\napproaches = [0.01, 0.02]\n";
     std::fs::write(&scene, text).unwrap();
@@ -998,13 +984,7 @@ fn measured_topography_drives_mrd_like_its_spectrum() {
         Amplitudes::Deterministic,
     )
     .unwrap();
-    mrd::topography::HeightMap {
-        rows: n,
-        cols: n,
-        data: h,
-    }
-    .write_npy(&tmp.path().join("m.npy"))
-    .unwrap();
+    crate::common::write_map(&tmp.path().join("m.npy"), n, h);
     let base = "name = \"m\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"rough_stiffness\"\nhurst = 0.8\npoints = 4096\nlength = 1.0\nupper_cutoff_ratio = 0.03125\nrealisations = 48\nf_min = 1e-7\nf_max = 1.0\n";
     let scene = tmp.path().join("m.toml");
     std::fs::write(
@@ -1029,14 +1009,7 @@ fn measured_topography_drives_mrd_like_its_spectrum() {
 fn data_file_errors_name_the_file_and_the_range() {
     let tmp = tempfile::tempdir().unwrap();
     let run = |toml: &str| {
-        let scene = tmp.path().join("s.toml");
-        std::fs::write(&scene, toml).unwrap();
-        let o = mrdw(&[
-            "run",
-            scene.to_str().unwrap(),
-            "--out",
-            tmp.path().join("o").to_str().unwrap(),
-        ]);
+        let (o, _) = crate::common::run_scene_text(tmp.path(), toml);
         assert_eq!(o.status.code(), Some(2));
         String::from_utf8_lossy(&o.stderr).into_owned()
     };

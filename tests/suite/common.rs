@@ -60,12 +60,20 @@ pub fn summary(out: &Path) -> Value {
 /// report it replaces) and returns (scene file, report folder, summary); a failed run
 /// fails the test with its standard error.
 pub fn run_written_scene(dir: &Path, text: &str) -> (PathBuf, PathBuf, Value) {
-    let scene = dir.join("scene.toml");
-    std::fs::write(&scene, text).unwrap();
-    ok(&mrdw_in(dir, &["run", "scene.toml", "--out", "o"]));
-    let out = dir.join("o");
+    let (o, out) = run_scene_text(dir, text);
+    ok(&o);
     let s = summary(&out);
-    (scene, out, s)
+    (dir.join("scene.toml"), out, s)
+}
+
+/// Writes the scene `text` as `dir/scene.toml` and runs it into `dir/o`; returns the
+/// run (successful or not) and the report folder's path.
+pub fn run_scene_text(dir: &Path, text: &str) -> (Output, PathBuf) {
+    std::fs::write(dir.join("scene.toml"), text).unwrap();
+    (
+        mrdw_in(dir, &["run", "scene.toml", "--out", "o"]),
+        dir.join("o"),
+    )
 }
 
 /// `mrdw merge PARTS --out OUT`.
@@ -76,17 +84,30 @@ pub fn merge(parts: &[&Path], out: &Path) -> Output {
     mrdw_env(&args, &[])
 }
 
-/// Writes a 4 x 4 height map with a NaN inside to `path` (`.npy`).
-pub fn write_nan_map(path: &Path) {
-    let mut heights = vec![0.0; 16];
-    heights[5] = f64::NAN;
+/// Writes the height map of `rows` rows of `heights` (row-major) to `path` (`.npy`).
+pub fn write_map(path: &Path, rows: usize, heights: Vec<f64>) {
     mrd::topography::HeightMap {
-        rows: 4,
-        cols: 4,
+        rows,
+        cols: heights.len() / rows,
         data: heights,
     }
     .write_npy(path)
     .unwrap();
+}
+
+/// A smooth periodic n x n map of rms height about 0.005: products of a sine along x
+/// and a cosine along y.
+pub fn wavy(n: usize) -> Vec<f64> {
+    (0..n * n)
+        .map(|k| ((k % n) as f64 * 0.4).sin() * ((k / n) as f64 * 0.3).cos() * 0.01)
+        .collect()
+}
+
+/// Writes a 4 x 4 height map with a NaN inside to `path` (`.npy`).
+pub fn write_nan_map(path: &Path) {
+    let mut heights = vec![0.0; 16];
+    heights[5] = f64::NAN;
+    write_map(path, 4, heights);
 }
 
 /// `mrdw ARGS` with `/dev/full` (a full disk) as its standard output or, when `on_stderr`,

@@ -77,16 +77,8 @@ fn absurd_counts_in_any_scene_are_refused() {
 
 /// A 64 x 64 periodic map: a bem_contact scene beside it.
 fn bem_scene(dir: &Path, n: usize, extra: &str) {
-    let h: Vec<f64> = (0..n * n)
-        .map(|k| ((k % n) as f64 * 0.4).sin() * ((k / n) as f64 * 0.3).cos() * 0.01)
-        .collect();
-    mrd::topography::HeightMap {
-        rows: n,
-        cols: n,
-        data: h,
-    }
-    .write_npy(&dir.join("h.npy"))
-    .unwrap();
+    let h = crate::common::wavy(n);
+    crate::common::write_map(&dir.join("h.npy"), n, h);
     std::fs::write(
         dir.join("b.toml"),
         format!("name = \"b\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"bem_contact\"\nheights = \"h.npy\"\nsize = [1.0, 1.0]\nmean_pressures = [0.01]\n{extra}"),
@@ -281,13 +273,7 @@ fn one_realisation_is_refused_for_want_of_an_interval() {
 fn a_tiny_measured_map_reports_no_hurst_exponent() {
     let tmp = tempfile::tempdir().unwrap();
     let h: Vec<f64> = (0..16).map(|k| ((k * 7 % 5) as f64 - 2.0) * 1e-3).collect();
-    mrd::topography::HeightMap {
-        rows: 4,
-        cols: 4,
-        data: h,
-    }
-    .write_npy(&tmp.path().join("m.npy"))
-    .unwrap();
+    crate::common::write_map(&tmp.path().join("m.npy"), 4, h);
     let text = String::from_utf8_lossy(&mrdw_in(tmp.path(), &["show", "rough-stiffness"]).stdout)
         .into_owned();
     let text = format!("{text}measured = {{ heights = \"m.npy\", size = [1.0, 1.0] }}\n");

@@ -152,16 +152,8 @@ fn a_failed_run_leaves_nothing_behind() {
 fn two_outputs_of_one_kind_write_distinct_files() {
     let tmp = tempfile::tempdir().unwrap();
     let n = 16;
-    let h: Vec<f64> = (0..n * n)
-        .map(|k| ((k % n) as f64 * 0.4).sin() * ((k / n) as f64 * 0.3).cos() * 0.01)
-        .collect();
-    mrd::topography::HeightMap {
-        rows: n,
-        cols: n,
-        data: h,
-    }
-    .write_npy(&tmp.path().join("h.npy"))
-    .unwrap();
+    let h = crate::common::wavy(n);
+    crate::common::write_map(&tmp.path().join("h.npy"), n, h);
     let one = "[[outputs]]\nkind = \"bem_contact\"\nheights = \"h.npy\"\nsize = [1.0, 1.0]\nfields = true\n";
     std::fs::write(
         tmp.path().join("b.toml"),

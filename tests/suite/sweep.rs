@@ -1,8 +1,9 @@
 //! The Hurst sweep end to end: fitted exponents in 3D and 1D agree (fig6-ci), a killed
 //! run resumes to the same bytes, and shards merge to the same bytes as one run.
 
-use crate::common::{csvs, merge, mrdw_env as mrdw, ok, run_written_scene, summary};
-use serde_json::Value;
+use crate::common::{
+    csvs, merge, mrdw_env as mrdw, ok, run_scene_text, run_written_scene, summary,
+};
 
 #[test]
 fn fig6_ci_exponents_agree_between_3d_and_mrd() {
@@ -161,7 +162,6 @@ fn shards_merge_to_the_single_run() {
 #[test]
 fn sweep_input_errors() {
     let tmp = tempfile::tempdir().unwrap();
-    let scene = tmp.path().join("bad.toml");
     for (text, needle) in [
         (
             SMALL.replace("hurst = [0.0, 1.0]", "hurst = [0.0, 3.5]"),
@@ -177,16 +177,7 @@ fn sweep_input_errors() {
             "unknown field `colour`",
         ),
     ] {
-        std::fs::write(&scene, text).unwrap();
-        let o = mrdw(
-            &[
-                "run",
-                scene.to_str().unwrap(),
-                "--out",
-                tmp.path().join("o").to_str().unwrap(),
-            ],
-            &[],
-        );
+        let (o, _) = run_scene_text(tmp.path(), &text);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{err}");
         assert!(err.contains(needle), "`{needle}` not in {err}");
@@ -212,24 +203,10 @@ fn unconverged_3d_solves_are_recorded_and_fail_the_run() {
     // A tolerance no solve can reach: the report is written with every solve's status
     // and residual, a warning names the failures, and the exit code is 4.
     let tmp = tempfile::tempdir().unwrap();
-    let scene = tmp.path().join("sw.toml");
-    std::fs::write(
-        &scene,
-        SMALL
-            .replace("grid = 32", "grid = 16")
-            .replace("seed = 5", "seed = 5\ntolerance = 1e-20"),
-    )
-    .unwrap();
-    let out = tmp.path().join("o");
-    let o = mrdw(
-        &[
-            "run",
-            scene.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-        ],
-        &[],
-    );
+    let text = SMALL
+        .replace("grid = 32", "grid = 16")
+        .replace("seed = 5", "seed = 5\ntolerance = 1e-20");
+    let (o, out) = run_scene_text(tmp.path(), &text);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(4), "{err}");
     assert!(err.contains("did not converge"), "{err}");
@@ -253,8 +230,7 @@ fn unconverged_3d_solves_are_recorded_and_fail_the_run() {
         let v: f64 = r[res].parse().unwrap();
         assert!(v.is_finite() && v > 1e-20, "residual {v}");
     }
-    let s: Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let s = summary(&out);
     assert!(!s["failures"].as_array().unwrap().is_empty());
     assert_eq!(
         s["results"]["hurst_sweep.unconverged_3d_solves"]
@@ -269,26 +245,10 @@ fn the_ends_of_the_hurst_range_run_in_3d_and_1d() {
     // H = -1 (flat spectrum) and H = 3 (dominated by the longest wavelength): every solve
     // converges, exponents are finite, no NaN reaches a CSV.
     let tmp = tempfile::tempdir().unwrap();
-    let scene = tmp.path().join("ends.toml");
-    std::fs::write(
-        &scene,
-        SMALL
-            .replace("hurst = [0.0, 1.0]", "hurst = [-1.0, 3.0]")
-            .replace("grid = 32", "grid = 24"),
-    )
-    .unwrap();
-    let out = tmp.path().join("o");
-    ok(&mrdw(
-        &[
-            "run",
-            scene.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-        ],
-        &[],
-    ));
-    let s: Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let text = SMALL
+        .replace("hurst = [0.0, 1.0]", "hurst = [-1.0, 3.0]")
+        .replace("grid = 32", "grid = 24");
+    let (_, out, s) = run_written_scene(tmp.path(), &text);
     for (h, v) in s["results"]["hurst_sweep.per_hurst"].as_object().unwrap() {
         for k in ["alpha_3d", "alpha_mrd"] {
             let a = v[k].as_f64().unwrap_or(f64::NAN);

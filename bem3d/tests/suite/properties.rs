@@ -12,11 +12,7 @@ fn solve<K: SolverOperator>(op: K, h: &[f64], pm: f64) -> Solution {
     let mut s = ContactSolver::new(op, h, None).unwrap();
     s.solve(
         Load::MeanPressure(pm),
-        &SolverOptions {
-            tolerance: 1e-12,
-            max_iterations: 5000,
-            ..Default::default()
-        },
+        &SolverOptions::new(1e-12, 5000),
         None,
     )
     .unwrap()

@@ -346,15 +346,7 @@ fn bad_input_and_non_convergence_are_typed() {
         s.solve(0.0, &opts(1e-9), None),
         Err(BemError::InvalidInput(_))
     ));
-    match s.solve(
-        0.05,
-        &SolverOptions {
-            tolerance: 1e-14,
-            max_iterations: 2,
-            ..Default::default()
-        },
-        None,
-    ) {
+    match s.solve(0.05, &SolverOptions::new(1e-14, 2), None) {
         Err(BemError::NoConvergence {
             residual,
             iterations,

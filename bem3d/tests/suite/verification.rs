@@ -24,15 +24,7 @@ fn hertz_errors(n: usize) -> HertzErrors {
     let op = NonPeriodicHalfSpace::new(n, n, l, l, e);
     let mut s = ContactSolver::new(op, &sphere(n, l, r), None).unwrap();
     let sol = s
-        .solve(
-            Load::Force(f),
-            &SolverOptions {
-                tolerance: 1e-10,
-                max_iterations: 5000,
-                ..Default::default()
-            },
-            None,
-        )
+        .solve(Load::Force(f), &SolverOptions::new(1e-10, 5000), None)
         .unwrap();
     let d = a * a / r;
     let p0 = 2.0 * e * a / (PI * r);
@@ -215,11 +207,7 @@ fn fft_solver_matches_dense_active_set_solve() {
         let z: Vec<f64> = h.iter().map(|v| hmax - v).collect();
         let force = 0.004 * ly;
         let area = lx * ly / (nx * ny) as f64;
-        let opts = SolverOptions {
-            tolerance: 1e-14,
-            max_iterations: 20_000,
-            ..Default::default()
-        };
+        let opts = SolverOptions::new(1e-14, 20_000);
         let (sol, dense) = if periodic {
             let mut s =
                 ContactSolver::new(PeriodicHalfSpace::new(nx, ny, lx, ly, 1.0), &h, None).unwrap();
@@ -263,11 +251,7 @@ fn fft_solver_matches_dense_active_set_solve() {
 fn invariances() {
     let (nx, ny) = (48, 40);
     let h = rough(nx, ny, 7);
-    let opts = SolverOptions {
-        tolerance: 1e-12,
-        max_iterations: 10_000,
-        ..Default::default()
-    };
+    let opts = SolverOptions::new(1e-12, 10_000);
     let load = Load::MeanPressure(0.02);
     let mut base =
         ContactSolver::new(PeriodicHalfSpace::new(nx, ny, 1.2, 1.0, 1.0), &h, None).unwrap();
@@ -313,21 +297,10 @@ fn tangent_stiffness_matches_central_difference() {
     let (n, l) = (64, 1.0);
     let h = rough(n, n, 3);
     let mut s = ContactSolver::new(NonPeriodicHalfSpace::new(n, n, l, l, 1.0), &h, None).unwrap();
-    let opts = SolverOptions {
-        tolerance: 1e-13,
-        max_iterations: 20_000,
-        ..Default::default()
-    };
+    let opts = SolverOptions::new(1e-13, 20_000);
     let sol = s.solve(Load::Force(0.05), &opts, None).unwrap();
     let kt = s
-        .tangent_stiffness(
-            &sol,
-            &SolverOptions {
-                tolerance: 1e-12,
-                max_iterations: 10_000,
-                ..Default::default()
-            },
-        )
+        .tangent_stiffness(&sol, &SolverOptions::new(1e-12, 10_000))
         .unwrap();
     let dd = 1e-6 * sol.approach;
     let fp = s
@@ -352,11 +325,7 @@ fn displacement_and_force_control_agree_and_warm_start_helps() {
     let h = sphere(n, 1.0, 1.0);
     let mut s =
         ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None).unwrap();
-    let opts = SolverOptions {
-        tolerance: 1e-12,
-        max_iterations: 10_000,
-        ..Default::default()
-    };
+    let opts = SolverOptions::new(1e-12, 10_000);
     let a = s.solve(Load::Force(0.01), &opts, None).unwrap();
     let b = s.solve(Load::Approach(a.approach), &opts, None).unwrap();
     assert!(rel(b.force, 0.01) < 1e-8);
@@ -376,15 +345,7 @@ fn errors_are_typed() {
     let mut h = sphere(n, 1.0, 1.0);
     let mut s =
         ContactSolver::new(NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &h, None).unwrap();
-    match s.solve(
-        Load::Force(0.01),
-        &SolverOptions {
-            tolerance: 1e-14,
-            max_iterations: 2,
-            ..Default::default()
-        },
-        None,
-    ) {
+    match s.solve(Load::Force(0.01), &SolverOptions::new(1e-14, 2), None) {
         Err(BemError::NoConvergence {
             iterations,
             residual,
@@ -437,11 +398,7 @@ fn polonsky_keer<K: SolverOperator>(op: K, h: &[f64], mask: &[bool], load: Load)
 
 #[test]
 fn preconditioned_incremental_solver_matches_plain_polonsky_keer() {
-    let opts = SolverOptions {
-        tolerance: 1e-12,
-        max_iterations: 20_000,
-        ..Default::default()
-    };
+    let opts = SolverOptions::new(1e-12, 20_000);
     // `gain`: the fewest times fewer iterations the preconditioner must take.
     let check = |a: &Solution, b: Solution, gain: f64, what: &str| {
         let (pb, db, ib) = (b.pressure, b.approach, b.iterations);
@@ -516,11 +473,7 @@ fn preconditioned_incremental_solver_matches_plain_polonsky_keer() {
 #[test]
 fn restricted_solve_matches_the_full_grid_solve() {
     let n = 128;
-    let o = SolverOptions {
-        tolerance: 1e-12,
-        max_iterations: 10_000,
-        ..Default::default()
-    };
+    let o = SolverOptions::new(1e-12, 10_000);
     let rough_h = common::self_affine(n, 0.8, 5);
     let ball = sphere(n, 1.0, 1.0);
     let periodic = || PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
@@ -652,11 +605,7 @@ fn restricted_solve_is_bit_identical_whatever_the_thread_count() {
 #[test]
 fn windowed_solve_matches_the_full_grid_solve() {
     let n = 128;
-    let o = SolverOptions {
-        tolerance: 1e-12,
-        max_iterations: 10_000,
-        ..Default::default()
-    };
+    let o = SolverOptions::new(1e-12, 10_000);
     let free = || NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
     let check = matches_full_grid;
     let full = SolverOptions {
@@ -742,11 +691,7 @@ fn windowed_solve_is_bit_identical_whatever_the_thread_count() {
 #[test]
 fn single_precision_preconditioner_reaches_the_same_solution() {
     let n = 128;
-    let o = SolverOptions {
-        tolerance: 1e-12,
-        max_iterations: 10_000,
-        ..Default::default()
-    };
+    let o = SolverOptions::new(1e-12, 10_000);
     // On the full grid: the sphere would otherwise take a window.
     let full = SolverOptions {
         paths: Paths::full_grid(),
@@ -838,11 +783,7 @@ fn single_precision_preconditioner_reaches_the_same_solution() {
 fn nested_start_reaches_the_cold_starts_solution_in_fewer_iterations() {
     let n = 512;
     let h = common::self_affine(n, 0.8, 9);
-    let o = SolverOptions {
-        tolerance: 1e-12,
-        max_iterations: 10_000,
-        ..Default::default()
-    };
+    let o = SolverOptions::new(1e-12, 10_000);
     fn solve<K: SolverOperator>(
         op: K,
         h: &[f64],

@@ -9,6 +9,18 @@ fn opts() -> SolverOptions {
     SolverOptions::new(1e-11, 5000)
 }
 
+/// A transient contact on the periodic unit square of `n x n` cells: the operator's
+/// modulus 1, scaled in time by the relaxation function `modulus`.
+fn periodic(n: usize, h: &[f64], modulus: Relaxation) -> TransientContact<PeriodicHalfSpace> {
+    TransientContact::new(
+        PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0),
+        h,
+        None,
+        modulus,
+    )
+    .unwrap()
+}
+
 /// A smooth random-looking periodic surface: a few modes.
 fn bumpy(n: usize) -> Vec<f64> {
     (0..n * n)
@@ -28,13 +40,7 @@ fn constant_modulus_steps_are_elastic_solves() {
     let n = 64;
     let h = bumpy(n);
     let modulus = Relaxation::new(2.0, vec![]).unwrap();
-    let mut vc = TransientContact::new(
-        PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0),
-        &h,
-        None,
-        modulus,
-    )
-    .unwrap();
+    let mut vc = periodic(n, &h, modulus);
     let mut el = ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 2.0), &h, None).unwrap();
     for (i, f) in [1e-4, 5e-4, 2e-3, 5e-4].into_iter().enumerate() {
         let s = vc.step(0.1, Load::Force(f), &opts()).unwrap();
@@ -194,13 +200,7 @@ fn lifted_off_surface_recovers_and_bad_steps_are_refused() {
     let n = 32;
     let h = bumpy(n);
     let modulus = Relaxation::new(1.0, vec![(2.0, 0.2)]).unwrap();
-    let mut vc = TransientContact::new(
-        PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0),
-        &h,
-        None,
-        modulus,
-    )
-    .unwrap();
+    let mut vc = periodic(n, &h, modulus);
     let mut loaded = 0.0f64;
     for k in 1..=5 {
         let s = vc
@@ -250,13 +250,7 @@ fn area_does_not_decrease_after_a_load_decrease() {
     let n = 64;
     let h = bumpy(n);
     let modulus = Relaxation::new(1.0, vec![(3.0, 0.2), (2.0, 2.0)]).unwrap();
-    let mut vc = TransientContact::new(
-        PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0),
-        &h,
-        None,
-        modulus,
-    )
-    .unwrap();
+    let mut vc = periodic(n, &h, modulus);
     let f1 = 2e-3;
     for _ in 0..30 {
         vc.step(0.05, Load::Force(f1), &opts()).unwrap();
@@ -353,13 +347,7 @@ fn work_equals_stored_plus_dissipated_energy() {
     let (e_inf, e1, tau) = (1.0, 3.0, 0.3);
     let imbalance = |dt: f64| -> (f64, f64) {
         let modulus = Relaxation::new(e_inf, vec![(e1, tau)]).unwrap();
-        let mut vc = TransientContact::new(
-            PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0),
-            &h,
-            None,
-            modulus,
-        )
-        .unwrap();
+        let mut vc = periodic(n, &h, modulus);
         let s = Stiffness::new(n);
         let steps = (3.0 / dt).round() as usize;
         let approach = |t: f64| {

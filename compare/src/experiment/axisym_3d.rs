@@ -1,5 +1,6 @@
 //! A body of revolution pressed on the 3D grid: the held normal pressure that the 3D
-//! tangential outputs (elastic and viscoelastic partial slip) load tangentially.
+//! tangential outputs (elastic and viscoelastic partial slip) load tangentially, and the
+//! settings (checks and defaults) that an adhesive sphere's 3D cycles share.
 
 use crate::checks::{bad, check_memory, check_tolerance, positive};
 use crate::error::Result;

@@ -36,3 +36,21 @@ pub fn is_sphere(ctx: &Context) -> bool {
         .and_then(mrd::reference::for_profile::sphere_radius)
         .is_some()
 }
+
+/// What every axisymmetric output checks first: the scene has a profile, and `points`
+/// samples lie in the range the tables take.
+pub fn check_scene(ctx: &Context, points: usize) -> Result<()> {
+    ctx.profile()?;
+    crate::checks::check_points(points)
+}
+
+/// G* of the scene's material for the tangential output `what`, with a warning in `out`
+/// where the bodies are not elastically similar (Eq. 7: MRD's decoupled tangential
+/// solution is then an approximation).
+pub fn shear_modulus(env: &Env, out: &mut Section, what: &str) -> Result<f64> {
+    let g = env.ctx.material.g_star().ctx(what)?;
+    if let Some(w) = env.ctx.material.similarity_warning() {
+        out.warn(w);
+    }
+    Ok(g)
+}

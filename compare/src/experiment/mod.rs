@@ -9,8 +9,8 @@
 //! curve ([`tangential_map`]), the elastomer of the sliding-friction outputs with the fit
 //! of Eq. (82) ([`elastomer`]) and their MRD ensemble of sliding lines
 //! ([`sliding_line`]), a measured topography's detrended square and isotropic PSD
-//! ([`measured`]), checkpointed task sets ([`tasks`]) and the progress bar of long stages
-//! ([`progress`]).
+//! ([`measured`]), checkpointed task sets ([`tasks`]), the progress bar of long stages
+//! ([`progress`]) and the options of a study's 3D normal solves ([`solve_options`]).
 
 pub mod axisym_3d;
 pub mod elastomer;
@@ -32,9 +32,5 @@ pub mod tasks;
 /// and at most 20 n + 2000 iterations (the conjugate gradient's count grows about
 /// linearly with the grid's side; the constant covers the small grids).
 pub fn solve_options(tolerance: f64, n: usize) -> bem3d::SolverOptions {
-    bem3d::SolverOptions {
-        tolerance,
-        max_iterations: 20 * n + 2000,
-        ..Default::default()
-    }
+    bem3d::SolverOptions::new(tolerance, 20 * n + 2000)
 }

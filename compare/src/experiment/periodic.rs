@@ -8,7 +8,7 @@ use crate::checks::{
     bad, check_memory_per_thread, count_in, BYTES_PER_CELL_PERIODIC, MAX_REALISATIONS,
 };
 use crate::error::{Context as _, Result};
-use bem3d::{ContactSolver, PeriodicHalfSpace};
+use bem3d::{ContactSolver, PeriodicHalfSpace, SolverOptions};
 use mrd::roughness::synthesis::Grid;
 use mrd::roughness::{nested, SelfAffine};
 use rayon::prelude::*;
@@ -33,13 +33,13 @@ pub fn patch(hurst: f64, bandwidth: usize, n: usize, seed: u64, r: u64) -> Resul
     })
 }
 
-impl Patch {
-    /// The periodic normal solver on this patch of `n x n` cells (period 1) for a
-    /// substrate of modulus `e_star`.
-    pub fn solver(&self, n: usize, e_star: f64) -> Result<ContactSolver<PeriodicHalfSpace>> {
-        let op = PeriodicHalfSpace::new(n, n, 1.0, 1.0, e_star);
-        ContactSolver::new(op, &self.heights, None).ctx("3D solver set-up")
-    }
+/// One realisation of a ladder ready to solve: the grid's side `n`, the patch, its
+/// periodic normal solver and the options of its solves.
+pub struct Realisation {
+    pub n: usize,
+    pub patch: Patch,
+    pub solver: ContactSolver<PeriodicHalfSpace>,
+    pub opts: SolverOptions,
 }
 
 /// The ensembles of a study on periodic patches: Hurst exponents, the substrates'
@@ -51,6 +51,8 @@ pub struct Ladder<'a> {
     pub bandwidth: usize,
     pub cells: &'a [usize],
     pub realisations: u64,
+    /// The seed of the surfaces (realisation r is the same surface on every grid).
+    pub seed: u64,
 }
 
 /// One ensemble of a ladder: (Hurst exponent, cells per shortest wavelength, the runs
@@ -89,6 +91,28 @@ impl Ladder<'_> {
             &format!("3D grids of {n}^2 cells, one per thread"),
         )?;
         Ok(n)
+    }
+
+    /// Realisation `r` of Hurst exponent `hurst` at `cells` per shortest wavelength on a
+    /// substrate of modulus `e_star`, solved to `tolerance`.
+    pub fn realise(
+        &self,
+        hurst: f64,
+        cells: usize,
+        r: u64,
+        e_star: f64,
+        tolerance: f64,
+    ) -> Result<Realisation> {
+        let n = cells * self.bandwidth;
+        let patch = patch(hurst, self.bandwidth, n, self.seed, r)?;
+        let op = PeriodicHalfSpace::new(n, n, 1.0, 1.0, e_star);
+        let solver = ContactSolver::new(op, &patch.heights, None).ctx("3D solver set-up")?;
+        Ok(Realisation {
+            n,
+            patch,
+            solver,
+            opts: super::solve_options(tolerance, n),
+        })
     }
 
     /// `run(hurst, cells, realisation)` over every ensemble, realisations in parallel

@@ -4,6 +4,7 @@
 //! ensemble of MRD lines on the same f grid, as the studies checkpoint them.
 
 use crate::error::{Context as _, Result};
+use crate::output::{Checkpointed, Env};
 use crate::plan::Stage;
 use crate::report::Section;
 use bem3d::{BemError, ContactSolver, Load, NonPeriodicHalfSpace, SolverOptions};
@@ -35,6 +36,18 @@ pub fn study_stages(psd: bool) -> Vec<Stage> {
 /// interleave.
 pub fn run_tasks<T>(out: &mut Section, compute: impl FnOnce() -> T) -> T {
     out.stages_together(&STAGES, compute)
+}
+
+/// Computes the missing tasks of `study` in its checkpoint folder under the run's work
+/// root, recorded as the [`STAGES`]; returns the folder.
+pub fn compute_study(
+    study: &dyn Checkpointed,
+    env: &Env,
+    out: &mut Section,
+) -> Result<std::path::PathBuf> {
+    let work = env.work_root.join(study.key());
+    run_tasks(out, || study.compute(env.ctx, &work, env.control))?;
+    Ok(work)
 }
 
 /// One 3D solve of a realisation's load ladder, as recorded in the solves table.

@@ -28,6 +28,11 @@ pub struct RoughSphereGeometry {
     pub seed: u64,
 }
 
+/// MRD springs per 3D cell, unless the scene gives `points_1d_factor`.
+pub fn default_points_1d_factor() -> usize {
+    4
+}
+
 /// Cell-centre coordinate of index i of `n` across `side`, centred on the axis.
 pub fn centre(i: usize, n: usize, side: f64) -> f64 {
     (i as f64 + 0.5) * side / n as f64 - 0.5 * side

@@ -2,7 +2,7 @@
 //! pull-off (Eqs. 34-37), optionally on an event-driven row of springs, against JKR,
 //! Eq. 37 (cone) and Eq. 34 (flat punch).
 
-use crate::checks::{bad, check_points, check_springs, default_points, positive, rel};
+use crate::checks::{bad, check_springs, default_points, positive, rel};
 use crate::context::{Context, ControlSpec};
 use crate::error::{Context as _, Result};
 use crate::experiment::hess;
@@ -38,8 +38,7 @@ impl Adhesion {
 
 impl Output for Adhesion {
     fn validate(&self, ctx: &Context) -> Result<()> {
-        ctx.profile()?;
-        check_points(self.points)?;
+        hess::check_scene(ctx, self.points)?;
         if !positive(self.gamma) {
             return bad("gamma (work of adhesion) must be > 0");
         }

@@ -3,9 +3,7 @@
 //! amplitude, against the semi-analytic MRD result and, for a sphere, Mindlin's Eq. 58,
 //! its small-amplitude limit Eq. 61 and the force form.
 
-use crate::checks::{
-    bad, check_points, check_springs, default_points, default_springs, positive, rel,
-};
+use crate::checks::{bad, check_springs, default_points, default_springs, positive, rel};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::hess;
@@ -42,8 +40,7 @@ fn default_steps() -> usize {
 
 impl Output for Damping {
     fn validate(&self, ctx: &Context) -> Result<()> {
-        ctx.profile()?;
-        check_points(self.points)?;
+        hess::check_scene(ctx, self.points)?;
         if !positive(self.mu) {
             return bad("friction coefficient mu must be > 0");
         }
@@ -64,10 +61,7 @@ impl Output for Damping {
         let ctx = env.ctx;
         let profile = ctx.profile()?;
         let e = ctx.material.e_star;
-        let g = ctx.material.g_star().ctx("damping output")?;
-        if let Some(w) = ctx.material.similarity_warning() {
-            out.warn(w);
-        }
+        let g = hess::shear_modulus(env, out, "damping output")?;
         let (mu, depth, points) = (self.mu, self.depth, self.points);
         let s = out
             .stage(Stage::NormalSemiAnalytic, || contact.state_at_depth(depth))

@@ -2,7 +2,7 @@
 //! 24, 25), semi-analytic; optionally on N discrete springs; the closed form where the
 //! profile has one; the electrical conductance for a resistivity sum.
 
-use crate::checks::{check_points, check_springs, default_points, rel};
+use crate::checks::{check_springs, default_points, rel};
 use crate::context::{Context, Drive};
 use crate::error::{Context as _, Result};
 use crate::experiment::hess;
@@ -30,8 +30,7 @@ pub struct ForceDepth {
 
 impl Output for ForceDepth {
     fn validate(&self, ctx: &Context) -> Result<()> {
-        ctx.profile()?;
-        check_points(self.points)?;
+        hess::check_scene(ctx, self.points)?;
         crate::checks::check_magnitudes(&[("max", self.max)])?;
         if let Some(n) = self.springs {
             check_springs(n, crate::checks::spring_bytes::FORCE_DEPTH)?;

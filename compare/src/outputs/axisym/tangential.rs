@@ -2,7 +2,7 @@
 //! (Cattaneo-Mindlin / Jager, Eqs. 41-50), and the traction distributions at chosen
 //! fractions of mu F_N (Abel transform of Eq. 51); closed forms for a sphere.
 
-use crate::checks::{bad, check_points, default_points, positive, rel};
+use crate::checks::{bad, default_points, positive, rel};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::hess;
@@ -27,8 +27,7 @@ pub struct Tangential {
 
 impl Output for Tangential {
     fn validate(&self, ctx: &Context) -> Result<()> {
-        ctx.profile()?;
-        check_points(self.points)?;
+        hess::check_scene(ctx, self.points)?;
         if !positive(self.mu) {
             return bad("friction coefficient mu must be > 0");
         }
@@ -55,10 +54,7 @@ impl Output for Tangential {
         let ctx = env.ctx;
         let profile = ctx.profile()?;
         let e = ctx.material.e_star;
-        let g = ctx.material.g_star().ctx("tangential output")?;
-        if let Some(w) = ctx.material.similarity_warning() {
-            out.warn(w);
-        }
+        let g = hess::shear_modulus(env, out, "tangential output")?;
         let (mu, fn_) = (self.mu, self.normal_force);
         let tc = out
             .stage(Stage::NormalSemiAnalytic, || {

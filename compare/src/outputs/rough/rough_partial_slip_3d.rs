@@ -27,7 +27,7 @@
 use crate::checks::{bad, check_tolerance, count_in, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
-use crate::experiment::periodic::{patch, Ensemble, Ladder};
+use crate::experiment::periodic::{Ensemble, Ladder, Realisation};
 use crate::experiment::tangential_map::{e_over_g, Mapping, NODES};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
@@ -138,14 +138,19 @@ impl RoughPartialSlip3d {
             bandwidth: self.bandwidth,
             cells: &self.cells,
             realisations: self.realisations,
+            seed: self.seed,
         }
     }
 
     fn run_one(&self, hurst: f64, cells: usize, r: u64, e_star: f64) -> Result<Run> {
-        let n = cells * self.bandwidth;
-        let p = patch(hurst, self.bandwidth, n, self.seed, r)?;
-        let mut solver = p.solver(n, e_star)?;
-        let opts = crate::experiment::solve_options(self.tolerance, n);
+        let Realisation {
+            n,
+            patch: p,
+            mut solver,
+            opts,
+        } = self
+            .ladder()
+            .realise(hurst, cells, r, e_star, self.tolerance)?;
         let force = self.pressure * e_star * p.rms_slope;
         let sol = solver
             .solve(Load::Force(force), &opts, None)

@@ -26,7 +26,7 @@
 use crate::checks::{bad, check_tolerance, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
-use crate::experiment::periodic::{patch, Ensemble, Ladder};
+use crate::experiment::periodic::{Ensemble, Ladder, Realisation};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
@@ -128,15 +128,20 @@ impl TangentialStiffness3d {
             bandwidth: self.bandwidth,
             cells: &self.cells,
             realisations: self.realisations,
+            seed: self.seed,
         }
     }
 
     fn run_3d(&self, hurst: f64, cells: usize, r: u64, e_star: f64) -> Result<Run> {
-        let n = cells * self.bandwidth;
-        let p = patch(hurst, self.bandwidth, n, self.seed, r)?;
+        let Realisation {
+            n,
+            patch: p,
+            mut solver,
+            opts,
+        } = self
+            .ladder()
+            .realise(hurst, cells, r, e_star, self.tolerance)?;
         let slope = p.rms_slope;
-        let mut solver = p.solver(n, e_star)?;
-        let opts = crate::experiment::solve_options(self.tolerance, n);
         let mut cerruti: Vec<CerrutiPeriodic> = self
             .poisson
             .iter()

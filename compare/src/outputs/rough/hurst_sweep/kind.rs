@@ -52,10 +52,9 @@ impl Output for HurstSweep {
     }
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
-        let work = env.work_root.join(self.key());
         // Each 3D task synthesises a surface, solves it and its stiffness at every load;
         // each 1D task synthesises and loads its lines: the stages run interleaved.
-        rough_punch::run_tasks(out, || self.compute(env.ctx, &work, env.control))?;
+        let work = rough_punch::compute_study(self, env, out)?;
         let results = out.stage(Stage::SweepFit, || aggregate::aggregate(self, &work))?;
         figures::report(self, &results, out);
         Ok(())

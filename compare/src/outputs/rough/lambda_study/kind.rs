@@ -141,8 +141,7 @@ impl Output for LambdaStudy {
     }
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
-        let work = env.work_root.join(self.key());
-        rough_punch::run_tasks(out, || self.compute(env.ctx, &work, env.control))?;
+        let work = rough_punch::compute_study(self, env, out)?;
         let (results, scatter) = out.stage(Stage::SweepFit, || {
             Ok::<_, CompareError>((
                 analysis::analyse(self, &work)?,

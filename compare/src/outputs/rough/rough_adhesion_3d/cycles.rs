@@ -102,7 +102,7 @@ pub fn cycle_3d(
         1.0
     };
     let z = geometry.heights(h, scale, r)?;
-    let reach2 = spec.reach().powi(2);
+    let reach2 = spec.body().reach().powi(2);
     let mask: Vec<bool> = (0..n * n).map(|c| geometry.r2(c) < reach2).collect();
     let top = (0..n * n)
         .filter(|&c| mask[c])
@@ -141,7 +141,7 @@ pub fn cycle_1d(
     let (x, w): (Vec<f64>, Vec<f64>) = x
         .into_iter()
         .zip(w)
-        .filter(|(x, _)| x.abs() < spec.reach())
+        .filter(|(x, _)| x.abs() < spec.body().reach())
         .unzip();
     let top = w.iter().fold(f64::NEG_INFINITY, |m, &v| m.max(v));
     let mut row = AdhesiveRow::new(&x, &w, spec.side / n1 as f64, e_star, spec.work, rule)

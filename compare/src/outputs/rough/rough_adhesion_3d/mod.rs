@@ -64,7 +64,7 @@ pub struct RoughAdhesion3d {
     realisations_3d: u64,
     realisations_1d: u64,
     /// MRD springs per cell of the finest 3D grid.
-    #[serde(default = "four")]
+    #[serde(default = "crate::experiment::rough_sphere::default_points_1d_factor")]
     points_1d_factor: usize,
     /// Approach steps from the smooth body's first contact to `depth_max`; the loading
     /// starts at each body's own first contact and the unloading goes down by the same
@@ -129,9 +129,6 @@ pub struct Variant {
 fn both_rules() -> Vec<String> {
     vec!["outer".into(), "cluster".into()]
 }
-fn four() -> usize {
-    4
-}
 fn sixty() -> usize {
     60
 }
@@ -159,11 +156,6 @@ impl RoughAdhesion3d {
             Body::Sphere(r) => 1.5 * PI * r * self.work,
             Body::Punch(a) => (8.0 * PI * a.powi(3) * e_star * self.work).sqrt(),
         }
-    }
-
-    /// The distance from the axis within which the body can touch.
-    fn reach(&self) -> f64 {
-        self.body().reach()
     }
 
     fn step(&self) -> f64 {

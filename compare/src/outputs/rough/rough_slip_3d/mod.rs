@@ -65,7 +65,7 @@ pub struct RoughSlip3d {
     realisations_3d: u64,
     realisations_1d: u64,
     /// MRD springs per cell of the finest 3D grid.
-    #[serde(default = "four")]
+    #[serde(default = "crate::experiment::rough_sphere::default_points_1d_factor")]
     points_1d_factor: usize,
     /// Tangential forces of the monotonic loading over mu F_N, increasing, in (0, 1).
     fractions: Vec<f64>,
@@ -84,9 +84,6 @@ pub struct RoughSlip3d {
 
 fn half() -> Vec<f64> {
     vec![0.5]
-}
-fn four() -> usize {
-    4
 }
 fn eight() -> usize {
     8
@@ -112,11 +109,6 @@ impl RoughSlip3d {
             Body::Sphere(r) => (r * self.smooth_approach(e_star)).sqrt(),
             Body::Punch(a) => a,
         }
-    }
-
-    /// The distance from the axis within which the body can touch.
-    fn reach(&self) -> f64 {
-        self.body().reach()
     }
 
     fn geometry(&self, hurst: f64, grid: usize) -> RoughSphereGeometry {

@@ -125,7 +125,7 @@ pub fn run_3d(
     let geometry = spec.geometry(hurst, n);
     let h = roughness * spec.smooth_approach(e_star);
     let z = geometry.heights(h, scale, r)?;
-    let reach2 = spec.reach().powi(2);
+    let reach2 = spec.body().reach().powi(2);
     let mask: Vec<bool> = (0..n * n).map(|c| geometry.r2(c) < reach2).collect();
     let op = NonPeriodicHalfSpace::new(n, n, spec.side, spec.side, e_star);
     let mut solver = ContactSolver::new(op, &z, Some(mask)).ctx("3D solver set-up")?;
@@ -206,7 +206,7 @@ pub fn run_1d(
     let w: Vec<f64> = x
         .iter()
         .zip(w)
-        .filter(|(x, _)| x.abs() < spec.reach())
+        .filter(|(x, _)| x.abs() < spec.body().reach())
         .map(|(_, w)| w)
         .collect();
     let top = w.iter().fold(f64::NEG_INFINITY, |m, &v| m.max(v));

@@ -48,7 +48,7 @@ pub struct RoughSphere {
     realisations_3d: u64,
     realisations_1d: u64,
     /// MRD springs per 3D cell along x.
-    #[serde(default = "four")]
+    #[serde(default = "crate::experiment::rough_sphere::default_points_1d_factor")]
     points_1d_factor: usize,
     #[serde(default = "ten")]
     loads: usize,
@@ -62,9 +62,6 @@ pub struct RoughSphere {
 
 fn six() -> f64 {
     6.0
-}
-fn four() -> usize {
-    4
 }
 fn ten() -> usize {
     10
