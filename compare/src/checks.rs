@@ -136,6 +136,19 @@ pub(crate) fn default_tolerance() -> f64 {
 pub(crate) fn default_force_points() -> usize {
     30
 }
+/// A count's default written where its key is declared:
+/// `#[serde(default = "crate::checks::default_count::<8>")]`.
+pub(crate) fn default_count<const N: usize>() -> usize {
+    N
+}
+/// [`default_count`] for the keys counted in `u64` (realisations, lines).
+pub(crate) fn default_count_u64<const N: u64>() -> u64 {
+    N
+}
+/// The default of a switch that is on unless the scene turns it off.
+pub(crate) fn default_true() -> bool {
+    true
+}
 
 /// The checks shared by the rough-line outputs.
 pub(crate) fn check_line(hurst: f64, points: usize, length: f64, realisations: u64) -> Result<()> {

@@ -467,7 +467,7 @@ fn provenance_notes(command: &str) -> Vec<String> {
 }
 
 fn ladder_table(ladders: &[Ladder], command: &str) -> Table {
-    let cols: Vec<String> = [
+    let cols = [
         "case_id [-]",
         "method_id [-]",
         "resolution [-]",
@@ -477,10 +477,7 @@ fn ladder_table(ladders: &[Ladder], command: &str) -> Table {
         "runs [-]",
         "relative_error [1]",
         "order [1]",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
+    ];
     let mut t = Table::new("bench_error_time", &cols);
     t.notes = provenance_notes(command);
     t.missing_ok = true;
@@ -595,7 +592,7 @@ fn error_figures(ladders: &[Ladder]) -> Vec<Figure> {
 }
 
 fn scaling_table(sc: &[Scaling], command: &str) -> Table {
-    let cols: Vec<String> = [
+    let cols = [
         "solver_id [-]",
         "size [-]",
         "time_median [s]",
@@ -603,10 +600,7 @@ fn scaling_table(sc: &[Scaling], command: &str) -> Table {
         "time_max [s]",
         "runs [-]",
         "exponent [1]",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
+    ];
     let mut t = Table::new("bench_scaling", &cols);
     t.notes = provenance_notes(command);
     t.missing_ok = true;

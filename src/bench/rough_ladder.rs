@@ -176,7 +176,7 @@ impl RoughLadder {
     }
 
     pub fn report(&self, sec: &mut Section, notes: &[String]) {
-        let cols: Vec<String> = [
+        let cols = [
             "method_id [-]",
             "grid [-]",
             "points_1d [-]",
@@ -187,10 +187,7 @@ impl RoughLadder {
             "alpha_hi95 [1]",
             "alpha_error [1]",
             "reference [-]",
-        ]
-        .iter()
-        .map(|s| s.to_string())
-        .collect();
+        ];
         let mut t = Table::new("bench_rough", &cols);
         t.notes = notes.to_vec();
         t.notes.push(format!(

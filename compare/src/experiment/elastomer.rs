@@ -20,15 +20,11 @@ pub(crate) enum Material {
         tau1: f64,
         tau2: f64,
         s: f64,
-        #[serde(default = "sixteen")]
+        #[serde(default = "crate::checks::default_count::<16>")]
         terms: usize,
     },
     /// G(t) = g_inf + sum G_k exp(-t/tau_k), terms [[G_k, tau_k], ...].
     Prony { g_inf: f64, terms: Vec<[f64; 2]> },
-}
-
-fn sixteen() -> usize {
-    16
 }
 
 impl Material {

@@ -17,10 +17,10 @@ pub struct Table {
 }
 
 impl Table {
-    pub fn new(name: &str, columns: &[String]) -> Self {
+    pub fn new(name: &str, columns: &[impl AsRef<str>]) -> Self {
         Self {
             name: name.into(),
-            columns: columns.to_vec(),
+            columns: columns.iter().map(|c| c.as_ref().to_string()).collect(),
             ..Default::default()
         }
     }

@@ -27,15 +27,12 @@ pub struct Damping {
     #[serde(default = "default_springs")]
     springs: usize,
     half_length: Option<f64>,
-    #[serde(default = "default_steps")]
+    #[serde(default = "crate::checks::default_count::<8>")]
     steps_per_cycle: usize,
 }
 
 fn default_amplitude_ratio() -> f64 {
     1.0
-}
-fn default_steps() -> usize {
-    8
 }
 
 impl Output for Damping {

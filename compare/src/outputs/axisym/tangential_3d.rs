@@ -35,7 +35,7 @@ pub struct Tangential3d {
     mu: f64,
     normal_force: f64,
     /// Cells per side of the 3D grid.
-    #[serde(default = "default_cells")]
+    #[serde(default = "crate::checks::default_count::<128>")]
     cells: usize,
     /// The side of the 3D grid in contact radii: its period on the periodic half-space
     /// (>= 10 keeps the periodic images' effect on the dissipation under 1 %), the
@@ -44,7 +44,7 @@ pub struct Tangential3d {
     period: f64,
     /// The periodic half-space (default) or the free one (`false`: no periodic images,
     /// the shift absolute).
-    #[serde(default = "default_periodic")]
+    #[serde(default = "crate::checks::default_true")]
     periodic: bool,
     /// Tangential forces of the stick-radius table, as fractions of mu F_N.
     #[serde(default = "default_fractions")]
@@ -53,29 +53,20 @@ pub struct Tangential3d {
     #[serde(default = "default_amplitudes")]
     amplitudes: Vec<f64>,
     /// Force steps per half cycle of the 3D oscillation.
-    #[serde(default = "default_steps")]
+    #[serde(default = "crate::checks::default_count::<20>")]
     steps: usize,
     #[serde(default = "default_tolerance")]
     tolerance: f64,
 }
 
-fn default_cells() -> usize {
-    128
-}
 fn default_period() -> f64 {
     10.0
-}
-fn default_periodic() -> bool {
-    true
 }
 fn default_fractions() -> Vec<f64> {
     (1..10).map(|k| k as f64 / 10.0).collect()
 }
 fn default_amplitudes() -> Vec<f64> {
     vec![0.2, 0.4, 0.6, 0.8]
-}
-fn default_steps() -> usize {
-    20
 }
 
 /// Peak bytes per cell of the 3D side: the normal solver's and the partial slip's

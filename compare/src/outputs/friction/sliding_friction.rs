@@ -35,10 +35,10 @@ pub struct SlidingFriction {
     /// Springs along L.
     pub(super) springs: usize,
     /// Line points per spring (the line is synthesised on springs x this).
-    #[serde(default = "one")]
+    #[serde(default = "crate::checks::default_count::<1>")]
     pub(super) refine: usize,
     /// Line points moved per time step.
-    #[serde(default = "one")]
+    #[serde(default = "crate::checks::default_count::<1>")]
     pub(super) stride: usize,
     /// Normal force as F / (4 G(inf) h L), the reduced force of the relaxed (rubbery)
     /// contact (Eq. 77).
@@ -62,10 +62,6 @@ pub struct SlidingFriction {
     /// line; Eq. (82) is fitted over the resolved velocities only.
     #[serde(default = "crate::experiment::sliding_line::default_error_limit")]
     pub(super) error_limit: f64,
-}
-
-fn one() -> usize {
-    1
 }
 
 impl SlidingFriction {

@@ -44,7 +44,7 @@ pub struct SlidingFriction3d {
     /// Cells per side.
     grid: usize,
     /// Also solve every surface on grid / 2 and report the change (default true).
-    #[serde(default = "yes")]
+    #[serde(default = "crate::checks::default_true")]
     coarse_check: bool,
     /// Mean pressure as p L / (4 G(inf) h): `sliding_friction`'s reduced force with
     /// F = p L^2.
@@ -79,9 +79,9 @@ pub struct SlidingFriction3d {
 #[serde(deny_unknown_fields)]
 struct MrdSide {
     springs: usize,
-    #[serde(default = "one")]
+    #[serde(default = "crate::checks::default_count::<1>")]
     refine: usize,
-    #[serde(default = "one")]
+    #[serde(default = "crate::checks::default_count::<1>")]
     stride: usize,
     #[serde(default = "crate::experiment::sliding_line::default_line_tolerance")]
     tolerance: f64,
@@ -89,12 +89,6 @@ struct MrdSide {
     max_passes: usize,
 }
 
-fn yes() -> bool {
-    true
-}
-fn one() -> usize {
-    1
-}
 fn tolerance() -> f64 {
     1e-6
 }

@@ -114,12 +114,12 @@ impl Output for StaticFriction {
         let mut t = Table::new(
             "static_friction",
             &[
-                "force [force unit]".into(),
-                "f = F/(E* h L) [1]".into(),
-                "xi_mean [1]".into(),
-                "xi_std [1]".into(),
-                "xi_ci95 [1]".into(),
-                "contacts_mean [1]".into(),
+                "force [force unit]",
+                "f = F/(E* h L) [1]",
+                "xi_mean [1]",
+                "xi_std [1]",
+                "xi_ci95 [1]",
+                "contacts_mean [1]",
             ],
         );
         t.notes.push(format!(

@@ -28,7 +28,7 @@ pub struct BemContact {
     heights: String,
     /// Physical size [lx, ly] of the map (length units).
     size: [f64; 2],
-    #[serde(default = "yes")]
+    #[serde(default = "crate::checks::default_true")]
     periodic: bool,
     /// Radius of a centred circular punch (mask); none: the whole map may touch.
     punch_radius: Option<f64>,
@@ -50,9 +50,6 @@ pub struct BemContact {
     fields: bool,
 }
 
-fn yes() -> bool {
-    true
-}
 fn tolerance() -> f64 {
     1e-10
 }

@@ -47,10 +47,10 @@ pub struct ContactArea {
     realisations_3d: u64,
     realisations_1d: u64,
     /// 1D points per 3D cell across.
-    #[serde(default = "sixteen")]
+    #[serde(default = "crate::checks::default_count::<16>")]
     points_1d_factor: usize,
     /// Approaches per 3D realisation.
-    #[serde(default = "twenty")]
+    #[serde(default = "crate::checks::default_count::<20>")]
     loads: usize,
     #[serde(default)]
     seed: u64,
@@ -63,12 +63,6 @@ pub struct ContactArea {
 
 fn quarter() -> f64 {
     0.25
-}
-fn sixteen() -> usize {
-    16
-}
-fn twenty() -> usize {
-    20
 }
 fn tolerance() -> f64 {
     1e-8
@@ -328,8 +322,7 @@ impl ContactArea {
                 "gap_3d_ci95 [mean gap/h]",
                 "gap_mrd [mean gap/h]",
                 "gap_mrd_ci95 [mean gap/h]",
-            ]
-            .map(String::from),
+            ],
         );
         t.notes.push(format!(
             "circular rough punch, {0}^2 cells, {1} realisations per H; MRD: {2} lines of {3} points per H, lambda {4:?}; A0 = punch face (3D), line length (MRD); h = rms height of the face or line; ci95 = 1.96 s/sqrt(n) of the ensemble mean; rows where both means exist",

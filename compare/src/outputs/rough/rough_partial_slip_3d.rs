@@ -58,17 +58,13 @@ pub struct RoughPartialSlip3d {
     /// Force amplitudes of the cycles over mu F_N, in (0, 1).
     amplitudes: Vec<f64>,
     /// Force steps per half cycle.
-    #[serde(default = "default_steps")]
+    #[serde(default = "crate::checks::default_count::<10>")]
     steps: usize,
     realisations: u64,
     #[serde(default = "crate::checks::default_tolerance")]
     tolerance: f64,
     #[serde(default)]
     seed: u64,
-}
-
-fn default_steps() -> usize {
-    10
 }
 
 /// One realisation: the normal force and stiffness, and per Poisson's ratio the 3D and

@@ -160,11 +160,11 @@ impl Output for RoughStiffness {
         let mut t = Table::new(
             "rough_stiffness",
             &[
-                "f = F/(E* h L) [1]".into(),
-                "k/(E* L) mean [1]".into(),
-                "k/(E* L) std [1]".into(),
-                "k/(E* L) ci95 [1]".into(),
-                "in_fit_range [0/1]".into(),
+                "f = F/(E* h L) [1]",
+                "k/(E* L) mean [1]",
+                "k/(E* L) std [1]",
+                "k/(E* L) ci95 [1]",
+                "in_fit_range [0/1]",
             ],
         );
         let ratio = self.upper_cutoff_ratio;

@@ -47,7 +47,7 @@ pub struct TangentialViscoelastic {
     ramp_time: f64,
     hold_time: f64,
     /// Steps per ramp_time.
-    #[serde(default = "hundred")]
+    #[serde(default = "crate::checks::default_count::<100>")]
     steps: usize,
     #[serde(default = "default_springs")]
     springs: usize,
@@ -61,10 +61,6 @@ pub struct TangentialViscoelastic {
     /// the solvers').
     #[serde(default)]
     tolerance: Option<f64>,
-}
-
-fn hundred() -> usize {
-    100
 }
 
 impl TangentialViscoelastic {

@@ -25,12 +25,8 @@ pub struct Viscoelastic {
     #[serde(default = "default_springs")]
     springs: usize,
     half_length: Option<f64>,
-    #[serde(default = "default_steps")]
+    #[serde(default = "crate::checks::default_count::<400>")]
     steps: usize,
-}
-
-fn default_steps() -> usize {
-    400
 }
 
 impl Viscoelastic {

@@ -86,7 +86,7 @@ pub struct StaticFriction3d {
     /// Shortest wavelength L / bandwidth; the map side L is 1.
     bandwidth: usize,
     /// Cells per shortest wavelength; 20 is Eq. (85)'s cut-off at 1/10 of Nyquist.
-    #[serde(default = "twenty")]
+    #[serde(default = "crate::checks::default_count::<20>")]
     cells: usize,
     #[serde(default = "both")]
     geometry: Vec<Geometry>,
@@ -95,7 +95,7 @@ pub struct StaticFriction3d {
     /// Reduced forces f = sqrt(pi) F / (2 E* h sqrt(A)) (Eq. 93), log-spaced.
     f_min: f64,
     f_max: f64,
-    #[serde(default = "twelve")]
+    #[serde(default = "crate::checks::default_count::<12>")]
     f_points: usize,
     /// The fits of Eq. (91) use the f points whose 3D contact fraction is below this
     /// (the paper's law is one of sparse contact; xi -> 1 at complete contact).
@@ -113,12 +113,6 @@ pub struct StaticFriction3d {
     refine: Option<Refinement>,
 }
 
-fn twenty() -> usize {
-    20
-}
-fn twelve() -> usize {
-    12
-}
 fn both() -> Vec<Geometry> {
     vec![Geometry::Periodic, Geometry::Disc]
 }

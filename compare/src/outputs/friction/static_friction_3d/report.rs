@@ -254,8 +254,7 @@ fn fits_table(spec: &StaticFriction3d) -> Table {
             "max_rel_diff_vs_3d [1]",
             "fit_f_min [1]",
             "fit_f_max [1]",
-        ]
-        .map(String::from),
+        ],
     );
     fits.notes.push(format!(
         "xi = a + b ln f (Eq. 91), least squares on the ensemble means over the f points where every 3D realisation converged and the 3D contact fraction is below {}; 95 % percentile intervals from {RESAMPLES} bootstrap resamples of the realisations; max_rel_diff_vs_3d = max |xi_MRD / xi_3D - 1| over that range",

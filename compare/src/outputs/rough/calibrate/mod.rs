@@ -54,10 +54,10 @@ pub struct Calibrate {
     pub size: Option<[f64; 2]>,
     /// Bandwidth B = L / lambda_min of the calibration punches (the spectrum is cut
     /// there, or at the map's Nyquist wavenumber if that is lower).
-    #[serde(default = "thirty_two")]
+    #[serde(default = "crate::checks::default_count::<32>")]
     pub bandwidth: usize,
     /// Cells per shortest wavelength of the 3D punches.
-    #[serde(default = "eight")]
+    #[serde(default = "crate::checks::default_count::<8>")]
     pub cells: usize,
     #[serde(default = "realisations")]
     pub realisations: Realisations,
@@ -68,16 +68,16 @@ pub struct Calibrate {
     #[serde(default = "window")]
     pub window: [f64; 2],
     /// Approaches per 3D punch.
-    #[serde(default = "sixteen")]
+    #[serde(default = "crate::checks::default_count::<16>")]
     pub loads: usize,
     /// 3D solver tolerance.
     #[serde(default = "tolerance")]
     pub tolerance: f64,
     /// MRD lines.
-    #[serde(default = "thousand")]
+    #[serde(default = "crate::checks::default_count_u64::<1000>")]
     pub lines: u64,
     /// MRD points per 3D cell across.
-    #[serde(default = "sixteen")]
+    #[serde(default = "crate::checks::default_count::<16>")]
     pub points_1d_per_cell: usize,
     /// Solve the measured map itself in 3D (a topography only; default true).
     pub solve_map: Option<bool>,
@@ -103,18 +103,6 @@ fn realisations() -> Realisations {
     }
 }
 
-fn thirty_two() -> usize {
-    32
-}
-fn eight() -> usize {
-    8
-}
-fn sixteen() -> usize {
-    16
-}
-fn thousand() -> u64 {
-    1000
-}
 fn ten_percent() -> f64 {
     0.10
 }

@@ -101,7 +101,7 @@ pub fn report(
 }
 
 fn summary_table(spec: &Calibrate, case: &Case, cal: &Calibration) -> Table {
-    let cols: Vec<String> = [
+    let cols = [
         "bandwidth L/lambda_min [1]",
         "grid [cells]",
         "realisations [1]",
@@ -116,10 +116,7 @@ fn summary_table(spec: &Calibrate, case: &Case, cal: &Calibration) -> Table {
         "alpha_mrd [1]",
         "lambda_lower_half [1]",
         "lambda_upper_half [1]",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
+    ];
     let mut t = Table::new("calibration", &cols);
     t.notes.push(format!(
         "lambda of Eq. (76) (C1D = lambda q C2D of the same C2D, the line not rescaled) for this surface: {} rigid circular punches of diameter L (the source's side) with faces of its spectrum up to {} x 2 pi / L, {} cells a side, against {} MRD lines; fitted over k/(E* L) in [{}, {}] of the 3D mean (f = F/(E* h L), each curve over its own rms height); 95 % bootstrap intervals over the punches ({} resamples); misfit: |ln k3D - ln kMRD| at the calibrated lambda over that range; alpha: slope of ln k against ln f there (Eq. 77); halves: lambda fitted on the lower / upper half of the range's forces",

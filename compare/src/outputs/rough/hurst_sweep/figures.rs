@@ -87,8 +87,7 @@ fn alpha_table(spec: &HurstSweep, r: &Results, label: &str) -> Table {
             "lambda_lo95 [1]",
             "lambda_hi95 [1]",
             "lambda_cut [1]",
-        ]
-        .map(String::from),
+        ],
     );
     let (lo, hi) = spec.window(spec.grid);
     t.notes.push(format!(
@@ -121,7 +120,7 @@ fn alpha_table(spec: &HurstSweep, r: &Results, label: &str) -> Table {
 fn lambda_table(spec: &HurstSweep, r: &Results, label: &str) -> Table {
     let mut t = Table::new(
         &format!("{label}_lambda_table"),
-        &["hurst [1]".into(), "lambda [1]".into()],
+        &["hurst [1]", "lambda [1]"],
     );
     t.notes.push(format!(
         "calibrated lambda(H) of Eq. (76) (C1D = lambda q C2D of the same C2D, the line not rescaled) on 3D {0}^2 circular rough punches ({1} realisations per H) against {2} MRD lines per H, fitted over k/(E* L) in [{3}, {4}] as the shipped calibration is; load with lambda = \"<this file>\"",
@@ -144,8 +143,7 @@ fn curves_table(r: &Results, label: &str) -> Table {
             "kmrd/(E* L) mean [1]",
             "kmrd ci95 [1]",
             "in_fit_window [0/1]",
-        ]
-        .map(String::from),
+        ],
     );
     t.missing_ok = true;
     for h in &r.per_hurst {
@@ -182,8 +180,7 @@ fn solves_table(spec: &HurstSweep, r: &Results, label: &str) -> Table {
             "residual [1]",
             "converged [0/1]",
             "stiffness_converged [0/1]",
-        ]
-        .map(String::from),
+        ],
     );
     t.notes.push(format!(
         "every 3D solve of the sweep: tolerance {:e} (criterion: bem3d::solver docs); unconverged solves (converged = 0, the residual reached) and failed stiffness solves are left out of the curves; iterations of restricted solves count iterations on a window around a compact contact (non-periodic) or applications of a dense K between a small candidate set (few contact cells; bem3d::solver docs)",
@@ -428,8 +425,7 @@ fn convergence(spec: &HurstSweep, r: &Results, label: &str) -> (Table, Figure) {
             "alpha_3d [1]",
             "alpha_3d_lo95 [1]",
             "alpha_3d_hi95 [1]",
-        ]
-        .map(String::from),
+        ],
     );
     t.missing_ok = true;
     for c in &r.convergence {

@@ -58,10 +58,10 @@ pub struct HurstSweep {
     pub realisations_3d: u64,
     pub realisations_1d: u64,
     /// 1D points per 3D cell across (N1 = factor x grid).
-    #[serde(default = "sixteen")]
+    #[serde(default = "crate::checks::default_count::<16>")]
     pub points_1d_factor: usize,
     /// Number of approaches per 3D realisation.
-    #[serde(default = "twenty")]
+    #[serde(default = "crate::checks::default_count::<20>")]
     pub loads: usize,
     #[serde(default)]
     pub seed: u64,
@@ -72,12 +72,6 @@ pub struct HurstSweep {
 
 fn quarter() -> f64 {
     0.25
-}
-fn sixteen() -> usize {
-    16
-}
-fn twenty() -> usize {
-    20
 }
 fn tol() -> f64 {
     1e-8

@@ -183,8 +183,7 @@ pub fn report(sc: &[ForceScatter], label: &str, out: &mut Section) {
             "cv_mrd [1]",
             "cv_mrd_lo95 [1]",
             "cv_mrd_hi95 [1]",
-        ]
-        .map(String::from),
+        ],
     );
     t.notes.push(
         "Section 9: coefficient of variation s/mean of the reduced force F/(E* h L) across realisations at each reduced approach u (rigid indentation past the face's or line's mean height over its own rms height h); 3D F(u) by cubic Hermite interpolation of the solves' (d, F, dF/dd); MRD lines exact (lambda = pi; F/h at fixed u/h does not depend on lambda); at equal u the mean forces differ (columns mean_f), so the verdict compares the CVs at equal mean force; 95 % bootstrap intervals; in_window = 1 where the 3D mean force lies within the forces of the stiffness calibration window".to_string(),

@@ -67,7 +67,7 @@ pub struct LambdaStudy {
     /// The main ladder of bandwidths L / lambda_min.
     pub bandwidths: Vec<usize>,
     /// Cells per shortest wavelength on the main ladder.
-    #[serde(default = "eight")]
+    #[serde(default = "crate::checks::default_count::<8>")]
     pub cells: usize,
     /// The bandwidth whose lambda is shipped (one of `bandwidths`).
     pub calibrate_at: usize,
@@ -92,7 +92,7 @@ pub struct LambdaStudy {
     /// MRD lines per H and bandwidth.
     pub realisations_1d: u64,
     /// Surfaces per case grid (no solve) for the expectations of the control variates.
-    #[serde(default = "two_thousand")]
+    #[serde(default = "crate::checks::default_count_u64::<2000>")]
     pub control_realisations: u64,
     /// Fewer control surfaces on large grids, where one costs about a second: `[side,
     /// m]` gives grids of at least `side` cells a side `m` surfaces (their expectations
@@ -102,13 +102,13 @@ pub struct LambdaStudy {
     #[serde(default = "window")]
     pub window: [f64; 2],
     /// Approaches per 3D realisation.
-    #[serde(default = "twenty")]
+    #[serde(default = "crate::checks::default_count::<20>")]
     pub loads: usize,
     /// 3D solver tolerance (bem3d::solver).
     #[serde(default = "tolerance")]
     pub tolerance: f64,
     /// MRD points per 3D cell across.
-    #[serde(default = "sixteen")]
+    #[serde(default = "crate::checks::default_count::<16>")]
     pub points_1d_per_cell: usize,
     #[serde(default)]
     pub seed: u64,
@@ -151,18 +151,6 @@ pub struct ScatterAt {
     pub realisations: u64,
 }
 
-fn eight() -> usize {
-    8
-}
-fn two_thousand() -> u64 {
-    2000
-}
-fn sixteen() -> usize {
-    16
-}
-fn twenty() -> usize {
-    20
-}
 fn tolerance() -> f64 {
     1e-8
 }

@@ -169,8 +169,7 @@ pub fn report(sc: &[Scatter], fs: &[f64], label: &str, out: &mut Section) {
             "cv_mrd [1]",
             "cv_mrd_lo95 [1]",
             "cv_mrd_hi95 [1]",
-        ]
-        .map(String::from),
+        ],
     );
     t.notes.push(format!(
         "Section 9: coefficient of variation s/mean of the stiffness k across realisations at each f, 3D rough punches against MRD lines (lambda = pi; k at fixed f = F/(E* h L) does not depend on lambda); per H the main-ladder case with the most 3D realisations; 95 % bootstrap intervals ({RESAMPLES} resamples); in_window = 1 where the 3D mean k/(E* L) lies in the calibration window"

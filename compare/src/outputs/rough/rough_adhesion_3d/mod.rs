@@ -69,7 +69,7 @@ pub struct RoughAdhesion3d {
     /// Approach steps from the smooth body's first contact to `depth_max`; the loading
     /// starts at each body's own first contact and the unloading goes down by the same
     /// step until the body separates.
-    #[serde(default = "sixty")]
+    #[serde(default = "crate::checks::default_count::<60>")]
     steps: usize,
     #[serde(default = "crate::experiment::lambda::default_lambdas")]
     lambda: Vec<LambdaSpec>,
@@ -128,9 +128,6 @@ pub struct Variant {
 
 fn both_rules() -> Vec<String> {
     vec!["outer".into(), "cluster".into()]
-}
-fn sixty() -> usize {
-    60
 }
 
 impl RoughAdhesion3d {

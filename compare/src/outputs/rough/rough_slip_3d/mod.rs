@@ -72,7 +72,7 @@ pub struct RoughSlip3d {
     /// Force amplitudes of the cycles over mu F_N, in (0, 1).
     amplitudes: Vec<f64>,
     /// Force steps per half cycle.
-    #[serde(default = "eight")]
+    #[serde(default = "crate::checks::default_count::<8>")]
     steps: usize,
     #[serde(default = "crate::experiment::lambda::default_lambdas")]
     lambda: Vec<LambdaSpec>,
@@ -84,9 +84,6 @@ pub struct RoughSlip3d {
 
 fn half() -> Vec<f64> {
     vec![0.5]
-}
-fn eight() -> usize {
-    8
 }
 
 impl RoughSlip3d {

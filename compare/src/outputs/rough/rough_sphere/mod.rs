@@ -50,7 +50,7 @@ pub struct RoughSphere {
     /// MRD springs per 3D cell along x.
     #[serde(default = "crate::experiment::rough_sphere::default_points_1d_factor")]
     points_1d_factor: usize,
-    #[serde(default = "ten")]
+    #[serde(default = "crate::checks::default_count::<10>")]
     loads: usize,
     #[serde(default = "crate::experiment::lambda::default_lambdas")]
     lambda: Vec<LambdaSpec>,
@@ -62,9 +62,6 @@ pub struct RoughSphere {
 
 fn six() -> f64 {
     6.0
-}
-fn ten() -> usize {
-    10
 }
 
 /// MRD within this of 3D counts as agreement (the 5 %).

@@ -51,12 +51,12 @@ pub struct ViscoelasticRough {
     hurst: f64,
     bandwidth: usize,
     /// Cells per shortest wavelength: the 3D grid is bandwidth x cells a side.
-    #[serde(default = "eight")]
+    #[serde(default = "crate::checks::default_count::<8>")]
     cells: usize,
     realisations_3d: u64,
     realisations_1d: u64,
     /// MRD springs per 3D cell across.
-    #[serde(default = "sixteen")]
+    #[serde(default = "crate::checks::default_count::<16>")]
     points_1d_per_cell: usize,
     #[serde(default = "crate::experiment::lambda::default_lambdas")]
     lambda: Vec<LambdaSpec>,
@@ -77,13 +77,6 @@ pub struct ViscoelasticRough {
     tolerance: f64,
     #[serde(default)]
     seed: u64,
-}
-
-fn eight() -> usize {
-    8
-}
-fn sixteen() -> usize {
-    16
 }
 
 /// The four phases of the history, in order.
