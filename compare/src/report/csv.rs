@@ -94,14 +94,7 @@ mod tests {
 
     #[test]
     fn counts_and_flags_are_integers_and_missing_cells_empty() {
-        let mut t = Table::new(
-            "t",
-            &[
-                "x [m]".into(),
-                "iterations [count]".into(),
-                "converged [0/1]".into(),
-            ],
-        );
+        let mut t = Table::new("t", &["x [m]", "iterations [count]", "converged [0/1]"]);
         t.missing_ok = true;
         t.push(vec![0.5, 34.0, 1.0]);
         t.push(vec![f64::NAN, 7.0, 0.0]);
@@ -125,7 +118,7 @@ mod tests {
 
     #[test]
     fn infinity_only_where_allowed() {
-        let mut t = Table::new("t", &["k [N/m]".into()]);
+        let mut t = Table::new("t", &["k [N/m]"]);
         t.push(vec![f64::INFINITY]);
         assert!(csv_text(&t, &prov()).is_err());
         t.infinite_ok = true;

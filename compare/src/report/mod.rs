@@ -222,12 +222,12 @@ mod tests {
     #[test]
     fn names_are_unique_and_results_prefixed() {
         let mut a = Section::new("bem_contact", "bem_contact");
-        a.tables.push(Table::new("t", &[]));
+        a.tables.push(Table::new("t", &[] as &[&str]));
         a.files.push(("f.npy".into(), vec![]));
         a.scalar("x", 1.0);
         a.stage(Stage::Bem3d, || ());
         let mut b = Section::new("bem_contact", "bem_contact_2");
-        b.tables.push(Table::new("t", &[]));
+        b.tables.push(Table::new("t", &[] as &[&str]));
         b.files.push(("f.npy".into(), vec![]));
         b.scalar("x", 2.0);
         b.stage(Stage::Bem3d, || ());

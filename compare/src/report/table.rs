@@ -90,10 +90,7 @@ mod tests {
 
     #[test]
     fn columns_by_name() {
-        let mut t = Table::new(
-            "t",
-            &["depth [m]".into(), "depth_2 [m]".into(), "flag".into()],
-        );
+        let mut t = Table::new("t", &["depth [m]", "depth_2 [m]", "flag"]);
         t.push(vec![1.0, 2.0, 0.0]);
         t.push(vec![3.0, f64::NAN, 1.0]);
         assert_eq!(t.index("depth"), 0);
@@ -108,6 +105,6 @@ mod tests {
     #[test]
     #[should_panic(expected = "no column `dep`")]
     fn a_missing_column_is_a_bug() {
-        Table::new("t", &["depth [m]".into()]).index("dep");
+        Table::new("t", &["depth [m]"]).index("dep");
     }
 }
