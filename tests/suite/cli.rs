@@ -778,7 +778,7 @@ fn bad_input_is_one_clear_line_and_no_output() {
         &format!("name = \"x\"\n{mat}{SPHERE}"),
         "missing field `outputs`",
     );
-    expect_failure("name = \"x\"\n[material\n", "bad.toml:2");
+    expect_failure("name = \"x\"\n[material\n", "scene.toml:2");
     let rough = "[[outputs]]\nkind = \"rough_stiffness\"\npoints = 1024\nlength = 1.0\nf_min = 1e-6\nf_max = 1.0\n";
     expect_failure(
         &format!("name = \"x\"\n{mat}{rough}hurst = 3.5\n"),
