@@ -78,6 +78,37 @@ struct Run {
     energy_mrd: Vec<Vec<f64>>,
 }
 
+/// The rows of one ensemble in a table of the study, and what tells it apart in a
+/// figure: the colour of its Poisson's ratio (index `k`), the marker and line style of
+/// its Hurst exponent (index `i`).
+struct EnsembleRows<'t> {
+    k: usize,
+    nu: f64,
+    i: usize,
+    h: f64,
+    rows: Vec<&'t Vec<f64>>,
+}
+
+impl EnsembleRows<'_> {
+    /// The 3D means' markers: alternating with the Hurst exponent.
+    fn marker(&self) -> Style {
+        if self.i.is_multiple_of(2) {
+            Style::Markers
+        } else {
+            Style::Crosses
+        }
+    }
+
+    /// MRD's lines: alternating with the Hurst exponent.
+    fn line(&self) -> Style {
+        if self.i.is_multiple_of(2) {
+            Style::Line
+        } else {
+            Style::Dashed
+        }
+    }
+}
+
 /// The stages of a case (3D and MRD), run together on the pool.
 const STAGES: &[Stage] = &[
     Stage::RoughSynthesis,
@@ -338,14 +369,9 @@ impl RoughPartialSlip3d {
         out.tables.push(cycles);
     }
 
-    /// Per ensemble on the grid `grid`: (index of Poisson's ratio, the ratio, index of
-    /// the Hurst exponent, the exponent, the table's rows of the ensemble).
-    #[allow(clippy::type_complexity)]
-    fn ensembles<'t>(
-        &self,
-        t: &'t Table,
-        grid: f64,
-    ) -> Vec<(usize, f64, usize, f64, Vec<&'t Vec<f64>>)> {
+    /// The ensembles of the table `t` on the grid `grid`, Poisson's ratio by Hurst
+    /// exponent.
+    fn ensembles<'t>(&self, t: &'t Table, grid: f64) -> Vec<EnsembleRows<'t>> {
         let mut all = Vec::new();
         for (k, &nu) in self.poisson.iter().enumerate() {
             for (i, &h) in self.hurst.iter().enumerate() {
@@ -354,7 +380,7 @@ impl RoughPartialSlip3d {
                     .iter()
                     .filter(|r| r[0] == h && r[1] == nu && r[2] == grid)
                     .collect();
-                all.push((k, nu, i, h, rows));
+                all.push(EnsembleRows { k, nu, i, h, rows });
             }
         }
         all
@@ -377,12 +403,10 @@ impl RoughPartialSlip3d {
         );
         let [mean, lo, hi] =
             ["mean", "ci95_low", "ci95_high"].map(|s| t.index(&format!("{stem}_{s}")));
-        for (k, nu, i, h, rows) in self.ensembles(t, grid) {
-            let style = if i % 2 == 0 {
-                Style::Markers
-            } else {
-                Style::Crosses
-            };
+        for e in self.ensembles(t, grid) {
+            let EnsembleRows { k, nu, h, .. } = e;
+            let rows = &e.rows;
+            let style = e.marker();
             fig = fig.with(
                 Series::new(
                     format!(
@@ -413,21 +437,15 @@ impl RoughPartialSlip3d {
             t.index("dissipation_3d_over_scale_mean"),
             t.index("dissipation_mrd_over_scale_mean"),
         );
-        for (k, nu, i, h, rows) in self.ensembles(t, grid) {
-            let style = if i % 2 == 0 {
-                Style::Markers
-            } else {
-                Style::Crosses
-            };
+        for e in self.ensembles(t, grid) {
+            let EnsembleRows { k, nu, h, .. } = e;
+            let rows = &e.rows;
+            let style = e.marker();
             fig = fig.with(
                 Series::new(
                     format!("MRD, H = {h}, nu = {nu}"),
                     rows.iter().map(|r| (r[3], r[wm])).collect(),
-                    if i % 2 == 0 {
-                        Style::Line
-                    } else {
-                        Style::Dashed
-                    },
+                    e.line(),
                 )
                 .colored(k),
             );
