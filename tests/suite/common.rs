@@ -95,8 +95,7 @@ pub fn write_map(path: &Path, rows: usize, heights: Vec<f64>) {
     .unwrap();
 }
 
-/// A smooth periodic n x n map of rms height about 0.005: products of a sine along x
-/// and a cosine along y.
+/// A smooth n x n map of rms height about 0.005: a sine along x times a cosine along y.
 pub fn wavy(n: usize) -> Vec<f64> {
     (0..n * n)
         .map(|k| ((k % n) as f64 * 0.4).sin() * ((k / n) as f64 * 0.3).cos() * 0.01)
