@@ -512,12 +512,9 @@ mod tests {
     #[test]
     fn periodic_without_adhesion_is_the_normal_solver() {
         let n = 32;
-        let heights: Vec<f64> = (0..n * n)
-            .map(|i| {
-                let (x, y) = ((i % n) as f64 / n as f64, (i / n) as f64 / n as f64);
-                0.01 * (2.0 * PI * x).cos() * (2.0 * PI * y).cos() + 0.002 * (6.0 * PI * x).sin()
-            })
-            .collect();
+        let heights = crate::testing::on_unit_cell(n, |x, y| {
+            0.01 * (2.0 * PI * x).cos() * (2.0 * PI * y).cos() + 0.002 * (6.0 * PI * x).sin()
+        });
         let d = 0.006;
         for law in [CohesiveLaw::Dugdale, CohesiveLaw::Exponential] {
             let op = crate::PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);

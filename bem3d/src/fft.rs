@@ -1142,7 +1142,6 @@ mod tests {
             .collect()
     }
 
-    /// Test symbol: `len` real values 1..=13.
     /// A real symbol (`nc x ny`, the spectrum's layout) that is a function of the
     /// column and |ky|: even in ky bit for bit.
     fn even_in_ky(nc: usize, ny: usize) -> Vec<f64> {
@@ -1154,8 +1153,19 @@ mod tests {
             .collect()
     }
 
+    /// Test symbol: `len` real values 1..=13.
     fn steps(len: usize) -> Vec<f64> {
         (0..len).map(|k| 1.0 + (k % 13) as f64).collect()
+    }
+
+    /// Grids (nx, ny) and the part (w, rows) of them a convolution reads and writes:
+    /// odd and even widths (the self-conjugate columns), padded and cropped.
+    const PARTS: [(usize, usize, usize, usize); 4] =
+        [(8, 6, 8, 6), (7, 5, 7, 5), (9, 12, 9, 12), (64, 48, 40, 30)];
+
+    /// `x`'s rows on the part (w, rows) loaded into `f`.
+    fn load<T: FftFloat>(f: &mut Fft2<T>, (w, rows): (usize, usize), x: &[f64]) {
+        f.load_rows((w, rows), x.par_chunks(w * ROWS_PER_CHUNK), copy_in);
     }
 
     fn naive_dft(x: &[f64], nx: usize, ny: usize, kx: usize, ky: usize) -> Complex64 {
@@ -1321,23 +1331,17 @@ mod tests {
         // <x, s * x> from the spectrum against the direct sum over the grid (odd and
         // even widths: the self-conjugate columns; padded and cropped), and the two
         // steps' rows against convolve bit for bit; in both precisions.
-        for &(nx, ny, w, rows) in &[
-            (8usize, 6usize, 8usize, 6usize),
-            (7, 5, 7, 5),
-            (9, 12, 9, 12),
-            (64, 48, 40, 30),
-        ] {
+        for (nx, ny, w, rows) in PARTS {
             let x = ramp(w * rows);
             let mut f = Fft2::<f64>::new(nx, ny);
             let symbol: Vec<f64> = steps(f.spectrum_len());
             let mut expected = vec![0.0; w * rows];
             f.convolve(&x, (w, rows), &symbol, &mut expected);
             let direct: f64 = x.iter().zip(&expected).map(|(a, b)| a * b).sum();
-            let chunk = w * ROWS_PER_CHUNK;
-            f.load_rows((w, rows), x.par_chunks(chunk), copy_in);
+            load(&mut f, (w, rows), &x);
             let energy = f.transform_columns(&symbol);
             let mut got = vec![0.0; w * rows];
-            f.store_rows(got.par_chunks_mut(chunk), copy_out);
+            f.store_rows(got.par_chunks_mut(w * ROWS_PER_CHUNK), copy_out);
             assert_eq!(got, expected, "{nx}x{ny}");
             assert!(
                 (energy - direct).abs() <= 1e-13 * direct.abs(),
@@ -1345,7 +1349,7 @@ mod tests {
             );
             let mut single = Fft2::<f32>::new(nx, ny);
             let symbol32: Vec<f32> = symbol.iter().map(|&v| v as f32).collect();
-            single.load_rows((w, rows), x.par_chunks(chunk), copy_in);
+            load(&mut single, (w, rows), &x);
             let energy32 = single.transform_columns(&symbol32);
             assert!(
                 (energy32 - direct).abs() <= 1e-6 * direct.abs(),
@@ -1353,9 +1357,9 @@ mod tests {
             );
             // The energy alone: the same number bit for bit, and the transform is
             // ready for the next convolution.
-            f.load_rows((w, rows), x.par_chunks(chunk), copy_in);
+            load(&mut f, (w, rows), &x);
             assert_eq!(f.column_energy(&symbol).to_bits(), energy.to_bits());
-            single.load_rows((w, rows), x.par_chunks(chunk), copy_in);
+            load(&mut single, (w, rows), &x);
             assert_eq!(
                 single.column_energy(&symbol32).to_bits(),
                 energy32.to_bits()
@@ -1371,12 +1375,7 @@ mod tests {
         // stays full. Convolutions, energies and the real-space table of the halved
         // symbol equal the full symbol's bit for bit, in both precisions, odd and even
         // sizes, padded and cropped.
-        for &(nx, ny, w, rows) in &[
-            (8usize, 6usize, 8usize, 6usize),
-            (7, 5, 7, 5),
-            (9, 12, 9, 12),
-            (64, 48, 40, 30),
-        ] {
+        for (nx, ny, w, rows) in PARTS {
             let nc = nx / 2 + 1;
             let full = even_in_ky(nc, ny);
             let half = halve_if_even(full.clone(), ny);
@@ -1386,15 +1385,14 @@ mod tests {
             odd[1] += 1.0;
             assert_eq!(halve_if_even(odd.clone(), ny), odd, "not even: kept");
             let x = ramp(w * rows);
-            let chunk = w * ROWS_PER_CHUNK;
             let mut f = Fft2::<f64>::new(nx, ny);
             let (mut a, mut b) = (vec![0.0; w * rows], vec![0.0; w * rows]);
             f.convolve(&x, (w, rows), &full, &mut a);
             f.convolve(&x, (w, rows), &half, &mut b);
             assert_eq!(a, b, "{nx}x{ny}");
-            f.load_rows((w, rows), x.par_chunks(chunk), copy_in);
+            load(&mut f, (w, rows), &x);
             let e_full = f.column_energy(&full);
-            f.load_rows((w, rows), x.par_chunks(chunk), copy_in);
+            load(&mut f, (w, rows), &x);
             assert_eq!(f.column_energy(&half).to_bits(), e_full.to_bits());
             let mut single = Fft2::<f32>::new(nx, ny);
             let full32: Vec<f32> = full.iter().map(|&v| v as f32).collect();

@@ -50,3 +50,6 @@ pub use sliding::{SlidingContact, SlidingSolution};
 pub use solver::{
     Choice, ContactSolver, Interrupt, Load, Path, Paths, Solution, SolverOptions, MAX_TOLERANCE,
 };
+
+#[cfg(test)]
+mod testing;

@@ -74,6 +74,38 @@ impl Path {
 }
 
 impl Solution {
+    /// The full grid's solution of `pressure` and `gap` (cells of `cell_area`): force,
+    /// contact and mean gap over the `domain_cells` follow; the caller sets
+    /// `iterations`, `residual` and `certificate` (zero here).
+    pub(crate) fn full_grid(
+        pressure: Vec<f64>,
+        gap: Vec<f64>,
+        approach: f64,
+        cell_area: f64,
+        domain_cells: usize,
+    ) -> Self {
+        let contact_cells = pressure.iter().filter(|&&v| v > 0.0).count();
+        Solution {
+            force: pressure.iter().sum::<f64>() * cell_area,
+            contact_cells,
+            contact_area: contact_cells as f64 * cell_area,
+            mean_gap: gap.iter().sum::<f64>() / domain_cells as f64,
+            gap,
+            pressure,
+            approach,
+            iterations: 0,
+            residual: 0.0,
+            certificate: 0.0,
+            domain_cells,
+            warm_started: false,
+            path: Path::FullGrid,
+            nested_start: false,
+            single_iterations: 0,
+            stencil_iterations: 0,
+            scaled_directions: false,
+        }
+    }
+
     /// Whether the solve ran on part of the grid (a window or a candidate set).
     pub fn restricted(&self) -> bool {
         self.path != Path::FullGrid

@@ -155,13 +155,7 @@ pub fn simulate_cycle(
 ) -> Result<AdhesiveCycle> {
     positive("maximal depth", d_max)?;
     positive("half_length", half_length)?;
-    if n_half < 2 {
-        return Err(MrdError::InvalidParameter {
-            name: "springs",
-            value: n_half as f64,
-            reason: "need at least 2 springs",
-        });
-    }
+    crate::error::springs(n_half)?;
     let profile = &adhesive.contact.profile;
     let e = adhesive.contact.e_star;
     let (l, dx, gaps) = crate::foundation::half_line(profile, n_half, half_length)?;

@@ -23,13 +23,7 @@ impl DiscreteAxisymmetric {
     /// `n` springs over [-L, L]; L is the rim if the profile has one, else `half_length`.
     pub fn new(profile: &Profile, e_star: f64, n: usize, half_length: f64) -> Result<Self> {
         positive("e_star", e_star)?;
-        if n < 2 {
-            return Err(MrdError::InvalidParameter {
-                name: "springs",
-                value: n as f64,
-                reason: "need at least 2 springs",
-            });
-        }
+        crate::error::springs(n)?;
         let l = crate::foundation::line_extent(profile, half_length)?;
         let dx = 2.0 * l / n as f64;
         let gaps: Vec<f64> = (0..n)

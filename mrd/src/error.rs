@@ -102,6 +102,18 @@ pub fn bad_height(heights: &[f64]) -> Option<(usize, String)> {
 }
 
 /// Checks `value` is positive and within [`MAGNITUDE_RANGE`].
+/// A row of `n` springs, refused below 2 (the parameter is named `springs`).
+pub(crate) fn springs(n: usize) -> Result<usize> {
+    if n < 2 {
+        return Err(MrdError::InvalidParameter {
+            name: "springs",
+            value: n as f64,
+            reason: "need at least 2 springs",
+        });
+    }
+    Ok(n)
+}
+
 pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64> {
     let (lo, hi) = MAGNITUDE_RANGE;
     if (lo..=hi).contains(&value) {

@@ -19,13 +19,7 @@ pub fn transform<F: Fn(f64) -> f64>(dz: F, breaks: &[f64], x: f64) -> Result<f64
         return Ok(0.0);
     }
     let x = x.abs();
-    let t_breaks: Vec<f64> = breaks
-        .iter()
-        .filter(|&&b| b > 0.0 && b < x)
-        .map(|&b| (b / x).asin())
-        .collect();
-    let integral = tanh_sinh_split(|t| dz(x * t.sin()), 0.0, FRAC_PI_2, &t_breaks, DEFAULT_TOL)?;
-    Ok(x * integral) // Eq. (11)
+    Ok(x * quarter_integral(dz, breaks, x)?) // Eq. (11)
 }
 
 /// Inverse of Eq. (11): the 3D profile z(r) whose MRD image is `z1d`.
@@ -34,13 +28,18 @@ pub fn inverse<F: Fn(f64) -> f64>(z1d: F, breaks: &[f64], r: f64) -> Result<f64>
         return Ok(0.0);
     }
     let r = r.abs();
+    Ok(FRAC_2_PI * quarter_integral(z1d, breaks, r)?)
+}
+
+/// `Int_0^{pi/2} g(r sin t) dt` (r > 0), split where `r sin t` crosses a break point of
+/// `g` (the `breaks` inside (0, r)).
+fn quarter_integral<F: Fn(f64) -> f64>(g: F, breaks: &[f64], r: f64) -> Result<f64> {
     let t_breaks: Vec<f64> = breaks
         .iter()
         .filter(|&&b| b > 0.0 && b < r)
         .map(|&b| (b / r).asin())
         .collect();
-    let integral = tanh_sinh_split(|t| z1d(r * t.sin()), 0.0, FRAC_PI_2, &t_breaks, DEFAULT_TOL)?;
-    Ok(FRAC_2_PI * integral)
+    tanh_sinh_split(|t| g(r * t.sin()), 0.0, FRAC_PI_2, &t_breaks, DEFAULT_TOL)
 }
 
 impl Profile {

@@ -1,8 +1,7 @@
 //! Adhesive normal contact in 3D (`bem3d::adhesion`: the JKR limit with Pohrt & Popov's
 //! mesh-dependent detachment criterion) on numpy height maps.
 
-use crate::contact::bem_err;
-use crate::contact::{grid_array, Grid};
+use crate::contact::{grid_array, Frame, Grid};
 use crate::errors::value_error;
 use bem3d::adhesion::{AdhesiveContact as Adhesive, AdhesiveStep as Step};
 use bem3d::{Load, NonPeriodicHalfSpace, PeriodicHalfSpace};
@@ -96,9 +95,7 @@ step_class! {
 #[pyclass(module = "mrdw._mrdw")]
 pub struct AdhesiveContact {
     state: State,
-    shape: (usize, usize),
-    size: (f64, f64),
-    periodic: bool,
+    frame: Frame,
 }
 
 grid_getters!(AdhesiveContact);
@@ -122,10 +119,10 @@ impl AdhesiveContact {
             )));
         }
         let grid = Grid::new(py, heights, (size, periodic), mask, e_star, false)?;
-        let ((ny, nx), (lx, ly)) = (grid.shape, grid.size);
+        let ((ny, nx), (lx, ly)) = (grid.frame.shape, grid.frame.size);
         crate::errors::check_grid_memory("an adhesive", (ny, nx), 8.0 * 9.0)?;
-        let (h, mask, periodic) = (grid.heights, grid.mask, grid.periodic);
-        let built = py.detach(|| -> bem3d::Result<State> {
+        let (h, mask, periodic) = (grid.heights, grid.mask, grid.frame.periodic);
+        let state = grid.frame.solve(py, || -> bem3d::Result<State> {
             Ok(if periodic {
                 let op = PeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
                 State::Periodic(Adhesive::new(op, &h, mask.as_deref(), work)?)
@@ -133,13 +130,10 @@ impl AdhesiveContact {
                 let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
                 State::NonPeriodic(Adhesive::new(op, &h, mask.as_deref(), work)?)
             })
-        });
-        let state = built.map_err(|e| bem_err(py, e, (ny, nx), lx * ly))?;
+        })?;
         Ok(Self {
             state,
-            shape: (ny, nx),
-            size: grid.size,
-            periodic,
+            frame: grid.frame,
         })
     }
 
@@ -161,14 +155,11 @@ impl AdhesiveContact {
         tolerance: f64,
     ) -> PyResult<AdhesiveStep> {
         let load = crate::contact::one_load(mean_pressure, force, approach, true)?;
-        let state = &mut self.state;
-        let out = py.detach(|| state.step(load, tolerance));
-        let (ny, nx) = self.shape;
-        let step = out.map_err(|e| bem_err(py, e, (ny, nx), self.size.0 * self.size.1))?;
+        let step = self.frame.solve(py, || self.state.step(load, tolerance))?;
         Ok(AdhesiveStep {
             step,
             pressure: self.state.pressure().to_vec(),
-            shape: self.shape,
+            shape: self.frame.shape,
         })
     }
 
@@ -180,14 +171,9 @@ impl AdhesiveContact {
     /// Gap of the last step at every cell, shape (ny, nx) [length].
     #[getter]
     fn gap<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        grid_array(py, &self.state.gap(), self.shape)
+        grid_array(py, &self.state.gap(), self.frame.shape)
     }
     fn __repr__(&self) -> String {
-        format!(
-            "AdhesiveContact(shape={:?}, size={:?}, periodic={})",
-            self.shape,
-            self.size,
-            crate::grid_getters::py_bool(self.periodic)
-        )
+        self.frame.repr("AdhesiveContact", "")
     }
 }

@@ -2,8 +2,7 @@
 //! Maugis-Dugdale or exponential) on numpy height maps, under a prescribed approach, on the free or the
 //! periodic half-space.
 
-use crate::contact::bem_err;
-use crate::contact::{grid_array, Grid};
+use crate::contact::{grid_array, Frame, Grid};
 use crate::errors::value_error;
 use bem3d::cohesive::{CohesiveContact as Cohesive, CohesiveLaw, CohesiveStep as Step};
 use bem3d::{NonPeriodicHalfSpace, PeriodicHalfSpace};
@@ -107,9 +106,7 @@ impl Solver {
 #[pyclass(module = "mrdw._mrdw")]
 pub struct CohesiveContact {
     contact: Solver,
-    shape: (usize, usize),
-    size: (f64, f64),
-    periodic: bool,
+    frame: Frame,
 }
 
 grid_getters!(CohesiveContact);
@@ -147,10 +144,10 @@ impl CohesiveContact {
             }
         }
         let grid = Grid::new(py, heights, (size, Some(periodic)), mask, e_star, false)?;
-        let ((ny, nx), (lx, ly)) = (grid.shape, grid.size);
+        let ((ny, nx), (lx, ly)) = (grid.frame.shape, grid.frame.size);
         crate::errors::check_grid_memory("a cohesive", (ny, nx), 8.0 * 9.0)?;
         let (h, mask) = (grid.heights, grid.mask);
-        let built = py.detach(|| -> bem3d::Result<_> {
+        let contact = grid.frame.solve(py, || -> bem3d::Result<_> {
             Ok(if periodic {
                 let op = PeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
                 Solver::Periodic(
@@ -160,13 +157,10 @@ impl CohesiveContact {
                 let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
                 Solver::Free(Cohesive::new(op, &h, mask.as_deref(), work, sigma0)?.with_law(law))
             })
-        });
-        let contact = built.map_err(|e| bem_err(py, e, (ny, nx), lx * ly))?;
+        })?;
         Ok(Self {
             contact,
-            shape: (ny, nx),
-            size: grid.size,
-            periodic,
+            frame: grid.frame,
         })
     }
 
@@ -180,14 +174,13 @@ impl CohesiveContact {
         if !approach.is_finite() {
             return Err(value_error(format!("approach = {approach} must be finite")));
         }
-        let contact = &mut self.contact;
-        let out = py.detach(|| contact.step(approach, tolerance));
-        let (ny, nx) = self.shape;
-        let step = out.map_err(|e| bem_err(py, e, (ny, nx), self.size.0 * self.size.1))?;
+        let step = self
+            .frame
+            .solve(py, || self.contact.step(approach, tolerance))?;
         Ok(CohesiveStep {
             step,
             pressure: self.contact.pressure().to_vec(),
-            shape: self.shape,
+            shape: self.frame.shape,
         })
     }
 
@@ -210,13 +203,11 @@ impl CohesiveContact {
         }
     }
     fn __repr__(&self) -> String {
-        format!(
-            "CohesiveContact(shape={:?}, size={:?}, periodic={}, law={:?}, dugdale_length={:.4e})",
-            self.shape,
-            self.size,
-            crate::grid_getters::py_bool(self.periodic),
+        let extra = format!(
+            ", law={:?}, dugdale_length={:.4e}",
             self.law(),
             self.contact.dugdale_length()
-        )
+        );
+        self.frame.repr("CohesiveContact", &extra)
     }
 }

@@ -406,6 +406,47 @@ impl<'py> HeightMap<'py> {
     }
 }
 
+/// The grid of a class that solves on one: shape (ny, nx), size (lx, ly) [length] and
+/// whether the half-space repeats with the cell.
+#[derive(Clone, Copy, Debug)]
+pub struct Frame {
+    pub shape: (usize, usize),
+    pub size: (f64, f64),
+    pub periodic: bool,
+}
+
+impl Frame {
+    /// lx * ly [length^2].
+    pub fn area(&self) -> f64 {
+        self.size.0 * self.size.1
+    }
+
+    /// A solver's error on this grid as the Python exception (see `contact::bem_err`).
+    pub fn err(&self, py: Python<'_>, e: bem3d::BemError) -> PyErr {
+        bem_err(py, e, self.shape, self.area())
+    }
+
+    /// Runs `solve` with the GIL released; its error as the Python exception.
+    pub fn solve<T: Send>(
+        &self,
+        py: Python<'_>,
+        solve: impl FnOnce() -> bem3d::Result<T> + Send,
+    ) -> PyResult<T> {
+        py.detach(solve).map_err(|e| self.err(py, e))
+    }
+
+    /// `Class(shape=.., size=.., periodic=..EXTRA)` for `__repr__`; `extra` starts with
+    /// ", " when not empty.
+    pub fn repr(&self, class: &str, extra: &str) -> String {
+        format!(
+            "{class}(shape={:?}, size={:?}, periodic={}{extra})",
+            self.shape,
+            self.size,
+            crate::grid_getters::py_bool(self.periodic)
+        )
+    }
+}
+
 /// The grid a constructor builds on: the heights (rows of y), the solver's mask, the
 /// size and periodicity from the arguments or else the topography object's.
 pub struct Grid {
@@ -416,9 +457,7 @@ pub struct Grid {
     pub mask: Option<Vec<bool>>,
     /// Cells the heights left undefined (a masked array's masked cells).
     pub undefined: usize,
-    pub shape: (usize, usize),
-    pub size: (f64, f64),
-    pub periodic: bool,
+    pub frame: Frame,
 }
 
 impl Grid {
@@ -474,9 +513,11 @@ impl Grid {
             shared,
             mask,
             undefined,
-            shape: (ny, nx),
-            size,
-            periodic,
+            frame: Frame {
+                shape: (ny, nx),
+                size,
+                periodic,
+            },
         })
     }
 }
@@ -507,10 +548,8 @@ impl Grid {
 #[pyclass(module = "mrdw._mrdw")]
 pub struct Contact {
     solver: Solver,
-    shape: (usize, usize),
-    size: (f64, f64),
+    frame: Frame,
     e_star: f64,
-    periodic: bool,
     /// Cells the heights left undefined (a masked array's), outside the contact.
     undefined: usize,
     /// Set on Ctrl-C during a solve ([`interruptible`]).
@@ -683,11 +722,11 @@ impl Contact {
             };
             Ok::<_, bem3d::BemError>((sol, k))
         })?;
-        let (sol, k) = out.map_err(|e| bem_err(py, e, self.shape, self.size.0 * self.size.1))?;
+        let (sol, k) = out.map_err(|e| self.frame.err(py, e))?;
         Ok(ContactResult::new(
             sol,
-            self.shape,
-            self.size.0 * self.size.1,
+            self.frame.shape,
+            self.frame.area(),
             k,
         ))
     }
@@ -706,11 +745,11 @@ impl Contact {
         mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
     ) -> PyResult<Self> {
         let grid = Grid::new(py, heights, (size, periodic), mask, e_star, true)?;
-        let ((ny, nx), (lx, ly)) = (grid.shape, grid.size);
+        let ((ny, nx), (lx, ly)) = (grid.frame.shape, grid.frame.size);
         let (h, mask) = (&grid.heights, grid.mask);
         let shared = grid.shared.map(Arc::new);
         let heights = shared.clone();
-        let built = py.detach(|| -> bem3d::Result<Solver> {
+        let solver = grid.frame.solve(py, || -> bem3d::Result<Solver> {
             // The caller's heights in place where numpy's layout allows, else the copy.
             fn solver<K: bem3d::operator::SolverOperator>(
                 op: K,
@@ -723,21 +762,18 @@ impl Contact {
                     None => ContactSolver::new(op, h, mask),
                 }
             }
-            Ok(if grid.periodic {
+            Ok(if grid.frame.periodic {
                 let op = PeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
                 Solver::Periodic(solver(op, h, heights, mask)?)
             } else {
                 let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
                 Solver::NonPeriodic(solver(op, h, heights, mask)?)
             })
-        });
-        let solver = built.map_err(|e| bem_err(py, e, (ny, nx), lx * ly))?;
+        })?;
         Ok(Self {
             solver,
-            shape: (ny, nx),
-            size: grid.size,
+            frame: grid.frame,
             e_star,
-            periodic: grid.periodic,
             undefined: grid.undefined,
             interrupt: Interrupt::default(),
             shared,
@@ -782,10 +818,10 @@ impl Contact {
             parse_paths(paths.as_ref())?,
         )?;
         if let Some(w) = &warm {
-            if w.shape != self.shape {
+            if w.shape != self.frame.shape {
                 return Err(value_error(format!(
                     "warm start has shape {:?} but this contact is {:?}",
-                    w.shape, self.shape
+                    w.shape, self.frame.shape
                 )));
             }
         }
@@ -849,10 +885,10 @@ impl Contact {
     fn __repr__(&self) -> String {
         format!(
             "Contact(shape={:?}, size={:?}, e_star={}, periodic={})",
-            self.shape,
-            self.size,
+            self.frame.shape,
+            self.frame.size,
             self.e_star,
-            crate::grid_getters::py_bool(self.periodic)
+            crate::grid_getters::py_bool(self.frame.periodic)
         )
     }
 }

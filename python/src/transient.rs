@@ -1,7 +1,6 @@
 //! Transient viscoelastic contact in 3D (`bem3d::viscoelastic`) on numpy height maps.
 
-use crate::contact::bem_err;
-use crate::contact::{grid_array, interruptible, request, Grid};
+use crate::contact::{grid_array, interruptible, request, Frame, Grid};
 use crate::errors::value_error;
 use bem3d::viscoelastic::{Relaxation, Step, TransientContact as Transient};
 use bem3d::{Interrupt, Load, NonPeriodicHalfSpace, Paths, PeriodicHalfSpace, SolverOptions};
@@ -100,9 +99,7 @@ step_class! {
 #[pyclass(module = "mrdw._mrdw")]
 pub struct TransientContact {
     history: History,
-    shape: (usize, usize),
-    size: (f64, f64),
-    periodic: bool,
+    frame: Frame,
     interrupt: Interrupt,
 }
 
@@ -138,11 +135,11 @@ impl TransientContact {
                 e
             }
         })?;
-        let ((ny, nx), (lx, ly)) = (grid.shape, grid.size);
+        let ((ny, nx), (lx, ly)) = (grid.frame.shape, grid.frame.size);
         let per_cell = 8.0 * (4 + modulus.terms.len()) as f64;
         crate::errors::check_grid_memory("the history of a", (ny, nx), per_cell)?;
-        let (h, mask, periodic) = (grid.heights, grid.mask, grid.periodic);
-        let built = py.detach(|| -> bem3d::Result<History> {
+        let (h, mask, periodic) = (grid.heights, grid.mask, grid.frame.periodic);
+        let history = grid.frame.solve(py, || -> bem3d::Result<History> {
             Ok(if periodic {
                 let op = PeriodicHalfSpace::try_new(nx, ny, lx, ly, e_ref)?;
                 History::Periodic(Transient::new(op, &h, mask, modulus)?)
@@ -150,13 +147,10 @@ impl TransientContact {
                 let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_ref)?;
                 History::NonPeriodic(Transient::new(op, &h, mask, modulus)?)
             })
-        });
-        let history = built.map_err(|e| bem_err(py, e, (ny, nx), lx * ly))?;
+        })?;
         Ok(Self {
             history,
-            shape: (ny, nx),
-            size: grid.size,
-            periodic,
+            frame: grid.frame,
             interrupt: Interrupt::default(),
         })
     }
@@ -195,11 +189,10 @@ impl TransientContact {
         };
         let history = &mut self.history;
         let out = interruptible(py, &self.interrupt, || history.step(dt, req.load, &opts))?;
-        let (ny, nx) = self.shape;
-        let step = out.map_err(|e| bem_err(py, e, (ny, nx), self.size.0 * self.size.1))?;
+        let step = out.map_err(|e| self.frame.err(py, e))?;
         Ok(TransientStep {
             step,
-            shape: self.shape,
+            shape: self.frame.shape,
         })
     }
 
@@ -211,15 +204,10 @@ impl TransientContact {
     /// Surface displacement into the half-space, shape (ny, nx) [length].
     #[getter]
     fn displacement<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        grid_array(py, self.history.displacement(), self.shape)
+        grid_array(py, self.history.displacement(), self.frame.shape)
     }
     fn __repr__(&self) -> String {
-        format!(
-            "TransientContact(shape={:?}, size={:?}, periodic={}, time={})",
-            self.shape,
-            self.size,
-            crate::grid_getters::py_bool(self.periodic),
-            self.history.time()
-        )
+        let extra = format!(", time={}", self.history.time());
+        self.frame.repr("TransientContact", &extra)
     }
 }

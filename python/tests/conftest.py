@@ -1,11 +1,13 @@
 """Shared helpers: the CLI binary (for bit-identity checks) and small problems."""
 
+import json
 import os
 import pathlib
 import re
 import shutil
 import subprocess
 
+import numpy as np
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
@@ -38,3 +40,16 @@ def coarse_scene(name, folder, **keys):
     path = pathlib.Path(folder) / f"{name}.toml"
     path.write_text(text)
     return path
+
+
+def run_coarse(exe, name, folder, csv, **keys):
+    """Runs `coarse_scene(name, folder, **keys)` with the CLI `exe` into `folder/t`;
+    returns the numbers of its table `csv` (comment lines and the header left out) and
+    the summary's results."""
+    scene = coarse_scene(name, folder, **keys)
+    report = pathlib.Path(folder) / "t"
+    out = run_cli(exe, "run", str(scene), "--out", str(report))
+    assert out.returncode == 0, out.stderr
+    rows = [r for r in open(report / csv) if not r.startswith("#")]
+    results = json.load(open(report / "summary.json"))["results"]
+    return np.loadtxt(rows[1:], delimiter=","), results

@@ -120,21 +120,16 @@ def test_viscoelastic_slip_in_full_stick_is_the_hereditary_integral():
 
 
 def test_viscoelastic_slip_matches_the_cli_scene(mrdw_bin, tmp_path):
-    from conftest import coarse_scene, run_cli
+    from conftest import run_coarse
 
     n = 32
-    scene = coarse_scene("tangential-viscoelastic-3d", tmp_path, cells_3d=n)
-    out = run_cli(mrdw_bin, "run", str(scene), "--out", str(tmp_path / "t"))
-    assert out.returncode == 0, out.stderr
-    rows = [r for r in open(tmp_path / "t" / "tangential_viscoelastic_3d.csv") if not r.startswith("#")]
-    data = np.loadtxt(rows[1:], delimiter=",")
+    data, results = run_coarse(
+        mrdw_bin, "tangential-viscoelastic-3d", tmp_path, "tangential_viscoelastic_3d.csv", cells_3d=n
+    )
     # The scene on a coarser grid: a sphere R = 5 pressed with 0.1 on E* = 1, n^2 cells
     # over 2.5 contact radii (the side from the summary) on the free half-space;
     # G*(t) = 2/3 + 2 exp(-t / 0.5), mu = 0.3: the same forces bit for bit.
-    import json
-
-    summary = json.load(open(tmp_path / "t" / "summary.json"))
-    side = summary["results"]["tangential_viscoelastic.grid_side_3d"]
+    side = results["tangential_viscoelastic.grid_side_3d"]
     r, f = 5.0, 0.1
     h = side / n
     x = (np.arange(n) + 0.5) * h - 0.5 * side
@@ -176,16 +171,10 @@ def test_viscoelastic_slip_bad_input_is_a_value_error(kwargs, match):
 
 
 def test_partial_slip_loops_match_the_cli_scene(mrdw_bin, tmp_path):
-    from conftest import coarse_scene, run_cli
-    import json
+    from conftest import run_coarse
 
     n = 48
-    scene = coarse_scene("tangential-3d-free", tmp_path, cells=n)
-    out = run_cli(mrdw_bin, "run", str(scene), "--out", str(tmp_path / "t"))
-    assert out.returncode == 0, out.stderr
-    rows = [r for r in open(tmp_path / "t" / "loops.csv") if not r.startswith("#")]
-    data = np.loadtxt(rows[1:], delimiter=",")
-    results = json.load(open(tmp_path / "t" / "summary.json"))["results"]
+    data, results = run_coarse(mrdw_bin, "tangential-3d-free", tmp_path, "loops.csv", cells=n)
     # The scene on a coarser grid: a sphere R = 10 pressed with 1 on E* = 4 (E = 3,
     # nu = 0.5 under a rigid body), n^2 cells on the free half-space, mu = 0.5, tolerance
     # 1e-8; the first loop (amplitude 0.2 mu P) after loading in 20 steps and one cycle:

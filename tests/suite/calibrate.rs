@@ -4,7 +4,8 @@
 //! refused.
 
 use crate::common::{
-    csvs, merge, mrdw_env as mrdw, ok, run_scene_text, run_written_scene, stderr, summary,
+    csvs, failed_with, merge, mrdw_env as mrdw, ok, run_full, run_scene_text, run_shards,
+    run_written_scene, stderr, stopped_run, summary,
 };
 use std::path::Path;
 
@@ -79,15 +80,11 @@ fn a_measured_map_calibrates_with_its_own_3d_solve() {
 #[test]
 fn killed_run_resumes_and_shards_merge_to_identical_csvs() {
     let tmp = tempfile::tempdir().unwrap();
-    let scene = tmp.path().join("c.toml");
-    std::fs::write(
-        &scene,
-        format!("name = \"c\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"calibrate\"\nself_affine = {{ hurst = 0.5, rolloff = 2.0 }}\ntarget = 0.01\n{SMALL}"),
-    )
-    .unwrap();
-    let s = scene.to_str().unwrap();
-    let full = tmp.path().join("full");
-    ok(&mrdw(&["run", s, "--out", full.to_str().unwrap()], &[]));
+    let (s, full) = run_full(
+        tmp.path(),
+        "c.toml",
+        &format!("name = \"c\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"calibrate\"\nself_affine = {{ hurst = 0.5, rolloff = 2.0 }}\ntarget = 0.01\n{SMALL}"),
+    );
     // target 0.01 is not met: every punch up to max ran, and the report says so.
     let sm = summary(&full);
     assert_eq!(sm["results"]["calibrate.realisations"], 16.0);
@@ -95,33 +92,15 @@ fn killed_run_resumes_and_shards_merge_to_identical_csvs() {
         .to_string()
         .contains("raise realisations.max"));
     let part = tmp.path().join("part");
-    let o = mrdw(
-        &["run", s, "--out", part.to_str().unwrap()],
-        &[("MRDW_STOP_AFTER_TASKS", "5")],
-    );
-    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
-    assert!(!part.exists());
+    stopped_run(&s, &part, "5");
     ok(&mrdw(
-        &["run", s, "--out", part.to_str().unwrap(), "--threads", "1"],
+        &["run", &s, "--out", part.to_str().unwrap(), "--threads", "1"],
         &[],
     ));
     assert_eq!(csvs(&full), csvs(&part));
-    let shard = |k: usize| tmp.path().join(format!("shard{k}"));
-    for k in 0..2 {
-        ok(&mrdw(
-            &[
-                "run",
-                s,
-                "--shard",
-                &format!("{k}/2"),
-                "--out",
-                shard(k).to_str().unwrap(),
-            ],
-            &[],
-        ));
-    }
+    let shards = run_shards(&s, tmp.path(), &["2", "2"]);
     let merged = tmp.path().join("merged");
-    ok(&merge(&[&shard(0), &shard(1)], &merged));
+    ok(&merge(&[&shards[0], &shards[1]], &merged));
     assert_eq!(csvs(&full), csvs(&merged));
 }
 
@@ -156,8 +135,7 @@ fn keys_without_effect_are_refused() {
             tmp.path(),
             &format!("name = \"c\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"calibrate\"\n{source}\n{SMALL}"),
         );
-        assert_eq!(o.status.code(), Some(2), "{source}: {}", stderr(&o));
-        assert!(stderr(&o).contains(needle), "{source}: {}", stderr(&o));
+        failed_with(&o, 2, needle);
         assert!(!out.exists());
     }
 }

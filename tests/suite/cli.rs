@@ -681,13 +681,12 @@ const CHECKED_IN_THE_TABLE_3D: &[&str] = &[
 #[test]
 fn force_depth_request_runs_no_pressure_stage() {
     let tmp = tempfile::tempdir().unwrap();
-    let scene = tmp.path().join("fd.toml");
-    std::fs::write(
-        &scene,
+    let scene = crate::common::write_in(
+        tmp.path(),
+        "fd.toml",
         "name = \"fd\"\n[material]\ne_star = 1.0\n[profile]\nshapes = [{ kind = \"sphere\", radius = 1.0 }]\n\
          [[outputs]]\nkind = \"force_depth\"\nmax = 0.01\n",
-    )
-    .unwrap();
+    );
     let s = run_scene(scene.to_str().unwrap(), &tmp.path().join("out"));
     assert_eq!(
         stages(&s),
@@ -801,8 +800,7 @@ fn bad_input_is_one_clear_line_and_no_output() {
 #[test]
 fn missing_scene_and_table_file_errors() {
     let o = mrdw(&["run", "no-such-scene"]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("neither a file nor an embedded scene"));
+    crate::common::failed_with(&o, 2, "neither a file nor an embedded scene");
     let tmp = tempfile::tempdir().unwrap();
     let scene = tmp.path().join("t.toml");
     let table = tmp.path().join("tip.csv");

@@ -125,3 +125,60 @@ pub fn mrdw_to_full_disk(args: &[&str], on_stderr: bool) -> Output {
     }
     c.output().unwrap()
 }
+
+/// Writes `text` to the file `dir/name` and returns its path.
+pub fn write_in(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let scene = dir.join(name);
+    std::fs::write(&scene, text).unwrap();
+    scene
+}
+
+/// Writes the scene `text` as `dir/name`, runs it whole into `dir/full` and returns
+/// (scene file as text, report folder); a failed run fails the test.
+pub fn run_full(dir: &Path, name: &str, text: &str) -> (String, PathBuf) {
+    let scene = write_in(dir, name, text);
+    let s = scene.to_str().unwrap().to_string();
+    let full = dir.join("full");
+    ok(&mrdw_env(
+        &["run", &s, "--out", full.to_str().unwrap()],
+        &[],
+    ));
+    (s, full)
+}
+
+/// Runs `scene` into `out` stopped after `tasks` tasks: the run must exit with code 3
+/// and write no report.
+pub fn stopped_run(scene: &str, out: &Path, tasks: &str) {
+    let o = mrdw_env(
+        &["run", scene, "--out", out.to_str().unwrap()],
+        &[("MRDW_STOP_AFTER_TASKS", tasks)],
+    );
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    assert!(!out.exists(), "a stopped run must not write a report");
+}
+
+/// Runs `scene` as `threads.len()` shards, shard k on `threads[k]` threads, into
+/// `dir/shardK`; returns the shard folders (each run must succeed).
+pub fn run_shards(scene: &str, dir: &Path, threads: &[&str]) -> Vec<PathBuf> {
+    let count = threads.len();
+    let mut folders = Vec::new();
+    for (k, t) in threads.iter().enumerate() {
+        let folder = dir.join(format!("shard{k}"));
+        let shard = format!("{k}/{count}");
+        let args = ["run", scene, "--shard", &shard, "--threads", t];
+        ok(&mrdw_env(
+            &[&args[..], &["--out", folder.to_str().unwrap()]].concat(),
+            &[],
+        ));
+        folders.push(folder);
+    }
+    folders
+}
+
+/// Asserts the run exited with `code` and its standard error contains `needle`,
+/// showing the standard error otherwise.
+pub fn failed_with(o: &Output, code: i32, needle: &str) {
+    let e = stderr(o);
+    assert_eq!(o.status.code(), Some(code), "{needle}: {e}");
+    assert!(e.contains(needle), "`{needle}` not in: {e}");
+}

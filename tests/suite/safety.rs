@@ -2,7 +2,7 @@
 //! into one folder do not race, failures leave no debris, every file name is unique,
 //! and output errors (closed pipe, full disk) are errors, not panics.
 
-use crate::common::{mrdw_in, stderr};
+use crate::common::{failed_with, mrdw_in, stderr};
 use std::path::Path;
 use std::process::{Command, Stdio};
 
@@ -23,12 +23,7 @@ fn a_folder_of_user_files_is_refused_and_kept() {
     std::fs::create_dir(&dir).unwrap();
     std::fs::write(dir.join("notes.txt"), "precious").unwrap();
     let o = mrdw_in(tmp.path(), &["run", "hertz", "--out", "mine"]);
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(
-        stderr(&o).contains("holds files mrdw did not write"),
-        "{}",
-        stderr(&o)
-    );
+    failed_with(&o, 2, "holds files mrdw did not write");
     assert_eq!(stderr(&o).trim_end().lines().count(), 1);
     assert_eq!(
         std::fs::read_to_string(dir.join("notes.txt")).unwrap(),
@@ -53,12 +48,7 @@ fn a_file_is_never_replaced_by_a_report() {
     let tmp = tempfile::tempdir().unwrap();
     std::fs::write(tmp.path().join("data.csv"), "1,2\n").unwrap();
     let o = mrdw_in(tmp.path(), &["run", "hertz", "--out", "data.csv"]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(
-        stderr(&o).contains("a file of that name exists"),
-        "{}",
-        stderr(&o)
-    );
+    failed_with(&o, 2, "a file of that name exists");
     assert_eq!(
         std::fs::read_to_string(tmp.path().join("data.csv")).unwrap(),
         "1,2\n"
@@ -109,12 +99,7 @@ fn a_second_run_into_a_locked_folder_is_told_plainly() {
     let lock = std::fs::File::create(tmp.path().join(".r.mrdw-lock")).unwrap();
     lock.try_lock().unwrap();
     let o = mrdw_in(tmp.path(), &["run", "hertz", "--out", "r"]);
-    assert_eq!(o.status.code(), Some(5), "{}", stderr(&o));
-    assert!(
-        stderr(&o).contains("in use by another mrdw run"),
-        "{}",
-        stderr(&o)
-    );
+    failed_with(&o, 5, "in use by another mrdw run");
     assert!(!tmp.path().join("r").exists());
     drop(lock);
     // Released here, the lock can live on for a moment in a child that another test of
@@ -143,8 +128,7 @@ fn a_failed_run_leaves_nothing_behind() {
     )
     .unwrap();
     let o = mrdw_in(tmp.path(), &["run", "b.toml", "--out", "r"]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("non-finite height"), "{}", stderr(&o));
+    failed_with(&o, 2, "non-finite height");
     assert_eq!(names(tmp.path()), ["b.toml", "nan.npy"]);
 }
 
@@ -213,8 +197,7 @@ fn absurd_thread_counts_are_refused() {
     let tmp = tempfile::tempdir().unwrap();
     for t in ["0", "100000"] {
         let o = mrdw_in(tmp.path(), &["run", "hertz", "--threads", t, "--out", "r"]);
-        assert_eq!(o.status.code(), Some(2), "{t}");
-        assert!(stderr(&o).contains("1..=1024"), "{}", stderr(&o));
+        failed_with(&o, 2, "1..=1024");
     }
     assert_eq!(names(tmp.path()), Vec::<String>::new());
 }

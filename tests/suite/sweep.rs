@@ -2,7 +2,8 @@
 //! run resumes to the same bytes, and shards merge to the same bytes as one run.
 
 use crate::common::{
-    csvs, merge, mrdw_env as mrdw, ok, run_scene_text, run_written_scene, summary,
+    csvs, failed_with, merge, mrdw_env as mrdw, ok, run_full, run_scene_text, run_shards,
+    run_written_scene, stopped_run, summary, write_in,
 };
 
 #[test]
@@ -68,12 +69,11 @@ fn shipped_lambda(hurst: f64) -> f64 {
 fn calibrated_lambda_tables_load() {
     // The embedded table and a sweep's own table both load as lambda for rough lines.
     let tmp = tempfile::tempdir().unwrap();
-    let table = tmp.path().join("lam.csv");
-    std::fs::write(
-        &table,
+    write_in(
+        tmp.path(),
+        "lam.csv",
         "# from a sweep\nhurst [1],lambda [1]\n0.0,2.5\n1.0,4.0\n",
-    )
-    .unwrap();
+    );
     for lam in ["\"calibrated\"", "\"lam.csv\""] {
         let (_, _, s) = run_written_scene(
             tmp.path(),
@@ -93,18 +93,9 @@ fn calibrated_lambda_tables_load() {
 #[test]
 fn killed_run_resumes_to_identical_csvs() {
     let tmp = tempfile::tempdir().unwrap();
-    let scene = tmp.path().join("sw.toml");
-    std::fs::write(&scene, SMALL).unwrap();
-    let s = scene.to_str().unwrap();
-    let full = tmp.path().join("full");
-    ok(&mrdw(&["run", s, "--out", full.to_str().unwrap()], &[]));
+    let (s, full) = run_full(tmp.path(), "sw.toml", SMALL);
     let part = tmp.path().join("part");
-    let o = mrdw(
-        &["run", s, "--out", part.to_str().unwrap()],
-        &[("MRDW_STOP_AFTER_TASKS", "3")],
-    );
-    assert_eq!(o.status.code(), Some(3));
-    assert!(!part.exists(), "a stopped run must not write a report");
+    stopped_run(&s, &part, "3");
     let work = tmp.path().join("part.work");
     let done: usize = std::fs::read_dir(&work)
         .unwrap()
@@ -112,7 +103,7 @@ fn killed_run_resumes_to_identical_csvs() {
         .sum();
     assert!(done >= 3, "checkpoints kept: {done}");
     let resumed = mrdw(
-        &["run", s, "--out", part.to_str().unwrap(), "--threads", "1"],
+        &["run", &s, "--out", part.to_str().unwrap(), "--threads", "1"],
         &[],
     );
     ok(&resumed);
@@ -128,33 +119,13 @@ fn killed_run_resumes_to_identical_csvs() {
 #[test]
 fn shards_merge_to_the_single_run() {
     let tmp = tempfile::tempdir().unwrap();
-    let scene = tmp.path().join("sw.toml");
-    std::fs::write(&scene, SMALL).unwrap();
-    let s = scene.to_str().unwrap();
-    let full = tmp.path().join("full");
-    ok(&mrdw(&["run", s, "--out", full.to_str().unwrap()], &[]));
-    let shard = |k: &str| tmp.path().join(format!("shard{k}"));
-    for (k, threads) in [("0", "1"), ("1", "2"), ("2", "1")] {
-        ok(&mrdw(
-            &[
-                "run",
-                s,
-                "--shard",
-                &format!("{k}/3"),
-                "--threads",
-                threads,
-                "--out",
-                shard(k).to_str().unwrap(),
-            ],
-            &[],
-        ));
-    }
+    let (s, full) = run_full(tmp.path(), "sw.toml", SMALL);
+    let shard = run_shards(&s, tmp.path(), &["1", "2", "1"]);
     // Incomplete: one shard missing.
-    let o = merge(&[&shard("0"), &shard("1")], &tmp.path().join("bad"));
-    assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("all are needed"));
+    let o = merge(&[&shard[0], &shard[1]], &tmp.path().join("bad"));
+    failed_with(&o, 2, "all are needed");
     let merged = tmp.path().join("merged");
-    ok(&merge(&[&shard("0"), &shard("1"), &shard("2")], &merged));
+    ok(&merge(&[&shard[0], &shard[1], &shard[2]], &merged));
     // The origin recorded in the CSVs is the scene path in both runs.
     assert_eq!(csvs(&full), csvs(&merged));
 }
@@ -177,10 +148,7 @@ fn sweep_input_errors() {
             "unknown field `colour`",
         ),
     ] {
-        let (o, _) = run_scene_text(tmp.path(), &text);
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(2), "{err}");
-        assert!(err.contains(needle), "`{needle}` not in {err}");
+        failed_with(&run_scene_text(tmp.path(), &text).0, 2, needle);
     }
     let o = mrdw(
         &[

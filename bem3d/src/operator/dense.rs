@@ -88,13 +88,7 @@ impl DenseCompliance {
             }
         }
         Self {
-            hs: HalfSpace {
-                nx,
-                ny,
-                lx,
-                ly,
-                e_star,
-            },
+            hs: HalfSpace::new(nx, ny, lx, ly, e_star),
             periodic: false,
             matrix,
             single: Vec::new(),
@@ -132,13 +126,7 @@ impl DenseCompliance {
             }
         }
         Self {
-            hs: HalfSpace {
-                nx,
-                ny,
-                lx,
-                ly,
-                e_star,
-            },
+            hs: HalfSpace::new(nx, ny, lx, ly, e_star),
             periodic: true,
             matrix,
             single: Vec::new(),

@@ -4,7 +4,7 @@
 use super::periodic::stiffness_kernel;
 use super::space::{HalfSpace, Operand, Spectral, Transform};
 use super::stiffness::{Precision, Stiffness};
-use super::table::{Mirrored, Table, POINT_LOAD_LIMIT};
+use super::table::{real_space_by_table, Mirrored, Table, POINT_LOAD_LIMIT};
 use super::traits::{Compliance, Preconditioner, RealSpace};
 use crate::error::Result;
 use crate::fft::Fft2;
@@ -38,13 +38,7 @@ pub struct NonPeriodicHalfSpace {
 impl NonPeriodicHalfSpace {
     /// [`NonPeriodicHalfSpace::new`] after [`HalfSpace::check`].
     pub fn try_new(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Result<Self> {
-        let hs = HalfSpace {
-            nx,
-            ny,
-            lx,
-            ly,
-            e_star,
-        };
+        let hs = HalfSpace::new(nx, ny, lx, ly, e_star);
         hs.check(false)?;
         Ok(Self::new(nx, ny, lx, ly, e_star))
     }
@@ -71,13 +65,7 @@ impl NonPeriodicHalfSpace {
                         *v = far.coefficient(i as f64 * hx, j as f64 * hy, a, b) / (PI * e_star);
                     }
                 });
-            let hs = HalfSpace {
-                nx,
-                ny,
-                lx,
-                ly,
-                e_star,
-            };
+            let hs = HalfSpace::new(nx, ny, lx, ly, e_star);
             let table = if square {
                 Mirrored::new(nx, ny, |i, j| quadrant[i.max(j) * nx + i.min(j)])
             } else {
@@ -206,19 +194,6 @@ impl Preconditioner for NonPeriodicHalfSpace {
     }
 }
 
-impl RealSpace for NonPeriodicHalfSpace {
-    fn add_point_loads(&mut self, loads: &[(usize, f64)], u: &mut [f64]) {
-        self.table.add_point_loads(self.hs.nx, loads, u);
-    }
-    fn restricted(&self, cells: &[usize], buffer: Vec<f64>) -> Option<Vec<f64>> {
-        Some(self.table.restricted(self.hs.nx, cells, buffer))
-    }
-    fn displacements_at(&self, at: &[usize], loads: &[(usize, f64)]) -> Option<Vec<f64>> {
-        Some(self.table.displacements_at(self.hs.nx, at, loads))
-    }
-    fn point_load_limit(&self) -> usize {
-        // A direct sum runs over the n cells, the transforms over the 4n padded ones
-        // (measured break-even 103, 227 and 191 loads at 256^2, 512^2, 1024^2).
-        3 * POINT_LOAD_LIMIT
-    }
-}
+// A direct sum runs over the n cells, the transforms over the 4n padded ones (measured
+// break-even 103, 227 and 191 loads at 256^2, 512^2, 1024^2).
+real_space_by_table!(NonPeriodicHalfSpace, 3 * POINT_LOAD_LIMIT);

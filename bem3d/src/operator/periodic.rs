@@ -2,7 +2,7 @@
 
 use super::space::{HalfSpace, Operand, Spectral};
 use super::stiffness::{halved_symbol, Precision, Stiffness};
-use super::table::{Circulant, Table, POINT_LOAD_LIMIT};
+use super::table::{real_space_by_table, Circulant, Table, POINT_LOAD_LIMIT};
 use super::traits::{Compliance, Preconditioner, RealSpace};
 use crate::error::Result;
 use crate::fft::Fft2;
@@ -130,13 +130,7 @@ impl PeriodicHalfSpace {
     /// [`PeriodicHalfSpace::new`] after [`HalfSpace::check`]: an error, not an abort or a
     /// NaN, for a grid, size or modulus the solver cannot work with.
     pub fn try_new(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Result<Self> {
-        let hs = HalfSpace {
-            nx,
-            ny,
-            lx,
-            ly,
-            e_star,
-        };
+        let hs = HalfSpace::new(nx, ny, lx, ly, e_star);
         hs.check(true)?;
         Ok(Self::new(nx, ny, lx, ly, e_star))
     }
@@ -223,13 +217,7 @@ impl PeriodicHalfSpace {
         fft.inverse_of_real(&kernel, &mut green);
         let stiffness = Stiffness::new(nx, ny, stiffness, Some(&kernel), Precision::default());
         Self {
-            hs: HalfSpace {
-                nx,
-                ny,
-                lx,
-                ly,
-                e_star,
-            },
+            hs: HalfSpace::new(nx, ny, lx, ly, e_star),
             fft,
             kernel,
             stiffness,
@@ -311,17 +299,4 @@ impl Preconditioner for PeriodicHalfSpace {
     }
 }
 
-impl RealSpace for PeriodicHalfSpace {
-    fn add_point_loads(&mut self, loads: &[(usize, f64)], u: &mut [f64]) {
-        self.table.add_point_loads(self.hs.nx, loads, u);
-    }
-    fn restricted(&self, cells: &[usize], buffer: Vec<f64>) -> Option<Vec<f64>> {
-        Some(self.table.restricted(self.hs.nx, cells, buffer))
-    }
-    fn displacements_at(&self, at: &[usize], loads: &[(usize, f64)]) -> Option<Vec<f64>> {
-        Some(self.table.displacements_at(self.hs.nx, at, loads))
-    }
-    fn point_load_limit(&self) -> usize {
-        POINT_LOAD_LIMIT
-    }
-}
+real_space_by_table!(PeriodicHalfSpace, POINT_LOAD_LIMIT);

@@ -53,6 +53,17 @@ pub fn check_scales(lx: f64, ly: f64, e_star: f64) -> Result<()> {
 }
 
 impl HalfSpace {
+    /// nx x ny cells over lx x ly [length], contact modulus E* [stress].
+    pub(crate) fn new(nx: usize, ny: usize, lx: f64, ly: f64, e_star: f64) -> Self {
+        Self {
+            nx,
+            ny,
+            lx,
+            ly,
+            e_star,
+        }
+    }
+
     /// Refuses a grid or modulus the solver cannot work with (fewer than 2 cells a side,
     /// a size or E* outside [`SCALE_RANGE`]); the one check of the command line and the
     /// Python package.

@@ -9,6 +9,30 @@ use rayon::prelude::*;
 /// rounding.
 pub(super) const POINT_LOAD_LIMIT: usize = 48;
 
+/// `impl RealSpace for $operator`, whose real-space table is its field `table` (a
+/// [`Table`]) with rows of `hs.nx` cells; `$limit` is its point-load limit. The caller
+/// has `RealSpace` and `Table` in scope.
+macro_rules! real_space_by_table {
+    ($operator:ty, $limit:expr) => {
+        impl RealSpace for $operator {
+            // The table's methods, not the trait's defaults of the same names.
+            fn add_point_loads(&mut self, loads: &[(usize, f64)], u: &mut [f64]) {
+                Table::add_point_loads(&self.table, self.hs.nx, loads, u);
+            }
+            fn restricted(&self, cells: &[usize], buffer: Vec<f64>) -> Option<Vec<f64>> {
+                Some(Table::restricted(&self.table, self.hs.nx, cells, buffer))
+            }
+            fn displacements_at(&self, at: &[usize], loads: &[(usize, f64)]) -> Option<Vec<f64>> {
+                Some(Table::displacements_at(&self.table, self.hs.nx, at, loads))
+            }
+            fn point_load_limit(&self) -> usize {
+                $limit
+            }
+        }
+    };
+}
+pub(super) use real_space_by_table;
+
 /// A real-space influence table: the response at cell `(i, j)` of a grid of row length
 /// `nx` to a unit load at cell `(ic, jc)`, by value or by row. The direct sums
 /// ([`RealSpace::restricted`](super::traits::RealSpace::restricted), [`RealSpace::displacements_at`](super::traits::RealSpace::displacements_at),

@@ -90,27 +90,6 @@ where
         .collect()
 }
 
-/// Second half of a fused application: the operator applied to the loaded input, handed
-/// to `store(item, values)` a chunk at a time
-/// ([`Fft2::finish_rows`](crate::fft::Fft2::finish_rows)).
-pub(super) fn finish_fused<K, I, F, const B: usize>(
-    op: &mut K,
-    which: Operand,
-    fallback: &mut [Vec<f64>; 2],
-    items: I,
-    store: F,
-    wanted: Option<&[bool]>,
-) -> Vec<[f64; B]>
-where
-    K: SolverOperator,
-    I: IntoParallelIterator,
-    I::Iter: IndexedParallelIterator,
-    F: Fn(I::Item, &[f64]) -> [f64; B] + Sync,
-{
-    apply_fused(op, which, fallback, false);
-    store_fused(op, which, fallback, items, store, wanted)
-}
-
 /// The second half's first step: the operator applied to the loaded input x (the
 /// transforms' column pass,
 /// [`Fft2::convolve_columns`](crate::fft::Fft2::convolve_columns); an operator without

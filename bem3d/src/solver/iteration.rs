@@ -2,8 +2,7 @@
 
 use super::convergence::STALL_ITERATIONS;
 use super::fused::{
-    apply_fused, energy_fused, finish_fused, load_fused, reduce, store_fused, sum_parts,
-    with_scratch,
+    apply_fused, energy_fused, load_fused, reduce, store_fused, sum_parts, with_scratch,
 };
 use super::options::{Choice, SolverOptions, Target};
 use super::state::ContactSolver;
@@ -12,7 +11,7 @@ use super::sweeps;
 use crate::error::{BemError, Result};
 use crate::fft::{copy_in, copy_out, ROWS_PER_CHUNK};
 use crate::operator::{Operand, SolverOperator};
-use crate::solution::{Path, Solution};
+use crate::solution::Solution;
 use rayon::prelude::*;
 
 /// Largest contact set, as a fraction of the grid's cells, on which the iteration applies
@@ -327,14 +326,19 @@ impl<K: SolverOperator> ContactSolver<K> {
                         })
                         .collect()
                 }
-                _ => finish_fused(
-                    &mut self.op,
-                    Operand::Preconditioner,
-                    &mut self.work.fallback,
-                    chunks,
-                    sums_of,
-                    Some(&self.work.rows_on),
-                ),
+                _ => {
+                    let (op, fallback) = (&mut self.op, &mut self.work.fallback);
+                    apply_fused(op, Operand::Preconditioner, fallback, false);
+                    let wanted = Some(&self.work.rows_on[..]);
+                    store_fused(
+                        op,
+                        Operand::Preconditioner,
+                        fallback,
+                        chunks,
+                        sums_of,
+                        wanted,
+                    )
+                }
             }
         });
         sum_parts(&parts, None)
@@ -621,10 +625,12 @@ impl<K: SolverOperator> ContactSolver<K> {
     /// K p into `w` (pass A then adds z).
     fn finish_into_w(&mut self, k_op: Operand) {
         let fc = ROWS_PER_CHUNK * self.op.nx();
-        finish_fused(
-            &mut self.op,
+        let (op, fallback) = (&mut self.op, &mut self.work.fallback);
+        apply_fused(op, k_op, fallback, false);
+        store_fused(
+            op,
             k_op,
-            &mut self.work.fallback,
+            fallback,
             self.work.w.par_chunks_mut(fc),
             copy_out,
             None,
@@ -665,7 +671,6 @@ impl<K: SolverOperator> ContactSolver<K> {
     ) -> Solution {
         let area = self.op.cell_area();
         let d = if approach.is_finite() { approach } else { 0.0 };
-        let contact_cells = p.iter().filter(|&&v| v > 0.0).count();
         let certificate = self.problem.certificate(&p, &self.work.w, self.op.nx(), d);
         let gap_of = |w: f64, m: u8| if m > 0 { (w - d).max(0.0) } else { 0.0 };
         let gap: Vec<f64> = if p.len() > self.tuning.large_grid_cells {
@@ -681,24 +686,12 @@ impl<K: SolverOperator> ContactSolver<K> {
             let w = self.work.w.par_iter().zip(self.problem.mask.par_iter());
             w.map(|(&w, &m)| gap_of(w, m)).collect()
         };
+        let cells = self.problem.domain_cells;
         Solution {
             certificate,
-            force: p.iter().sum::<f64>() * area,
-            contact_cells,
-            contact_area: contact_cells as f64 * area,
-            mean_gap: gap.iter().sum::<f64>() / self.problem.domain_cells as f64,
-            gap,
-            pressure: p,
-            approach,
             iterations,
             residual,
-            domain_cells: self.problem.domain_cells,
-            warm_started: false,
-            path: Path::FullGrid,
-            nested_start: false,
-            single_iterations: 0,
-            stencil_iterations: 0,
-            scaled_directions: false,
+            ..Solution::full_grid(p, gap, approach, area, cells)
         }
     }
 

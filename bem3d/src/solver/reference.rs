@@ -15,7 +15,7 @@
 //!
 //! Conventions (heights, approach, mask) are the fast solver's.
 
-use super::{Load, Path, Solution, SolverOptions};
+use super::{Load, Solution, SolverOptions};
 use crate::error::{BemError, Result};
 use crate::operator::Compliance;
 
@@ -215,29 +215,16 @@ impl<'a> Problem<'a> {
         let low = g.iter().fold(0.0f64, |m, &v| m.min(v));
         let ps: f64 = p.iter().sum();
         let pg: f64 = p.iter().zip(g).map(|(p, g)| p * (g - low)).sum();
-        let contact_cells = p.iter().filter(|&&v| v > 0.0).count();
+        let certificate = if ps > 0.0 {
+            pg / (ps * self.h_rms)
+        } else {
+            0.0
+        };
         Solution {
-            force: ps * area,
-            contact_cells,
-            contact_area: contact_cells as f64 * area,
-            mean_gap: gap.iter().sum::<f64>() / cells,
-            gap,
-            certificate: if ps > 0.0 {
-                pg / (ps * self.h_rms)
-            } else {
-                0.0
-            },
-            pressure: p,
-            approach,
+            certificate,
             iterations,
             residual,
-            domain_cells: cells as usize,
-            warm_started: false,
-            path: Path::FullGrid,
-            nested_start: false,
-            single_iterations: 0,
-            stencil_iterations: 0,
-            scaled_directions: false,
+            ..Solution::full_grid(p, gap, approach, area, cells as usize)
         }
     }
 }

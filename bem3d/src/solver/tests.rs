@@ -104,16 +104,11 @@ fn rms_slope_matches_closed_forms() {
 #[test]
 fn lean_large_grid_handling_changes_no_bit() {
     let n = 512;
-    let h: Vec<f64> = (0..n * n)
-        .map(|k| {
-            let (x, y) = ((k % n) as f64 / n as f64, (k / n) as f64 / n as f64);
-            let phase =
-                |a: f64, b: f64, c: f64| (2.0 * std::f64::consts::PI * (a * x + b * y) + c).cos();
-            0.01 * (phase(1.0, 2.0, 0.3)
-                + 0.5 * phase(5.0, -3.0, 1.0)
-                + 0.2 * phase(-11.0, 17.0, 2.0))
-        })
-        .collect();
+    let h = crate::testing::on_unit_cell(n, |x, y| {
+        let phase =
+            |a: f64, b: f64, c: f64| (2.0 * std::f64::consts::PI * (a * x + b * y) + c).cos();
+        0.01 * (phase(1.0, 2.0, 0.3) + 0.5 * phase(5.0, -3.0, 1.0) + 0.2 * phase(-11.0, 17.0, 2.0))
+    });
     // Without the single-precision phase, every fresh K p is in double precision
     // (the early ones, while the contact set changes, too), and K t's double-precision
     // transform grows K's row buffer to its own size.
@@ -265,13 +260,10 @@ fn stencil_and_transforms_reach_the_same_solution() {
 #[test]
 fn shared_heights_solve_as_a_copy_does() {
     let n = 96;
-    let h: Vec<f64> = (0..n * n)
-        .map(|k| {
-            let (x, y) = ((k % n) as f64 / n as f64, (k / n) as f64 / n as f64);
-            let bump = -((x - 0.5).powi(2) + (y - 0.5).powi(2));
-            bump + 0.004 * (23.0 * x).sin() * (17.0 * y).cos() + 0.002 * (41.0 * y).sin()
-        })
-        .collect();
+    let h = crate::testing::on_unit_cell(n, |x, y| {
+        let bump = -((x - 0.5).powi(2) + (y - 0.5).powi(2));
+        bump + 0.004 * (23.0 * x).sin() * (17.0 * y).cos() + 0.002 * (41.0 * y).sin()
+    });
     let shared: SharedHeights = std::sync::Arc::new(h.clone());
     let mask: Vec<bool> = (0..n * n).map(|k| k % 7 != 3).collect();
     let opts = SolverOptions::new(1e-10, 10_000);

@@ -572,14 +572,11 @@ mod tests {
     fn at_nu_zero_partial_slip_is_the_normal_curve_shifted() {
         use crate::{ContactSolver, Load, PeriodicHalfSpace, SolverOptions};
         let n = 64;
-        let z: Vec<f64> = (0..n * n)
-            .map(|k| {
-                let (x, y) = ((k % n) as f64 / n as f64, (k / n) as f64 / n as f64);
-                let t = 2.0 * PI;
-                0.01 * ((3.0 * t * x).cos() + (2.0 * t * y).cos())
-                    + 0.004 * (t * (5.0 * x + 3.0 * y)).cos()
-            })
-            .collect();
+        let z = crate::testing::on_unit_cell(n, |x, y| {
+            let t = 2.0 * PI;
+            0.01 * ((3.0 * t * x).cos() + (2.0 * t * y).cos())
+                + 0.004 * (t * (5.0 * x + 3.0 * y)).cos()
+        });
         let mut solver =
             ContactSolver::new(PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0), &z, None).unwrap();
         let opts = SolverOptions::new(1e-12, 5000);

@@ -882,10 +882,8 @@ fn nested_start_reaches_the_cold_starts_solution_in_fewer_iterations() {
 fn paths_are_reported_and_forbidding_one_keeps_the_answer() {
     let n = 128;
     let o = |paths: Paths| SolverOptions {
-        tolerance: 1e-12,
-        max_iterations: 10_000,
         paths,
-        ..Default::default()
+        ..SolverOptions::new(1e-12, 10_000)
     };
     let all = Paths::default();
     let h = common::self_affine(n, 0.8, 5);
@@ -1042,10 +1040,8 @@ fn scaled_directions_reach_the_same_solution() {
 fn forced_paths_run_and_keep_the_answer() {
     let n = 128;
     let o = |paths: Paths| SolverOptions {
-        tolerance: 1e-12,
-        max_iterations: 10_000,
         paths,
-        ..Default::default()
+        ..SolverOptions::new(1e-12, 10_000)
     };
     let h = common::self_affine(n, 0.8, 5);
     let periodic = |load: Load, paths: Paths| {

@@ -115,6 +115,7 @@ mod tests {
         let dir = crate::files::ScratchDir::new().unwrap();
         let names: Vec<String> = (0..7).map(|i| format!("t{i}.json")).collect();
         let runs = AtomicUsize::new(0);
+        let whole = RunControl::default();
         let run = |i: usize| -> Result<String> {
             runs.fetch_add(1, Ordering::SeqCst);
             json(&(i * i))
@@ -127,16 +128,7 @@ mod tests {
             compute(dir.path(), "test", &names, 7, true, &c, &run).unwrap();
         }
         assert_eq!(runs.load(Ordering::SeqCst), 7);
-        compute(
-            dir.path(),
-            "test",
-            &names,
-            7,
-            true,
-            &RunControl::default(),
-            &run,
-        )
-        .unwrap();
+        compute(dir.path(), "test", &names, 7, true, &whole, &run).unwrap();
         assert_eq!(runs.load(Ordering::SeqCst), 7);
         for (i, n) in names.iter().enumerate() {
             assert_eq!(load::<usize>(dir.path(), n).unwrap(), i * i);
@@ -147,16 +139,7 @@ mod tests {
             ..Default::default()
         };
         assert!(compute(other.path(), "test", &names, 5, true, &stop, &run).is_err());
-        compute(
-            other.path(),
-            "test",
-            &names,
-            5,
-            true,
-            &RunControl::default(),
-            &run,
-        )
-        .unwrap();
+        compute(other.path(), "test", &names, 5, true, &whole, &run).unwrap();
         assert!(other.path().join("t4.json").exists() && !other.path().join("t5.json").exists());
     }
 }

@@ -50,36 +50,33 @@ pub fn tanh_sinh<F: Fn(f64) -> f64>(f: F, a: f64, b: f64, tol: f64) -> Result<f6
         w * v
     };
     let abs_eval = |t: f64| eval(t).abs();
+    // Adds the nodes +/- k step, k = 1, 1 + stride, ... up to T_MAX, to the sums.
+    let add_nodes = |step: f64, stride: usize, sums: &mut (f64, f64)| {
+        let mut k = 1;
+        while (k as f64) * step <= T_MAX {
+            let t = k as f64 * step;
+            sums.0 += eval(t) + eval(-t);
+            sums.1 += abs_eval(t) + abs_eval(-t);
+            k += stride;
+        }
+    };
     let mut step = 1.0;
-    let mut sum = eval(0.0);
-    let mut abs_sum = abs_eval(0.0);
-    let mut k = 1;
-    while (k as f64) * step <= T_MAX {
-        let t = k as f64 * step;
-        sum += eval(t) + eval(-t);
-        abs_sum += abs_eval(t) + abs_eval(-t);
-        k += 1;
-    }
-    let mut estimate = h * step * sum;
+    let mut sums = (eval(0.0), abs_eval(0.0));
+    add_nodes(step, 1, &mut sums);
+    let mut estimate = h * step * sums.0;
     let mut residual = f64::INFINITY;
     for _level in 1..=MAX_LEVEL {
         step *= 0.5;
         // Only the new (odd) nodes are added at each halving.
-        let mut k = 1;
-        while (k as f64) * step <= T_MAX {
-            let t = k as f64 * step;
-            sum += eval(t) + eval(-t);
-            abs_sum += abs_eval(t) + abs_eval(-t);
-            k += 2;
-        }
-        let next = h * step * sum;
+        add_nodes(step, 2, &mut sums);
+        let next = h * step * sums.0;
         residual = (next - estimate).abs();
         estimate = next;
         if !estimate.is_finite() {
             break;
         }
         // Converged, or down to the rounding noise of the sum itself.
-        let noise = 1e3 * f64::EPSILON * h * step * abs_sum;
+        let noise = 1e3 * f64::EPSILON * h * step * sums.1;
         if residual <= tol * estimate.abs().max(f64::MIN_POSITIVE) || residual <= noise {
             return Ok(estimate);
         }

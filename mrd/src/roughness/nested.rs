@@ -88,21 +88,7 @@ pub fn surface(
     planner
         .plan_fft_inverse(n)
         .process(&mut s[..(b as usize + 1) * n]);
-    let c2r = RealFftPlanner::<f64>::new().plan_fft_inverse(n);
-    let mut row = vec![Complex64::default(); nc];
-    let mut out = sysmem::try_vec(n * n, 0.0, &what)?;
-    for j in 0..n {
-        for i in 0..nc {
-            row[i] = s[i * n + j];
-        }
-        row[0].im = 0.0;
-        if n.is_multiple_of(2) {
-            row[nc - 1].im = 0.0;
-        }
-        c2r.process(&mut row, &mut out[j * n..(j + 1) * n])
-            .map_err(|e| MrdError::InvalidData(format!("inverse FFT: {e}")))?;
-    }
-    Ok(out)
+    super::synthesis::rows_to_real(&s, n, n, &what)
 }
 
 /// Realisation `realisation` of the 1D spectrum `c1d` on `n` points over length `l`,

@@ -160,10 +160,18 @@ pub fn surface_from(
     let mut planner = FftPlanner::<f64>::new();
     let ifft_y = planner.plan_fft_inverse(ny);
     ifft_y.process(&mut s); // all nc columns, each of length ny
-    let mut rp = RealFftPlanner::<f64>::new();
-    let c2r = rp.plan_fft_inverse(nx);
+    rows_to_real(&s, nx, ny, &what)
+}
+
+/// The real `ny x nx` field (row-major) of a half spectrum `s` already transformed along
+/// y: `nx / 2 + 1` columns of `ny` values, column-major; each row's inverse real
+/// transform, with the imaginary parts a real row cannot carry (kx = 0 and, for even
+/// `nx`, the Nyquist column) dropped. `what` names the field in an out-of-memory error.
+pub(crate) fn rows_to_real(s: &[Complex64], nx: usize, ny: usize, what: &str) -> Result<Vec<f64>> {
+    let nc = nx / 2 + 1;
+    let c2r = RealFftPlanner::<f64>::new().plan_fft_inverse(nx);
     let mut row = vec![Complex64::default(); nc];
-    let mut out = sysmem::try_vec(nx * ny, 0.0, &what)?;
+    let mut out = sysmem::try_vec(nx * ny, 0.0, what)?;
     for j in 0..ny {
         for i in 0..nc {
             row[i] = s[i * ny + j];

@@ -127,7 +127,8 @@ impl Output for Adhesion3d {
                     .collect::<bem3d::Result<Vec<_>>>()
             })
             .ctx("3D adhesive cycle")?;
-        self.report(env, out, &mrd, closed, &grids);
+        self.report(env, out, &mrd, &grids);
+        self.report_pull_off(env, out, &mrd, closed, &grids);
         Ok(())
     }
 }
@@ -243,15 +244,8 @@ fn observed_order(err: &[(f64, f64)]) -> f64 {
 }
 
 impl Adhesion3d {
-    /// Tables, figures and scalars: the loops, and the pull-offs against the grid.
-    fn report(
-        &self,
-        env: &Env,
-        out: &mut Section,
-        mrd: &Mrd,
-        (closed_force, closed_approach): ClosedForms,
-        grids: &[Cycle3d],
-    ) {
+    /// The loops' table and figure (the pull-offs: [`Self::report_pull_off`]).
+    fn report(&self, env: &Env, out: &mut Section, mrd: &Mrd, grids: &[Cycle3d]) {
         let u = &env.ctx.units;
         let (len, force) = (&u.length, u.force());
         let mut t = Table::new(
@@ -326,7 +320,6 @@ impl Adhesion3d {
             );
         out.tables.push(t);
         out.figures.push(fig);
-        self.report_pull_off(env, out, mrd, (closed_force, closed_approach), grids);
     }
 
     /// The pull-off table, its convergence figure and the scalars.

@@ -109,8 +109,13 @@ impl Output for ViscoelasticRough {
                 })
                 .collect::<Result<Vec<_>>>()
         })?;
-        report::report(self, &lambdas, &runs_3d, &runs_1d, out);
-        radok::report(self, &lambdas, &runs_3d, &runs_1d, out);
+        let runs = runs::Runs {
+            lambdas,
+            d3: runs_3d,
+            d1: runs_1d,
+        };
+        report::report(self, &runs, out);
+        radok::report(self, &runs, out);
         Ok(())
     }
 }

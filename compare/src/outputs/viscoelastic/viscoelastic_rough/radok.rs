@@ -7,7 +7,7 @@
 //! punch (Ting's problem) and the ratio leaves 1.
 
 use super::report::range;
-use super::runs::Run;
+use super::runs::{Run, Runs};
 use super::{ViscoelasticRough, PHASES};
 use crate::report::{Figure, Section, Series, Style, Table};
 
@@ -71,13 +71,8 @@ fn side(spec: &ViscoelasticRough, runs: &[Run]) -> Side {
 /// The force table, F / F_Radok per side (figure `_radok_force`), under approach
 /// control the forces in time (figure `_force`), and per phase the ranges of
 /// F / F_Radok and of MRD's over 3D's force.
-pub fn report(
-    spec: &ViscoelasticRough,
-    lambdas: &[f64],
-    runs_3d: &[Run],
-    runs_1d: &[Vec<Run>],
-    out: &mut Section,
-) {
+pub fn report(spec: &ViscoelasticRough, runs: &Runs, out: &mut Section) {
+    let (lambdas, runs_3d, runs_1d) = (&runs.lambdas[..], &runs.d3[..], &runs.d1[..]);
     let label = out.label.clone();
     let phases = spec.phases();
     let s3 = side(spec, runs_3d);

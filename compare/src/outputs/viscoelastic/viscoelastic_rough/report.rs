@@ -1,6 +1,6 @@
 //! The table, two figures and the per-phase verdict of `viscoelastic_rough`.
 
-use super::runs::{Point, Run};
+use super::runs::{Point, Run, Runs};
 use super::{ViscoelasticRough, PHASES};
 use crate::report::{Figure, Section, Series, Style, Table};
 
@@ -87,13 +87,8 @@ fn history_table(
     t
 }
 
-pub fn report(
-    spec: &ViscoelasticRough,
-    lambdas: &[f64],
-    runs_3d: &[Run],
-    runs_1d: &[Vec<Run>],
-    out: &mut Section,
-) {
+pub fn report(spec: &ViscoelasticRough, runs: &Runs, out: &mut Section) {
+    let (lambdas, runs_3d, runs_1d) = (&runs.lambdas[..], &runs.d3[..], &runs.d1[..]);
     let label = out.label.clone();
     let history = spec.history();
     let phases = spec.phases();

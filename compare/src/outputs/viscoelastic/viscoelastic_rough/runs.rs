@@ -28,6 +28,13 @@ pub struct Point {
     pub force_elastic: f64,
 }
 
+/// What a scene solved: the 3D realisations, and per lambda of Eq. (76) the MRD lines'.
+pub struct Runs {
+    pub lambdas: Vec<f64>,
+    pub d3: Vec<Run>,
+    pub d1: Vec<Vec<Run>>,
+}
+
 /// A realisation's history; `unconverged` steps are recorded as failures of the run.
 #[derive(Debug, Clone)]
 pub struct Run {
