@@ -3,41 +3,27 @@
 
 use crate::contact::{grid_array, Frame, Grid};
 use crate::errors::value_error;
+use crate::on_operator::OnOperator;
 use bem3d::adhesion::{AdhesiveContact as Adhesive, AdhesiveStep as Step};
 use bem3d::{Load, NonPeriodicHalfSpace, PeriodicHalfSpace};
 use numpy::{AllowTypeChange, PyArray2, PyArrayLike2};
 use pyo3::prelude::*;
 
 /// The contact on one of the two operators.
-enum State {
-    Periodic(Adhesive<PeriodicHalfSpace>),
-    NonPeriodic(Adhesive<NonPeriodicHalfSpace>),
-}
+type State = OnOperator<Adhesive<PeriodicHalfSpace>, Adhesive<NonPeriodicHalfSpace>>;
 
 impl State {
     fn step(&mut self, load: Load, tolerance: f64) -> bem3d::Result<Step> {
-        match self {
-            State::Periodic(c) => c.step(load, tolerance),
-            State::NonPeriodic(c) => c.step(load, tolerance),
-        }
+        on_operator!(self, c => c.step(load, tolerance))
     }
     fn pressure(&self) -> &[f64] {
-        match self {
-            State::Periodic(c) => c.pressure(),
-            State::NonPeriodic(c) => c.pressure(),
-        }
+        on_operator!(self, c => c.pressure())
     }
     fn gap(&self) -> Vec<f64> {
-        match self {
-            State::Periodic(c) => c.gap(),
-            State::NonPeriodic(c) => c.gap(),
-        }
+        on_operator!(self, c => c.gap())
     }
     fn critical_stress(&self) -> f64 {
-        match self {
-            State::Periodic(c) => c.critical_stress(),
-            State::NonPeriodic(c) => c.critical_stress(),
-        }
+        on_operator!(self, c => c.critical_stress())
     }
 }
 
@@ -119,17 +105,10 @@ impl AdhesiveContact {
             )));
         }
         let grid = Grid::new(py, heights, (size, periodic), mask, e_star, false)?;
-        let ((ny, nx), (lx, ly)) = (grid.frame.shape, grid.frame.size);
-        crate::errors::check_grid_memory("an adhesive", (ny, nx), 8.0 * 9.0)?;
-        let (h, mask, periodic) = (grid.heights, grid.mask, grid.frame.periodic);
-        let state = grid.frame.solve(py, || -> bem3d::Result<State> {
-            Ok(if periodic {
-                let op = PeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
-                State::Periodic(Adhesive::new(op, &h, mask.as_deref(), work)?)
-            } else {
-                let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
-                State::NonPeriodic(Adhesive::new(op, &h, mask.as_deref(), work)?)
-            })
+        crate::errors::check_grid_memory("an adhesive", grid.frame.shape, 8.0 * 9.0)?;
+        let (h, mask, frame) = (grid.heights, grid.mask, grid.frame);
+        let state = frame.solve(py, || -> bem3d::Result<State> {
+            Ok(built_on!(frame, e_star, op => Adhesive::new(op, &h, mask.as_deref(), work)?))
         })?;
         Ok(Self {
             state,

@@ -4,6 +4,7 @@
 
 use crate::contact::{grid_array, Frame, Grid};
 use crate::errors::value_error;
+use crate::on_operator::OnOperator;
 use bem3d::cohesive::{CohesiveContact as Cohesive, CohesiveLaw, CohesiveStep as Step};
 use bem3d::{NonPeriodicHalfSpace, PeriodicHalfSpace};
 use numpy::{AllowTypeChange, PyArray2, PyArrayLike2};
@@ -45,41 +46,23 @@ step_class! {
 }
 
 /// The solver on the half-space the constructor chose.
-enum Solver {
-    Free(Cohesive<NonPeriodicHalfSpace>),
-    Periodic(Cohesive<PeriodicHalfSpace>),
-}
+type Solver = OnOperator<Cohesive<PeriodicHalfSpace>, Cohesive<NonPeriodicHalfSpace>>;
 
 impl Solver {
     fn step(&mut self, approach: f64, tolerance: f64) -> bem3d::Result<Step> {
-        match self {
-            Self::Free(c) => c.step(approach, tolerance),
-            Self::Periodic(c) => c.step(approach, tolerance),
-        }
+        on_operator!(self, c => c.step(approach, tolerance))
     }
     fn pressure(&self) -> &[f64] {
-        match self {
-            Self::Free(c) => c.pressure(),
-            Self::Periodic(c) => c.pressure(),
-        }
+        on_operator!(self, c => c.pressure())
     }
     fn dugdale_length(&self) -> f64 {
-        match self {
-            Self::Free(c) => c.dugdale_length(),
-            Self::Periodic(c) => c.dugdale_length(),
-        }
+        on_operator!(self, c => c.dugdale_length())
     }
     fn resolved(&self) -> bool {
-        match self {
-            Self::Free(c) => c.resolved(),
-            Self::Periodic(c) => c.resolved(),
-        }
+        on_operator!(self, c => c.resolved())
     }
     fn law(&self) -> CohesiveLaw {
-        match self {
-            Self::Free(c) => c.law(),
-            Self::Periodic(c) => c.law(),
-        }
+        on_operator!(self, c => c.law())
     }
 }
 
@@ -144,19 +127,12 @@ impl CohesiveContact {
             }
         }
         let grid = Grid::new(py, heights, (size, Some(periodic)), mask, e_star, false)?;
-        let ((ny, nx), (lx, ly)) = (grid.frame.shape, grid.frame.size);
-        crate::errors::check_grid_memory("a cohesive", (ny, nx), 8.0 * 9.0)?;
-        let (h, mask) = (grid.heights, grid.mask);
-        let contact = grid.frame.solve(py, || -> bem3d::Result<_> {
-            Ok(if periodic {
-                let op = PeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
-                Solver::Periodic(
-                    Cohesive::new(op, &h, mask.as_deref(), work, sigma0)?.with_law(law),
-                )
-            } else {
-                let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
-                Solver::Free(Cohesive::new(op, &h, mask.as_deref(), work, sigma0)?.with_law(law))
-            })
+        crate::errors::check_grid_memory("a cohesive", grid.frame.shape, 8.0 * 9.0)?;
+        let (h, mask, frame) = (grid.heights, grid.mask, grid.frame);
+        let contact = frame.solve(py, || -> bem3d::Result<Solver> {
+            Ok(built_on!(frame, e_star, op => {
+                Cohesive::new(op, &h, mask.as_deref(), work, sigma0)?.with_law(law)
+            }))
         })?;
         Ok(Self {
             contact,

@@ -1,6 +1,7 @@
 //! The 3D boundary-element contact solver (`bem3d`) on numpy height maps.
 
 use crate::errors::{convergence, memory_error, value_error};
+use crate::on_operator::OnOperator;
 use crate::shared_heights::PyHeights;
 use bem3d::{
     Choice, ContactSolver, Interrupt, Load, NonPeriodicHalfSpace, Paths, PeriodicHalfSpace,
@@ -12,10 +13,7 @@ use pyo3::prelude::*;
 use std::sync::Arc;
 
 /// The solver on one of the two operators.
-enum Solver {
-    Periodic(ContactSolver<PeriodicHalfSpace>),
-    NonPeriodic(ContactSolver<NonPeriodicHalfSpace>),
-}
+type Solver = OnOperator<ContactSolver<PeriodicHalfSpace>, ContactSolver<NonPeriodicHalfSpace>>;
 
 impl Solver {
     fn solve(
@@ -24,16 +22,10 @@ impl Solver {
         opts: &SolverOptions,
         warm: Option<&Solution>,
     ) -> bem3d::Result<Solution> {
-        match self {
-            Solver::Periodic(s) => s.solve(load, opts, warm),
-            Solver::NonPeriodic(s) => s.solve(load, opts, warm),
-        }
+        on_operator!(self, s => s.solve(load, opts, warm))
     }
     fn stiffness(&mut self, sol: &Solution, opts: &SolverOptions) -> bem3d::Result<f64> {
-        match self {
-            Solver::Periodic(s) => s.tangent_stiffness(sol, opts),
-            Solver::NonPeriodic(s) => s.tangent_stiffness(sol, opts),
-        }
+        on_operator!(self, s => s.tangent_stiffness(sol, opts))
     }
 }
 
@@ -745,7 +737,6 @@ impl Contact {
         mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
     ) -> PyResult<Self> {
         let grid = Grid::new(py, heights, (size, periodic), mask, e_star, true)?;
-        let ((ny, nx), (lx, ly)) = (grid.frame.shape, grid.frame.size);
         let (h, mask) = (&grid.heights, grid.mask);
         let shared = grid.shared.map(Arc::new);
         let heights = shared.clone();
@@ -762,13 +753,7 @@ impl Contact {
                     None => ContactSolver::new(op, h, mask),
                 }
             }
-            Ok(if grid.frame.periodic {
-                let op = PeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
-                Solver::Periodic(solver(op, h, heights, mask)?)
-            } else {
-                let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
-                Solver::NonPeriodic(solver(op, h, heights, mask)?)
-            })
+            Ok(built_on!(grid.frame, e_star, op => solver(op, h, heights, mask)?))
         })?;
         Ok(Self {
             solver,

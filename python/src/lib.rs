@@ -6,6 +6,8 @@
 #[macro_use]
 mod grid_getters;
 #[macro_use]
+mod on_operator;
+#[macro_use]
 mod step_class;
 mod adhesive;
 mod axisym;

@@ -2,35 +2,24 @@
 
 use crate::contact::{grid_array, interruptible, request, Frame, Grid};
 use crate::errors::value_error;
+use crate::on_operator::OnOperator;
 use bem3d::viscoelastic::{Relaxation, Step, TransientContact as Transient};
 use bem3d::{Interrupt, Load, NonPeriodicHalfSpace, Paths, PeriodicHalfSpace, SolverOptions};
 use numpy::{AllowTypeChange, PyArray2, PyArrayLike2};
 use pyo3::prelude::*;
 
 /// The history on one of the two operators.
-enum History {
-    Periodic(Transient<PeriodicHalfSpace>),
-    NonPeriodic(Transient<NonPeriodicHalfSpace>),
-}
+type History = OnOperator<Transient<PeriodicHalfSpace>, Transient<NonPeriodicHalfSpace>>;
 
 impl History {
     fn step(&mut self, dt: f64, load: Load, opts: &SolverOptions) -> bem3d::Result<Step> {
-        match self {
-            History::Periodic(h) => h.step(dt, load, opts),
-            History::NonPeriodic(h) => h.step(dt, load, opts),
-        }
+        on_operator!(self, h => h.step(dt, load, opts))
     }
     fn time(&self) -> f64 {
-        match self {
-            History::Periodic(h) => h.time(),
-            History::NonPeriodic(h) => h.time(),
-        }
+        on_operator!(self, h => h.time())
     }
     fn displacement(&self) -> &[f64] {
-        match self {
-            History::Periodic(h) => h.displacement(),
-            History::NonPeriodic(h) => h.displacement(),
-        }
+        on_operator!(self, h => h.displacement())
     }
 }
 
@@ -135,18 +124,11 @@ impl TransientContact {
                 e
             }
         })?;
-        let ((ny, nx), (lx, ly)) = (grid.frame.shape, grid.frame.size);
         let per_cell = 8.0 * (4 + modulus.terms.len()) as f64;
-        crate::errors::check_grid_memory("the history of a", (ny, nx), per_cell)?;
-        let (h, mask, periodic) = (grid.heights, grid.mask, grid.frame.periodic);
-        let history = grid.frame.solve(py, || -> bem3d::Result<History> {
-            Ok(if periodic {
-                let op = PeriodicHalfSpace::try_new(nx, ny, lx, ly, e_ref)?;
-                History::Periodic(Transient::new(op, &h, mask, modulus)?)
-            } else {
-                let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_ref)?;
-                History::NonPeriodic(Transient::new(op, &h, mask, modulus)?)
-            })
+        crate::errors::check_grid_memory("the history of a", grid.frame.shape, per_cell)?;
+        let (h, mask, frame) = (grid.heights, grid.mask, grid.frame);
+        let history = frame.solve(py, || -> bem3d::Result<History> {
+            Ok(built_on!(frame, e_ref, op => Transient::new(op, &h, mask, modulus)?))
         })?;
         Ok(Self {
             history,

@@ -691,223 +691,174 @@ fn tangential_3d_bad_input_names_the_key() {
 /// elastic body has, a key of the 3D side given without it.
 #[test]
 fn tangential_viscoelastic_3d_bad_input_names_the_key() {
-    let tmp = tempfile::tempdir().unwrap();
-    let base = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/tangential-viscoelastic-3d.toml"),
-    )
-    .unwrap();
-    let cases = [
-        (
-            base.replace("cells_3d = 64", "cells_3d = 8"),
-            "cells_3d = 8",
-        ),
-        (base.replace("side_3d = 2.5", "side_3d = 2.0"), "side_3d"),
-        // A key of the 3D side without the 3D side is refused, not ignored.
-        (base.replace("cells_3d = 64\n", ""), "give cells_3d"),
-        (
-            base.replace("g_inf = 0.6666666666666666", "g_inf = 0.5"),
-            "Poisson's ratio",
-        ),
-    ];
-    refuses_each(tmp.path(), &base, &cases);
+    refuses_each_edit(
+        "tangential-viscoelastic-3d",
+        &[
+            ("cells_3d = 64", "cells_3d = 8", "cells_3d = 8"),
+            ("side_3d = 2.5", "side_3d = 2.0", "side_3d"),
+            // A key of the 3D side without the 3D side is refused, not ignored.
+            ("cells_3d = 64\n", "", "give cells_3d"),
+            (
+                "g_inf = 0.6666666666666666",
+                "g_inf = 0.5",
+                "Poisson's ratio",
+            ),
+        ],
+    );
 }
 
 /// `adhesion_3d` refuses what it cannot run, naming the key: no work of adhesion, a
 /// ladder that does not refine, a grid too coarse, a domain that cuts the contact.
 #[test]
 fn adhesion_3d_bad_input_names_the_key() {
-    let tmp = tempfile::tempdir().unwrap();
-    let base = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/adhesion-3d.toml"),
-    )
-    .unwrap();
-    let cases = [
-        (base.replace("gamma = 0.002", "gamma = 0.0"), "gamma"),
-        (base.replace("gamma = 0.002", "gamma = -1.0"), "gamma"),
-        (
-            base.replace("cells = [32, 64, 128, 256]", "cells = [64, 32]"),
-            "must increase",
-        ),
-        (
-            base.replace("cells = [32, 64, 128, 256]", "cells = [8]"),
-            "cells = [8]",
-        ),
-        (
-            base.replace("extent = 1.25", "extent = 0.5"),
-            "extent = 0.5",
-        ),
-        (base.replace("steps = 100", "steps = 1"), "steps = 1"),
-        (
-            base.replace("depth_max = 0.155", "depth_max = nan"),
-            "depth_max",
-        ),
-    ];
-    refuses_each(tmp.path(), &base, &cases);
+    refuses_each_edit(
+        "adhesion-3d",
+        &[
+            ("gamma = 0.002", "gamma = 0.0", "gamma"),
+            ("gamma = 0.002", "gamma = -1.0", "gamma"),
+            (
+                "cells = [32, 64, 128, 256]",
+                "cells = [64, 32]",
+                "must increase",
+            ),
+            ("cells = [32, 64, 128, 256]", "cells = [8]", "cells = [8]"),
+            ("extent = 1.25", "extent = 0.5", "extent = 0.5"),
+            ("steps = 100", "steps = 1", "steps = 1"),
+            ("depth_max = 0.155", "depth_max = nan", "depth_max"),
+        ],
+    );
 }
 
 /// `tabor_3d` refuses what it cannot run, naming the key.
 #[test]
 fn tabor_3d_bad_input_names_the_key() {
-    let tmp = tempfile::tempdir().unwrap();
-    let base = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/adhesion-tabor.toml"),
-    )
-    .unwrap();
-    let cases = [
-        (
-            base.replace("lambdas = [0.1, 0.3, 1.0, 3.0]", "lambdas = []"),
-            "lambdas",
-        ),
-        (
-            base.replace("lambdas = [0.1, 0.3, 1.0, 3.0]", "lambdas = [0.0]"),
-            "lambdas",
-        ),
-        (base.replace("gamma = 0.002", "gamma = 0.0"), "gamma"),
-        (
-            base.replace("cells = [64, 128]", "cells = [128, 64]"),
-            "must increase",
-        ),
-        (
-            base.replace(
+    refuses_each_edit(
+        "adhesion-tabor",
+        &[
+            ("lambdas = [0.1, 0.3, 1.0, 3.0]", "lambdas = []", "lambdas"),
+            (
+                "lambdas = [0.1, 0.3, 1.0, 3.0]",
+                "lambdas = [0.0]",
+                "lambdas",
+            ),
+            ("gamma = 0.002", "gamma = 0.0", "gamma"),
+            ("cells = [64, 128]", "cells = [128, 64]", "must increase"),
+            (
                 "{ kind = \"sphere\", radius = 1.0 }",
                 "{ kind = \"cone\", slope = 0.2 }",
+                "needs a sphere",
             ),
-            "needs a sphere",
-        ),
-    ];
-    refuses_each(tmp.path(), &base, &cases);
+        ],
+    );
 }
 
 #[test]
 fn periodic_patch_studies_bad_input_names_the_key() {
-    let tmp = tempfile::tempdir().unwrap();
-    let read = |name: &str| {
-        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(name)).unwrap()
-    };
-    let base = read("cases/rough-partial-slip-3d-ci.toml");
-    let cases = [
-        (
-            base.replace("poisson = [0.5, 0.0]", "poisson = [0.6]"),
-            "poisson",
-        ),
-        (base.replace("hurst = [0.5]", "hurst = []"), "hurst"),
-        (base.replace("cells = [4, 8]", "cells = [8, 4]"), "cells"),
-        (base.replace("mu = 0.5", "mu = 0.0"), "mu"),
-        (
-            base.replace("pressure = 0.05", "pressure = 0.0"),
-            "pressure",
-        ),
-        (
-            base.replace("fractions = [0.2, 0.5, 0.8]", "fractions = [0.5, 1.0]"),
-            "fractions",
-        ),
-        (
-            base.replace("amplitudes = [0.3, 0.6]", "amplitudes = [1.2]"),
-            "amplitudes",
-        ),
-        (
-            base.replace("realisations = 3", "realisations = 1"),
-            "realisations",
-        ),
-    ];
-    refuses_each(tmp.path(), &base, &cases);
-    let base = read("cases/tangential-stiffness-3d-ci.toml");
-    let cases = [
-        (
-            base.replace("pressures = [0.02, 0.1]", "pressures = [0.1, 0.02]"),
-            "pressures",
-        ),
-        (base.replace("bandwidth = 8", "bandwidth = 1"), "bandwidth"),
-    ];
-    refuses_each(tmp.path(), &base, &cases);
+    refuses_each_edit(
+        "rough-partial-slip-3d-ci",
+        &[
+            ("poisson = [0.5, 0.0]", "poisson = [0.6]", "poisson"),
+            ("hurst = [0.5]", "hurst = []", "hurst"),
+            ("cells = [4, 8]", "cells = [8, 4]", "cells"),
+            ("mu = 0.5", "mu = 0.0", "mu"),
+            ("pressure = 0.05", "pressure = 0.0", "pressure"),
+            (
+                "fractions = [0.2, 0.5, 0.8]",
+                "fractions = [0.5, 1.0]",
+                "fractions",
+            ),
+            (
+                "amplitudes = [0.3, 0.6]",
+                "amplitudes = [1.2]",
+                "amplitudes",
+            ),
+            ("realisations = 3", "realisations = 1", "realisations"),
+        ],
+    );
+    refuses_each_edit(
+        "tangential-stiffness-3d-ci",
+        &[
+            (
+                "pressures = [0.02, 0.1]",
+                "pressures = [0.1, 0.02]",
+                "pressures",
+            ),
+            ("bandwidth = 8", "bandwidth = 1", "bandwidth"),
+        ],
+    );
 }
 
 #[test]
 fn rough_slip_bad_input_names_the_key() {
-    let tmp = tempfile::tempdir().unwrap();
-    let base = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/rough-slip-3d-ci.toml"),
-    )
-    .unwrap();
-    let cases = [
-        (
-            base.replace("radius = 1.0", "radius = 1.0\npunch_radius = 0.03"),
-            "punch_radius",
-        ),
-        (base.replace("mu = 0.5", "mu = -1.0"), "mu"),
-        (base.replace("mu = 0.5", "mu = nan"), "mu"),
-        (base.replace("force = 4.2164e-5", "force = 1.0"), "force"),
-        (base.replace("side = 0.13", "side = 0.05"), "side"),
-        (
-            base.replace("poisson = [0.0, 0.5]", "poisson = [0.7]"),
-            "poisson",
-        ),
-        (
-            base.replace("roughness = [1.0]", "roughness = [0.0]"),
-            "roughness",
-        ),
-        (
-            base.replace(
+    refuses_each_edit(
+        "rough-slip-3d-ci",
+        &[
+            (
+                "radius = 1.0",
+                "radius = 1.0\npunch_radius = 0.03",
+                "punch_radius",
+            ),
+            ("mu = 0.5", "mu = -1.0", "mu"),
+            ("mu = 0.5", "mu = nan", "mu"),
+            ("force = 4.2164e-5", "force = 1.0", "force"),
+            ("side = 0.13", "side = 0.05", "side"),
+            ("poisson = [0.0, 0.5]", "poisson = [0.7]", "poisson"),
+            ("roughness = [1.0]", "roughness = [0.0]", "roughness"),
+            (
                 "fractions = [0.2, 0.5, 0.8, 0.95]",
                 "fractions = [0.5, 1.0]",
+                "fractions",
             ),
-            "fractions",
-        ),
-        (
-            base.replace("amplitudes = [0.25, 0.9]", "amplitudes = []"),
-            "amplitudes",
-        ),
-        (
-            base.replace("cells = [64, 128]", "cells = [128, 64]"),
-            "cells",
-        ),
-        (
-            base.replace("lambda = [\"pi\", \"calibrated\"]", "lambda = [-2.0]"),
-            "lambda",
-        ),
-    ];
-    refuses_each(tmp.path(), &base, &cases);
+            ("amplitudes = [0.25, 0.9]", "amplitudes = []", "amplitudes"),
+            ("cells = [64, 128]", "cells = [128, 64]", "cells"),
+            (
+                "lambda = [\"pi\", \"calibrated\"]",
+                "lambda = [-2.0]",
+                "lambda",
+            ),
+        ],
+    );
 }
 
 #[test]
 fn rough_adhesion_bad_input_names_the_key() {
+    refuses_each_edit(
+        "rough-adhesion-3d-ci",
+        &[
+            ("work = 0.002", "work = 0.0", "work"),
+            ("work = 0.002", "work = -1.0", "work"),
+            (
+                "radius = 1.0",
+                "radius = 1.0\npunch_radius = 0.2",
+                "punch_radius",
+            ),
+            ("roughness = [0.2, 1.0]", "roughness = [0.0]", "roughness"),
+            ("hurst = [0.8]", "hurst = [1.5]", "hurst"),
+            ("cells = [64, 128]", "cells = [128, 64]", "cells"),
+            ("side = 0.8", "side = 0.3", "side"),
+            ("bandwidth = 6", "bandwidth = 40", "bandwidth"),
+            ("depth_max = 0.06", "depth_max = 0.5", "depth_max"),
+            ("steps = 30", "steps = 2", "steps"),
+            ("seed = 3", "seed = 3\nmrd_rule = [\"inner\"]", "mrd_rule"),
+            ("seed = 3", "seed = 3\nmrd_rule = []", "mrd_rule"),
+        ],
+    );
+}
+
+/// Each edit `(from, to, needle)` of the embedded scene `cases/{case}.toml` (every
+/// `from` replaced by `to`; `from` must occur in it) is refused with a message naming
+/// `needle`.
+fn refuses_each_edit(case: &str, edits: &[(&str, &str, &str)]) {
     let tmp = tempfile::tempdir().unwrap();
-    let base = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/rough-adhesion-3d-ci.toml"),
-    )
-    .unwrap();
-    let cases = [
-        (base.replace("work = 0.002", "work = 0.0"), "work"),
-        (base.replace("work = 0.002", "work = -1.0"), "work"),
-        (
-            base.replace("radius = 1.0", "radius = 1.0\npunch_radius = 0.2"),
-            "punch_radius",
-        ),
-        (
-            base.replace("roughness = [0.2, 1.0]", "roughness = [0.0]"),
-            "roughness",
-        ),
-        (base.replace("hurst = [0.8]", "hurst = [1.5]"), "hurst"),
-        (
-            base.replace("cells = [64, 128]", "cells = [128, 64]"),
-            "cells",
-        ),
-        (base.replace("side = 0.8", "side = 0.3"), "side"),
-        (base.replace("bandwidth = 6", "bandwidth = 40"), "bandwidth"),
-        (
-            base.replace("depth_max = 0.06", "depth_max = 0.5"),
-            "depth_max",
-        ),
-        (base.replace("steps = 30", "steps = 2"), "steps"),
-        (
-            base.replace("seed = 3", "seed = 3\nmrd_rule = [\"inner\"]"),
-            "mrd_rule",
-        ),
-        (
-            base.replace("seed = 3", "seed = 3\nmrd_rule = []"),
-            "mrd_rule",
-        ),
-    ];
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("cases/{case}.toml"));
+    let base = std::fs::read_to_string(path).unwrap();
+    let cases: Vec<(String, &str)> = edits
+        .iter()
+        .map(|&(from, to, needle)| {
+            assert!(base.contains(from), "{case}.toml has no `{from}`");
+            (base.replace(from, to), needle)
+        })
+        .collect();
     refuses_each(tmp.path(), &base, &cases);
 }
 

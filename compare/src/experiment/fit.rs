@@ -1,6 +1,7 @@
 //! The sweep's numerics on curves sampled on a common grid of reduced forces: log-log
 //! interpolation, ensemble means, power-law fits of Eq. (77) over a window, percentile
-//! intervals and the lambda calibration. Curves are `Option` per grid point: `None`
+//! intervals, the studies' one [`Estimate`] (a value with its interval) and the lambda
+//! calibration. Curves are `Option` per grid point: `None`
 //! outside a realisation's range.
 
 use mrd::rough_contact::fit_line;
@@ -134,6 +135,52 @@ pub fn calibrate_lambda_at(
 pub fn resample(rng: &mut rand_chacha::ChaCha8Rng, n: usize) -> Vec<usize> {
     use rand::RngExt;
     (0..n).map(|_| rng.random_range(0..n)).collect()
+}
+
+/// A value with its 95 % interval (NaN where undefined): every study's estimate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Estimate {
+    pub value: f64,
+    pub lo: f64,
+    pub hi: f64,
+}
+
+impl Estimate {
+    /// Undefined: value and interval NaN.
+    pub const NONE: Estimate = Estimate {
+        value: f64::NAN,
+        lo: f64::NAN,
+        hi: f64::NAN,
+    };
+
+    /// `value` (NaN where `None`) with the [`interval`] of its bootstrap draws `boot`.
+    pub fn of(value: Option<f64>, boot: Vec<f64>) -> Self {
+        let (lo, hi) = interval(boot);
+        Self {
+            value: value.unwrap_or(f64::NAN),
+            lo,
+            hi,
+        }
+    }
+
+    /// The estimate and its interval times `factor` (> 0).
+    pub fn scaled(self, factor: f64) -> Self {
+        Self {
+            value: self.value * factor,
+            lo: self.lo * factor,
+            hi: self.hi * factor,
+        }
+    }
+
+    /// The interval's larger distance from the value, relative to it.
+    pub fn relative_half_width(&self) -> f64 {
+        ((self.hi - self.value).max(self.value - self.lo) / self.value).abs()
+    }
+
+    /// [value, lo, hi]: a table's three columns.
+    pub fn columns(&self) -> [f64; 3] {
+        [self.value, self.lo, self.hi]
+    }
 }
 
 /// 95 % percentile interval of bootstrap draws (nearest rank). A draw that is not

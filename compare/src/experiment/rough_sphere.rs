@@ -64,6 +64,17 @@ impl RoughSphereGeometry {
         Ok(1.0 / rms)
     }
 
+    /// The factor that gives a case's surfaces unit rms height: [`Self::unit_rms_factor`]
+    /// of this grid (the case's finest, whose factor its MRD lines take too), 1 for the
+    /// smooth body (`roughness` 0).
+    pub fn unit_rms_scale(&self, roughness: f64) -> Result<f64> {
+        if roughness > 0.0 {
+            self.unit_rms_factor()
+        } else {
+            Ok(1.0)
+        }
+    }
+
     /// Squared distance from the axis of cell `c` of the map.
     pub fn r2(&self, c: usize) -> f64 {
         let n = self.grid;

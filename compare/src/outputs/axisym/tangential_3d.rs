@@ -332,37 +332,15 @@ impl Tangential3d {
             out.scalar("stick_radius_max_rel_error_3d", dev_3d);
         }
         out.scalar("stick_radius_max_rel_dev_3d_vs_mrd", dev_3d_mrd);
-        let mut fig = Figure::new(
+        let fig = Figure::new(
             "stick",
             "Stick radius against tangential force: 3D, MRD and Cattaneo-Mindlin",
             "tangential force F_x / (mu F_N) [1]",
             "stick radius c / contact radius a [1]",
         );
-        if c_cf.is_some() {
-            fig = fig.plot(
-                "Cattaneo-Mindlin (closed form)",
-                t.xy(x, "stick_radius_over_a_closed_form"),
-                Style::Line,
-            );
-        } else {
-            fig.title = "Stick radius against tangential force: 3D and MRD (Jaeger)".into();
-        }
-        fig = fig
-            .plot(
-                "MRD (tangential springs)",
-                t.xy(x, "stick_radius_over_a_mrd"),
-                if c_cf.is_some() {
-                    Style::Markers
-                } else {
-                    Style::Line
-                },
-            )
-            .plot(
-                "3D boundary elements",
-                t.xy(x, "stick_radius_over_a_3d"),
-                Style::Crosses,
-            );
-        fig.title.push_str(self.half_space_note());
+        let closed = c_cf.is_some().then_some("Cattaneo-Mindlin (closed form)");
+        let without = "Stick radius against tangential force: 3D and MRD (Jaeger)";
+        let fig = self.three_ways(fig, &t, (x, "stick_radius_over_a"), closed, without);
         out.tables.push(t);
         out.figures.push(fig);
         self.report_dissipation(out, &energy, (w_mrd, w_cf, w_3d));
@@ -408,38 +386,19 @@ impl Tangential3d {
         out.scalar("dissipation_max_rel_dev_3d_vs_mrd", wd_3d_mrd);
         out.scalar("energy_balance_max_rel_3d", balance);
         let x = "force_amplitude_over_mu_fn";
-        let mut fig = Figure::new(
+        let fig = Figure::new(
             "dissipation",
             "Energy dissipated per cycle: 3D, MRD and Mindlin-Deresiewicz",
             "force amplitude F* / (mu F_N) [1]",
             &format!("dissipation per cycle W [{energy}]"),
         );
-        if w_cf.is_some() {
-            fig = fig.plot(
-                "Mindlin-Deresiewicz (closed form)",
-                t.xy(x, "dissipation_closed_form"),
-                Style::Line,
-            );
-        } else {
-            fig.title = "Energy dissipated per cycle: 3D and MRD".into();
-        }
-        fig = fig
-            .plot(
-                "MRD (tangential springs)",
-                t.xy(x, "dissipation_mrd"),
-                if w_cf.is_some() {
-                    Style::Markers
-                } else {
-                    Style::Line
-                },
-            )
-            .plot(
-                "3D boundary elements",
-                t.xy(x, "dissipation_3d"),
-                Style::Crosses,
-            )
+        let closed = w_cf
+            .is_some()
+            .then_some("Mindlin-Deresiewicz (closed form)");
+        let without = "Energy dissipated per cycle: 3D and MRD";
+        let fig = self
+            .three_ways(fig, &t, (x, "dissipation"), closed, without)
             .log_log();
-        fig.title.push_str(self.half_space_note());
         out.tables.push(t);
         out.figures.push(fig);
     }
@@ -552,6 +511,35 @@ impl Tangential3d {
         out.tables.push(t);
         out.figures.push(fig);
         Ok(())
+    }
+
+    /// `fig` with the columns `{stem}_closed_form` (drawn under `closed`'s label where
+    /// there is one, else the title becomes `without`), `{stem}_mrd` and `{stem}_3d` of
+    /// `t` against the column `x`, and the half-space in the title.
+    fn three_ways(
+        &self,
+        mut fig: Figure,
+        t: &Table,
+        (x, stem): (&str, &str),
+        closed: Option<&str>,
+        without: &str,
+    ) -> Figure {
+        let column = |side: &str| t.xy(x, &format!("{stem}_{side}"));
+        let mrd_style = match closed {
+            Some(label) => {
+                fig = fig.plot(label, column("closed_form"), Style::Line);
+                Style::Markers
+            }
+            None => {
+                fig.title = without.into();
+                Style::Line
+            }
+        };
+        fig = fig
+            .plot("MRD (tangential springs)", column("mrd"), mrd_style)
+            .plot("3D boundary elements", column("3d"), Style::Crosses);
+        fig.title.push_str(self.half_space_note());
+        fig
     }
 
     /// What a figure's title adds on the free half-space (the periodic one is the default).

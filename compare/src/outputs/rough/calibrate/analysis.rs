@@ -4,6 +4,7 @@
 use super::tasks::Lines;
 use crate::experiment::fit::{
     calibrate_lambda_at, fit_points, interp_loglog, interval, mean_curve, resample, window_points,
+    Estimate,
 };
 use crate::experiment::rough_punch::BemCurve;
 use std::f64::consts::PI;
@@ -58,21 +59,6 @@ pub fn misfit(k3: &[Option<f64>], k1: &[Option<f64>], points: &[bool]) -> (f64, 
         max,
         (d.iter().map(|v| v * v).sum::<f64>() / d.len() as f64).sqrt(),
     )
-}
-
-/// A value with its 95 % interval.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Estimate {
-    pub value: f64,
-    pub lo: f64,
-    pub hi: f64,
-}
-
-impl Estimate {
-    /// The interval's larger half-width over the value.
-    pub fn relative_half_width(&self) -> f64 {
-        ((self.hi - self.value).max(self.value - self.lo) / self.value).abs()
-    }
 }
 
 /// The calibration of one ensemble.

@@ -11,7 +11,7 @@ use super::HurstSweep;
 use crate::error::Result;
 use crate::experiment::fit::{
     calibrate_lambda_at, fit_points, fit_window, interp_loglog, interval, mean_curve, resample,
-    window_points,
+    window_points, Estimate,
 };
 use crate::experiment::rough_punch::{BemCurve, MrdEnsemble, SolveRecord};
 use mrd::rough_contact::Stat;
@@ -28,14 +28,6 @@ pub const LAMBDA_WINDOW: (f64, f64) = (0.02, 0.5);
 
 /// Curves of one ensemble on the f grid (`None` outside a realisation's range).
 pub type Curves = Vec<Vec<Option<f64>>>;
-
-/// A fitted value with its 95 % interval (NaN where undefined).
-#[derive(Debug, Clone, Copy)]
-pub struct Estimate {
-    pub value: f64,
-    pub lo: f64,
-    pub hi: f64,
-}
 
 /// Results at one Hurst exponent on the main grid.
 #[derive(Debug, Clone)]

@@ -2,8 +2,9 @@
 //! alpha(H) in the style of Fig. 6, lambda(H), zeta(H), k(F) per H with bands and the
 //! fit window, the finite-size study, and the lambda table in the form `mrd` loads.
 
-use super::aggregate::{Estimate, PerHurst, Results};
+use super::aggregate::{PerHurst, Results};
 use super::HurstSweep;
+use crate::experiment::fit::Estimate;
 use crate::experiment::rough_punch::SolveRecord;
 use crate::report::{Figure, Section, Series, Style, Table};
 use mrd::roughness::lambda_cut;
@@ -95,7 +96,6 @@ fn alpha_table(spec: &HurstSweep, r: &Results, label: &str) -> Table {
         spec.grid, spec.realisations_3d, spec.points_1d_factor * spec.grid, spec.realisations_1d
     ));
     t.missing_ok = true;
-    let e = |e: Estimate| [e.value, e.lo, e.hi];
     for h in &r.per_hurst {
         let eq80 = if h.hurst > -1.0 {
             1.0 / (1.0 + h.hurst)
@@ -103,12 +103,12 @@ fn alpha_table(spec: &HurstSweep, r: &Results, label: &str) -> Table {
             f64::NAN
         };
         let mut row = vec![h.hurst];
-        row.extend(e(h.alpha_3d));
-        row.extend(e(h.alpha_mrd));
+        row.extend(h.alpha_3d.columns());
+        row.extend(h.alpha_mrd.columns());
         row.push(eq80);
-        row.extend(e(h.zeta_3d));
-        row.extend(e(h.zeta_mrd));
-        row.extend(e(h.lambda));
+        row.extend(h.zeta_3d.columns());
+        row.extend(h.zeta_mrd.columns());
+        row.extend(h.lambda.columns());
         row.push(h.lambda_cut);
         t.push(row);
     }
@@ -267,27 +267,22 @@ fn summary_figures(r: &Results, label: &str, bandwidth: f64) -> [Figure; 3] {
         .map(|i| -0.2 + 3.2 * i as f64 / 64.0)
         .map(|h| (h, 1.0 / (1.0 + h)))
         .collect();
-    let fig6 = Figure::new(
-        &format!("{label}_fig6"),
-        "Exponent alpha of Eq. (77) against the Hurst exponent (cf. Fig. 6)",
-        "Hurst exponent H [1]",
-        "alpha [1]",
-    )
-    .with(
-        Series::new(
-            "3D boundary elements (95% CI)",
-            pts(|h| h.alpha_3d),
-            Style::Crosses,
-        )
-        .with_bars(bars(|h| h.alpha_3d)),
-    )
-    .with(
-        Series::new(
-            "MRD (1D), lambda = pi (95% CI)",
-            pts(|h| h.alpha_mrd),
-            Style::Line,
-        )
-        .with_bars(bars(|h| h.alpha_mrd)),
+    // One quantity's 3D and MRD estimates against H, with their intervals.
+    let sides = |fig: Figure, d3: fn(&PerHurst) -> Estimate, mrd: fn(&PerHurst) -> Estimate| {
+        let three_d = Series::new("3D boundary elements (95% CI)", pts(d3), Style::Crosses);
+        let line = Series::new("MRD (1D), lambda = pi (95% CI)", pts(mrd), Style::Line);
+        fig.with(three_d.with_bars(bars(d3)))
+            .with(line.with_bars(bars(mrd)))
+    };
+    let fig6 = sides(
+        Figure::new(
+            &format!("{label}_fig6"),
+            "Exponent alpha of Eq. (77) against the Hurst exponent (cf. Fig. 6)",
+            "Hurst exponent H [1]",
+            "alpha [1]",
+        ),
+        |h| h.alpha_3d,
+        |h| h.alpha_mrd,
     )
     .plot("1/(1+H), Eq. (80)", theory, Style::Dashed);
     let lam_cut_pts: Vec<(f64, f64)> = (0..=70)
@@ -323,27 +318,15 @@ fn summary_figures(r: &Results, label: &str, bandwidth: f64) -> [Figure; 3] {
         Style::Line,
     );
     figl.log_y = true;
-    let figz = Figure::new(
-        &format!("{label}_zeta"),
-        "Prefactor zeta of Eq. (77)",
-        "Hurst exponent H [1]",
-        "zeta [1]",
-    )
-    .with(
-        Series::new(
-            "3D boundary elements (95% CI)",
-            pts(|h| h.zeta_3d),
-            Style::Crosses,
-        )
-        .with_bars(bars(|h| h.zeta_3d)),
-    )
-    .with(
-        Series::new(
-            "MRD (1D), lambda = pi (95% CI)",
-            pts(|h| h.zeta_mrd),
-            Style::Line,
-        )
-        .with_bars(bars(|h| h.zeta_mrd)),
+    let figz = sides(
+        Figure::new(
+            &format!("{label}_zeta"),
+            "Prefactor zeta of Eq. (77)",
+            "Hurst exponent H [1]",
+            "zeta [1]",
+        ),
+        |h| h.zeta_3d,
+        |h| h.zeta_mrd,
     );
     [fig6, figl, figz]
 }

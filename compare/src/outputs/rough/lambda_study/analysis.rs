@@ -5,12 +5,12 @@
 //! Every bootstrap draws from a generator seeded by the study's seed and the case, so
 //! results are reproducible bit for bit whatever order the checkpoints were written in.
 
-use super::estimate::Estimate;
 use super::tasks::{
     cases, control_file, done, load, mrd_file, Case, ControlEnsemble, Role, StudyCurve,
 };
 use super::LambdaStudy;
 use crate::error::Result;
+use crate::experiment::fit::Estimate;
 use crate::experiment::fit::{
     calibrate_lambda_at, fit_points, fit_window, interp_loglog, mean_curve, resample, window_points,
 };

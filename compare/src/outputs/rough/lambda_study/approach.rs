@@ -13,11 +13,12 @@
 //! (`tasks::ApproachEnsemble`).
 
 use super::analysis::Sample;
-use super::estimate::{cv_estimate, Estimate};
+use super::estimate::cv_estimate;
 use super::tasks::{approach_file, load, ApproachEnsemble, Case};
 use super::LambdaStudy;
 use crate::error::Result;
 use crate::experiment::fit::interp_loglog;
+use crate::experiment::fit::Estimate;
 use crate::experiment::rough_punch::BemCurve;
 use crate::report::{Figure, Section, Series, Style, Table};
 use rand::SeedableRng;
@@ -206,22 +207,10 @@ pub fn report(sc: &[ForceScatter], label: &str, out: &mut Section) {
         let mut ratio = [f64::INFINITY, f64::NEG_INFINITY];
         for j in 0..x.approach.len() {
             let (a, b) = (x.cv_3d[j], x.cv_mrd[j]);
-            t.push(vec![
-                x.case.hurst,
-                x.case.band as f64,
-                x.realisations as f64,
-                x.lines as f64,
-                x.approach[j],
-                x.in_window[j] as u8 as f64,
-                x.mean_3d[j],
-                x.mean_mrd[j],
-                a.value,
-                a.lo,
-                a.hi,
-                b.value,
-                b.lo,
-                b.hi,
-            ]);
+            let case = [x.case.hurst, x.case.band as f64, x.realisations as f64];
+            let at = [x.lines as f64, x.approach[j], x.in_window[j] as u8 as f64];
+            let means = [x.mean_3d[j], x.mean_mrd[j]];
+            t.push([&case[..], &at, &means, &a.columns(), &b.columns()].concat());
             let Some(b) = mrd_at_force(x, x.mean_3d[j]) else {
                 continue;
             };

@@ -1,48 +1,10 @@
-//! A value with its 95 % interval, and the bootstrap of a coefficient of variation: the
-//! estimates that the study's analysis, scatter and approach parts share.
+//! The bootstrap of a coefficient of variation, which the study's scatter and approach
+//! parts share (an [`Estimate`] is the experiment layer's).
 
 use crate::experiment::fit::interval;
+use crate::experiment::fit::Estimate;
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
-
-/// A value with its 95 % interval (NaN where undefined).
-#[derive(Debug, Clone, Copy)]
-pub struct Estimate {
-    pub value: f64,
-    pub lo: f64,
-    pub hi: f64,
-}
-
-impl Estimate {
-    pub(super) const NONE: Estimate = Estimate {
-        value: f64::NAN,
-        lo: f64::NAN,
-        hi: f64::NAN,
-    };
-
-    pub(super) fn of(value: Option<f64>, boot: Vec<f64>) -> Self {
-        let (lo, hi) = interval(boot);
-        Self {
-            value: value.unwrap_or(f64::NAN),
-            lo,
-            hi,
-        }
-    }
-
-    /// The estimate and its interval times `factor` (> 0).
-    pub(super) fn scaled(self, factor: f64) -> Self {
-        Self {
-            value: self.value * factor,
-            lo: self.lo * factor,
-            hi: self.hi * factor,
-        }
-    }
-
-    /// The interval's larger distance from the value, relative to it.
-    pub fn relative_half_width(&self) -> f64 {
-        ((self.hi - self.value).max(self.value - self.lo) / self.value).abs()
-    }
-}
 
 /// Bootstrap resamples of each CV.
 pub(super) const RESAMPLES: usize = 400;

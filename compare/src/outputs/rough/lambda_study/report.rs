@@ -4,10 +4,10 @@
 //! the form `lambda = "<file>"` loads.
 
 use super::analysis::{CaseResult, Results};
-use super::estimate::Estimate;
 use super::scatter::Scatter;
 use super::tasks::Role;
 use super::LambdaStudy;
+use crate::experiment::fit::Estimate;
 use crate::report::{Figure, Section, Series, Style, Table};
 use std::f64::consts::PI;
 
@@ -70,10 +70,6 @@ fn role_code(role: Role) -> f64 {
     }
 }
 
-fn est(e: &Estimate) -> [f64; 3] {
-    [e.value, e.lo, e.hi]
-}
-
 fn cases_table(s: &LambdaStudy, r: &Results, label: &str) -> Table {
     let cols: Vec<String> = [
         "hurst [1]",
@@ -121,10 +117,10 @@ fn cases_table(s: &LambdaStudy, r: &Results, label: &str) -> Table {
             role_code(c.case.role),
             c.realisations as f64,
         ];
-        row.extend(est(&c.lambda));
+        row.extend(c.lambda.columns());
         row.push(c.lambda.relative_half_width());
         row.push(c.target);
-        row.extend(est(&c.alpha_3d));
+        row.extend(c.alpha_3d.columns());
         row.extend([
             c.alpha_mrd.value,
             c.misfit_max,
@@ -180,7 +176,7 @@ fn pairs_table(r: &Results, label: &str) -> Table {
             p.reference.tolerance,
             p.realisations as f64,
         ];
-        row.extend(est(&p.ratio));
+        row.extend(p.ratio.columns());
         t.push(row.into_iter().map(finite_or_nan).collect());
     }
     t

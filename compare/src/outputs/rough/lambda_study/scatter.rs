@@ -11,10 +11,11 @@
 
 use super::analysis::sample;
 use super::approach::{self, ForceScatter};
-use super::estimate::{cv_estimate, Estimate, RESAMPLES};
+use super::estimate::{cv_estimate, RESAMPLES};
 use super::tasks::{cases, done, load, mrd_file, Case, Role};
 use super::LambdaStudy;
 use crate::error::Result;
+use crate::experiment::fit::Estimate;
 use crate::experiment::rough_punch::MrdEnsemble;
 use crate::report::{Figure, Section, Series, Style, Table};
 use rand::SeedableRng;
@@ -202,20 +203,9 @@ pub fn report(sc: &[Scatter], fs: &[f64], label: &str, out: &mut Section) {
             let (Some(a), Some(b)) = (x.cv_3d[j], x.cv_mrd[j]) else {
                 continue;
             };
-            t.push(vec![
-                x.case.hurst,
-                x.case.band as f64,
-                x.realisations as f64,
-                x.lines as f64,
-                f,
-                x.in_window[j] as u8 as f64,
-                a.value,
-                a.lo,
-                a.hi,
-                b.value,
-                b.lo,
-                b.hi,
-            ]);
+            let case = [x.case.hurst, x.case.band as f64, x.realisations as f64];
+            let at = [x.lines as f64, f, x.in_window[j] as u8 as f64];
+            t.push([&case[..], &at, &a.columns(), &b.columns()].concat());
             pts3.push((f, a));
             pts1.push((f, b.value));
             if x.in_window[j] && a.value > 0.0 {

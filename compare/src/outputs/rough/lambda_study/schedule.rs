@@ -3,13 +3,13 @@
 //! tasks of this shard, computed and checkpointed.
 
 use super::analysis;
-use super::estimate::Estimate;
 use super::tasks::{
     approach_file, cases, done, mrd_file, run_bem, run_control, run_mrd, run_mrd_approach,
     top_checked, Case, Role, Task,
 };
 use super::LambdaStudy;
 use crate::error::{io_err, CompareError, Result};
+use crate::experiment::fit::Estimate;
 use crate::experiment::tasks::{self, json};
 use crate::output::RunControl;
 use std::path::Path;

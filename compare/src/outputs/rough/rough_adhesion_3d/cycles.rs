@@ -77,12 +77,8 @@ fn drive(spec: &RoughAdhesion3d, top: f64, step: &mut Step) -> Result<Cycle> {
 /// The factor that gives the MRD lines of a case the surfaces' C2D: the unit-rms
 /// factor of the finest 3D grid (1 for the smooth body).
 pub fn unit_rms_scale(spec: &RoughAdhesion3d, hurst: f64, roughness: f64) -> Result<f64> {
-    if roughness > 0.0 {
-        spec.geometry(hurst, *spec.cells.last().unwrap_or(&16))
-            .unit_rms_factor()
-    } else {
-        Ok(1.0)
-    }
+    let finest = *spec.cells.last().unwrap_or(&16);
+    spec.geometry(hurst, finest).unit_rms_scale(roughness)
 }
 
 /// Realisation `r` of the case (hurst, roughness) on an `n`^2 grid in 3D.

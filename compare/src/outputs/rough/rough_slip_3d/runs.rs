@@ -105,12 +105,8 @@ pub struct Case {
 /// The factor that gives the surfaces of a case unit rms height (the finest grid's; the
 /// MRD lines take the same factor, so both sides carry the same C2D).
 pub fn unit_rms_scale(spec: &RoughSlip3d, hurst: f64, roughness: f64) -> Result<f64> {
-    if roughness > 0.0 {
-        spec.geometry(hurst, *spec.cells.last().unwrap_or(&16))
-            .unit_rms_factor()
-    } else {
-        Ok(1.0)
-    }
+    let finest = *spec.cells.last().unwrap_or(&16);
+    spec.geometry(hurst, finest).unit_rms_scale(roughness)
 }
 
 /// Realisation `r` of the case (hurst, roughness, scale) on an `n`^2 grid in 3D; with
