@@ -8,7 +8,7 @@ use crate::checks::{
     bad, check_memory_per_thread, count_in, BYTES_PER_CELL_PERIODIC, MAX_REALISATIONS,
 };
 use crate::error::{Context as _, Result};
-use bem3d::{ContactSolver, PeriodicHalfSpace, SolverOptions};
+use bem3d::{ContactSolver, Load, PeriodicHalfSpace, Solution, SolverOptions};
 use mrd::roughness::synthesis::Grid;
 use mrd::roughness::{nested, SelfAffine};
 use rayon::prelude::*;
@@ -40,6 +40,22 @@ pub struct Realisation {
     pub patch: Patch,
     pub solver: ContactSolver<PeriodicHalfSpace>,
     pub opts: SolverOptions,
+}
+
+impl Realisation {
+    /// The normal solve at total force `force` (warm-started from `warm` when given) and
+    /// its tangent stiffness dF/dd.
+    pub fn normal_at(&mut self, force: f64, warm: Option<&Solution>) -> Result<(Solution, f64)> {
+        let sol = self
+            .solver
+            .solve(Load::Force(force), &self.opts, warm)
+            .ctx("3D normal solve")?;
+        let kn = self
+            .solver
+            .tangent_stiffness(&sol, &self.opts)
+            .ctx("3D normal stiffness")?;
+        Ok((sol, kn))
+    }
 }
 
 /// The ensembles of a study on periodic patches: Hurst exponents, the substrates'

@@ -27,7 +27,7 @@
 use crate::checks::{bad, check_tolerance, count_in, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
-use crate::experiment::periodic::{Ensemble, Ladder, Realisation};
+use crate::experiment::periodic::{Ensemble, Ladder};
 use crate::experiment::tangential_map::{e_over_g, Mapping, NODES};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
@@ -170,27 +170,18 @@ impl RoughPartialSlip3d {
     }
 
     fn run_one(&self, hurst: f64, cells: usize, r: u64, e_star: f64) -> Result<Run> {
-        let Realisation {
-            n,
-            patch: p,
-            mut solver,
-            opts,
-        } = self
+        let mut real = self
             .ladder()
             .realise(hurst, cells, r, e_star, self.tolerance)?;
-        let force = self.pressure * e_star * p.rms_slope;
-        let sol = solver
-            .solve(Load::Force(force), &opts, None)
-            .ctx("3D normal solve")?;
-        let kn = solver
-            .tangent_stiffness(&sol, &opts)
-            .ctx("3D normal stiffness")?;
+        let force = self.pressure * e_star * real.patch.rms_slope;
+        let (sol, kn) = real.normal_at(force, None)?;
         // b(Q) = mu (d - d'(Q)) at every force the mapping needs (times E* / G* per
         // Poisson's ratio below).
         let mu_fn = self.mu * force;
         let mapping = Mapping::new(mu_fn, &self.fractions, &self.amplitudes, |q| {
-            let s = solver
-                .solve(Load::Force(force - q / self.mu), &opts, None)
+            let s = real
+                .solver
+                .solve(Load::Force(force - q / self.mu), &real.opts, None)
                 .ctx("3D normal solve at a reduced force")?;
             Ok(self.mu * (sol.approach - s.approach))
         })?;
@@ -207,7 +198,7 @@ impl RoughPartialSlip3d {
             let g = e_star * (1.0 - nu) / 2.0;
             let fresh = || -> bem3d::Result<PartialSlip> {
                 PartialSlip::new(
-                    CerrutiPeriodic::new(n, n, 1.0, 1.0, g, nu)?,
+                    CerrutiPeriodic::new(real.n, real.n, 1.0, 1.0, g, nu)?,
                     &sol.pressure,
                     self.mu,
                 )

@@ -26,12 +26,11 @@
 use crate::checks::{bad, check_tolerance, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
-use crate::experiment::periodic::{Ensemble, Ladder, Realisation};
+use crate::experiment::periodic::{Ensemble, Ladder};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Series, Style, Table};
 use bem3d::tangential::CerrutiPeriodic;
-use bem3d::Load;
 use mrd::material::{ElasticBody, Material};
 use mrd::rough_contact::Stat;
 use serde::Deserialize;
@@ -133,15 +132,10 @@ impl TangentialStiffness3d {
     }
 
     fn run_3d(&self, hurst: f64, cells: usize, r: u64, e_star: f64) -> Result<Run> {
-        let Realisation {
-            n,
-            patch: p,
-            mut solver,
-            opts,
-        } = self
+        let mut real = self
             .ladder()
             .realise(hurst, cells, r, e_star, self.tolerance)?;
-        let slope = p.rms_slope;
+        let (n, slope) = (real.n, real.patch.rms_slope);
         let mut cerruti: Vec<CerrutiPeriodic> = self
             .poisson
             .iter()
@@ -157,19 +151,14 @@ impl TangentialStiffness3d {
         };
         let mut warm: Option<bem3d::Solution> = None;
         for &p in &self.pressures {
-            let sol = solver
-                .solve(Load::Force(p * e_star * slope), &opts, warm.as_ref())
-                .ctx("3D normal solve")?;
-            let kn = solver
-                .tangent_stiffness(&sol, &opts)
-                .ctx("3D normal stiffness")?;
+            let (sol, kn) = real.normal_at(p * e_star * slope, warm.as_ref())?;
             let contact: Vec<bool> = sol.pressure.iter().map(|&p| p > 0.0).collect();
             run.area
                 .push(contact.iter().filter(|c| **c).count() as f64 / (n * n) as f64);
             run.kn.push(kn);
             for (k, op) in cerruti.iter_mut().enumerate() {
                 let kt = op
-                    .stick_stiffness(&contact, self.tolerance, 20 * n + 2000)
+                    .stick_stiffness(&contact, self.tolerance, real.opts.max_iterations)
                     .ctx("3D stick stiffness")?;
                 run.ratio[k].push(0.5 * (kt.x + kt.y) / kn);
                 run.ratio_along_only[k].push(kt.x_along_only / kt.x);
