@@ -51,6 +51,8 @@ pub struct PartialSlip<C = CerrutiPeriodic> {
     pub(super) q: Vec<f64>,
     /// The tractions' bound `mu sum p` times the cell area [force].
     friction: f64,
+    /// The cells in contact (`p > 0`), in grid order.
+    contact: Vec<usize>,
 }
 
 /// Iteration limit of a step.
@@ -85,12 +87,14 @@ impl<C: TangentialCompliance> PartialSlip<C> {
             ));
         }
         let n = op.cells();
+        let contact = (0..n).filter(|&i| bound[i] > 0.0).collect();
         Ok(Self {
             op,
             bound,
             slip: vec![0.0; n],
             q: vec![0.0; n],
             friction,
+            contact,
         })
     }
 
@@ -245,88 +249,37 @@ impl<C: TangentialCompliance> PartialSlip<C> {
         }
     }
 
-    /// Restores `sum q = target` by a uniform change of the cells strictly inside their
-    /// bounds, projecting again (a few rounds: each round moves the rest to fewer cells).
-    fn restore_force(&mut self, target: f64) {
-        for _ in 0..50 {
-            let miss = target - self.q.iter().sum::<f64>();
-            if miss.abs() <= 1e-14 * target.abs().max(self.friction / self.op.cell_area()) {
-                return;
-            }
-            let free: Vec<usize> = (0..self.q.len())
-                .filter(|&i| self.bound[i] > 0.0 && self.q[i].abs() < self.bound[i])
-                .collect();
-            let cells: Vec<usize> = if free.is_empty() {
-                (0..self.q.len()).filter(|&i| self.bound[i] > 0.0).collect()
-            } else {
-                free
-            };
-            let d = miss / cells.len() as f64;
-            for &i in &cells {
-                self.q[i] = (self.q[i] + d).clamp(-self.bound[i], self.bound[i]);
-            }
-        }
-    }
-
     /// The projected conjugate gradient of one step (module docs); returns the
-    /// iterations, the residual, the shift and the displacement `K q`.
+    /// iterations, the residual, the shift and the displacement `K q`. Its loops run
+    /// over the contact cells; only the operator and the displacement's scale see the
+    /// whole grid.
     fn iterate(&mut self, force: f64, tolerance: f64) -> Result<(usize, f64, f64, Vec<f64>)> {
         let n = self.q.len();
         let target = force / self.op.cell_area();
-        self.restore_force(target);
-        let mut u = vec![0.0; n];
-        let mut t = vec![0.0; n];
-        let mut v = vec![0.0; n];
+        let floor = self.friction / self.op.cell_area();
+        let (q, bound, slip, cells) = (&mut self.q, &self.bound, &self.slip, &self.contact);
+        restore_force(q, bound, cells, target, floor);
+        let m = cells.len();
+        let (mut u, mut t, mut v) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        // Per contact cell: u + s, and the stick set of this iterate and the last.
+        let mut r = vec![0.0; m];
+        let mut free = vec![false; m];
         let mut free_prev: Vec<bool> = Vec::new();
         let mut g_old = 0.0;
         let mut last = f64::INFINITY;
         for it in 0..MAX_ITERATIONS {
-            self.op.apply(&self.q, &mut u);
-            let r: Vec<f64> = (0..n).map(|i| u[i] + self.slip[i]).collect();
-            let interior = |i: usize| self.bound[i] > 0.0 && self.q[i].abs() < self.bound[i];
-            let (sum, count) = (0..n)
-                .filter(|&i| interior(i))
-                .fold((0.0, 0usize), |(s, c), i| (s + r[i], c + 1));
-            // The shift: the stick cells' mean of u + s; with none, the bound cells'
-            // residuals bracket it (any value between keeps them at their bounds).
-            let shift = if count > 0 {
-                sum / count as f64
-            } else {
-                let hi = (0..n)
-                    .filter(|&i| self.bound[i] > 0.0 && self.q[i] > 0.0)
-                    .map(|i| r[i])
-                    .fold(f64::INFINITY, f64::min);
-                let lo = (0..n)
-                    .filter(|&i| self.bound[i] > 0.0 && self.q[i] < 0.0)
-                    .map(|i| r[i])
-                    .fold(f64::NEG_INFINITY, f64::max);
-                match (lo.is_finite(), hi.is_finite()) {
-                    (true, true) => 0.5 * (lo + hi),
-                    (true, false) => lo,
-                    (false, true) => hi,
-                    _ => 0.0,
-                }
-            };
-            // Stick set: interior cells, and bound cells whose residual asks to leave
-            // their bound (at +mu p a new slip would be negative, at -mu p positive).
-            let free: Vec<bool> = (0..n)
-                .map(|i| {
-                    self.bound[i] > 0.0
-                        && (interior(i)
-                            || (self.q[i] > 0.0 && r[i] > shift)
-                            || (self.q[i] < 0.0 && r[i] < shift))
-                })
-                .collect();
+            self.op.apply(q, &mut u);
+            for (k, &i) in cells.iter().enumerate() {
+                r[k] = u[i] + slip[i];
+            }
+            let shift = shift_and_stick_set(q, bound, cells, &r, &mut free);
             let scale = u
                 .iter()
                 .fold(0.0f64, |m, x| m.max(x.abs()))
                 .max(f64::MIN_POSITIVE);
-            let mut worst = 0.0f64;
-            for i in 0..n {
-                if free[i] {
-                    worst = worst.max((r[i] - shift).abs());
-                }
-            }
+            let worst = (0..m)
+                .filter(|&k| free[k])
+                .fold(0.0f64, |w, k| w.max((r[k] - shift).abs()));
             let residual = worst / scale;
             last = residual;
             if residual <= tolerance {
@@ -334,35 +287,32 @@ impl<C: TangentialCompliance> PartialSlip<C> {
             }
             // Conjugate direction on the stick set, its residual about its mean.
             let fc = free.iter().filter(|f| **f).count().max(1) as f64;
-            let mean_f = (0..n).filter(|&i| free[i]).map(|i| r[i]).sum::<f64>() / fc;
-            let g: f64 = (0..n)
-                .filter(|&i| free[i])
-                .map(|i| (r[i] - mean_f).powi(2))
+            let mean_f = (0..m).filter(|&k| free[k]).map(|k| r[k]).sum::<f64>() / fc;
+            let g: f64 = (0..m)
+                .filter(|&k| free[k])
+                .map(|k| (r[k] - mean_f).powi(2))
                 .sum();
-            let same_set = free == free_prev;
-            let beta = if same_set && g_old > 0.0 {
+            let beta = if free == free_prev && g_old > 0.0 {
                 g / g_old
             } else {
                 0.0
             };
-            for i in 0..n {
-                t[i] = if free[i] {
-                    r[i] - mean_f + beta * t[i]
+            for (k, &i) in cells.iter().enumerate() {
+                t[i] = if free[k] {
+                    r[k] - mean_f + beta * t[i]
                 } else {
                     0.0
                 };
             }
             g_old = g;
-            free_prev = free;
+            free_prev.clone_from(&free);
             self.op.apply(&t, &mut v);
-            let vbar = (0..n).filter(|&i| free_prev[i]).map(|i| v[i]).sum::<f64>() / fc;
-            let den: f64 = (0..n)
-                .filter(|&i| free_prev[i])
-                .map(|i| t[i] * (v[i] - vbar))
-                .sum();
-            let num: f64 = (0..n)
-                .filter(|&i| free_prev[i])
-                .map(|i| t[i] * (r[i] - mean_f))
+            let on_set = || (0..m).filter(|&k| free[k]).map(|k| cells[k]);
+            let vbar = on_set().map(|i| v[i]).sum::<f64>() / fc;
+            let den: f64 = on_set().map(|i| t[i] * (v[i] - vbar)).sum();
+            let num: f64 = (0..m)
+                .filter(|&k| free[k])
+                .map(|k| t[cells[k]] * (r[k] - mean_f))
                 .sum();
             if !(den > 0.0 && num.is_finite()) {
                 return Err(BemError::Breakdown {
@@ -373,12 +323,12 @@ impl<C: TangentialCompliance> PartialSlip<C> {
                 });
             }
             let tau = num / den;
-            for i in 0..n {
-                if free_prev[i] {
-                    self.q[i] = (self.q[i] - tau * t[i]).clamp(-self.bound[i], self.bound[i]);
+            for (k, &i) in cells.iter().enumerate() {
+                if free[k] {
+                    q[i] = (q[i] - tau * t[i]).clamp(-bound[i], bound[i]);
                 }
             }
-            self.restore_force(target);
+            restore_force(q, bound, cells, target, floor);
         }
         Err(BemError::Breakdown {
             what: "partial slip",
@@ -387,6 +337,70 @@ impl<C: TangentialCompliance> PartialSlip<C> {
             reason: "no convergence within the iteration limit",
         })
     }
+}
+
+/// Restores `sum q = target` on the contact `cells` by a uniform change of the cells
+/// strictly inside their bounds, projecting again (a few rounds: each round moves the
+/// rest to fewer cells); `floor` is the scale of the miss's tolerance when `target` is
+/// small.
+fn restore_force(q: &mut [f64], bound: &[f64], cells: &[usize], target: f64, floor: f64) {
+    for _ in 0..50 {
+        let miss = target - cells.iter().map(|&i| q[i]).sum::<f64>();
+        if miss.abs() <= 1e-14 * target.abs().max(floor) {
+            return;
+        }
+        let free: Vec<usize> = cells
+            .iter()
+            .copied()
+            .filter(|&i| q[i].abs() < bound[i])
+            .collect();
+        let moved = if free.is_empty() { cells } else { &free };
+        let d = miss / moved.len() as f64;
+        for &i in moved {
+            q[i] = (q[i] + d).clamp(-bound[i], bound[i]);
+        }
+    }
+}
+
+/// The shift of an iterate with `r = u + s` on the contact `cells`: the stick cells'
+/// mean of `r`, or with none, a value the bound cells' residuals bracket (any value
+/// between keeps them at their bounds). Fills `free` with the stick set: interior cells,
+/// and bound cells whose residual asks to leave their bound (at +mu p a new slip would
+/// be negative, at -mu p positive).
+fn shift_and_stick_set(
+    q: &[f64],
+    bound: &[f64],
+    cells: &[usize],
+    r: &[f64],
+    free: &mut [bool],
+) -> f64 {
+    let interior = |k: usize| q[cells[k]].abs() < bound[cells[k]];
+    let (sum, count) = (0..cells.len())
+        .filter(|&k| interior(k))
+        .fold((0.0, 0usize), |(s, c), k| (s + r[k], c + 1));
+    let shift = if count > 0 {
+        sum / count as f64
+    } else {
+        let hi = (0..cells.len())
+            .filter(|&k| q[cells[k]] > 0.0)
+            .map(|k| r[k])
+            .fold(f64::INFINITY, f64::min);
+        let lo = (0..cells.len())
+            .filter(|&k| q[cells[k]] < 0.0)
+            .map(|k| r[k])
+            .fold(f64::NEG_INFINITY, f64::max);
+        match (lo.is_finite(), hi.is_finite()) {
+            (true, true) => 0.5 * (lo + hi),
+            (true, false) => lo,
+            (false, true) => hi,
+            _ => 0.0,
+        }
+    };
+    for (k, f) in free.iter_mut().enumerate() {
+        let qk = q[cells[k]];
+        *f = interior(k) || (qk > 0.0 && r[k] > shift) || (qk < 0.0 && r[k] < shift);
+    }
+    shift
 }
 
 #[cfg(test)]
