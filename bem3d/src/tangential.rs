@@ -34,7 +34,11 @@
 //! for the normal problem, with two bounds instead of one): the residual is the stick
 //! cells' `u + s` about their mean (`delta`), the step is projected on the bounds, the
 //! force is restored on the stick cells, and a bound cell whose residual asks to leave
-//! its bound rejoins the stick set (conjugacy restarts when the set changes). It stops
+//! its bound rejoins the stick set (conjugacy restarts when the set changes). An
+//! iteration whose step projects no cell and changes no force updates `u = K_t q` by
+//! `-tau K_t t` instead of applying the operator again (every 50 such iterations and
+//! before stopping, `u` is computed afresh), and the loops run over the contact cells
+//! only, so one operator application per iteration dominates its cost. It stops
 //! when every cell satisfies the law within `tolerance` times the largest displacement:
 //! stick cells `|u + s - delta|`, slip cells the sign of their new slip. A step whose
 //! force reaches the total friction `mu sum p` is gross sliding, reported as such.

@@ -58,6 +58,9 @@ pub struct PartialSlip<C = CerrutiPeriodic> {
 /// Iteration limit of a step.
 const MAX_ITERATIONS: usize = 20_000;
 
+/// Iterations between computations of `K q` afresh while its running update is used.
+const REFRESH: usize = 50;
+
 impl<C: TangentialCompliance> PartialSlip<C> {
     /// `pressure` (`ny x nx`, >= 0, finite) held, friction coefficient `mu > 0`.
     pub fn new(op: C, pressure: &[f64], mu: f64) -> Result<Self> {
@@ -267,8 +270,12 @@ impl<C: TangentialCompliance> PartialSlip<C> {
         let mut free_prev: Vec<bool> = Vec::new();
         let mut g_old = 0.0;
         let mut last = f64::INFINITY;
+        // Iterations since `u` was last computed as `K q`; `None`: compute it now.
+        let mut updated: Option<usize> = None;
         for it in 0..MAX_ITERATIONS {
-            self.op.apply(q, &mut u);
+            if updated.is_none() {
+                self.op.apply(q, &mut u);
+            }
             for (k, &i) in cells.iter().enumerate() {
                 r[k] = u[i] + slip[i];
             }
@@ -283,7 +290,12 @@ impl<C: TangentialCompliance> PartialSlip<C> {
             let residual = worst / scale;
             last = residual;
             if residual <= tolerance {
-                return Ok((it, residual, shift, u));
+                if updated.is_none() {
+                    return Ok((it, residual, shift, u));
+                }
+                // Stop only on `u = K q` itself, not on its running update.
+                updated = None;
+                continue;
             }
             // Conjugate direction on the stick set, its residual about its mean.
             let fc = free.iter().filter(|f| **f).count().max(1) as f64;
@@ -323,12 +335,27 @@ impl<C: TangentialCompliance> PartialSlip<C> {
                 });
             }
             let tau = num / den;
+            let mut projected = false;
             for (k, &i) in cells.iter().enumerate() {
                 if free[k] {
-                    q[i] = (q[i] - tau * t[i]).clamp(-bound[i], bound[i]);
+                    let step = q[i] - tau * t[i];
+                    q[i] = step.clamp(-bound[i], bound[i]);
+                    projected |= q[i] != step;
                 }
             }
-            restore_force(q, bound, cells, target, floor);
+            let restored = restore_force(q, bound, cells, target, floor);
+            // Where the step moved q by exactly -tau t, K q moves by -tau K t = -tau v:
+            // one operator application an iteration instead of two. The running update
+            // is refreshed every `REFRESH` iterations against rounding.
+            let afresh = projected || restored || updated.is_some_and(|k| k + 1 >= REFRESH);
+            updated = if afresh {
+                None
+            } else {
+                for (u, v) in u.iter_mut().zip(&v) {
+                    *u -= tau * v;
+                }
+                Some(updated.map_or(1, |k| k + 1))
+            };
         }
         Err(BemError::Breakdown {
             what: "partial slip",
@@ -342,12 +369,12 @@ impl<C: TangentialCompliance> PartialSlip<C> {
 /// Restores `sum q = target` on the contact `cells` by a uniform change of the cells
 /// strictly inside their bounds, projecting again (a few rounds: each round moves the
 /// rest to fewer cells); `floor` is the scale of the miss's tolerance when `target` is
-/// small.
-fn restore_force(q: &mut [f64], bound: &[f64], cells: &[usize], target: f64, floor: f64) {
-    for _ in 0..50 {
+/// small. Returns whether it changed any traction.
+fn restore_force(q: &mut [f64], bound: &[f64], cells: &[usize], target: f64, floor: f64) -> bool {
+    for round in 0..50 {
         let miss = target - cells.iter().map(|&i| q[i]).sum::<f64>();
         if miss.abs() <= 1e-14 * target.abs().max(floor) {
-            return;
+            return round > 0;
         }
         let free: Vec<usize> = cells
             .iter()
@@ -360,6 +387,7 @@ fn restore_force(q: &mut [f64], bound: &[f64], cells: &[usize], target: f64, flo
             q[i] = (q[i] + d).clamp(-bound[i], bound[i]);
         }
     }
+    true
 }
 
 /// The shift of an iterate with `r = u + s` on the contact `cells`: the stick cells'
