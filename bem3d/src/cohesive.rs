@@ -14,7 +14,9 @@
 //! linear complementarity problem (`p >= -sigma0`, `g >= 0`, one of them tight) with
 //! `p = 0` off `S`: the minimum of the convex energy `p.K p / 2 + p.(z - d)` over
 //! `p >= -sigma0` on `S`, solved by Polonsky & Keer's projected conjugate gradient with
-//! the bound moved from 0 to `-sigma0`. Then `S` is updated from the gaps (cells with
+//! the bound moved from 0 to `-sigma0` (where no bound cuts a step, `u = K p` follows it
+//! by `-tau K t` without a transform; afresh every 50 such steps and before a stop is
+//! accepted). Then `S` is updated from the gaps (cells with
 //! `g >= delta` leave, cells outside with `g < delta` join) and the rounds repeat from the
 //! last pressures until `S` holds. Each round is convex and stops when every cell of `S`
 //! satisfies the complementarity within `tolerance` times the length scale
@@ -58,6 +60,8 @@ pub const RESOLVED_CELLS: f64 = 10.0;
 /// Rounds of set updates in one step.
 pub const MAX_ROUNDS: usize = 20_000;
 const MAX_ITERATIONS: usize = 20_000;
+/// Iterations between computations of `K p` afresh while its running update is used.
+const REFRESH: usize = 50;
 
 /// The traction-gap law of the cohesive zone (module docs); both have the work of
 /// adhesion `w`, the peak tension `sigma0` and the range `delta = w / sigma0`.
@@ -317,6 +321,8 @@ impl<C: Preconditioner> CohesiveContact<C> {
         let (mut free, mut free_old) = (vec![false; n], vec![false; n]);
         let mut rho_old = 0.0;
         self.op.apply(&self.p, &mut self.u);
+        // Iterations since `u` was last computed as `K p` (0: it is `K p` itself).
+        let mut followed = 0;
         for it in 0..MAX_ITERATIONS {
             let cells = passes::Cells {
                 cohesive: &self.cohesive,
@@ -329,7 +335,13 @@ impl<C: Preconditioner> CohesiveContact<C> {
             let (worst, same) = passes::free_set(&cells, &self.p, &free_old, &mut free, &mut y);
             let residual = worst / scale;
             if residual <= tolerance {
-                return Ok((it, residual));
+                if followed == 0 {
+                    return Ok((it, residual));
+                }
+                // Stop only on `u = K p` itself, not on its running update.
+                self.op.apply(&self.p, &mut self.u);
+                followed = 0;
+                continue;
             }
             self.op.precondition(&mut y);
             let rho = passes::restrict(&cells, &free, &mut y);
@@ -352,8 +364,16 @@ impl<C: Preconditioner> CohesiveContact<C> {
                 });
             }
             let tau = rho / curvature;
-            passes::project(&free_old, &self.bound, &t, tau, &mut self.p);
-            self.op.apply(&self.p, &mut self.u);
+            let cut = passes::project(&free_old, &self.bound, &t, tau, &mut self.p);
+            // A step no bound cut moves K p by -tau K t: no transform (afresh every
+            // `REFRESH` iterations against rounding).
+            if cut || followed + 1 >= REFRESH {
+                self.op.apply(&self.p, &mut self.u);
+                followed = 0;
+            } else {
+                passes::follow(&kt, tau, &mut self.u);
+                followed += 1;
+            }
         }
         Err(BemError::Breakdown {
             what: "cohesive contact",

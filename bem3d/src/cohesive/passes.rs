@@ -75,14 +75,32 @@ pub(super) fn restrict(c: &Cells, free: &[bool], y: &mut [f64]) -> f64 {
 }
 
 /// `p = max(p - tau t, bound)` on the free cells.
-pub(super) fn project(free: &[bool], bound: &[f64], t: &[f64], tau: f64, p: &mut [f64]) {
-    p.par_chunks_mut(CHUNK).enumerate().for_each(|(k, p)| {
-        let lo = k * CHUNK;
-        for (j, p) in p.iter_mut().enumerate() {
-            let i = lo + j;
-            if free[i] {
-                *p = (*p - tau * t[i]).max(bound[i]);
+/// Returns whether the bound cut any cell's step.
+pub(super) fn project(free: &[bool], bound: &[f64], t: &[f64], tau: f64, p: &mut [f64]) -> bool {
+    p.par_chunks_mut(CHUNK)
+        .enumerate()
+        .map(|(k, p)| {
+            let lo = k * CHUNK;
+            let mut cut = false;
+            for (j, p) in p.iter_mut().enumerate() {
+                let i = lo + j;
+                if free[i] {
+                    let step = *p - tau * t[i];
+                    *p = step.max(bound[i]);
+                    cut |= *p != step;
+                }
             }
+            cut
+        })
+        .reduce(|| false, |a, b| a || b)
+}
+
+/// `u -= tau kt` on every cell: `u = K p` after a step `-tau t` that no bound cut.
+pub(super) fn follow(kt: &[f64], tau: f64, u: &mut [f64]) {
+    u.par_chunks_mut(CHUNK).enumerate().for_each(|(k, u)| {
+        let kt = &kt[k * CHUNK..k * CHUNK + u.len()];
+        for (u, kt) in u.iter_mut().zip(kt) {
+            *u -= tau * kt;
         }
     });
 }
