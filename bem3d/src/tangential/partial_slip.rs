@@ -644,6 +644,58 @@ mod tests {
         }
     }
 
+    /// Every step's returned state obeys Coulomb's law on `K q` computed afresh by a
+    /// second operator, whatever the iteration used inside (its running update of `K q`
+    /// included): the force is carried, no traction exceeds `mu p`, stick cells keep
+    /// `|u + s - delta| <= tolerance x max |u|`, and slip cells lie on the side of
+    /// `delta` their traction allows. A loading, unloading past zero and reloading history
+    /// on both half-spaces (steps that project cells and steps that do not).
+    #[test]
+    fn each_step_obeys_the_law_on_a_fresh_displacement() {
+        fn check<C: TangentialCompliance>(make: impl Fn() -> C, n: usize) {
+            let (mu, tol) = (0.3, 1e-8);
+            let p = hertz(n, 0.3, 1.0);
+            let mut ps = PartialSlip::new(make(), &p, mu).unwrap();
+            let mut fresh = make();
+            let mut u = vec![0.0; n * n];
+            for x in [0.3, 0.6, 0.2, -0.4, 0.5, 0.55] {
+                let force = x * ps.friction_limit();
+                let step = ps.load(force, tol).unwrap();
+                let (q, s, bound) = (ps.traction(), ps.slip(), &ps.bound);
+                let carried = q.iter().sum::<f64>() * fresh.cell_area();
+                assert!(
+                    (carried - force).abs() <= 1e-12 * ps.friction_limit(),
+                    "{x}"
+                );
+                fresh.apply(q, &mut u);
+                let scale = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                let slack = tol * scale * (1.0 + 1e-9);
+                for i in (0..n * n).filter(|&i| bound[i] > 0.0) {
+                    let off = u[i] + s[i] - step.shift;
+                    assert!(q[i].abs() <= bound[i], "x = {x}, cell {i}: |q| > mu p");
+                    let ok = if q[i].abs() < bound[i] {
+                        off.abs() <= slack
+                    } else {
+                        off * q[i].signum() <= slack
+                    };
+                    assert!(
+                        ok,
+                        "x = {x}, cell {i}: u + s - delta = {off:e}, q = {}",
+                        q[i]
+                    );
+                }
+            }
+        }
+        check(
+            || CerrutiPeriodic::new(64, 64, 1.0, 1.0, 1.0, 0.3).unwrap(),
+            64,
+        );
+        check(
+            || super::super::CerrutiFree::new(48, 48, 1.0, 1.0, 1.0, 0.3).unwrap(),
+            48,
+        );
+    }
+
     #[test]
     fn a_cycle_refuses_what_it_cannot_run() {
         let p = hertz(32, 0.2, 1.0);
