@@ -197,12 +197,8 @@ impl<C: TangentialCompliance> PartialSlip<C> {
         }
         // `u = K q` of the converged traction, from the iteration's last check.
         let (iterations, residual, shift, u) = self.iterate(force, tolerance)?;
-        let n = self.q.len();
         let (mut stick, mut slipping, mut dissipated) = (0, 0, 0.0);
-        for i in 0..n {
-            if self.bound[i] == 0.0 {
-                continue;
-            }
+        for &i in &self.contact {
             if self.q[i].abs() < self.bound[i] {
                 stick += 1;
             } else {
@@ -270,12 +266,10 @@ impl<C: TangentialCompliance> PartialSlip<C> {
         let mut free_prev: Vec<bool> = Vec::new();
         let mut g_old = 0.0;
         let mut last = f64::INFINITY;
-        // Iterations since `u` was last computed as `K q`; `None`: compute it now.
-        let mut updated: Option<usize> = None;
+        self.op.apply(q, &mut u);
+        // Iterations since `u` was last computed as `K q` (0: it is `K q` itself).
+        let mut followed = 0;
         for it in 0..MAX_ITERATIONS {
-            if updated.is_none() {
-                self.op.apply(q, &mut u);
-            }
             for (k, &i) in cells.iter().enumerate() {
                 r[k] = u[i] + slip[i];
             }
@@ -290,11 +284,12 @@ impl<C: TangentialCompliance> PartialSlip<C> {
             let residual = worst / scale;
             last = residual;
             if residual <= tolerance {
-                if updated.is_none() {
+                if followed == 0 {
                     return Ok((it, residual, shift, u));
                 }
                 // Stop only on `u = K q` itself, not on its running update.
-                updated = None;
+                self.op.apply(q, &mut u);
+                followed = 0;
                 continue;
             }
             // Conjugate direction on the stick set, its residual about its mean.
@@ -347,15 +342,15 @@ impl<C: TangentialCompliance> PartialSlip<C> {
             // Where the step moved q by exactly -tau t, K q moves by -tau K t = -tau v:
             // one operator application an iteration instead of two. The running update
             // is refreshed every `REFRESH` iterations against rounding.
-            let afresh = projected || restored || updated.is_some_and(|k| k + 1 >= REFRESH);
-            updated = if afresh {
-                None
+            if projected || restored || followed + 1 >= REFRESH {
+                self.op.apply(q, &mut u);
+                followed = 0;
             } else {
                 for (u, v) in u.iter_mut().zip(&v) {
                     *u -= tau * v;
                 }
-                Some(updated.map_or(1, |k| k + 1))
-            };
+                followed += 1;
+            }
         }
         Err(BemError::Breakdown {
             what: "partial slip",
