@@ -9,7 +9,7 @@ use bem3d::tangential::{
     TangentialStep as Step, ViscoelasticSlip as VeSlip, ViscoelasticStep as VeStep,
 };
 use bem3d::viscoelastic::Relaxation;
-use numpy::{AllowTypeChange, PyArray2, PyArrayLike2, PyArrayMethods, PyUntypedArrayMethods};
+use numpy::{AllowTypeChange, PyArray2, PyArrayLike2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
 /// The substrate's shear modulus G = E* (1 - nu) / 2 under a rigid body, with E* and
@@ -77,16 +77,11 @@ fn cerruti_on(
     Ok(op)
 }
 
-/// A 2D float64 array as (values, (ny, nx)).
-fn grid_of(
-    a: PyArrayLike2<'_, f64, AllowTypeChange>,
-    name: &str,
-) -> PyResult<(Vec<f64>, (usize, usize))> {
+/// A 2D float64 array as (values row by row, (ny, nx)); any strides (a slice or a
+/// transposed view is copied in its logical order).
+fn grid_of(a: PyArrayLike2<'_, f64, AllowTypeChange>) -> (Vec<f64>, (usize, usize)) {
     let shape = (a.shape()[0], a.shape()[1]);
-    let v = a
-        .to_vec()
-        .map_err(|_| value_error(format!("{name} must be a 2D array")))?;
-    Ok((v, shape))
+    (a.as_array().iter().copied().collect(), shape)
 }
 
 step_class! {
@@ -149,7 +144,7 @@ impl PartialSlip {
         poisson: f64,
         periodic: bool,
     ) -> PyResult<Self> {
-        let (p, shape) = grid_of(pressure, "pressure")?;
+        let (p, shape) = grid_of(pressure);
         let g = shear_modulus(e_star, poisson)?;
         let op = cerruti_on(shape, size, g, poisson, periodic)?;
         let slip = Slip::new(op, &p, mu).map_err(|e| value_error(e.to_string()))?;
@@ -233,9 +228,7 @@ pub fn stick_stiffness(
     tolerance: f64,
 ) -> PyResult<(f64, f64, f64)> {
     let shape = (contact.shape()[0], contact.shape()[1]);
-    let c = contact
-        .to_vec()
-        .map_err(|_| value_error("contact must be a 2D boolean array"))?;
+    let c: Vec<bool> = contact.as_array().iter().copied().collect();
     let mut op = cerruti(shape, size, e_star, poisson)?;
     let limit = 20 * shape.0.max(shape.1) + 2000;
     let k = py
@@ -308,7 +301,7 @@ impl ViscoelasticSlip {
         poisson: f64,
         periodic: bool,
     ) -> PyResult<Self> {
-        let (p, shape) = grid_of(pressure, "pressure")?;
+        let (p, shape) = grid_of(pressure);
         let modulus = Relaxation::new(relaxed, terms).map_err(|e| value_error(e.to_string()))?;
         // The operator of unit shear modulus; the moduli live in the relaxation.
         let op = cerruti_on(shape, size, 1.0, poisson, periodic)?;

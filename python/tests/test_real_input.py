@@ -202,6 +202,45 @@ def test_topography_objects_that_are_not_quite(tmp_path):
         mrdw.read_topography("/dev/null")
 
 
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        ({"data": np.zeros(4)}, "data must be a 2D array"),
+        ({"data": np.zeros((4, 4)), "undefined": np.zeros((2, 2), bool)}, "undefined must be"),
+        ({"data": np.zeros((4, 4)), "undefined": np.zeros((4, 4))}, "undefined must be"),
+        ({"data": np.zeros((4, 4)), "size": (-1.0, 2.0)}, r"size = \(-1.0, 2.0\)"),
+        ({"data": np.zeros((4, 4)), "size": 3.0}, "size must be"),
+        ({"data": np.zeros((4, 4)), "size": (1.0, float("nan"))}, r"size = \(1.0, nan\) must be finite"),
+        ({"data": np.zeros((4, 4)), "periodic": "yes"}, "periodic must be"),
+    ],
+)
+def test_a_topography_names_the_argument_that_does_not_fit(kwargs, message):
+    with pytest.raises(ValueError, match=f"Topography: {message}"):
+        mrdw.Topography(**kwargs)
+
+
+def test_a_topography_counts_nan_and_masked_cells_as_undefined():
+    h = np.add.outer(np.arange(8.0), np.arange(8.0)) / 100
+    assert mrdw.Topography(h).data is h  # kept, not copied
+    hole = h.copy()
+    hole[2, 3] = np.nan
+    masked = np.ma.masked_array(h, mask=np.isnan(hole))
+    given = np.zeros((8, 8), bool)
+    given[5, 5] = True
+    for t, cells in [
+        (mrdw.Topography(hole), [(2, 3)]),
+        (mrdw.Topography(masked), [(2, 3)]),
+        (mrdw.Topography(hole, given), [(2, 3), (5, 5)]),
+    ]:
+        assert t.has_undefined_data
+        assert sorted(zip(*np.nonzero(t.undefined))) == cells
+    # The contact leaves them out as it leaves out a mask's cells.
+    with pytest.warns(UserWarning, match="1 of 64 cells are undefined"):
+        a = mrdw.Contact(mrdw.Topography(masked), size=(1.0, 1.0)).solve(force=1e-3)
+    b = mrdw.Contact(h, size=(1.0, 1.0), mask=~masked.mask).solve(force=1e-3)
+    assert np.array_equal(a.pressure, b.pressure)
+
+
 @settings(max_examples=30, deadline=None)
 @given(
     n=st.integers(2, 40),

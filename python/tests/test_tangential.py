@@ -65,6 +65,25 @@ def test_a_circle_held_in_stick_has_mindlins_ratio():
     assert along < kx
 
 
+def test_views_of_any_strides_are_read_in_their_logical_order():
+    # A slice or a transposed view solves as its contiguous copy does, bit for bit.
+    c = mrdw.Contact(waves(128), periodic=True)
+    p = c.solve(force=0.002).pressure
+    for view in (p[::2, ::2], p[::2, ::2].T, p[:, 5:69]):
+        copy = np.ascontiguousarray(view)
+        a = mrdw.PartialSlip(view, 0.5).load(0.2 * 0.5 * view.sum() / view.size)
+        b = mrdw.PartialSlip(copy, 0.5).load(0.2 * 0.5 * copy.sum() / copy.size)
+        assert (a.shift, a.stick_cells) == (b.shift, b.stick_cells)
+        v = mrdw.ViscoelasticSlip(view, 0.5, 1.0, terms=[(1.0, 1.0)], periodic=True)
+        w = mrdw.ViscoelasticSlip(copy, 0.5, 1.0, terms=[(1.0, 1.0)], periodic=True)
+        assert v.step(0.1, 1e-4).force == w.step(0.1, 1e-4).force
+    disc = np.zeros((32, 64), dtype=bool)
+    disc[10:20, 20:40] = True
+    assert mrdw.stick_stiffness(disc[:, ::2]) == mrdw.stick_stiffness(
+        np.ascontiguousarray(disc[:, ::2])
+    )
+
+
 def test_a_cycle_dissipates_its_loop():
     c = mrdw.Contact(waves(64), periodic=True)
     r = c.solve(force=0.002)

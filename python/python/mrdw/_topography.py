@@ -26,10 +26,45 @@ class Topography:
     """
 
     def __init__(self, data, undefined=None, size=None, periodic=None, source=None):
+        """Checks each argument and names the one that does not fit. A float64 C- or
+        Fortran-ordered `data` is kept without a copy; NaN cells count as undefined
+        (added to `undefined`), as do the masked cells of a masked array."""
+        if np.ma.isMaskedArray(data):
+            mask = np.ma.getmaskarray(data)
+            data = np.ma.filled(data.astype(np.float64), np.nan)
+            if undefined is None and mask.any():
+                undefined = mask
+        data = np.asarray(data, dtype=np.float64)
+        if data.ndim != 2:
+            raise ValueError(f"Topography: data must be a 2D array (ny, nx), got {data.ndim}D")
+        nan = np.isnan(data)
+        if undefined is not None:
+            undefined = np.asarray(undefined)
+            if undefined.dtype != np.bool_ or undefined.shape != data.shape:
+                raise ValueError(
+                    f"Topography: undefined must be a bool array of data's shape {data.shape}, "
+                    f"got {undefined.dtype} {undefined.shape}"
+                )
+            if nan.any():
+                undefined = undefined | nan
+        elif nan.any():
+            undefined = nan
+        if size is not None:
+            try:
+                lx, ly = (float(v) for v in size)
+            except (TypeError, ValueError):
+                raise ValueError(
+                    f"Topography: size must be (lx, ly) or None, got {size!r}"
+                ) from None
+            if not (np.isfinite(lx) and np.isfinite(ly) and lx > 0 and ly > 0):
+                raise ValueError(f"Topography: size = ({lx}, {ly}) must be finite and > 0")
+            size = (lx, ly)
+        if periodic is not None and not isinstance(periodic, (bool, np.bool_)):
+            raise ValueError(f"Topography: periodic must be True, False or None, got {periodic!r}")
         self.data = data
         self.undefined = undefined
-        self.size = None if size is None else (float(size[0]), float(size[1]))
-        self.periodic = periodic
+        self.size = size
+        self.periodic = None if periodic is None else bool(periodic)
         self.source = source
 
     @property
