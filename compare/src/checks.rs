@@ -12,6 +12,16 @@ pub(crate) fn positive(x: f64) -> bool {
     x.is_finite() && x > 0.0
 }
 
+/// A scene key that must be finite and positive: the error names the key and the value
+/// the scene gave.
+pub(crate) fn require_positive(key: &str, value: f64) -> Result<()> {
+    if positive(value) {
+        Ok(())
+    } else {
+        bad(format!("{key} = {value} must be finite and > 0"))
+    }
+}
+
 /// A count key (`realisations`, `loads`, `f_points`, ...) within `range`: the bounds keep
 /// a run's size (tasks, table rows) within what a machine can hold and finish.
 pub(crate) fn count_in(key: &str, value: u64, range: std::ops::RangeInclusive<u64>) -> Result<()> {
@@ -158,9 +168,7 @@ pub(crate) fn check_line(hurst: f64, points: usize, length: f64, realisations: u
     if !(64..=50_000_000).contains(&points) {
         return bad(format!("points = {points} must lie in 64..=5e7"));
     }
-    if !positive(length) {
-        return bad("length must be > 0");
-    }
+    require_positive("length", length)?;
     // At least 2, for intervals.
     count_in("realisations", realisations, 2..=1_000_000)?;
     // One line per worker thread at a time.

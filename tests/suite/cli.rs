@@ -746,11 +746,15 @@ fn bad_input_is_one_clear_line_and_no_output() {
     );
     expect_failure(
         &format!("name = \"x\"\n[material]\ne_star = 1.0\ng_star = 1.0\n{SPHERE}[[outputs]]\nkind = \"tangential\"\nmu = 0.0\nnormal_force = 1.0\n"),
-        "mu must be > 0",
+        "friction coefficient mu = 0 must be finite and > 0",
     );
     expect_failure(
         &format!("name = \"x\"\n[material]\ne_star = 1.0\ng_star = 1.0\n{SPHERE}[[outputs]]\nkind = \"damping\"\nmu = -0.3\ndepth = 0.01\n"),
-        "mu must be > 0",
+        "friction coefficient mu = -0.3 must be finite and > 0",
+    );
+    expect_failure(
+        &format!("name = \"x\"\n[material]\ne_star = 1.0\ng_star = 1.0\n{SPHERE}[[outputs]]\nkind = \"tangential\"\nmu = nan\nnormal_force = 1.0\n"),
+        "friction coefficient mu = NaN must be finite and > 0",
     );
     expect_failure(&format!("name = \"x\"\n{mat}{SPHERE}[[outputs]]\nkind = \"tangential\"\nmu = 0.3\nnormal_force = 1.0\n"), "missing g_star: tangential problems need G*");
     // Messages name the key the user wrote and its valid range (issue: misleading

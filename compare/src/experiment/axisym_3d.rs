@@ -2,7 +2,7 @@
 //! tangential outputs (elastic and viscoelastic partial slip) load tangentially, and the
 //! settings (checks and defaults) that an adhesive sphere's 3D cycles share.
 
-use crate::checks::{bad, check_memory, check_tolerance, positive};
+use crate::checks::{bad, check_memory, check_tolerance, require_positive};
 use crate::error::Result;
 use bem3d::{
     ContactSolver, Load, NonPeriodicHalfSpace, PeriodicHalfSpace, Solution, SolverOptions,
@@ -110,12 +110,8 @@ pub fn check_adhesive_cycle(
     steps: usize,
     tolerance: f64,
 ) -> Result<()> {
-    if !positive(gamma) {
-        return bad("gamma (work of adhesion) must be > 0");
-    }
-    if !positive(depth_max) {
-        return bad("depth_max must be > 0");
-    }
+    require_positive("gamma (work of adhesion)", gamma)?;
+    require_positive("depth_max", depth_max)?;
     if cells.is_empty() || cells.iter().any(|n| !(16..=2048).contains(n)) {
         return bad(format!(
             "cells = {cells:?}: give grid sizes in 16..=2048, coarse to fine"

@@ -6,7 +6,7 @@
 //! them alone; `sliding_friction_3d` runs them beside its 3D answer.
 
 use super::elastomer::{self, Material};
-use crate::checks::{bad, positive};
+use crate::checks::{bad, positive, require_positive};
 use crate::error::{Context as _, Result};
 use crate::plan::Stage;
 use crate::report::Section;
@@ -171,9 +171,8 @@ impl MrdSliding {
     pub(crate) fn validate(&self) -> Result<()> {
         let shear = self.material.validate()?;
         self.line.validate("line")?;
-        if !(positive(self.length) && positive(self.rms_height)) {
-            return bad("length and rms_height must be > 0");
-        }
+        require_positive("length", self.length)?;
+        require_positive("rms_height", self.rms_height)?;
         if !(16..=1 << 20).contains(&self.springs) || self.refine == 0 || self.stride == 0 {
             return bad("springs must lie in 16..=1048576, refine and stride >= 1");
         }
@@ -191,9 +190,7 @@ impl MrdSliding {
             self.springs as f64 * (shear.terms.len() as f64 + 4.0) * 16.0,
             &format!("springs = {}", self.springs),
         )?;
-        if !positive(self.reduced_force) {
-            return bad("reduced_force must be > 0");
-        }
+        require_positive("reduced_force", self.reduced_force)?;
         elastomer::velocities(
             self.velocity_min,
             self.velocity_max,

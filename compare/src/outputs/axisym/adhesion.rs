@@ -2,7 +2,7 @@
 //! pull-off (Eqs. 34-37), optionally on an event-driven row of springs, against JKR,
 //! Eq. 37 (cone) and Eq. 34 (flat punch).
 
-use crate::checks::{bad, check_springs, default_points, positive, rel};
+use crate::checks::{check_springs, default_points, rel, require_positive};
 use crate::context::{Context, ControlSpec};
 use crate::error::{Context as _, Result};
 use crate::experiment::hess;
@@ -39,12 +39,8 @@ impl Adhesion {
 impl Output for Adhesion {
     fn validate(&self, ctx: &Context) -> Result<()> {
         hess::check_scene(ctx, self.points)?;
-        if !positive(self.gamma) {
-            return bad("gamma (work of adhesion) must be > 0");
-        }
-        if !positive(self.depth_max) {
-            return bad("depth_max must be > 0");
-        }
+        require_positive("gamma (work of adhesion)", self.gamma)?;
+        require_positive("depth_max", self.depth_max)?;
         if let Some(n) = self.springs {
             check_springs(n, crate::checks::spring_bytes::ADHESION)?;
         }

@@ -3,7 +3,7 @@
 //! amplitude, against the semi-analytic MRD result and, for a sphere, Mindlin's Eq. 58,
 //! its small-amplitude limit Eq. 61 and the force form.
 
-use crate::checks::{bad, check_springs, default_points, default_springs, positive, rel};
+use crate::checks::{check_springs, default_points, default_springs, rel, require_positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::hess;
@@ -38,12 +38,9 @@ fn default_amplitude_ratio() -> f64 {
 impl Output for Damping {
     fn validate(&self, ctx: &Context) -> Result<()> {
         hess::check_scene(ctx, self.points)?;
-        if !positive(self.mu) {
-            return bad("friction coefficient mu must be > 0");
-        }
-        if !positive(self.depth) || !positive(self.max_amplitude_ratio) {
-            return bad("depth and max_amplitude_ratio must be > 0");
-        }
+        require_positive("friction coefficient mu", self.mu)?;
+        require_positive("depth", self.depth)?;
+        require_positive("max_amplitude_ratio", self.max_amplitude_ratio)?;
         check_springs(self.springs, crate::checks::spring_bytes::DAMPING)?;
         ctx.material.g_star().ctx("damping output")?;
         Ok(())

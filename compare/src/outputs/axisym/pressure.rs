@@ -1,7 +1,7 @@
 //! `pressure`: the contact pressure p(r) at one depth by the Abel transform of the 1D
 //! line load (Eq. 26), with its equilibrium check and the closed form where one exists.
 
-use crate::checks::{bad, default_points, positive, rel};
+use crate::checks::{default_points, rel, require_positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::hess;
@@ -23,9 +23,7 @@ pub struct Pressure {
 impl Output for Pressure {
     fn validate(&self, ctx: &Context) -> Result<()> {
         hess::check_scene(ctx, self.points)?;
-        if !positive(self.depth) {
-            return bad("depth must be > 0");
-        }
+        require_positive("depth", self.depth)?;
         Ok(())
     }
 

@@ -1,7 +1,7 @@
 //! `profile_1d`: the 3D profile z(r) and its MRD image z1d(x) by the rule of Hess
 //! (Eq. 11), per-shape closed form against independent quadrature.
 
-use crate::checks::{bad, default_points, positive, rel};
+use crate::checks::{default_points, rel, require_positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::hess;
@@ -22,9 +22,7 @@ pub struct Profile1d {
 impl Output for Profile1d {
     fn validate(&self, ctx: &Context) -> Result<()> {
         hess::check_scene(ctx, self.points)?;
-        if !positive(self.r_max) {
-            return bad("r_max must be > 0");
-        }
+        require_positive("r_max", self.r_max)?;
         Ok(())
     }
 

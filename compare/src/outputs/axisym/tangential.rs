@@ -2,7 +2,7 @@
 //! (Cattaneo-Mindlin / Jager, Eqs. 41-50), and the traction distributions at chosen
 //! fractions of mu F_N (Abel transform of Eq. 51); closed forms for a sphere.
 
-use crate::checks::{bad, default_points, positive, rel};
+use crate::checks::{bad, default_points, rel, require_positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::hess;
@@ -28,12 +28,8 @@ pub struct Tangential {
 impl Output for Tangential {
     fn validate(&self, ctx: &Context) -> Result<()> {
         hess::check_scene(ctx, self.points)?;
-        if !positive(self.mu) {
-            return bad("friction coefficient mu must be > 0");
-        }
-        if !positive(self.normal_force) {
-            return bad("normal_force must be > 0");
-        }
+        require_positive("friction coefficient mu", self.mu)?;
+        require_positive("normal_force", self.normal_force)?;
         if self.traction_at.iter().any(|f| !(0.0..1.0).contains(f)) {
             return bad("traction_at fractions of mu F_N must lie in [0, 1)");
         }

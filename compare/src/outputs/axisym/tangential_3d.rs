@@ -13,7 +13,7 @@
 //! one body equivalent to the scene's E* and G* (rigid indenter: E* = 2G/(1 - nu),
 //! G* = 4G/(2 - nu)); for two elastic bodies that is the uncoupled approximation.
 
-use crate::checks::{bad, check_memory, check_tolerance, default_tolerance, positive};
+use crate::checks::{bad, check_memory, check_tolerance, default_tolerance, require_positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::axisym_3d::{equivalent_body, AxisymGrid};
@@ -92,12 +92,8 @@ impl Output for Tangential3d {
         if ctx.profile()?.rim().is_some() {
             return bad("tangential_3d needs a curved body (sphere, cone, power law): a flat punch's tangential traction is proportional to its pressure (Jaeger, uncoupled), so it sticks everywhere until it slides as a whole, with no partial slip or dissipation to compare");
         }
-        if !positive(self.mu) {
-            return bad("friction coefficient mu must be > 0");
-        }
-        if !positive(self.normal_force) {
-            return bad("normal_force must be > 0");
-        }
+        require_positive("friction coefficient mu", self.mu)?;
+        require_positive("normal_force", self.normal_force)?;
         let g = ctx.material.g_star().ctx("tangential_3d")?;
         let (nu, _) = equivalent_body(ctx.material.e_star, g);
         if !(0.0..=0.5).contains(&nu) {

@@ -16,7 +16,7 @@
 //! `sliding_friction` (G(inf) the relaxed modulus). The half-space's contact modulus is
 //! E*(omega) = 4 G(omega) (incompressible), G(omega) exact for Eq. (84).
 
-use crate::checks::{bad, positive};
+use crate::checks::{bad, require_positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::elastomer::{self, Material};
@@ -311,9 +311,9 @@ impl Output for SlidingFriction3d {
         if matches!(self.surface, LineSpec::Sinusoid { .. }) {
             return bad("surface: sinusoid is not available in 3D; use band or self_affine");
         }
-        if !(positive(self.length) && positive(self.rms_height) && positive(self.reduced_force)) {
-            return bad("length, rms_height and reduced_force must be > 0");
-        }
+        require_positive("length", self.length)?;
+        require_positive("rms_height", self.rms_height)?;
+        require_positive("reduced_force", self.reduced_force)?;
         let least = self.base_grid() * if self.coarse_check { 2 } else { 1 };
         if !(least..=4096).contains(&self.grid) {
             return bad(format!(

@@ -7,7 +7,7 @@
 //! fails (exit code 4). The tangent stiffness is computed only when `stiffness = true`;
 //! at complete contact of a periodic surface it is infinite (written `inf`).
 
-use crate::checks::{bad, positive};
+use crate::checks::{bad, require_positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::output::{Env, Output};
@@ -155,8 +155,8 @@ impl Output for BemContact {
         {
             return bad(format!("load {v}: loads must be finite and >= 0"));
         }
-        if self.punch_radius.is_some_and(|r| !positive(r)) {
-            return bad("punch_radius must be > 0");
+        if let Some(r) = self.punch_radius {
+            require_positive("punch_radius", r)?;
         }
         self.options()
             .validate()

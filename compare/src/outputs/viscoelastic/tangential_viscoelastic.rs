@@ -18,7 +18,7 @@
 //! ratio from G*_inf / E*, held in time), in a table of its own with MRD's force and
 //! stick radius beside the 3D ones.
 
-use crate::checks::{bad, check_springs, default_springs, positive};
+use crate::checks::{bad, check_springs, default_springs, positive, require_positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::axisym_3d::{equivalent_body, AxisymGrid};
@@ -107,9 +107,9 @@ fn drive(row: &mut TangentialRow, dt: f64, path: &[f64], scale: f64) -> mrd::Res
 impl Output for TangentialViscoelastic {
     fn validate(&self, ctx: &Context) -> Result<()> {
         ctx.profile()?;
-        if !(positive(self.mu) && positive(self.normal_force) && positive(self.g_inf)) {
-            return bad("mu, normal_force and g_inf must be > 0");
-        }
+        require_positive("friction coefficient mu", self.mu)?;
+        require_positive("normal_force", self.normal_force)?;
+        require_positive("g_inf", self.g_inf)?;
         if !(self.amplitude > 0.0 && self.amplitude < 1.0) {
             return bad("amplitude must lie in (0, 1) (a fraction of the full-slip displacement)");
         }

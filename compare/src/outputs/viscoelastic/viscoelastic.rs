@@ -2,7 +2,7 @@
 //! `depth_max` over `ramp_time`, then a hold until `end_time`, on Prony-series springs,
 //! against Radok's (1957) solution by quadrature.
 
-use crate::checks::{bad, check_springs, default_springs, positive, rel};
+use crate::checks::{bad, check_springs, default_springs, positive, rel, require_positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::hess;
@@ -60,8 +60,8 @@ impl Output for Viscoelastic {
             self.springs,
             crate::checks::spring_bytes::viscoelastic(self.prony.len()),
         )?;
-        if self.half_length.is_some_and(|l| !positive(l)) {
-            return bad("half_length must be > 0");
+        if let Some(l) = self.half_length {
+            require_positive("half_length", l)?;
         }
         self.modulus().ctx("prony")?;
         Ok(())

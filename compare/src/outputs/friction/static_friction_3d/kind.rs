@@ -4,7 +4,7 @@
 use super::{report, runs};
 use super::{Geometry, StaticFriction3d};
 use crate::checks::{
-    bad, check_memory_per_thread, count_in, positive, BYTES_PER_CELL_NON_PERIODIC,
+    bad, check_memory_per_thread, count_in, positive, require_positive, BYTES_PER_CELL_NON_PERIODIC,
 };
 use crate::context::Context;
 use crate::error::{Context as _, Result};
@@ -44,9 +44,7 @@ impl Output for StaticFriction3d {
             if !self.hurst.contains(&r.hurst) || !self.geometry.contains(&r.geometry) {
                 return bad("refine: hurst and geometry must be among the output's");
             }
-            if !positive(r.f) {
-                return bad("refine: f must be > 0");
-            }
+            require_positive("refine: f", r.f)?;
             count_in("refine: 2 x cells x bandwidth", 2 * n, 16..=4096)?;
         }
         // One solver per worker thread; the refinement's grid when there is one.
