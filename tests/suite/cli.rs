@@ -777,6 +777,16 @@ fn bad_input_is_one_clear_line_and_no_output() {
         &format!("name = \"x\"\n{mat}{SPHERE}[[outputs]]\nkind = \"force_depth\"\nmax = 0.01\nsprings = 10000000000\n"),
         "springs = 10000000000 needs about",
     );
+    // A 3D adhesive cycle too coarse to see the pull-off is refused before it runs.
+    let adhesive = "[[outputs]]\nkind = \"adhesion_3d\"\ngamma = 0.002\ncells = [16, 32]\n";
+    expect_failure(
+        &format!("name = \"x\"\n{mat}{SPHERE}{adhesive}depth_max = 0.5\n"),
+        "(at least 4 needed): lower depth_max or raise cells",
+    );
+    expect_failure(
+        &format!("name = \"x\"\n{mat}{SPHERE}{adhesive}depth_max = 0.03\nsteps = 2\n"),
+        "of the jump-out depth",
+    );
     expect_failure(
         &format!("name = \"x\"\n{mat}{SPHERE}"),
         "missing field `outputs`",

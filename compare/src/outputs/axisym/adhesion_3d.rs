@@ -11,7 +11,7 @@
 //! load without adhesion at a distance (cells and springs join on touching) and unload
 //! through the adhesive branch, so their loops are the same construction.
 
-use crate::checks::default_tolerance;
+use crate::checks::{bad, default_tolerance};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::axisym_3d::{
@@ -119,6 +119,7 @@ impl Output for Adhesion3d {
             )
         });
         let a_top = mrd.curve.iter().map(|c| c.2).fold(0.0, f64::max);
+        self.check_resolution(&mrd, a_top)?;
         let grids = out
             .stage(Stage::Adhesion3d, || {
                 self.cells
@@ -133,7 +134,36 @@ impl Output for Adhesion3d {
     }
 }
 
+/// Fewest cells per pull-off radius on the finest grid, and the largest approach step
+/// over the jump-out depth, with which the 3D cycle can see the pull-off at all (the
+/// embedded scenes have 50-77 cells and steps of 0.002-0.06 jump-out depths).
+const MIN_CELLS_PER_PULL_OFF_RADIUS: f64 = 4.0;
+const MAX_STEP_OVER_JUMP_OUT_DEPTH: f64 = 0.5;
+
 impl Adhesion3d {
+    /// Refuses, before the 3D cycles run, a scene whose grids or approach steps are too
+    /// coarse for the pull-off MRD predicts: the grid spans the contact at `depth_max`,
+    /// so a deep loading leaves the pull-off radius a fraction of a cell.
+    fn check_resolution(&self, mrd: &Mrd, a_top: f64) -> Result<()> {
+        let n = *self.cells.last().unwrap_or(&16);
+        let h = self.extent * 2.0 * a_top / n as f64;
+        let per = mrd.force.radius / h;
+        if per.is_nan() || per < MIN_CELLS_PER_PULL_OFF_RADIUS {
+            return bad(format!(
+                "the finest grid (cells = {n}) spans the contact radius {a_top:e} reached at depth_max = {:e}, so MRD's pull-off radius {:e} covers {per:.3e} cells (at least {MIN_CELLS_PER_PULL_OFF_RADIUS} needed): lower depth_max or raise cells",
+                self.depth_max, mrd.force.radius
+            ));
+        }
+        let step = self.depth_max / self.steps as f64;
+        let jump = mrd.approach.depth.abs();
+        if step.is_nan() || step > MAX_STEP_OVER_JUMP_OUT_DEPTH * jump {
+            return bad(format!(
+                "one approach step, depth_max / steps = {step:e}, exceeds {MAX_STEP_OVER_JUMP_OUT_DEPTH} of the jump-out depth {jump:e} MRD predicts: the unloading would jump past the pull-off; raise steps or lower depth_max"
+            ));
+        }
+        Ok(())
+    }
+
     /// MRD: loading without adhesion to `depth_max`, unloading by the rule of Hess down
     /// to the jump-out of approach control (the smaller radius of the two controls).
     fn mrd(&self, contact: mrd::normal::AxisymmetricContact) -> mrd::Result<Mrd> {

@@ -243,7 +243,9 @@ impl Tabor3d {
                 Law::Exponential => "exponential law (tension sigma0 exp(-gap / rho), rho = w / sigma0; the Maugis column is the Dugdale law's closed form, a reference, and rel_error_3d_vs_maugis the departure from it)",
             }
         ));
-        let (mut worst, mut unresolved) = (0.0f64, 0usize);
+        // The largest error over the resolved lambdas on the finest grid; with none
+        // resolved there is no converged error to report (NaN, null in summary.json).
+        let (mut worst, mut unresolved) = (f64::NAN, 0usize);
         let finest = *self.cells.last().unwrap_or(&0);
         for run in runs {
             let k = self
