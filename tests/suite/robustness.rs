@@ -438,11 +438,11 @@ fn static_friction_3d_and_rough_sphere_refuse_bad_values() {
         ),
         (
             format!("{rs}hertz_depth = 1e-3\nbandwidth = 8\nalpha = [-1.0]\n"),
-            "alpha needs at least one entry, each finite and >= 0",
+            "alpha = [-1.0]: give at least one rms height over the Hertz depth in [0, 100]",
         ),
         (
             format!("{rs}hertz_depth = 0.5\nbandwidth = 8\nalpha = [0.1]\n"),
-            "hertz_depth must be <= 0.1 radius",
+            "hertz_depth = 0.5 must be <= 0.1 radius",
         ),
         (
             format!("{rs}hertz_depth = 1e-3\nbandwidth = 40\nalpha = [0.1]\n"),
@@ -450,7 +450,11 @@ fn static_friction_3d_and_rough_sphere_refuse_bad_values() {
         ),
         (
             format!("{rs}hertz_depth = 1e-3\nbandwidth = 8\nalpha = [0.1]\nside = 1.0\n"),
-            "side must lie in [2.5, 100]",
+            "side = 1 must lie in [2.5, 100]",
+        ),
+        (
+            format!("{rs}hertz_depth = 1e-3\nbandwidth = 8\nalpha = [0.1]\nside = 9.0\n"),
+            "grid = 64 over side = 9 puts 7.111 cells on the Hertz radius, at least 8 needed",
         ),
         // The value given, not a wavenumber derived from it.
         (

@@ -99,3 +99,54 @@ pub fn check_cases(
     }
     Ok(())
 }
+
+/// Fewest cells the coarsest grid puts on the smooth body's contact radius (the embedded
+/// scenes put 15-53).
+pub const MIN_CELLS_PER_CONTACT_RADIUS: f64 = 8.0;
+
+/// The map of `side` holds the smooth body's contact of radius `a` (`which`: how the
+/// study defines it) with a margin, at least 2.2 radii, and the coarsest of `cells`
+/// resolves it with [`MIN_CELLS_PER_CONTACT_RADIUS`].
+pub fn check_map(side: f64, a: f64, which: &str, cells: &[usize]) -> Result<()> {
+    if side < 2.2 * a {
+        return bad(format!(
+            "side = {side} must be at least 2.2 contact radii ({which}) = {:.4e}: the contact stays inside the map",
+            2.2 * a
+        ));
+    }
+    let coarsest = cells.first().copied().unwrap_or(16);
+    let per = a * coarsest as f64 / side;
+    if per.is_nan() || per < MIN_CELLS_PER_CONTACT_RADIUS {
+        return bad(format!(
+            "side = {side} over cells = {coarsest} (the coarsest grid) puts {per:.3e} cells on the contact radius ({which}) {a:.4e}, at least {MIN_CELLS_PER_CONTACT_RADIUS} needed: give side <= {:.4e} or more cells",
+            a * coarsest as f64 / MIN_CELLS_PER_CONTACT_RADIUS
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_map_must_hold_and_resolve_the_contact() {
+        // rough-slip-3d-ci: a = 0.0316 on 0.13 with 64 cells, 15.6 cells a radius.
+        assert!(check_map(0.13, 0.0316, "smooth", &[64, 128]).is_ok());
+        let small = check_map(0.06, 0.0316, "smooth", &[64]).unwrap_err();
+        assert!(
+            small.to_string().contains("at least 2.2 contact radii"),
+            "{small}"
+        );
+        // The coarsest grid decides: 8 cells a radius at side = a * 64 / 8.
+        assert!(check_map(0.0316 * 8.0, 0.0316, "smooth", &[64, 2048]).is_ok());
+        let coarse = check_map(0.0316 * 8.01, 0.0316, "smooth", &[64, 2048]).unwrap_err();
+        assert!(
+            coarse
+                .to_string()
+                .contains("cells = 64 (the coarsest grid)"),
+            "{coarse}"
+        );
+        assert!(check_map(1.0, f64::NAN, "smooth", &[64]).is_err());
+    }
+}

@@ -8,7 +8,7 @@ use crate::context::Context;
 use crate::error::Result;
 use crate::experiment::lambda::LambdaSpec;
 use crate::experiment::progress::Progress;
-use crate::experiment::rough_body::{check_cases, realisations, Body};
+use crate::experiment::rough_body::{check_cases, check_map, realisations, Body};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::Section;
@@ -44,13 +44,12 @@ impl Output for RoughAdhesion3d {
             Body::Sphere(r) => (r * self.depth_max).sqrt(),
             Body::Punch(a) => a,
         };
-        if self.side < 2.2 * a {
-            return bad(format!(
-                "side = {} must be at least 2.2 contact radii (sqrt(R depth_max) or the punch's) = {:.4e}: the contact stays inside the map",
-                self.side,
-                2.2 * a
-            ));
-        }
+        check_map(
+            self.side,
+            a,
+            "sqrt(R depth_max) or the punch's",
+            &self.cells,
+        )?;
         check_ensembles(self.realisations_3d, self.realisations_1d)?;
         count_in("points_1d_factor", self.points_1d_factor as u64, 1..=64)?;
         count_in("steps", self.steps as u64, 4..=10_000)?;

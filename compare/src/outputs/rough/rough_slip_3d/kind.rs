@@ -8,7 +8,7 @@ use crate::context::Context;
 use crate::error::Result;
 use crate::experiment::lambda::LambdaSpec;
 use crate::experiment::progress::Progress;
-use crate::experiment::rough_body::{check_cases, Body};
+use crate::experiment::rough_body::{check_cases, check_map, Body};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::Section;
@@ -61,13 +61,7 @@ impl Output for RoughSlip3d {
             self.bandwidth,
         )?;
         let a = self.contact_radius(e_star);
-        if self.side < 2.2 * a {
-            return bad(format!(
-                "side = {} must be at least 2.2 contact radii (the smooth body's at F_N) = {:.4e}: the contact stays inside the map",
-                self.side,
-                2.2 * a
-            ));
-        }
+        check_map(self.side, a, "the smooth body's at F_N", &self.cells)?;
         crate::checks::check_fractions("fractions", &self.fractions, true)?;
         crate::checks::check_fractions("amplitudes", &self.amplitudes, false)?;
         check_ensembles(self.realisations_3d, self.realisations_1d)?;

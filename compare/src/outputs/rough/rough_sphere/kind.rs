@@ -7,6 +7,7 @@ use crate::checks::{bad, check_memory_per_thread, count_in, BYTES_PER_CELL_NON_P
 use crate::context::Context;
 use crate::error::Result;
 use crate::experiment::lambda::LambdaSpec;
+use crate::experiment::rough_body::MIN_CELLS_PER_CONTACT_RADIUS;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::Section;
@@ -22,18 +23,37 @@ impl Output for RoughSphere {
             ("hertz_depth", self.hertz_depth),
         ])?;
         if self.hertz_depth > 0.1 * self.radius {
-            return bad("hertz_depth must be <= 0.1 radius (Hertz: small slopes)");
+            return bad(format!(
+                "hertz_depth = {} must be <= 0.1 radius = {} (Hertz: small slopes)",
+                self.hertz_depth,
+                0.1 * self.radius
+            ));
         }
         if !(-1.0..=3.0).contains(&self.hurst) {
             return bad(format!("hurst = {} must lie in [-1, 3]", self.hurst));
         }
-        if self.alpha.is_empty() || self.alpha.iter().any(|a| !(a.is_finite() && *a >= 0.0)) {
-            return bad("alpha needs at least one entry, each finite and >= 0");
+        if self.alpha.is_empty() || self.alpha.iter().any(|a| !(0.0..=100.0).contains(a)) {
+            return bad(format!(
+                "alpha = {:?}: give at least one rms height over the Hertz depth in [0, 100] (0: the smooth sphere)",
+                self.alpha
+            ));
         }
         if !(self.side.is_finite() && (2.5..=100.0).contains(&self.side)) {
-            return bad("side must lie in [2.5, 100] (units of the Hertz radius)");
+            return bad(format!(
+                "side = {} must lie in [2.5, 100] (units of the Hertz radius)",
+                self.side
+            ));
         }
         count_in("grid", self.grid as u64, 16..=4096)?;
+        let per = self.grid as f64 / self.side;
+        if per < MIN_CELLS_PER_CONTACT_RADIUS {
+            return bad(format!(
+                "grid = {} over side = {} puts {per:.3} cells on the Hertz radius, at least {MIN_CELLS_PER_CONTACT_RADIUS} needed: give grid >= {} or a smaller side",
+                self.grid,
+                self.side,
+                (MIN_CELLS_PER_CONTACT_RADIUS * self.side).ceil()
+            ));
+        }
         count_in(
             "bandwidth",
             self.bandwidth as u64,
