@@ -806,6 +806,7 @@ fn rough_slip_bad_input_names_the_key() {
             ("mu = 0.5", "mu = nan", "mu"),
             ("force = 4.2164e-5", "force = 1.0", "force"),
             ("side = 0.13", "side = 0.05", "side"),
+            ("side = 0.13", "side = 100.0", "at least 8 needed"),
             ("poisson = [0.0, 0.5]", "poisson = [0.7]", "poisson"),
             ("roughness = [1.0]", "roughness = [0.0]", "roughness"),
             (
@@ -840,6 +841,14 @@ fn rough_adhesion_bad_input_names_the_key() {
             ("hurst = [0.8]", "hurst = [1.5]", "hurst"),
             ("cells = [64, 128]", "cells = [128, 64]", "cells"),
             ("side = 0.8", "side = 0.3", "side"),
+            ("side = 0.8", "side = 100.0", "at least 8 needed"),
+            ("depth_max = 0.06", "depth_max = 1e-7", "at least 8 needed"),
+            (
+                "roughness = [0.2, 1.0]",
+                "roughness = [20.0]",
+                "the roughest case's rms height",
+            ),
+            ("work = 0.002", "work = 1.0", "the adhesion length"),
             ("bandwidth = 6", "bandwidth = 40", "bandwidth"),
             ("depth_max = 0.06", "depth_max = 0.5", "depth_max"),
             ("steps = 30", "steps = 2", "steps"),

@@ -37,6 +37,14 @@ type Step<'a> = dyn FnMut(f64) -> Result<(f64, bool)> + 'a;
 /// separates.
 fn drive(spec: &RoughAdhesion3d, top: f64, step: &mut Step) -> Result<Cycle> {
     let (dd, d_max) = (spec.step(), spec.depth_max);
+    // The scene's checks keep first contact within a few depth_max of the apex; a
+    // realisation whose highest point lies further up is refused, not walked.
+    let loading = (d_max + top) / dd;
+    if loading.is_nan() || loading > (100 * spec.steps) as f64 {
+        return Err(CompareError::Scene(format!(
+            "rough_adhesion_3d: a surface's highest point lies {top:e} above the body's apex, {loading:.0} approach steps of depth_max / steps from depth_max (at most 100 x steps): raise depth_max or lower roughness"
+        )));
+    }
     let mut cycle = Cycle::default();
     let mut d = -top;
     // Loading work by the trapezoidal rule from first contact (F = 0).

@@ -17,6 +17,10 @@ use rayon::prelude::*;
 /// Peak bytes per cell of one 3D cycle: the non-periodic operator and a dozen grids.
 const BYTES_PER_CELL: f64 = BYTES_PER_CELL_NON_PERIODIC + 100.0;
 
+/// Largest adhesion length and rms height over `depth_max` (the embedded scenes reach
+/// 2.8).
+const MAX_LENGTH_OVER_DEPTH_MAX: f64 = 10.0;
+
 /// The stages of the 3D cycles, run together on the pool.
 const STAGES_3D: &[Stage] = &[Stage::RoughSynthesis, Stage::Adhesion3d];
 
@@ -50,6 +54,27 @@ impl Output for RoughAdhesion3d {
             "sqrt(R depth_max) or the punch's",
             &self.cells,
         )?;
+        // The cycle walks from first contact, some 5 rms heights above the apex, to
+        // depth_max and back past the jump-out, about one adhesion length below it, in
+        // steps of depth_max / steps: both lengths within MAX_LENGTH_OVER_DEPTH_MAX of
+        // depth_max keep it within about 50 x steps solves.
+        let ell = self.adhesion_length(ctx.material.e_star);
+        let rms = ell * self.roughness.iter().fold(0.0f64, |m, r| m.max(*r));
+        for (what, length) in [
+            ("the adhesion length", ell),
+            (
+                "the roughest case's rms height (roughness x the adhesion length)",
+                rms,
+            ),
+        ] {
+            if length > MAX_LENGTH_OVER_DEPTH_MAX * self.depth_max {
+                return bad(format!(
+                    "{what} {length:.4e} exceeds {MAX_LENGTH_OVER_DEPTH_MAX} x depth_max = {:.4e}: the cycle would take about {:.0} approach steps of depth_max / steps; raise depth_max or lower work or roughness",
+                    MAX_LENGTH_OVER_DEPTH_MAX * self.depth_max,
+                    (5.0 * length + self.depth_max) / self.step()
+                ));
+            }
+        }
         check_ensembles(self.realisations_3d, self.realisations_1d)?;
         count_in("points_1d_factor", self.points_1d_factor as u64, 1..=64)?;
         count_in("steps", self.steps as u64, 4..=10_000)?;
