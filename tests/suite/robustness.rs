@@ -767,6 +767,11 @@ fn periodic_patch_studies_bad_input_names_the_key() {
             ("mu = 0.5", "mu = 0.0", "mu"),
             ("pressure = 0.05", "pressure = 0.0", "pressure"),
             (
+                "pressure = 0.05",
+                "pressure = 1e-9",
+                "leaves 1 cells in contact on the 32^2 grid",
+            ),
+            (
                 "fractions = [0.2, 0.5, 0.8]",
                 "fractions = [0.5, 1.0]",
                 "fractions",

@@ -109,6 +109,10 @@ impl EnsembleRows<'_> {
     }
 }
 
+/// Fewest cells in contact a realisation's partial slip is measured on (the CI scene's
+/// coarsest grid holds about a hundred).
+const MIN_CONTACT_CELLS: usize = 16;
+
 /// The stages of a case (3D and MRD), run together on the pool.
 const STAGES: &[Stage] = &[
     Stage::RoughSynthesis,
@@ -175,6 +179,12 @@ impl RoughPartialSlip3d {
             .realise(hurst, cells, r, e_star, self.tolerance)?;
         let force = self.pressure * e_star * real.patch.rms_slope;
         let (sol, kn) = real.normal_at(force, None)?;
+        if sol.contact_cells < MIN_CONTACT_CELLS {
+            return bad(format!(
+                "pressure = {} leaves {} cells in contact on the {}^2 grid (cells = {cells}, H = {hurst}, realisation {r}), fewer than {MIN_CONTACT_CELLS}: a contact of a few cells has no partial slip to measure; raise pressure or cells",
+                self.pressure, sol.contact_cells, real.n
+            ));
+        }
         // b(Q) = mu (d - d'(Q)) at every force the mapping needs (times E* / G* per
         // Poisson's ratio below).
         let mu_fn = self.mu * force;
