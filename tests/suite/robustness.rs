@@ -532,6 +532,12 @@ fn viscoelastic_rough_refuses_bad_values() {
             format!("{vr}steps = 10\nmodulus = {{ relaxed = 0.0, terms = [[4.0, 0.5]] }}\n"),
             "modulus.relaxed must be > 0",
         ),
+        // A load that touches a single cell is no rough contact.
+        (
+            format!("{vr}steps = 10\nmodulus = {{ relaxed = 1.0, terms = [[4.0, 0.5]] }}\n")
+                .replace("force = 0.05", "force = 1e-6"),
+            "brings at most 1 cells into contact on the 16^2 grid",
+        ),
         (
             format!("{vr}steps = 10\nmodulus = {{ relaxed = 1.0, terms = [[4.0, f64::NAN]] }}\n")
                 .replace("f64::NAN", "nan"),
