@@ -121,7 +121,7 @@ step_class! {
 /// `pressure` (ny, nx) [stress] is held (e.g. ContactResult.pressure of a Contact with
 /// the same `periodic`); `periodic=False` solves on the free half-space (the traction
 /// vanishes outside the map; the shift is then the body's absolute displacement, as in
-/// Mindlin's solution); Coulomb's law with friction coefficient `mu` cell by cell; the traction acts
+/// Mindlin's solution); Coulomb's law with friction coefficient `mu` (at most 1e6) cell by cell; the traction acts
 /// along x only (q_y = 0, Mindlin's model). The substrate has modulus `e_star` and
 /// Poisson's ratio `poisson` (shear modulus E* (1 - nu) / 2 under a rigid body); nu = 0.5
 /// uncouples normal and tangential contact exactly. Each load() starts from the last

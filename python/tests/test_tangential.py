@@ -97,6 +97,7 @@ def test_a_cycle_dissipates_its_loop():
     [
         {"mu": 0.0},
         {"mu": float("nan")},
+        {"mu": 1e12},
         {"mu": 0.5, "poisson": 0.7},
         {"mu": 0.5, "e_star": -1.0},
     ],

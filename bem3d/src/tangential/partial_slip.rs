@@ -55,6 +55,9 @@ pub struct PartialSlip<C = CerrutiPeriodic> {
     contact: Vec<usize>,
 }
 
+/// The largest friction coefficient a solver takes.
+const MAX_MU: f64 = 1e6;
+
 /// Iteration limit of a step.
 const MAX_ITERATIONS: usize = 20_000;
 
@@ -62,7 +65,8 @@ const MAX_ITERATIONS: usize = 20_000;
 const REFRESH: usize = 50;
 
 impl<C: TangentialCompliance> PartialSlip<C> {
-    /// `pressure` (`ny x nx`, >= 0, finite) held, friction coefficient `mu > 0`.
+    /// `pressure` (`ny x nx`, >= 0, finite) held, friction coefficient `mu` in
+    /// (0, 1e6].
     pub fn new(op: C, pressure: &[f64], mu: f64) -> Result<Self> {
         if pressure.len() != op.cells() {
             return Err(BemError::InvalidInput(format!(
@@ -77,9 +81,11 @@ impl<C: TangentialCompliance> PartialSlip<C> {
                 pressure[i]
             )));
         }
-        if !(mu.is_finite() && mu > 0.0) {
+        // Above MAX_MU a load is a vanishing fraction of the friction limit, below what
+        // the force balance resolves (its tolerance scales with that limit).
+        if !(mu > 0.0 && mu <= MAX_MU) {
             return Err(BemError::InvalidInput(format!(
-                "friction coefficient mu = {mu} must be finite and > 0"
+                "friction coefficient mu = {mu} must lie in (0, {MAX_MU:e}]"
             )));
         }
         let bound: Vec<f64> = pressure.iter().map(|p| mu * p).collect();
@@ -461,7 +467,7 @@ mod tests {
     fn bad_input_and_gross_sliding() {
         let op = || CerrutiPeriodic::new(16, 16, 1.0, 1.0, 1.0, 0.5).unwrap();
         let p = hertz(16, 0.3, 1.0);
-        for mu in [0.0, -1.0, f64::NAN] {
+        for mu in [0.0, -1.0, f64::NAN, f64::INFINITY, 1.1e6] {
             let e = PartialSlip::new(op(), &p, mu).err().unwrap().to_string();
             assert!(e.contains("mu"), "{e}");
         }
