@@ -60,6 +60,9 @@ pub const RESOLVED_CELLS: f64 = 10.0;
 /// Rounds of set updates in one step.
 pub const MAX_ROUNDS: usize = 20_000;
 const MAX_ITERATIONS: usize = 20_000;
+/// Smallest range `w / sigma0` over the relief of the surface (`max - min` of the
+/// heights that may touch) a solve takes.
+const MIN_RANGE_OVER_RELIEF: f64 = 1e-9;
 /// Iterations between computations of `K p` afresh while its running update is used.
 const REFRESH: usize = 50;
 
@@ -134,6 +137,21 @@ impl<C: Preconditioner> CohesiveContact<C> {
             }
         }
         let (z, domain, rms) = rigid_surface(&op, heights, mask)?;
+        // Gaps carry rounding of about 1e-16 of the map's relief: a range within a few
+        // million of those leaves the set updates chasing noise (a range of 4e-11 of
+        // the relief ran 280,000 iterations and stopped unconverged).
+        let (lo, hi) = (0..z.len())
+            .filter(|&i| domain[i])
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), i| {
+                (lo.min(z[i]), hi.max(z[i]))
+            });
+        let relief = hi - lo;
+        if work / sigma0 < MIN_RANGE_OVER_RELIEF * relief {
+            return Err(BemError::InvalidInput(format!(
+                "the range w / sigma0 = {:e} lies below {MIN_RANGE_OVER_RELIEF:e} of the surface's relief {relief:e}: a cohesive zone that thin is lost to the gaps' rounding; its zero-range (JKR) limit is the adhesive contact",
+                work / sigma0
+            )));
+        }
         let n = z.len();
         let complete = (op.is_periodic() && domain.iter().all(|d| *d))
             .then(|| z.iter().sum::<f64>() / n as f64);
@@ -669,8 +687,18 @@ mod tests {
                 .to_string();
             assert!(e.contains(what), "{e}");
         }
-        // A periodic cell: complete contact at the mean of z is refused, naming it.
+        // A range below 1e-9 of the relief (here 2) is refused; at it, a solve runs.
         let wavy: Vec<f64> = (0..64).map(|i| (i as f64).sin()).collect();
+        let relief = wavy.iter().fold(f64::NEG_INFINITY, |m, v| m.max(*v))
+            - wavy.iter().fold(f64::INFINITY, |m, v| m.min(*v));
+        let thin = CohesiveContact::new(op(), &wavy, None, 0.99e-9 * relief, 1.0);
+        let e = thin.err().unwrap().to_string();
+        assert!(
+            e.contains("the range w / sigma0") && e.contains("relief"),
+            "{e}"
+        );
+        assert!(CohesiveContact::new(op(), &wavy, None, 1.01e-9 * relief, 1.0).is_ok());
+        // A periodic cell: complete contact at the mean of z is refused, naming it.
         let periodic = crate::PeriodicHalfSpace::new(8, 8, 1.0, 1.0, 1.0);
         let mut c = CohesiveContact::new(periodic, &wavy, None, 0.01, 0.1).unwrap();
         let full = c.complete.unwrap();

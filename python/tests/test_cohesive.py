@@ -77,6 +77,7 @@ def test_bad_input_names_the_parameter():
         (dict(work=0.0, sigma0=1.0), "work"),
         (dict(work=1e-3, sigma0=-1.0), "sigma0"),
         (dict(work=float("nan"), sigma0=1.0), "work"),
+        (dict(work=1e-3, sigma0=1e9), r"the range w / sigma0 = 1e-12 lies below"),
     ]:
         with pytest.raises(ValueError, match=name):
             mrdw.CohesiveContact(h, **kw)
