@@ -139,7 +139,7 @@ impl<C: Preconditioner> CohesiveContact<C> {
         let (z, domain, rms) = rigid_surface(&op, heights, mask)?;
         // Gaps carry rounding of about 1e-16 of the map's relief: a range within a few
         // million of those leaves the set updates chasing noise (a range of 4e-11 of
-        // the relief ran 280,000 iterations and stopped unconverged).
+        // the relief does not converge within 280,000 iterations).
         let (lo, hi) = (0..z.len())
             .filter(|&i| domain[i])
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), i| {

@@ -163,7 +163,8 @@ impl<C: TangentialCompliance> ViscoelasticSlip<C> {
         // The solves work on slips and shifts relative to the last shift `c`. On a stiff
         // instantaneous modulus a step's elastic displacement lies orders of magnitude
         // below the shift, and the iteration's sums of u + s over the contact would lose
-        // it to the shift's rounding (with G_1 = 1e6 G_inf, a hold stalled at 200 ulps).
+        // it to the shift's rounding (at G_1 = 1e6 G_inf a hold would stall at about 200
+        // ulps of the shift).
         let c = self.last;
         for ((s, t), o) in self.slip.slip.iter_mut().zip(&self.true_slip).zip(&offset) {
             *s = t + o - c;
@@ -224,8 +225,9 @@ impl<C: TangentialCompliance> ViscoelasticSlip<C> {
     }
 
     /// The force whose partial-slip shift is `shift`, from the state `start` (slip with
-    /// the offset, traction), both relative to the last step's shift; leaves the solver in the converged state. Returns the force,
-    /// the solves, whether the body slides and the energy dissipated.
+    /// the offset, traction), both relative to the last step's shift; leaves the solver
+    /// in the converged state. Returns the force, the solves, whether the body slides
+    /// and the energy dissipated.
     fn find_force(
         &mut self,
         shift: f64,
