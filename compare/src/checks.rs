@@ -54,6 +54,10 @@ pub(crate) fn check_ensembles(realisations_3d: u64, realisations_1d: u64) -> Res
 pub(crate) const MAX_REALISATIONS: u64 = 100_000;
 /// Most load points of a force-controlled curve.
 pub(crate) const MAX_LOADS: u64 = 10_000;
+/// Fewest cells in contact a rough 3D realisation is measured on: one touching cell is
+/// no rough contact and has no partial slip (the CI scenes' realisations reach about
+/// 40-100, the full scenes' hundreds to thousands).
+pub(crate) const MIN_CONTACT_CELLS: usize = 16;
 
 /// The half-length of a spring row: `given` if it covers the largest contact radius
 /// `a_max` the output reaches (springs beyond the row cannot touch), else an error

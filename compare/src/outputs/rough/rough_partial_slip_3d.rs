@@ -24,7 +24,7 @@
 //! nu > 0 the traction is held along x (q_y = 0; 0.6-2.6 % softer than the full tensor at
 //! nu = 0.5, `tangential_stiffness_3d`).
 
-use crate::checks::{bad, check_tolerance, count_in, positive};
+use crate::checks::{bad, check_tolerance, count_in, positive, MIN_CONTACT_CELLS};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::periodic::{Ensemble, Ladder};
@@ -108,10 +108,6 @@ impl EnsembleRows<'_> {
         }
     }
 }
-
-/// Fewest cells in contact a realisation's partial slip is measured on (the CI scene's
-/// coarsest grid holds about a hundred).
-const MIN_CONTACT_CELLS: usize = 16;
 
 /// The stages of a case (3D and MRD), run together on the pool.
 const STAGES: &[Stage] = &[

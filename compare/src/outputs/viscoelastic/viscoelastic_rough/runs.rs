@@ -4,6 +4,7 @@
 //! elastic contact set at the same approach beside it (Radok's prediction).
 
 use super::ViscoelasticRough;
+use crate::checks::MIN_CONTACT_CELLS;
 use crate::error::{Context as _, Result};
 use bem3d::viscoelastic::{Relaxation, TransientContact};
 use bem3d::{ContactSolver, Load, NonPeriodicHalfSpace, SolverOptions};
@@ -126,10 +127,6 @@ pub fn run_3d(spec: &ViscoelasticRough, modulus: &Relaxation, r: u64) -> Result<
     }
     Ok(run)
 }
-
-/// Fewest cells in contact at the peak of a 3D history (the CI scene's realisations
-/// reach about 40 on average, the full scene's about 600).
-const MIN_CONTACT_CELLS: usize = 16;
 
 /// MRD line `r` (C1D = lambda q C2D, Eq. 76; length L = 1) through the same history:
 /// the force F = f E_inf h3 L (or the approach d = (d/h) h3) with h3 the surface's rms
