@@ -29,20 +29,120 @@ impl Solver {
     }
 }
 
-/// A solved contact state (returned by `Contact.solve`).
-#[pyclass(module = "mrdw._mrdw", frozen)]
-pub struct ContactResult {
-    sol: Solution,
-    shape: (usize, usize),
-    /// lx * ly
-    area: f64,
-    stiffness: Option<f64>,
+step_class! {
+    /// A solved contact state (returned by `Contact.solve`).
+    ContactResult {
+        step: Solution,
+        shape: (usize, usize),
+        // lx * ly
+        area: f64,
+        stiffness: Option<f64>,
+    }
+    getters {
+        /// Rigid-body approach from first contact [length].
+        approach: f64,
+        /// Total normal force, sum of p times cell area [stress x length^2].
+        force: f64,
+        /// Real contact area, contact cells times cell area [length^2].
+        contact_area: f64,
+        /// Number of cells carrying pressure.
+        contact_cells: usize,
+        /// Mean gap over the cells that may touch [length].
+        mean_gap: f64,
+        /// Iterations of the contact solve.
+        iterations: usize,
+        /// Convergence criterion reached (pressure-weighted gap and interpenetration
+        /// relative to the rms height; see `bem3d/src/solver.rs`).
+        residual: f64,
+        /// Bound of the energy's duality gap relative to force x rms height; the pressure
+        /// error in the norm of K satisfies (p - p*).K(p - p*) <= 2 x certificate x force x
+        /// h_rms (see `bem3d/src/solver.rs`, "What a converged solve guarantees"). At most
+        /// the tolerance when the solve converged, except in complete contact, where a solve
+        /// may stop at the floor that rounding leaves (residual and certificate then above
+        /// the tolerance; "Complete contact" there).
+        certificate: f64,
+        /// Whether the warm start given to the solve was used (small load steps only).
+        warm_started: bool,
+        /// Whether the full-grid iteration started from the solution on the grid coarsened
+        /// 2 x 2 (large grids under force control).
+        nested_start: bool,
+        /// Of `iterations`, those that applied the preconditioner by its stencil on the
+        /// contact cells.
+        stencil_iterations: usize,
+        /// Whether the iteration stored its direction vectors as 16-bit integers
+        /// scaled per row chunk (grids above 2048^2 cells, unless forbidden).
+        scaled_directions: bool,
+    }
+    methods {
+        /// Cell pressures, shape (ny, nx) [stress].
+        #[getter]
+        fn pressure<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+            grid_array(py, &self.step.pressure, self.shape)
+        }
+        /// Gap at cell centres, shape (ny, nx) [length]; zero in contact.
+        #[getter]
+        fn gap<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+            grid_array(py, &self.step.gap, self.shape)
+        }
+        /// Mean pressure over the whole grid area [stress].
+        #[getter]
+        fn mean_pressure(&self) -> f64 {
+            self.step.force / self.area
+        }
+        /// Contact cells over the cells that may touch (the mask's, or all).
+        #[getter]
+        fn contact_fraction(&self) -> f64 {
+            self.step.contact_cells as f64 / self.step.domain_cells as f64
+        }
+        /// Tangent normal stiffness dF/dd with the contact set fixed [stress x length], if
+        /// requested (`stiffness=True`); +inf at complete contact of a periodic map.
+        #[getter]
+        fn stiffness(&self) -> Option<f64> {
+            self.stiffness
+        }
+        /// Every cell that may touch is in contact.
+        #[getter]
+        fn complete_contact(&self) -> bool {
+            self.step.complete_contact()
+        }
+        /// Whether the solve ran restricted to part of the grid: a window around a compact
+        /// contact on the non-periodic half-space (`iterations` then count iterations on the
+        /// window), or a small candidate set of cells at low contact fractions
+        /// (`iterations` then count applications of a dense K between them).
+        #[getter]
+        fn restricted(&self) -> bool {
+            self.step.restricted()
+        }
+        /// The path the solve took: "full grid", "window" (a compact contact on the
+        /// non-periodic half-space) or "candidate set" (a small contact set).
+        #[getter]
+        fn path(&self) -> &'static str {
+            self.step.path.name()
+        }
+        /// Of `iterations`, those with K p carried in single precision.
+        #[getter]
+        fn single_precision_iterations(&self) -> usize {
+            self.step.single_iterations
+        }
+        fn __repr__(&self) -> String {
+            format!(
+                "ContactResult(force={:.6e}, approach={:.6e}, contact_fraction={:.4e}, mean_gap={:.6e}, iterations={}, residual={:.2e}, certificate={:.2e})",
+                self.step.force,
+                self.step.approach,
+                self.contact_fraction(),
+                self.step.mean_gap,
+                self.step.iterations,
+                self.step.residual,
+                self.step.certificate
+            )
+        }
+    }
 }
 
 impl ContactResult {
-    pub fn new(sol: Solution, shape: (usize, usize), area: f64, stiffness: Option<f64>) -> Self {
+    pub fn new(step: Solution, shape: (usize, usize), area: f64, stiffness: Option<f64>) -> Self {
         Self {
-            sol,
+            step,
             shape,
             area,
             stiffness,
@@ -58,141 +158,6 @@ pub(crate) fn grid_array<'py>(
     // The shape always matches: the solver returns ny * nx values.
     let a = Array2::from_shape_vec(shape, v.to_vec()).expect("grid shape");
     PyArray2::from_owned_array(py, a)
-}
-
-#[pymethods]
-impl ContactResult {
-    /// Cell pressures, shape (ny, nx) [stress].
-    #[getter]
-    fn pressure<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        grid_array(py, &self.sol.pressure, self.shape)
-    }
-    /// Gap at cell centres, shape (ny, nx) [length]; zero in contact.
-    #[getter]
-    fn gap<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        grid_array(py, &self.sol.gap, self.shape)
-    }
-    /// Rigid-body approach from first contact [length].
-    #[getter]
-    fn approach(&self) -> f64 {
-        self.sol.approach
-    }
-    /// Total normal force, sum of p times cell area [stress x length^2].
-    #[getter]
-    fn force(&self) -> f64 {
-        self.sol.force
-    }
-    /// Mean pressure over the whole grid area [stress].
-    #[getter]
-    fn mean_pressure(&self) -> f64 {
-        self.sol.force / self.area
-    }
-    /// Real contact area, contact cells times cell area [length^2].
-    #[getter]
-    fn contact_area(&self) -> f64 {
-        self.sol.contact_area
-    }
-    /// Contact cells over the cells that may touch (the mask's, or all).
-    #[getter]
-    fn contact_fraction(&self) -> f64 {
-        self.sol.contact_cells as f64 / self.sol.domain_cells as f64
-    }
-    /// Number of cells carrying pressure.
-    #[getter]
-    fn contact_cells(&self) -> usize {
-        self.sol.contact_cells
-    }
-    /// Mean gap over the cells that may touch [length].
-    #[getter]
-    fn mean_gap(&self) -> f64 {
-        self.sol.mean_gap
-    }
-    /// Iterations of the contact solve.
-    #[getter]
-    fn iterations(&self) -> usize {
-        self.sol.iterations
-    }
-    /// Convergence criterion reached (pressure-weighted gap and interpenetration
-    /// relative to the rms height; see `bem3d/src/solver.rs`).
-    #[getter]
-    fn residual(&self) -> f64 {
-        self.sol.residual
-    }
-    /// Bound of the energy's duality gap relative to force x rms height; the pressure
-    /// error in the norm of K satisfies (p - p*).K(p - p*) <= 2 x certificate x force x
-    /// h_rms (see `bem3d/src/solver.rs`, "What a converged solve guarantees"). At most
-    /// the tolerance when the solve converged, except in complete contact, where a solve
-    /// may stop at the floor that rounding leaves (residual and certificate then above
-    /// the tolerance; "Complete contact" there).
-    #[getter]
-    fn certificate(&self) -> f64 {
-        self.sol.certificate
-    }
-    /// Tangent normal stiffness dF/dd with the contact set fixed [stress x length], if
-    /// requested (`stiffness=True`); +inf at complete contact of a periodic map.
-    #[getter]
-    fn stiffness(&self) -> Option<f64> {
-        self.stiffness
-    }
-    /// Every cell that may touch is in contact.
-    #[getter]
-    fn complete_contact(&self) -> bool {
-        self.sol.complete_contact()
-    }
-    /// Whether the warm start given to the solve was used (small load steps only).
-    #[getter]
-    fn warm_started(&self) -> bool {
-        self.sol.warm_started
-    }
-    /// Whether the solve ran restricted to part of the grid: a window around a compact
-    /// contact on the non-periodic half-space (`iterations` then count iterations on the
-    /// window), or a small candidate set of cells at low contact fractions
-    /// (`iterations` then count applications of a dense K between them).
-    #[getter]
-    fn restricted(&self) -> bool {
-        self.sol.restricted()
-    }
-    /// The path the solve took: "full grid", "window" (a compact contact on the
-    /// non-periodic half-space) or "candidate set" (a small contact set).
-    #[getter]
-    fn path(&self) -> &'static str {
-        self.sol.path.name()
-    }
-    /// Whether the full-grid iteration started from the solution on the grid coarsened
-    /// 2 x 2 (large grids under force control).
-    #[getter]
-    fn nested_start(&self) -> bool {
-        self.sol.nested_start
-    }
-    /// Of `iterations`, those with K p carried in single precision.
-    #[getter]
-    fn single_precision_iterations(&self) -> usize {
-        self.sol.single_iterations
-    }
-    /// Of `iterations`, those that applied the preconditioner by its stencil on the
-    /// contact cells.
-    #[getter]
-    fn stencil_iterations(&self) -> usize {
-        self.sol.stencil_iterations
-    }
-    /// Whether the iteration stored its direction vectors as 16-bit integers
-    /// scaled per row chunk (grids above 2048^2 cells, unless forbidden).
-    #[getter]
-    fn scaled_directions(&self) -> bool {
-        self.sol.scaled_directions
-    }
-    fn __repr__(&self) -> String {
-        format!(
-            "ContactResult(force={:.6e}, approach={:.6e}, contact_fraction={:.4e}, mean_gap={:.6e}, iterations={}, residual={:.2e}, certificate={:.2e})",
-            self.sol.force,
-            self.sol.approach,
-            self.contact_fraction(),
-            self.sol.mean_gap,
-            self.sol.iterations,
-            self.sol.residual,
-            self.sol.certificate
-        )
-    }
 }
 
 /// A height map from an array (ny, nx), a numpy masked array (its masked cells are
@@ -810,7 +775,7 @@ impl Contact {
                 )));
             }
         }
-        let warm = warm.as_ref().map(|w| w.sol.clone());
+        let warm = warm.as_ref().map(|w| w.step.clone());
         self.run(py, &req, warm.as_ref())
     }
 
@@ -850,7 +815,7 @@ impl Contact {
         let mut out: Vec<ContactResult> = Vec::with_capacity(loads.len());
         for (p, f, d) in loads {
             let req = request(p, f, d, (tolerance, max_iterations), stiffness, paths)?;
-            let warm = out.last().map(|r| r.sol.clone());
+            let warm = out.last().map(|r| r.step.clone());
             out.push(self.run(py, &req, warm.as_ref())?);
         }
         Ok(out)

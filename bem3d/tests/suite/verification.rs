@@ -772,6 +772,19 @@ fn single_precision_preconditioner_reaches_the_same_solution() {
     check(solve(Precision::Single), solve(Precision::Double), "sphere");
 }
 
+/// The full-grid iteration (no candidate set at the lower load), with the nested start
+/// allowed or forbidden.
+fn full_grid_nesting(nested: bool) -> Paths {
+    Paths {
+        nested_start: if nested {
+            Choice::Allow
+        } else {
+            Choice::Forbid
+        },
+        ..Paths::full_grid()
+    }
+}
+
 /// The nested start (a cold solve under force control on a grid of 512 cells a side or
 /// more first solves the load loosely on the grid coarsened 2 x 2) reaches the cold
 /// start's solution to the solver's tolerance (1e-12): a rough surface at about 0.4 %
@@ -791,16 +804,10 @@ fn nested_start_reaches_the_cold_starts_solution_in_fewer_iterations() {
         nested: bool,
         o: &SolverOptions,
     ) -> Solution {
-        // The full-grid iteration (no candidate set at the lower load).
-        let paths = Paths {
-            nested_start: if nested {
-                Choice::Allow
-            } else {
-                Choice::Forbid
-            },
-            ..Paths::full_grid()
+        let o = SolverOptions {
+            paths: full_grid_nesting(nested),
+            ..o.clone()
         };
-        let o = SolverOptions { paths, ..o.clone() };
         let mut s = ContactSolver::new(op, h, None).unwrap();
         s.solve(Load::MeanPressure(pm), &o, None).unwrap()
     }
@@ -852,16 +859,8 @@ fn nested_start_reaches_the_cold_starts_solution_in_fewer_iterations() {
     let mut mask = vec![true; n * n];
     mask[0] = false;
     let masked = |nested: bool| {
-        let paths = Paths {
-            nested_start: if nested {
-                Choice::Allow
-            } else {
-                Choice::Forbid
-            },
-            ..Paths::full_grid()
-        };
         let o = SolverOptions {
-            paths,
+            paths: full_grid_nesting(nested),
             ..Default::default()
         };
         let sol = ContactSolver::new(periodic(), &h, Some(mask.clone()))

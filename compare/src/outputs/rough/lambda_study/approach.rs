@@ -13,14 +13,14 @@
 //! (`tasks::ApproachEnsemble`).
 
 use super::analysis::Sample;
-use super::estimate::cv_estimate;
+use super::estimate::{cv_estimate, Agreement, CvPanels, CV_COLUMNS};
 use super::tasks::{approach_file, load, ApproachEnsemble, Case};
 use super::LambdaStudy;
 use crate::error::Result;
 use crate::experiment::fit::interp_loglog;
 use crate::experiment::fit::Estimate;
 use crate::experiment::rough_punch::BemCurve;
-use crate::report::{Figure, Section, Series, Style, Table};
+use crate::report::{Section, Table};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::path::Path;
@@ -170,40 +170,33 @@ pub fn report(sc: &[ForceScatter], label: &str, out: &mut Section) {
     let mut t = Table::new(
         &format!("{label}_scatter_force"),
         &[
-            "hurst [1]",
-            "bandwidth [1]",
-            "realisations_3d [1]",
-            "lines_mrd [1]",
-            "u = approach past mean height / h [1]",
-            "in_window [1]",
-            "mean_f_3d = F/(E* h L) [1]",
-            "mean_f_mrd [1]",
-            "cv_3d [1]",
-            "cv_3d_lo95 [1]",
-            "cv_3d_hi95 [1]",
-            "cv_mrd [1]",
-            "cv_mrd_lo95 [1]",
-            "cv_mrd_hi95 [1]",
-        ],
+            &[
+                "hurst [1]",
+                "bandwidth [1]",
+                "realisations_3d [1]",
+                "lines_mrd [1]",
+                "u = approach past mean height / h [1]",
+                "in_window [1]",
+                "mean_f_3d = F/(E* h L) [1]",
+                "mean_f_mrd [1]",
+            ],
+            CV_COLUMNS,
+        ]
+        .concat(),
     );
     t.notes.push(
         "Section 9: coefficient of variation s/mean of the reduced force F/(E* h L) across realisations at each reduced approach u (rigid indentation past the face's or line's mean height over its own rms height h); 3D F(u) by cubic Hermite interpolation of the solves' (d, F, dF/dd); MRD lines exact (lambda = pi; F/h at fixed u/h does not depend on lambda); at equal u the mean forces differ (columns mean_f), so the verdict compares the CVs at equal mean force; 95 % bootstrap intervals; in_window = 1 where the 3D mean force lies within the forces of the stiffness calibration window".to_string(),
     );
-    let panel = |name: &str, what: &str| {
-        let mut f = Figure::new(
-            &format!("{label}_scatter_force_{name}"),
-            &format!("Scatter of F at fixed approach ({what}): CV, 3D (95% CI) and MRD"),
-            "mean reduced force at that approach F/(E* h L) [1]",
-            "CV of F across realisations at fixed approach [1]",
-        );
-        f.log_x = true;
-        f.log_y = true;
-        f
-    };
-    let mut figs = [panel("low_h", "H <= 0.5"), panel("high_h", "H > 0.5")];
+    let mut panels = CvPanels::new(
+        &format!("{label}_scatter_force"),
+        |what| format!("Scatter of F at fixed approach ({what}): CV, 3D (95% CI) and MRD"),
+        "mean reduced force at that approach F/(E* h L) [1]",
+        "CV of F across realisations at fixed approach [1]",
+        true,
+    );
     let mut verdict = serde_json::Map::new();
     for (i, x) in sc.iter().enumerate() {
-        let (mut worst, mut overlap, mut count) = (0.0f64, 0usize, 0usize);
+        let mut agree = Agreement::default();
         let mut ratio = [f64::INFINITY, f64::NEG_INFINITY];
         for j in 0..x.approach.len() {
             let (a, b) = (x.cv_3d[j], x.cv_mrd[j]);
@@ -215,63 +208,39 @@ pub fn report(sc: &[ForceScatter], label: &str, out: &mut Section) {
                 continue;
             };
             if x.in_window[j] && a.value > 0.0 {
-                worst = worst.max((b.value / a.value - 1.0).abs());
+                agree.add(&a, &b);
                 ratio = [
                     ratio[0].min(b.value / a.value),
                     ratio[1].max(b.value / a.value),
                 ];
-                overlap += (a.lo <= b.hi && b.lo <= a.hi) as usize;
-                count += 1;
             }
         }
         verdict.insert(
             format!("{}", x.case.hurst),
             serde_json::json!({
-                "max_rel_diff_in_window_at_equal_mean_force": worst,
-                "cv_mrd_over_cv_3d_in_window": if count > 0 { vec![ratio[0], ratio[1]] } else { vec![] },
-                "intervals_overlap": format!("{overlap} of {count}"),
+                "max_rel_diff_in_window_at_equal_mean_force": agree.worst,
+                "cv_mrd_over_cv_3d_in_window": if agree.count > 0 { vec![ratio[0], ratio[1]] } else { vec![] },
+                "intervals_overlap": agree.overlaps(),
             }),
         );
-        let fig = &mut figs[(x.case.hurst > 0.5) as usize];
-        let pts = |m: &[f64], e: &[Estimate]| -> Vec<(f64, f64)> {
-            m.iter()
-                .zip(e)
-                .filter(|p| p.1.value > 0.0)
-                .map(|(&m, e)| (m, e.value))
-                .collect()
-        };
-        fig.series.push(
-            Series::new(
-                format!(
-                    "3D, H = {} (B {}, n = {})",
-                    x.case.hurst, x.case.band, x.realisations
-                ),
-                pts(&x.mean_3d, &x.cv_3d),
-                Style::Crosses,
-            )
-            .with_bars(
-                x.mean_3d
-                    .iter()
-                    .zip(&x.cv_3d)
-                    .filter(|p| p.1.lo > 0.0)
-                    .map(|(&m, e)| (m, e.lo, e.hi))
-                    .collect(),
-            )
-            .colored(i),
-        );
-        fig.series.push(
-            Series::new(
-                format!("MRD, H = {}", x.case.hurst),
-                pts(&x.mean_mrd, &x.cv_mrd),
-                Style::Line,
-            )
-            .colored(i),
-        );
+        let three: Vec<(f64, Estimate)> = x
+            .mean_3d
+            .iter()
+            .copied()
+            .zip(x.cv_3d.iter().copied())
+            .collect();
+        let mrd = x
+            .mean_mrd
+            .iter()
+            .zip(&x.cv_mrd)
+            .filter(|p| p.1.value > 0.0)
+            .map(|(&m, e)| (m, e.value))
+            .collect();
+        panels.add(i, &x.case, x.realisations, &three, mrd);
     }
     out.value("scatter_force", serde_json::Value::Object(verdict));
     out.tables.push(t);
-    out.figures
-        .extend(figs.into_iter().filter(|f| !f.series.is_empty()));
+    out.figures.extend(panels.into_figures());
 }
 
 #[cfg(test)]

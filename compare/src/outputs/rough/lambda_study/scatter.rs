@@ -11,7 +11,7 @@
 
 use super::analysis::sample;
 use super::approach::{self, ForceScatter};
-use super::estimate::{cv_estimate, RESAMPLES};
+use super::estimate::{cv_estimate, Agreement, CvPanels, CV_COLUMNS, RESAMPLES};
 use super::tasks::{cases, done, load, mrd_file, Case, Role};
 use super::LambdaStudy;
 use crate::error::Result;
@@ -158,35 +158,28 @@ pub fn report(sc: &[Scatter], fs: &[f64], label: &str, out: &mut Section) {
     let mut t = Table::new(
         &format!("{label}_scatter"),
         &[
-            "hurst [1]",
-            "bandwidth [1]",
-            "realisations_3d [1]",
-            "lines_mrd [1]",
-            "f = F/(E* h L) [1]",
-            "in_window [1]",
-            "cv_3d [1]",
-            "cv_3d_lo95 [1]",
-            "cv_3d_hi95 [1]",
-            "cv_mrd [1]",
-            "cv_mrd_lo95 [1]",
-            "cv_mrd_hi95 [1]",
-        ],
+            &[
+                "hurst [1]",
+                "bandwidth [1]",
+                "realisations_3d [1]",
+                "lines_mrd [1]",
+                "f = F/(E* h L) [1]",
+                "in_window [1]",
+            ],
+            CV_COLUMNS,
+        ]
+        .concat(),
     );
     t.notes.push(format!(
         "Section 9: coefficient of variation s/mean of the stiffness k across realisations at each f, 3D rough punches against MRD lines (lambda = pi; k at fixed f = F/(E* h L) does not depend on lambda); per H the main-ladder case with the most 3D realisations; 95 % bootstrap intervals ({RESAMPLES} resamples); in_window = 1 where the 3D mean k/(E* L) lies in the calibration window"
     ));
-    // Two panels (H <= 0.5 and above) so that no band hides another.
-    let panel = |name: &str, what: &str| {
-        let mut f = Figure::new(
-            &format!("{label}_scatter_{name}"),
-            &format!("Scatter between realisations ({what}): CV of k, 3D (95% CI) and MRD"),
-            "reduced force f = F/(E* h L) [1]",
-            "CV of k across realisations [1]",
-        );
-        f.log_x = true;
-        f
-    };
-    let mut cv_figs = [panel("low_h", "H <= 0.5"), panel("high_h", "H > 0.5")];
+    let mut cv_panels = CvPanels::new(
+        &format!("{label}_scatter"),
+        |what| format!("Scatter between realisations ({what}): CV of k, 3D (95% CI) and MRD"),
+        "reduced force f = F/(E* h L) [1]",
+        "CV of k across realisations [1]",
+        false,
+    );
     let mut q_fig = Figure::new(
         &format!("{label}_scatter_quantiles"),
         "Distribution of k / mean k: 3D quantiles against MRD quantiles (mid-window f)",
@@ -196,7 +189,7 @@ pub fn report(sc: &[Scatter], fs: &[f64], label: &str, out: &mut Section) {
     let mut verdict = serde_json::Map::new();
     let (mut qlo, mut qhi) = (f64::INFINITY, f64::NEG_INFINITY);
     for (i, x) in sc.iter().enumerate() {
-        let (mut worst, mut overlap, mut count) = (0.0f64, 0usize, 0usize);
+        let mut agree = Agreement::default();
         let mut pts3 = Vec::new();
         let mut pts1 = Vec::new();
         for (j, &f) in fs.iter().enumerate() {
@@ -209,9 +202,7 @@ pub fn report(sc: &[Scatter], fs: &[f64], label: &str, out: &mut Section) {
             pts3.push((f, a));
             pts1.push((f, b.value));
             if x.in_window[j] && a.value > 0.0 {
-                worst = worst.max((b.value / a.value - 1.0).abs());
-                overlap += (a.lo <= b.hi && b.lo <= a.hi) as usize;
-                count += 1;
+                agree.add(&a, &b);
             }
         }
         let width = x
@@ -225,26 +216,12 @@ pub fn report(sc: &[Scatter], fs: &[f64], label: &str, out: &mut Section) {
             format!("{}", x.case.hurst),
             serde_json::json!({
                 "bandwidth": x.case.band, "realisations_3d": x.realisations,
-                "max_rel_diff_in_window": worst,
-                "intervals_overlap": format!("{overlap} of {count}"),
+                "max_rel_diff_in_window": agree.worst,
+                "intervals_overlap": agree.overlaps(),
                 "cv_3d_max_rel_half_width": width,
             }),
         );
-        let fig = &mut cv_figs[(x.case.hurst > 0.5) as usize];
-        fig.series.push(
-            Series::new(
-                format!(
-                    "3D, H = {} (B {}, n = {})",
-                    x.case.hurst, x.case.band, x.realisations
-                ),
-                pts3.iter().map(|p| (p.0, p.1.value)).collect(),
-                Style::Crosses,
-            )
-            .with_bars(pts3.iter().map(|p| (p.0, p.1.lo, p.1.hi)).collect())
-            .colored(i),
-        );
-        fig.series
-            .push(Series::new(format!("MRD, H = {}", x.case.hurst), pts1, Style::Line).colored(i));
+        cv_panels.add(i, &x.case, x.realisations, &pts3, pts1);
         for q in &x.quantiles {
             qlo = qlo.min(q.1.min(q.2));
             qhi = qhi.max(q.1.max(q.2));
@@ -270,8 +247,7 @@ pub fn report(sc: &[Scatter], fs: &[f64], label: &str, out: &mut Section) {
     }
     out.value("scatter", serde_json::Value::Object(verdict));
     out.tables.push(t);
-    out.figures
-        .extend(cv_figs.into_iter().filter(|f| !f.series.is_empty()));
+    out.figures.extend(cv_panels.into_figures());
     out.figures.push(q_fig);
     let forces: Vec<ForceScatter> = sc.iter().filter_map(|x| x.force.clone()).collect();
     approach::report(&forces, label, out);
