@@ -184,10 +184,7 @@ impl TangentialStiffness3d {
             "rel_dev_3d_vs_mrd [1]",
             "kt_along_only_over_kt_mean [1]",
         ];
-        let mut t = Table::new(
-            "stiffness_ratio",
-            &cols.iter().map(|c| c.to_string()).collect::<Vec<_>>(),
-        );
+        let mut t = Table::new("stiffness_ratio", &cols);
         t.notes.push(format!(
             "periodic self-affine surfaces, period 1, bandwidth {}, {} realisations (nested: each grid of a hurst samples the same surfaces); kt: Cerruti stick stiffness along x and y averaged; kn: dF/dd with the contact set held; interval: mean +- 1.96 standard errors over realisations; MRD: G*/E* (Eqs. 2, 5); kt_along_only: traction along x only (q_y = 0)",
             self.bandwidth, self.realisations

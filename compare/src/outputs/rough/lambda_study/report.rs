@@ -71,7 +71,7 @@ fn role_code(role: Role) -> f64 {
 }
 
 fn cases_table(s: &LambdaStudy, r: &Results, label: &str) -> Table {
-    let cols: Vec<String> = [
+    let cols = [
         "hurst [1]",
         "bandwidth L/lambda_min [1]",
         "cells_per_min_wavelength [count]",
@@ -98,13 +98,8 @@ fn cases_table(s: &LambdaStudy, r: &Results, label: &str) -> Table {
         "alpha_3d_upper_half [1]",
         "alpha_mrd_lower_half [1]",
         "alpha_mrd_upper_half [1]",
-    ]
-    .iter()
-    .map(|c| c.to_string())
-    .collect();
-    let mut t = Table::new(&format!("{label}_cases"), &cols);
-    t.missing_ok = true;
-    t.notes.push(format!(
+    ];
+    let mut t = study_table(label, "cases", &cols, format!(
         "lambda of Eq. (76) calibrated on 3D circular rough punches (E* = 1, L = 1, nested self-affine surfaces C2D ~ q^(-2H-2), |k| <= bandwidth in units of 2 pi/L, on cells x bandwidth cells a side) against {} MRD lines per H and bandwidth (lambda = pi, {} points per cell); calibration and fits over k/(E* L) in [{}, {}] (f_min..f_max: that range in f = F/(E* h L)); lambda as Eq. (76) states it, C1D = lambda q C2D at the line's wavenumbers (the fit shifts the reduced MRD curve by pi h1^2 / h3^2, lambda times the rms factor of the case's spectrum on the line and the punch face: compare::outputs::lambda_meaning); misfit = |ln k3 - ln k1(lambda)| over it; 95 % bootstrap intervals over 3D realisations (200 resamples); role 0 = main ladder (realisations added until the interval meets the target), 1 = bandwidth above calibrate_at = {} (paired check), 2 = resolution check, 3 = tolerance check; lambda_lower_half, lambda_upper_half: lambda calibrated on the lower and upper half of the range's points (its dependence on the forces fitted); alpha_*_half: Eq. (77)'s exponent fitted on the same halves (3D and MRD at the same f)",
         s.realisations_1d, s.points_1d_per_cell, s.window[0], s.window[1], s.calibrate_at
     ));
@@ -137,6 +132,14 @@ fn cases_table(s: &LambdaStudy, r: &Results, label: &str) -> Table {
     t
 }
 
+/// The study's table `{label}_{name}` with its note; a cell a case lacks is NaN.
+fn study_table(label: &str, name: &str, cols: &[&str], note: String) -> Table {
+    let mut t = Table::new(&format!("{label}_{name}"), cols);
+    t.missing_ok = true;
+    t.notes.push(note);
+    t
+}
+
 fn finite_or_nan(v: f64) -> f64 {
     if v.is_finite() {
         v
@@ -146,7 +149,7 @@ fn finite_or_nan(v: f64) -> f64 {
 }
 
 fn pairs_table(r: &Results, label: &str) -> Table {
-    let cols: Vec<String> = [
+    let cols = [
         "hurst [1]",
         "bandwidth [1]",
         "cells [count]",
@@ -158,13 +161,8 @@ fn pairs_table(r: &Results, label: &str) -> Table {
         "lambda_ratio [1]",
         "lambda_ratio_lo95 [1]",
         "lambda_ratio_hi95 [1]",
-    ]
-    .iter()
-    .map(|c| c.to_string())
-    .collect();
-    let mut t = Table::new(&format!("{label}_pairs"), &cols);
-    t.missing_ok = true;
-    t.notes.push("lambda(case) / lambda(reference) on the same nested realisations (paired bootstrap, 200 resamples): bandwidth ladder against calibrate_at, other cells per wavelength against the main cells, the second tolerance against the first".into());
+    ];
+    let mut t = study_table(label, "pairs", &cols, "lambda(case) / lambda(reference) on the same nested realisations (paired bootstrap, 200 resamples): bandwidth ladder against calibrate_at, other cells per wavelength against the main cells, the second tolerance against the first".into());
     for p in &r.pairs {
         let mut row = vec![
             p.case.hurst,
@@ -183,7 +181,7 @@ fn pairs_table(r: &Results, label: &str) -> Table {
 }
 
 fn curves_table(r: &Results, label: &str) -> Table {
-    let cols: Vec<String> = [
+    let cols = [
         "hurst [1]",
         "bandwidth [1]",
         "cells [count]",
@@ -195,23 +193,14 @@ fn curves_table(r: &Results, label: &str) -> Table {
         "dlnk/dlnf 3d lo95 [1]",
         "dlnk/dlnf 3d hi95 [1]",
         "dlnk/dlnf mrd [1]",
-    ]
-    .iter()
-    .map(|c| c.to_string())
-    .collect();
-    let mut t = Table::new(&format!("{label}_curves"), &cols);
-    t.missing_ok = true;
-    t.notes.push("ensemble means on the common f grid (a 3D point where every realisation reaches it) and local exponents by central differences (3D band: bootstrap 95 %)".into());
+    ];
+    let mut t = study_table(label, "curves", &cols, "ensemble means on the common f grid (a 3D point where every realisation reaches it) and local exponents by central differences (3D band: bootstrap 95 %)".into());
     for c in &r.cases {
         for (j, &f) in r.f.iter().enumerate() {
             if c.mean_3d[j].is_none() && c.mean_mrd[j].is_none() {
                 continue;
             }
-            let s3 = c.slope_3d[j].unwrap_or(Estimate {
-                value: f64::NAN,
-                lo: f64::NAN,
-                hi: f64::NAN,
-            });
+            let s3 = c.slope_3d[j].unwrap_or(Estimate::NONE);
             let row = vec![
                 c.case.hurst,
                 c.case.band as f64,
