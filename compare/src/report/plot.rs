@@ -357,7 +357,8 @@ fn fmt_tick(v: f64, zero: f64) -> String {
     if v.abs() <= zero {
         "0".into()
     } else if v.abs() >= 1e4 || v.abs() < 1e-3 {
-        format!("{v:.1e}")
+        // "1e-4" beside "0.001", not "1.0e-4"; "2.5e-4" keeps its digit.
+        format!("{v:.1e}").replace(".0e", "e")
     } else {
         let s = format!("{v:.4}");
         s.trim_end_matches('0').trim_end_matches('.').to_string()
@@ -488,7 +489,9 @@ mod tests {
         assert_eq!(fmt_tick(-2.0e-17, 1e-9 * 3.0), "0");
         assert_eq!(fmt_tick(6.9e-18, 0.0), "6.9e-18");
         assert_eq!(fmt_tick(0.25, 1e-9), "0.25");
-        assert_eq!(fmt_tick(2.0e-4, 1e-9 * 1e-3), "2.0e-4");
+        assert_eq!(fmt_tick(2.0e-4, 1e-9 * 1e-3), "2e-4");
+        assert_eq!(fmt_tick(2.5e-4, 0.0), "2.5e-4");
+        assert_eq!(fmt_tick(-1.0e5, 0.0), "-1e5");
     }
     use crate::report::figure::{Figure, Style};
 
