@@ -22,6 +22,13 @@ pub trait TangentialCompliance: Send {
     fn is_periodic(&self) -> bool;
     /// `u = K_t q`.
     fn apply(&mut self, q: &[f64], u: &mut [f64]);
+    /// `z = M r` with `M` a symmetric positive approximation of the operator's inverse
+    /// (up to a positive factor), for the partial-slip iteration's directions; returns
+    /// whether the operator has one (without, `z` is left as it is and the iteration
+    /// runs unpreconditioned).
+    fn precondition(&mut self, _r: &[f64], _z: &mut [f64]) -> bool {
+        false
+    }
 }
 
 /// A boxed operator, for callers that choose the half-space at run time.
@@ -34,5 +41,8 @@ impl<T: TangentialCompliance + ?Sized> TangentialCompliance for Box<T> {
     }
     fn apply(&mut self, q: &[f64], u: &mut [f64]) {
         (**self).apply(q, u)
+    }
+    fn precondition(&mut self, r: &[f64], z: &mut [f64]) -> bool {
+        (**self).precondition(r, z)
     }
 }

@@ -49,6 +49,10 @@ impl<C: TangentialCompliance> TangentialCompliance for Scaled<C> {
             *v *= self.factor;
         }
     }
+    /// The unscaled operator's (a positive factor does not change the directions).
+    fn precondition(&mut self, r: &[f64], z: &mut [f64]) -> bool {
+        self.op.precondition(r, z)
+    }
 }
 
 /// The state after a displacement step.
