@@ -50,7 +50,7 @@ impl CerrutiPeriodic {
             poisson,
             fft: Fft2::new(nx, ny),
             symbol,
-            inverse: inverse_symbol(nx, ny, lx, ly, shear_modulus, poisson),
+            inverse: inverse_symbol((nx, ny, lx, ly), shear_modulus, poisson),
         })
     }
 }
@@ -75,13 +75,11 @@ impl TangentialCompliance for CerrutiPeriodic {
     }
 }
 
-/// The inverse of the periodic Cerruti operator's symbol (its xx entry) on an
-/// `ny x nx` grid of size `lx x ly`: `G |k| / (1 - nu kx^2 / |k|^2)`, 0 at `k = 0`.
+/// The inverse of the periodic Cerruti operator's symbol (its xx entry) on the grid
+/// `(nx, ny, lx, ly)` (as [`TangentialCompliance::grid`] gives it):
+/// `G |k| / (1 - nu kx^2 / |k|^2)`, 0 at `k = 0`.
 pub(super) fn inverse_symbol(
-    nx: usize,
-    ny: usize,
-    lx: f64,
-    ly: f64,
+    (nx, ny, lx, ly): (usize, usize, f64, f64),
     shear_modulus: f64,
     poisson: f64,
 ) -> Vec<f64> {

@@ -107,7 +107,7 @@ impl CerrutiFree {
             }
         });
         let kernel = halve_if_even(spec.par_iter().map(|c| c.re).collect(), 2 * ny);
-        let inverse = inverse_symbol(nx, ny, lx, ly, shear_modulus, poisson);
+        let inverse = inverse_symbol((nx, ny, lx, ly), shear_modulus, poisson);
         Ok(Self {
             nx,
             ny,
