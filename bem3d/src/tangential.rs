@@ -47,8 +47,10 @@
 //! before stopping, `u` is computed afresh), and the loops run over the contact cells
 //! only, so the transforms (the operator's and the preconditioner's) dominate its
 //! cost. It stops
-//! when every cell satisfies the law within `tolerance` times the largest displacement:
-//! stick cells `|u + s - delta|`, slip cells the sign of their new slip. A step whose
+//! when every cell satisfies the law within `tolerance` times the largest displacement
+//! (floored at the rounding of the displacements the step starts from, so that a step
+//! whose answer is no traction at all ends): stick cells
+//! `|u + s - delta|`, slip cells the sign of their new slip. A step whose
 //! force reaches the total friction `mu sum p` is gross sliding, reported as such.
 
 mod cerruti;

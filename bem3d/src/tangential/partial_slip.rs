@@ -32,7 +32,7 @@ pub struct TangentialStep {
     /// Energy dissipated by slip in this step [force x length].
     pub dissipated: f64,
     /// Iterations and the final residual (largest violation of the law over the largest
-    /// displacement).
+    /// displacement, that scale floored at rounding: [`ROUNDING`]).
     pub iterations: usize,
     pub residual: f64,
     /// The force reached the total friction `mu sum p`: the body slides (the shift is
@@ -60,6 +60,14 @@ const MAX_MU: f64 = 1e6;
 
 /// Iteration limit of a step.
 const MAX_ITERATIONS: usize = 20_000;
+
+/// The rounding level of a step's displacements relative to the largest displacement
+/// it starts from: the residual's scale (the largest displacement) is floored at this
+/// over the tolerance times that start. A step whose answer is no traction at all (no
+/// force and no slip yet) then ends at rounding instead of iterating on a residual
+/// relative to displacements of rounding size; any other step's largest displacement is
+/// far above the floor (a millionth of its start at a tolerance of 1e-8).
+const ROUNDING: f64 = 1e-14;
 
 /// Iterations between computations of `K q` afresh while its running update is used.
 const REFRESH: usize = 50;
@@ -275,6 +283,8 @@ impl<C: TangentialCompliance> PartialSlip<C> {
         let mut g_old = 0.0;
         let mut last = f64::INFINITY;
         self.op.apply(q, &mut u);
+        let start = u.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let least_scale = (ROUNDING / tolerance * start).max(f64::MIN_POSITIVE);
         // Iterations since `u` was last computed as `K q` (0: it is `K q` itself).
         let mut followed = 0;
         for it in 0..MAX_ITERATIONS {
@@ -285,7 +295,7 @@ impl<C: TangentialCompliance> PartialSlip<C> {
             let scale = u
                 .iter()
                 .fold(0.0f64, |m, x| m.max(x.abs()))
-                .max(f64::MIN_POSITIVE);
+                .max(least_scale);
             let worst = (0..m)
                 .filter(|&k| free[k])
                 .fold(0.0f64, |w, k| w.max((r[k] - shift).abs()));
@@ -777,6 +787,37 @@ mod tests {
             || super::super::CerrutiFree::new(96, 96, 1.0, 1.0, 1.0, 0.3).unwrap(),
             96,
             "free",
+        );
+    }
+
+    /// A coarse grid (3.2 cells per contact radius) under a small oscillation: no cell
+    /// slips, so the step at zero force has no traction at all as its answer. Its
+    /// displacements are then of rounding size, and the residual's floor ([`ROUNDING`])
+    /// lets it end; without the floor both half-spaces iterate to the limit on a
+    /// residual of 0.2-0.8 relative to rounding.
+    #[test]
+    fn a_step_whose_answer_is_no_traction_ends() {
+        fn check<C: TangentialCompliance>(op: C, n: usize) {
+            let p = hertz(n, 0.1, 1.0);
+            let mut ps = PartialSlip::new(op, &p, 0.5).unwrap();
+            let limit = ps.friction_limit();
+            let c = ps.cycle(0.2 * limit, 20, 2, 1e-8).unwrap();
+            assert_eq!(c.dissipated, 0.0, "n = {n}");
+            // The loop is a line through the origin: a linear spring, no hysteresis.
+            let (f, s) = c.points[10];
+            assert!(f.abs() < 1e-12 * limit, "{f}");
+            assert!(s.abs() < 1e-6 * c.points[0].1.abs(), "{s}");
+            let zero = ps.load(0.0, 1e-8).unwrap();
+            let q_max = ps.q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            assert!(zero.residual <= 1e-8 && q_max < 1e-9, "{q_max}");
+        }
+        check(
+            CerrutiPeriodic::new(32, 32, 1.0, 1.0, 1.0, 0.5).unwrap(),
+            32,
+        );
+        check(
+            super::super::CerrutiFree::new(24, 24, 1.0, 1.0, 1.0, 0.5).unwrap(),
+            24,
         );
     }
 
