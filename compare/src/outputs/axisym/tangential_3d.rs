@@ -24,7 +24,7 @@ use crate::report::{Figure, Section, Series, Style, Table};
 use bem3d::tangential::{CerrutiFree, CerrutiPeriodic, PartialSlip, TangentialCompliance};
 use bem3d::SolverOptions;
 use mrd::oscillation::dissipation_semi_analytic;
-use mrd::reference::for_profile;
+use mrd::reference::{for_profile, mindlin_damping as md};
 use mrd::tangential::TangentialContact;
 use serde::Deserialize;
 use std::f64::consts::PI;
@@ -78,13 +78,6 @@ fn bytes_per_cell(periodic: bool) -> f64 {
     } else {
         crate::checks::BYTES_PER_CELL_NON_PERIODIC + 184.0
     }
-}
-
-/// Mindlin-Deresiewicz: the energy dissipated per cycle of a force amplitude x mu P
-/// (G* = 4G/(2 - nu)).
-fn mindlin_deresiewicz(mu_p: f64, g_star: f64, a: f64, x: f64) -> f64 {
-    18.0 * mu_p * mu_p / (5.0 * g_star * a)
-        * (1.0 - (1.0 - x).powf(5.0 / 3.0) - 5.0 * x / 6.0 * (1.0 + (1.0 - x).powf(2.0 / 3.0)))
 }
 
 impl Output for Tangential3d {
@@ -190,7 +183,7 @@ impl Output for Tangential3d {
                 let w: Vec<f64> = self
                     .amplitudes
                     .iter()
-                    .map(|x| mindlin_deresiewicz(mu * fn_, g, a, *x))
+                    .map(|x| md::dissipation_force_amplitude_exact(g, a, mu, fn_, x * mu * fn_))
                     .collect();
                 (c, w)
             })
