@@ -226,7 +226,7 @@ pub mod mindlin_damping {
                 if k > 0 {
                     c *= (2 * k - 1) as f64 / (2 * k) as f64;
                 }
-                let t = c * ratio.powi(k as i32) / ((k + 2) * (k + 3)) as f64;
+                let t = c * ratio.powi(k) / ((k + 2) * (k + 3)) as f64;
                 if sum + t == sum {
                     break;
                 }
@@ -305,7 +305,7 @@ pub mod mindlin_damping {
                 if k < 3 {
                     continue;
                 }
-                let t = (-a_k - 5.0 / 6.0 * b_prev) * x.powi(k as i32);
+                let t = (-a_k - 5.0 / 6.0 * b_prev) * x.powi(k);
                 if sum + t == sum {
                     break;
                 }
