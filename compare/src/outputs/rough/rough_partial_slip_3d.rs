@@ -120,8 +120,9 @@ const STAGES: &[Stage] = &[
 
 impl Output for RoughPartialSlip3d {
     fn validate(&self, _: &Context) -> Result<()> {
-        // Beside the normal solver: a partial-slip state (a dozen double arrays).
-        self.ladder().check(100.0)?;
+        // Beside the normal solver: a partial-slip state. Measured peaks of one
+        // realisation (process included): 208 bytes per cell at 1024^2, 178 at 2048^2.
+        self.ladder().check(160.0)?;
         crate::checks::check_fractions("fractions", &self.fractions, true)?;
         crate::checks::check_fractions("amplitudes", &self.amplitudes, false)?;
         if !(positive(self.pressure) && self.pressure <= 1.0) {
