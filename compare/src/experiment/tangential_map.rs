@@ -10,11 +10,29 @@
 //! requested forces and the integrals, so that one normal curve serves every Poisson's
 //! ratio (E* / G* = (2 - nu) / (2 (1 - nu)) for a rigid indenter, Eqs. 2 and 5).
 
+use crate::checks::{bad, check_fractions};
 use crate::error::Result;
 use mrd::numerics::gauss::legendre;
 
 /// Gauss-Legendre nodes of the integral of Masing's rule.
 pub const NODES: usize = 12;
+
+/// The amplitudes of Masing's energies, as fractions x of mu F_N. The energy per cycle
+/// is of order x^2 relative to `Q* b(Q*)`, while each `b` carries the relative error
+/// `tolerance` of the solves it differences: the energy's relative error is about
+/// tolerance / x^2, so an amplitude below sqrt(1e4 tolerance) (0.01 at the default
+/// 1e-8) would leave more than 1e-4 of the energy to the solver's stop (on coarse grids
+/// the cells that enter and leave the contact add more there).
+pub fn check_amplitudes(amplitudes: &[f64], tolerance: f64) -> Result<()> {
+    check_fractions("amplitudes", amplitudes, false)?;
+    let least = (1e4 * tolerance).sqrt();
+    if let Some(x) = amplitudes.iter().find(|x| **x < least) {
+        return bad(format!(
+            "amplitudes: {x} of mu F_N is below {least:.3e} = sqrt(1e4 x tolerance {tolerance:e}): the energy per cycle (of order x^2 of Q* times the shift) would be left to the solvers' stop; raise the amplitude or lower tolerance"
+        ));
+    }
+    Ok(())
+}
 
 /// E* / G* of a rigid indenter on a substrate of Poisson's ratio `nu` (Eqs. 2 and 5).
 pub fn e_over_g(nu: f64) -> f64 {
@@ -99,5 +117,21 @@ mod tests {
             assert!((w / exact - 1.0).abs() < 2e-4, "x = {x}: {w} {exact}");
         }
         assert_eq!(e_over_g(0.0), 1.0);
+    }
+
+    /// The least amplitude follows the tolerance: 0.01 at 1e-8, 1e-4 at 1e-12.
+    #[test]
+    fn amplitudes_below_the_solvers_resolution_are_refused() {
+        let e = check_amplitudes(&[0.3, 1e-3], 1e-8)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("amplitudes: 0.001") && e.contains("1.000e-2"),
+            "{e}"
+        );
+        assert!(check_amplitudes(&[0.01, 0.5], 1e-8).is_ok());
+        assert!(check_amplitudes(&[1e-3], 1e-12).is_ok());
+        assert!(check_amplitudes(&[1e-5], 1e-12).is_err());
+        assert!(check_amplitudes(&[1.0], 1e-8).is_err());
     }
 }

@@ -124,7 +124,7 @@ impl Output for RoughPartialSlip3d {
         // realisation (process included): 208 bytes per cell at 1024^2, 178 at 2048^2.
         self.ladder().check(160.0)?;
         crate::checks::check_fractions("fractions", &self.fractions, true)?;
-        crate::checks::check_fractions("amplitudes", &self.amplitudes, false)?;
+        crate::experiment::tangential_map::check_amplitudes(&self.amplitudes, self.tolerance)?;
         if !(positive(self.pressure) && self.pressure <= 1.0) {
             return bad(format!(
                 "pressure = {} (mean pressure over E* h') must lie in (0, 1]",

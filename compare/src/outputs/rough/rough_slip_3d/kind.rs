@@ -64,7 +64,7 @@ impl Output for RoughSlip3d {
         let a = self.contact_radius(e_star);
         check_map(self.side, a, "the smooth body's at F_N", &self.cells)?;
         crate::checks::check_fractions("fractions", &self.fractions, true)?;
-        crate::checks::check_fractions("amplitudes", &self.amplitudes, false)?;
+        crate::experiment::tangential_map::check_amplitudes(&self.amplitudes, self.tolerance)?;
         check_ensembles(self.realisations_3d, self.realisations_1d)?;
         count_in("points_1d_factor", self.points_1d_factor as u64, 1..=64)?;
         count_in("steps", self.steps as u64, 2..=1000)?;
