@@ -787,6 +787,11 @@ fn periodic_patch_studies_bad_input_names_the_key() {
                 "amplitudes = [1.2]",
                 "amplitudes",
             ),
+            (
+                "amplitudes = [0.3, 0.6]",
+                "amplitudes = [1e-4]",
+                "amplitudes: 0.0001 of mu F_N is below 1.000e-2",
+            ),
             ("realisations = 3", "realisations = 1", "realisations"),
         ],
     );
@@ -826,6 +831,11 @@ fn rough_slip_bad_input_names_the_key() {
                 "fractions",
             ),
             ("amplitudes = [0.25, 0.9]", "amplitudes = []", "amplitudes"),
+            (
+                "amplitudes = [0.25, 0.9]",
+                "amplitudes = [0.005]",
+                "sqrt(1e4 x tolerance",
+            ),
             ("cells = [64, 128]", "cells = [128, 64]", "cells"),
             (
                 "lambda = [\"pi\", \"calibrated\"]",
