@@ -31,7 +31,7 @@ impl CerrutiPeriodic {
         shear_modulus: f64,
         poisson: f64,
     ) -> Result<Self> {
-        check_grid(nx, ny, lx, ly, shear_modulus, poisson)?;
+        check_grid((nx, ny, lx, ly), shear_modulus, poisson)?;
         let g = shear_modulus;
         let symbol = spectral_grid(nx, ny, lx, ly, |kx, ky| {
             let k2 = kx * kx + ky * ky;
@@ -93,15 +93,14 @@ pub(super) fn inverse_symbol(
     })
 }
 
-/// The grid, shear modulus and Poisson's ratio of a tangential operator, checked.
+/// The grid `(nx, ny, lx, ly)`, shear modulus and Poisson's ratio of a tangential
+/// operator, checked.
 pub(super) fn check_grid(
-    nx: usize,
-    ny: usize,
-    lx: f64,
-    ly: f64,
+    grid: (usize, usize, f64, f64),
     shear_modulus: f64,
     poisson: f64,
 ) -> Result<()> {
+    let (nx, ny, lx, ly) = grid;
     if nx < 2 || ny < 2 {
         return Err(BemError::InvalidInput(format!(
             "tangential grid {nx} x {ny}: at least 2 x 2 cells"

@@ -76,7 +76,7 @@ impl CerrutiFree {
         shear_modulus: f64,
         poisson: f64,
     ) -> Result<Self> {
-        check_grid(nx, ny, lx, ly, shear_modulus, poisson)?;
+        check_grid((nx, ny, lx, ly), shear_modulus, poisson)?;
         let (hx, hy) = (lx / nx as f64, ly / ny as f64);
         let scale = 1.0 / (2.0 * PI * shear_modulus);
         // One quadrant of offsets (the kernel is even in both), in cell units of x so
