@@ -221,17 +221,12 @@ pub mod mindlin_damping {
             // by term: (1 - e t)^(-1/2) = sum c_k (e t)^k, c_k = c_{k-1} (2k - 1)/(2k),
             // Int_0^1 t^(k+1) (1 - t) dt = 1/((k + 2)(k + 3)). The closed form below
             // cancels to e^3 of terms of order e (relative error eps_mach / e^2).
-            let (mut c, mut sum) = (1.0, 0.0);
-            for k in 0..200 {
+            let sum = sum_to_rounding((0..200).scan(1.0, |c, k| {
                 if k > 0 {
-                    c *= (2 * k - 1) as f64 / (2 * k) as f64;
+                    *c *= (2 * k - 1) as f64 / (2 * k) as f64;
                 }
-                let t = c * ratio.powi(k) / ((k + 2) * (k + 3)) as f64;
-                if sum + t == sum {
-                    break;
-                }
-                sum += t;
-            }
+                Some(*c * ratio.powi(k) / ((k + 2) * (k + 3)) as f64)
+            }));
             mu * beta * ds.powi(3) / d.sqrt() * sum
         } else {
             // Antiderivatives in s = d - delta (see module docs).
@@ -249,6 +244,18 @@ pub mod mindlin_damping {
     /// least): below it the closed forms lose digits to cancellation (eps_mach over the
     /// amplitude ratio squared or cubed), above it the series need more terms.
     const SERIES_BELOW: f64 = 0.5;
+
+    /// The sum of `terms` up to the first that no longer changes it.
+    fn sum_to_rounding(terms: impl Iterator<Item = f64>) -> f64 {
+        let mut sum = 0.0;
+        for t in terms {
+            if sum + t == sum {
+                break;
+            }
+            sum += t;
+        }
+        sum
+    }
 
     /// Eq. (58) as printed, generalised from nu = 1/3 (beta = 5/4) to any beta by
     /// replacing 4/5 with 1/beta; A_c0 = mu beta d. Valid for A <= A_c0.
@@ -296,22 +303,14 @@ pub mod mindlin_damping {
             // a_k, b_k: the coefficients of x^k in (1 - x)^(5/3) and (1 - x)^(2/3)
             // (c_k = c_{k-1} (k - 1 - alpha)/k); f's are -a_k - 5/6 b_{k-1}, zero up to
             // k = 2 (the closed form cancels to x^3 of terms of order x).
-            let (mut a_k, mut b_prev, mut sum) = (1.0, 1.0, 0.0);
-            for k in 1..200 {
+            let terms = (1..200).scan((1.0, 1.0), |(a_k, b_prev), k| {
                 if k >= 2 {
-                    b_prev *= (k as f64 - 2.0 - 2.0 / 3.0) / (k - 1) as f64;
+                    *b_prev *= (k as f64 - 2.0 - 2.0 / 3.0) / (k - 1) as f64;
                 }
-                a_k *= (k as f64 - 1.0 - 5.0 / 3.0) / k as f64;
-                if k < 3 {
-                    continue;
-                }
-                let t = (-a_k - 5.0 / 6.0 * b_prev) * x.powi(k);
-                if sum + t == sum {
-                    break;
-                }
-                sum += t;
-            }
-            sum
+                *a_k *= (k as f64 - 1.0 - 5.0 / 3.0) / k as f64;
+                Some((-*a_k - 5.0 / 6.0 * *b_prev) * x.powi(k))
+            });
+            sum_to_rounding(terms.skip(2))
         } else {
             1.0 - (1.0 - x).powf(5.0 / 3.0) - 5.0 * x / 6.0 * (1.0 + (1.0 - x).powf(2.0 / 3.0))
         };
