@@ -89,9 +89,8 @@ pub(crate) fn check_points(points: usize) -> Result<()> {
 /// viscoelastic with one Prony term 22, tangential_viscoelastic with one 56, a rough line
 /// 60; per further term 8 and 8.3, per further thread 36-37 bytes, between 1e3 and
 /// 2e6-4e6 springs; `spring_memory_estimates_hold` in tests/suite/robustness.rs measures
-/// the one-term, one-thread figures again). Per grid cell of the 3D solvers:
-/// [`bem3d::operator::BYTES_PER_CELL_PERIODIC`] and
-/// [`bem3d::operator::BYTES_PER_CELL_NON_PERIODIC`].
+/// the one-term, one-thread figures again). Per grid cell of the 3D scenes:
+/// [`cell_bytes`].
 pub mod spring_bytes {
     pub const FORCE_DEPTH: f64 = 30.0;
     pub const ADHESION: f64 = 250.0;
@@ -108,6 +107,55 @@ pub mod spring_bytes {
     }
 }
 pub(crate) use bem3d::operator::{BYTES_PER_CELL_NON_PERIODIC, BYTES_PER_CELL_PERIODIC};
+
+/// Peak bytes per cell of the finest 3D grid of each 3D scene, for its memory check: the
+/// solver's own figure ([`BYTES_PER_CELL_PERIODIC`], [`BYTES_PER_CELL_NON_PERIODIC`])
+/// and the scene's arrays beside it (the synthesis, the maps it keeps, the results).
+/// Each is the peak resident memory of a whole `mrdw run --threads 1` over the cells of
+/// its finest grid at 1024^2 and 2048^2, raised by a tenth or more, so that it bounds the
+/// measured peak from above (bench/HISTORY.md, the two sections "Peak memory of ...";
+/// `cell_memory_estimates_hold` in tests/suite/robustness.rs measures them again at
+/// 128^2-512^2). A process adds about 11 MB besides, which matters on no machine.
+pub mod cell_bytes {
+    use super::{BYTES_PER_CELL_NON_PERIODIC as FREE, BYTES_PER_CELL_PERIODIC as PERIODIC};
+
+    /// A rough map on the free half-space with its synthesis and kept results:
+    /// `hurst_sweep`, `contact_area`, `calibrate`, `lambda_study`, `rough_sphere` and
+    /// `static_friction_3d` on discs (measured 165-242 at 1024^2, 203-210 at 2048^2).
+    pub const ROUGH_FREE: f64 = FREE + 80.0;
+    /// A rough periodic patch with its synthesis: `static_friction_3d` on squares
+    /// (127 at 1024^2, 119 at 2048^2).
+    pub const ROUGH_PERIODIC: f64 = PERIODIC + 80.0;
+    /// `viscoelastic_rough`: a viscoelastic and an elastic solver per realisation
+    /// (383 at 1024^2, 358 at 2048^2).
+    pub const VISCOELASTIC_ROUGH: f64 = 2.0 * (FREE + 40.0);
+    /// An adhesive cycle on the free half-space: `rough_adhesion_3d` (272 at 1024^2),
+    /// `adhesion_3d` (274 at 1024^2) and `tabor_3d` (174 at 512^2).
+    pub const ADHESION: f64 = FREE + 140.0;
+    /// `rough_slip_3d`: the normal solve, then partial slip on the free half-space
+    /// (425 at 1024^2).
+    pub const ROUGH_SLIP: f64 = FREE + 300.0;
+    /// `rough_partial_slip_3d` on periodic patches (208 at 1024^2, 178 at 2048^2).
+    pub const ROUGH_PARTIAL_SLIP: f64 = PERIODIC + 160.0;
+    /// `tangential_stiffness_3d`: two-component stick solves (340 at 1024^2, 294 at
+    /// 2048^2).
+    pub const TANGENTIAL_STIFFNESS: f64 = PERIODIC + 290.0;
+    /// `sliding_friction_3d`: the sliding solver's accelerated iteration on `grid` and
+    /// the coarse check on `grid / 2` (372 at 1024^2; 398 for each cell added from
+    /// 128^2 to 512^2).
+    pub const SLIDING: f64 = 9.0 * PERIODIC;
+    /// `tangential_3d`'s normal and partial-slip solves (periodic 181 at 1024^2 on two
+    /// threads, 111 at 2048^2; free 299 at 1024^2).
+    pub fn tangential_3d(periodic: bool) -> f64 {
+        if periodic {
+            PERIODIC + 120.0
+        } else {
+            FREE + 184.0
+        }
+    }
+    /// `tangential_viscoelastic`'s 3D side (284 at 512^2).
+    pub const TANGENTIAL_VISCOELASTIC: f64 = FREE + 200.0;
+}
 
 /// Refuses work whose memory estimate exceeds what this process may allocate
 /// ([`sysmem::check_estimate`]: free memory, rlimits, cgroup).

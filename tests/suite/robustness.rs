@@ -643,17 +643,68 @@ fn spring_memory_estimates_hold() {
         ("tangential_viscoelastic", format!("kind = \"tangential_viscoelastic\"\nmu = 0.3\nnormal_force = 0.1\ng_inf = 0.7\n{prony}amplitude = 0.2\nramp_time = 1.0\nhold_time = 1.0\nsteps = 10\nsprings = N\n"), b::tangential_viscoelastic(1)),
         ("static_friction", "kind = \"static_friction\"\nhurst = 0.7\npoints = N\nlength = 1e5\ncontacts_at_max_force = 40.0\nrealisations = 2\nforce_min = 1.0\nforce_max = 500.0\n".into(), b::rough_line(1)),
     ];
-    let n = 1_000_000.0;
+    let n = 1_000_000;
     for (kind, body, estimate) in cases {
-        let at = |springs: f64| {
-            let text = format!("{head}{}", body.replace("N", &format!("{springs}")));
-            peak_of_run(tmp.path(), &text)
-        };
-        let measured = (at(2.0 * n) - at(n)) / n;
-        eprintln!("{kind}: {measured:.1} bytes per spring measured, {estimate} estimated");
-        assert!(
-            measured <= estimate && estimate <= 2.0 * measured,
-            "{kind}: measured {measured:.1} bytes per spring, estimate {estimate}"
+        let scene = format!("{head}{body}");
+        growth_within(tmp.path(), &scene, [n, 2 * n], |s| s as f64, estimate, kind);
+    }
+}
+
+/// Asserts that the peak memory of `mrdw run` grows from the size `sizes[0]` of `scene`'s
+/// key N to `sizes[1]` by at most `estimate` bytes per unit of `units(size)` (springs,
+/// cells), and by at least half of it, for the output `what`.
+#[cfg(target_os = "linux")]
+fn growth_within(
+    dir: &Path,
+    scene: &str,
+    sizes: [usize; 2],
+    units: impl Fn(usize) -> f64,
+    estimate: f64,
+    what: &str,
+) {
+    let peak = |n: usize| peak_of_run(dir, &scene.replace("N", &n.to_string()));
+    let measured = (peak(sizes[1]) - peak(sizes[0])) / (units(sizes[1]) - units(sizes[0]));
+    eprintln!("{what}: {measured:.1} bytes per unit measured, {estimate} estimated");
+    assert!(
+        measured <= estimate && estimate <= 2.0 * measured,
+        "{what}: measured {measured:.1} bytes per unit, estimate {estimate}"
+    );
+}
+
+/// The memory checks of the 3D scenes hold what a run measures: per cell of the finest
+/// grid, the estimate ([`compare::checks::cell_bytes`]) is at least the growth of the
+/// measured peak from a coarse grid to a fine one, and at most twice it. The grids are
+/// small (128^2 to 512^2, seconds each); the estimates were set from 1024^2 and 2048^2,
+/// where the growth per cell is lower still.
+#[cfg(target_os = "linux")]
+#[test]
+fn cell_memory_estimates_hold() {
+    use compare::checks::cell_bytes as b;
+    let tmp = tempfile::tempdir().unwrap();
+    let head = "name = \"m\"\n[material]\ne_star = 1.0\n[[outputs]]\n";
+    let friction = "kind = \"static_friction_3d\"\nhurst = [0.7]\nbandwidth = 8\ncells = N\nrealisations_3d = 2\nrealisations_1d = 2\nf_min = 1e-3\nf_max = 100.0\nf_points = 3\nlambda = [\"pi\"]\n";
+    // (output, its text with N for the size key, the sizes, grid side per unit of N,
+    // the estimate)
+    let cases: [(&str, String, [usize; 2], usize, f64); 9] = [
+        ("rough_sphere", "kind = \"rough_sphere\"\nradius = 1.0\nhertz_depth = 1e-3\nhurst = 0.8\nalpha = [0.1]\nside = 8.0\ngrid = N\nbandwidth = 12\nrealisations_3d = 2\nrealisations_1d = 2\nloads = 3\nlambda = [\"pi\"]\n".into(), [128, 512], 1, b::ROUGH_FREE),
+        ("hurst_sweep", "kind = \"hurst_sweep\"\nhurst = [0.5]\ngrid = N\nrealisations_3d = 2\nrealisations_1d = 2\nloads = 6\n".into(), [128, 512], 1, b::ROUGH_FREE),
+        ("contact_area", "kind = \"contact_area\"\nhurst = [0.5]\ngrid = N\nrealisations_3d = 2\nrealisations_1d = 2\nloads = 4\n".into(), [128, 512], 1, b::ROUGH_FREE),
+        ("calibrate", "kind = \"calibrate\"\nself_affine = { hurst = 0.5 }\nbandwidth = N\ncells = 4\nrealisations = { min = 2, max = 2, batch = 2 }\ntarget = 0.3\nlines = 20\nloads = 6\n".into(), [32, 128], 4, b::ROUGH_FREE),
+        ("static_friction_3d periodic", format!("{friction}geometry = [\"periodic\"]\n"), [16, 64], 8, b::ROUGH_PERIODIC),
+        ("static_friction_3d disc", format!("{friction}geometry = [\"disc\"]\n"), [16, 64], 8, b::ROUGH_FREE),
+        ("viscoelastic_rough", "kind = \"viscoelastic_rough\"\nhurst = 0.8\nbandwidth = 8\ncells = N\nrealisations_3d = 2\nrealisations_1d = 2\nmodulus = { relaxed = 1.0, terms = [[4.0, 0.5]] }\nforce = 0.05\nramp = 1.0\nhold = 1.0\nunload = 0.25\nsteps = 10\nlambda = [\"pi\"]\n".into(), [16, 32], 8, b::VISCOELASTIC_ROUGH),
+        ("rough_adhesion_3d", "kind = \"rough_adhesion_3d\"\nradius = 1.0\nwork = 0.002\ndepth_max = 0.06\nhurst = [0.8]\nroughness = [0.2]\nside = 0.8\nbandwidth = 6\ncells = [N]\nrealisations_3d = 2\nrealisations_1d = 2\nsteps = 4\nlambda = [\"pi\"]\n".into(), [64, 256], 1, b::ADHESION),
+        ("sliding_friction_3d", "kind = \"sliding_friction_3d\"\nmaterial = { kind = \"eq84\", g0 = 1.0, g1 = 1000.0, tau1 = 1e-2, tau2 = 1e2, s = 2.0, terms = 16 }\nsurface = { kind = \"band\", waves = 4.0, band = 1.4142135623730951 }\nlength = 1.0\nrms_height = 0.002\ngrid = N\nreduced_force = 1.0\nvelocity_min = 3.5e-6\nvelocity_max = 35.0\nvelocities = 3\nerror_limit = 1.0\nrealisations = 2\nmrd = { springs = 512 }\n".into(), [128, 512], 1, b::SLIDING),
+    ];
+    for (kind, body, sizes, side, estimate) in cases {
+        let cells = |n: usize| ((n * side) * (n * side)) as f64;
+        growth_within(
+            tmp.path(),
+            &format!("{head}{body}"),
+            sizes,
+            cells,
+            estimate,
+            kind,
         );
     }
 }

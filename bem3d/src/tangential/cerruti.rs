@@ -96,11 +96,10 @@ pub(super) fn inverse_symbol(
 /// The grid `(nx, ny, lx, ly)`, shear modulus and Poisson's ratio of a tangential
 /// operator, checked.
 pub(super) fn check_grid(
-    grid: (usize, usize, f64, f64),
+    (nx, ny, lx, ly): (usize, usize, f64, f64),
     shear_modulus: f64,
     poisson: f64,
 ) -> Result<()> {
-    let (nx, ny, lx, ly) = grid;
     if nx < 2 || ny < 2 {
         return Err(BemError::InvalidInput(format!(
             "tangential grid {nx} x {ny}: at least 2 x 2 cells"

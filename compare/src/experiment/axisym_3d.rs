@@ -84,10 +84,6 @@ impl AxisymGrid {
     }
 }
 
-/// Peak bytes per cell of an adhesive sphere's 3D cycle: the non-periodic operator and a
-/// dozen grids.
-const ADHESIVE_BYTES_PER_CELL: f64 = crate::checks::BYTES_PER_CELL_NON_PERIODIC + 100.0;
-
 /// The grid's side over the contact diameter of an adhesive sphere's 3D cycle, unless
 /// the scene gives `extent`.
 pub fn default_adhesive_extent() -> f64 {
@@ -124,7 +120,7 @@ pub fn check_adhesive_cycle(
     }
     let n = *cells.last().unwrap_or(&16);
     check_memory(
-        (n * n) as f64 * ADHESIVE_BYTES_PER_CELL,
+        (n * n) as f64 * crate::checks::cell_bytes::ADHESION,
         &format!("cells = {n}"),
     )?;
     if !(extent.is_finite() && (1.1..=100.0).contains(&extent)) {

@@ -4,9 +4,7 @@
 //! patch's rms slope h' (the same for every realisation: the modes' amplitudes are fixed,
 //! their phases random), the scale of the reduced pressure p / (E* h').
 
-use crate::checks::{
-    bad, check_memory_per_thread, count_in, BYTES_PER_CELL_PERIODIC, MAX_REALISATIONS,
-};
+use crate::checks::{bad, check_memory_per_thread, count_in, MAX_REALISATIONS};
 use crate::error::{Context as _, Result};
 use bem3d::{ContactSolver, Load, PeriodicHalfSpace, Solution, SolverOptions};
 use mrd::roughness::synthesis::Grid;
@@ -77,8 +75,8 @@ pub type Ensemble<R> = (f64, usize, Vec<R>);
 
 impl Ladder<'_> {
     /// Checks the keys (ranges named as the scene spells them) and the memory of one
-    /// finest grid per thread: the periodic normal solver and `bytes_per_cell` more of
-    /// the study's own arrays. Returns the finest grid's side.
+    /// finest grid per thread at `bytes_per_cell` (the study's entry of
+    /// [`crate::checks::cell_bytes`]). Returns the finest grid's side.
     pub fn check(&self, bytes_per_cell: f64) -> Result<usize> {
         if self.hurst.is_empty() || self.poisson.is_empty() {
             return bad("hurst and poisson need at least one entry each");
@@ -103,7 +101,7 @@ impl Ladder<'_> {
         count_in("realisations", self.realisations, 2..=MAX_REALISATIONS)?;
         let n = self.cells.last().copied().unwrap_or(2) * self.bandwidth;
         check_memory_per_thread(
-            (n * n) as f64 * (BYTES_PER_CELL_PERIODIC + bytes_per_cell),
+            (n * n) as f64 * bytes_per_cell,
             &format!("3D grids of {n}^2 cells, one per thread"),
         )?;
         Ok(n)

@@ -69,17 +69,6 @@ fn default_amplitudes() -> Vec<f64> {
     vec![0.2, 0.4, 0.6, 0.8]
 }
 
-/// Peak bytes per cell of the 3D side: the normal solver's and the partial slip's
-/// buffers (a dozen grids; the free operator's transforms on the padded grid, four
-/// times the cells, eight more).
-fn bytes_per_cell(periodic: bool) -> f64 {
-    if periodic {
-        crate::checks::BYTES_PER_CELL_PERIODIC + 120.0
-    } else {
-        crate::checks::BYTES_PER_CELL_NON_PERIODIC + 184.0
-    }
-}
-
 impl Output for Tangential3d {
     fn validate(&self, ctx: &Context) -> Result<()> {
         if ctx.profile()?.rim().is_some() {
@@ -99,7 +88,8 @@ impl Output for Tangential3d {
             return bad(format!("cells = {} must lie in 16..=4096", self.cells));
         }
         check_memory(
-            (self.cells * self.cells) as f64 * bytes_per_cell(self.periodic),
+            (self.cells * self.cells) as f64
+                * crate::checks::cell_bytes::tangential_3d(self.periodic),
             &format!("cells = {}", self.cells),
         )?;
         let least = if self.periodic { 3.0 } else { 2.2 };

@@ -324,7 +324,7 @@ impl Output for SlidingFriction3d {
             ));
         }
         crate::checks::check_memory_per_thread(
-            (self.grid * self.grid) as f64 * 4.0 * crate::checks::BYTES_PER_CELL_PERIODIC,
+            (self.grid * self.grid) as f64 * crate::checks::cell_bytes::SLIDING,
             &format!("grid = {}", self.grid),
         )?;
         elastomer::velocities(

@@ -241,7 +241,11 @@ impl Output for ContactArea {
                 .at(h)
                 .ctx(format!("lambda at H = {h}"))?;
         }
-        Ok(())
+        // One 3D task per worker thread at a time.
+        crate::checks::check_memory_per_thread(
+            (self.grid * self.grid) as f64 * crate::checks::cell_bytes::ROUGH_FREE,
+            &format!("grid = {}", self.grid),
+        )
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {

@@ -24,7 +24,7 @@
 //! nu > 0 the traction is held along x (q_y = 0; 0.6-2.6 % softer than the full tensor at
 //! nu = 0.5, `tangential_stiffness_3d`).
 
-use crate::checks::{bad, check_tolerance, count_in, positive, MIN_CONTACT_CELLS};
+use crate::checks::{bad, cell_bytes, check_tolerance, count_in, positive, MIN_CONTACT_CELLS};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::periodic::{Ensemble, Ladder};
@@ -122,7 +122,7 @@ impl Output for RoughPartialSlip3d {
     fn validate(&self, _: &Context) -> Result<()> {
         // Beside the normal solver: a partial-slip state. Measured peaks of one
         // realisation (process included): 208 bytes per cell at 1024^2, 178 at 2048^2.
-        self.ladder().check(160.0)?;
+        self.ladder().check(cell_bytes::ROUGH_PARTIAL_SLIP)?;
         crate::checks::check_fractions("fractions", &self.fractions, true)?;
         crate::experiment::tangential_map::check_amplitudes(&self.amplitudes, self.tolerance)?;
         if !(positive(self.pressure) && self.pressure <= 1.0) {

@@ -23,7 +23,7 @@
 //! interval of that mean (normal approximation); each grid of the `cells` ladder is a
 //! refinement of the same surfaces.
 
-use crate::checks::{bad, check_tolerance, positive};
+use crate::checks::{bad, cell_bytes, check_tolerance, positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::periodic::{Ensemble, Ladder};
@@ -73,7 +73,7 @@ impl Output for TangentialStiffness3d {
         // components per cell). Measured peaks of one realisation (process included):
         // 340 bytes per cell at 1024^2, 294 at 2048^2; each further Poisson's ratio adds
         // under 2.
-        self.ladder().check(290.0)?;
+        self.ladder().check(cell_bytes::TANGENTIAL_STIFFNESS)?;
         if self.pressures.is_empty() {
             return bad("pressures needs at least one entry");
         }

@@ -153,7 +153,7 @@ impl Output for TangentialViscoelastic {
                 ));
             }
             crate::checks::check_memory(
-                (n * n) as f64 * (crate::checks::BYTES_PER_CELL_NON_PERIODIC + 200.0),
+                (n * n) as f64 * crate::checks::cell_bytes::TANGENTIAL_VISCOELASTIC,
                 &format!("cells_3d = {n}"),
             )?;
             crate::checks::check_tolerance(self.tolerance())?;

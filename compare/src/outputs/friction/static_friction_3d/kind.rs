@@ -4,7 +4,7 @@
 use super::{report, runs};
 use super::{Geometry, StaticFriction3d};
 use crate::checks::{
-    bad, check_memory_per_thread, count_in, positive, require_positive, BYTES_PER_CELL_NON_PERIODIC,
+    bad, cell_bytes, check_memory_per_thread, count_in, positive, require_positive,
 };
 use crate::context::Context;
 use crate::error::{Context as _, Result};
@@ -47,10 +47,23 @@ impl Output for StaticFriction3d {
             require_positive("refine: f", r.f)?;
             count_in("refine: 2 x cells x bandwidth", 2 * n, 16..=4096)?;
         }
-        // One solver per worker thread; the refinement's grid when there is one.
-        let side = if self.refine.is_some() { 2 * n } else { n } as f64;
+        // One solver per worker thread: the largest of the geometries' grids (the
+        // refinement's is twice as fine).
+        let (bytes, side) = self
+            .geometry
+            .iter()
+            .map(|&g| {
+                let refined = self.refine.as_ref().is_some_and(|r| r.geometry == g);
+                let side = if refined { 2 * n } else { n } as f64;
+                let per_cell = match g {
+                    Geometry::Periodic => cell_bytes::ROUGH_PERIODIC,
+                    Geometry::Disc => cell_bytes::ROUGH_FREE,
+                };
+                (side * side * per_cell, side)
+            })
+            .fold((0.0, 0.0), |a, b| if b.0 > a.0 { b } else { a });
         check_memory_per_thread(
-            side * side * BYTES_PER_CELL_NON_PERIODIC,
+            bytes,
             &format!("3D grids of {side}^2 cells, one per thread"),
         )
     }

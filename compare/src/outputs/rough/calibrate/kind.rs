@@ -37,7 +37,7 @@ impl Output for Calibrate {
             ));
         }
         crate::checks::check_memory_per_thread(
-            (g * g) as f64 * crate::checks::BYTES_PER_CELL_NON_PERIODIC,
+            (g * g) as f64 * crate::checks::cell_bytes::ROUGH_FREE,
             &format!("a {g} x {g} punch per thread"),
         )
     }

@@ -34,7 +34,7 @@ impl Output for HurstSweep {
         crate::checks::check_tolerance(self.tolerance)?;
         // One 3D task per worker thread at a time.
         crate::checks::check_memory_per_thread(
-            (self.grid * self.grid) as f64 * crate::checks::BYTES_PER_CELL_NON_PERIODIC,
+            (self.grid * self.grid) as f64 * crate::checks::cell_bytes::ROUGH_FREE,
             &format!("grid = {}", self.grid),
         )
     }

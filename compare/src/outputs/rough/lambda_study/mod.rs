@@ -210,7 +210,7 @@ impl LambdaStudy {
         }
         // One 3D task per worker thread at a time.
         crate::checks::check_memory_per_thread(
-            (g * g) as f64 * crate::checks::BYTES_PER_CELL_NON_PERIODIC,
+            (g * g) as f64 * crate::checks::cell_bytes::ROUGH_FREE,
             &format!("bandwidth {b} at {cells} cells ({g}^2)"),
         )
     }

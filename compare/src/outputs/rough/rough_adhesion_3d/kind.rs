@@ -3,7 +3,7 @@
 use super::cycles::{cycle_1d, cycle_3d, unit_rms_scale, Cases};
 use super::{report, RoughAdhesion3d, Variant};
 use crate::checks::{bad, check_memory_per_thread, check_tolerance, count_in};
-use crate::checks::{check_ensembles, BYTES_PER_CELL_NON_PERIODIC};
+use crate::checks::{cell_bytes, check_ensembles};
 use crate::context::Context;
 use crate::error::Result;
 use crate::experiment::lambda::LambdaSpec;
@@ -13,9 +13,6 @@ use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::Section;
 use rayon::prelude::*;
-
-/// Peak bytes per cell of one 3D cycle: the non-periodic operator and a dozen grids.
-const BYTES_PER_CELL: f64 = BYTES_PER_CELL_NON_PERIODIC + 100.0;
 
 /// Largest adhesion length and rms height over `depth_max` (the embedded scenes reach
 /// 2.8).
@@ -88,7 +85,7 @@ impl Output for RoughAdhesion3d {
         LambdaSpec::check_all(&self.lambda, ctx, &self.hurst)?;
         let n = *self.cells.last().unwrap_or(&16) as f64;
         check_memory_per_thread(
-            n * n * BYTES_PER_CELL,
+            n * n * cell_bytes::ADHESION,
             &format!("3D grids of {n}^2 cells, one per thread"),
         )
     }

@@ -3,7 +3,7 @@
 use super::runs::{run_1d, run_3d, unit_rms_scale, Case};
 use super::{report, RoughSlip3d};
 use crate::checks::{bad, check_memory_per_thread, check_tolerance, count_in, positive};
-use crate::checks::{check_ensembles, BYTES_PER_CELL_NON_PERIODIC};
+use crate::checks::{cell_bytes, check_ensembles};
 use crate::context::Context;
 use crate::error::Result;
 use crate::experiment::lambda::LambdaSpec;
@@ -13,11 +13,6 @@ use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::Section;
 use rayon::prelude::*;
-
-/// Peak bytes per cell of one 3D realisation: the normal solver, and a partial-slip
-/// state on a padded grid beside it. Measured (process included): 425 at 1024^2, 387
-/// for each cell added from 512^2 on.
-const BYTES_PER_CELL: f64 = BYTES_PER_CELL_NON_PERIODIC + 300.0;
 
 /// The stages of the 3D realisations, run together on the pool.
 const STAGES_3D: &[Stage] = &[
@@ -72,7 +67,7 @@ impl Output for RoughSlip3d {
         LambdaSpec::check_all(&self.lambda, ctx, &self.hurst)?;
         let n = *self.cells.last().unwrap_or(&16) as f64;
         check_memory_per_thread(
-            n * n * BYTES_PER_CELL,
+            n * n * cell_bytes::ROUGH_SLIP,
             &format!("3D grids of {n}^2 cells, one per thread"),
         )
     }

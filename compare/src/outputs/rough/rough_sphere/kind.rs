@@ -3,7 +3,7 @@
 
 use super::RoughSphere;
 use super::{report, runs};
-use crate::checks::{bad, check_memory_per_thread, count_in, BYTES_PER_CELL_NON_PERIODIC};
+use crate::checks::{bad, cell_bytes, check_memory_per_thread, count_in};
 use crate::context::Context;
 use crate::error::Result;
 use crate::experiment::lambda::LambdaSpec;
@@ -66,7 +66,7 @@ impl Output for RoughSphere {
         LambdaSpec::check_all(&self.lambda, ctx, &[self.hurst])?;
         let n = self.grid as f64;
         check_memory_per_thread(
-            n * n * BYTES_PER_CELL_NON_PERIODIC,
+            n * n * cell_bytes::ROUGH_FREE,
             &format!("3D grids of {n}^2 cells, one per thread"),
         )
     }

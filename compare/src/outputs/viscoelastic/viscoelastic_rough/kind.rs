@@ -3,7 +3,7 @@
 
 use super::{radok, report, runs};
 use super::{ViscoelasticRough, MAX_STEPS};
-use crate::checks::{bad, check_memory_per_thread, count_in, BYTES_PER_CELL_NON_PERIODIC};
+use crate::checks::{bad, cell_bytes, check_memory_per_thread, count_in};
 use crate::context::Context;
 use crate::error::Result;
 use crate::experiment::lambda::LambdaSpec;
@@ -76,7 +76,7 @@ impl Output for ViscoelasticRough {
         let g = self.grid() as f64;
         // Two solvers (viscoelastic, elastic) per realisation, one realisation per thread.
         check_memory_per_thread(
-            2.0 * g * g * BYTES_PER_CELL_NON_PERIODIC,
+            g * g * cell_bytes::VISCOELASTIC_ROUGH,
             &format!("3D grids of {g}^2 cells, two per thread"),
         )
     }
