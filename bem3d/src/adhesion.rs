@@ -43,7 +43,7 @@
 use crate::error::{BemError, Result};
 use crate::operator::{GridForms, Preconditioner};
 use crate::solver::window::Window;
-use crate::solver::Load;
+use crate::solver::{Interrupt, Load};
 
 pub(crate) mod passes;
 mod window;
@@ -118,6 +118,8 @@ pub struct AdhesiveContact<C: Preconditioner + GridForms> {
     approach: f64,
     /// The window of the last solves on a set, kept while it fits the set.
     window: Option<window::SetWindow>,
+    /// Set by the caller (from another thread) to stop the iteration.
+    interrupt: Option<Interrupt>,
 }
 
 /// Work vectors of the conjugate gradient.
@@ -159,7 +161,15 @@ impl<C: Preconditioner + GridForms> AdhesiveContact<C> {
             u: vec![0.0; n],
             approach: 0.0,
             window: None,
+            interrupt: None,
         })
+    }
+
+    /// Stops the iteration of a step with [`BemError::Interrupted`] once `flag` is set
+    /// (from another thread), polled once per iteration. The state is then the
+    /// unfinished step's: build a new contact to go on.
+    pub fn interrupt_on(&mut self, flag: Interrupt) {
+        self.interrupt = Some(flag);
     }
 
     /// The critical tension of a cell [pressure].
@@ -375,6 +385,7 @@ impl<C: Preconditioner + GridForms> AdhesiveContact<C> {
                 u: &mut self.u,
                 scale: self.scale,
                 approach: &mut self.approach,
+                interrupt: self.interrupt.as_ref(),
             };
             let (it, res) = solve_set(&mut self.op, set, target, tolerance, w)?;
             return Ok((it, res, None));
@@ -388,6 +399,7 @@ impl<C: Preconditioner + GridForms> AdhesiveContact<C> {
             u: &mut u,
             scale: self.scale,
             approach: &mut self.approach,
+            interrupt: self.interrupt.as_ref(),
         };
         let solved = solve_set(&mut win.op, set, target, tolerance, w);
         // The set lies in the window: p vanishes outside it, and K p in it is the grid's.
@@ -404,7 +416,8 @@ impl<C: Preconditioner + GridForms> AdhesiveContact<C> {
 }
 
 /// A contact set's solve: the set, `z` and the pressures and displacements it moves (all
-/// of one grid or window), the criterion's length floor and the approach it sets.
+/// of one grid or window), the criterion's length floor, the approach it sets and the
+/// caller's stop flag.
 struct OnSet<'a> {
     on: &'a [bool],
     z: &'a [f64],
@@ -412,6 +425,7 @@ struct OnSet<'a> {
     u: &'a mut [f64],
     scale: f64,
     approach: &'a mut f64,
+    interrupt: Option<&'a Interrupt>,
 }
 
 /// Pressures on the set for the target (module docs): a preconditioned conjugate
@@ -468,6 +482,12 @@ fn solve_set<O: Preconditioner>(
         let residual = worst / s.scale.max(largest).max(d.abs());
         if residual <= tolerance {
             return Ok((it, residual));
+        }
+        if s.interrupt.is_some_and(Interrupt::is_set) {
+            return Err(BemError::Interrupted {
+                what: "adhesive contact",
+                iterations: it,
+            });
         }
         // Preconditioned residual on the set (about its mean under force control).
         op.precondition(y);

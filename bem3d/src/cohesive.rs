@@ -52,6 +52,7 @@
 use crate::adhesion::rigid_surface;
 use crate::error::{BemError, Result};
 use crate::operator::Preconditioner;
+use crate::solver::Interrupt;
 
 mod passes;
 
@@ -113,6 +114,8 @@ pub struct CohesiveContact<C: Preconditioner> {
     bound: Vec<f64>,
     p: Vec<f64>,
     u: Vec<f64>,
+    /// Set by the caller (from another thread) to stop the iteration.
+    interrupt: Option<Interrupt>,
 }
 
 impl<C: Preconditioner> CohesiveContact<C> {
@@ -168,7 +171,15 @@ impl<C: Preconditioner> CohesiveContact<C> {
             bound: vec![-sigma0; n],
             p: vec![0.0; n],
             u: vec![0.0; n],
+            interrupt: None,
         })
+    }
+
+    /// Stops the iteration of a step with [`BemError::Interrupted`] once `flag` is set
+    /// (from another thread), polled once per iteration. The state is then the
+    /// unfinished step's: build a new contact to go on.
+    pub fn interrupt_on(&mut self, flag: Interrupt) {
+        self.interrupt = Some(flag);
     }
 
     /// The same contact under `law` (Dugdale unless chosen here); call before the first
@@ -360,6 +371,12 @@ impl<C: Preconditioner> CohesiveContact<C> {
                 self.op.apply(&self.p, &mut self.u);
                 followed = 0;
                 continue;
+            }
+            if self.interrupt.as_ref().is_some_and(Interrupt::is_set) {
+                return Err(BemError::Interrupted {
+                    what: "cohesive contact",
+                    iterations: it,
+                });
             }
             self.op.precondition(&mut y);
             let rho = passes::restrict(&cells, &free, &mut y);

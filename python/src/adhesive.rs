@@ -1,7 +1,7 @@
 //! Adhesive normal contact in 3D (`bem3d::adhesion`: the JKR limit with Pohrt & Popov's
 //! mesh-dependent detachment criterion) on numpy height maps.
 
-use crate::contact::{grid_array, Frame, Grid};
+use crate::contact::{grid_array, Frame, Grid, Stop};
 use crate::errors::value_error;
 use crate::on_operator::OnOperator;
 use bem3d::adhesion::{AdhesiveContact as Adhesive, AdhesiveStep as Step};
@@ -15,6 +15,9 @@ type State = OnOperator<Adhesive<PeriodicHalfSpace>, Adhesive<NonPeriodicHalfSpa
 impl State {
     fn step(&mut self, load: Load, tolerance: f64) -> bem3d::Result<Step> {
         on_operator!(self, c => c.step(load, tolerance))
+    }
+    fn interrupt_on(&mut self, flag: bem3d::Interrupt) {
+        on_operator!(self, c => c.interrupt_on(flag))
     }
     fn pressure(&self) -> &[f64] {
         on_operator!(self, c => c.pressure())
@@ -82,6 +85,7 @@ step_class! {
 pub struct AdhesiveContact {
     state: State,
     frame: Frame,
+    stop: Stop,
 }
 
 grid_getters!(AdhesiveContact);
@@ -107,12 +111,15 @@ impl AdhesiveContact {
         let grid = Grid::new(py, heights, (size, periodic), mask, e_star, false)?;
         crate::errors::check_grid_memory("an adhesive", grid.frame.shape, 8.0 * 9.0)?;
         let (h, mask, frame) = (grid.heights, grid.mask, grid.frame);
-        let state = frame.solve(py, || -> bem3d::Result<State> {
+        let mut state = frame.solve(py, || -> bem3d::Result<State> {
             Ok(built_on!(frame, e_star, op => Adhesive::new(op, &h, mask.as_deref(), work)?))
         })?;
+        let stop = Stop::default();
+        state.interrupt_on(stop.flag.clone());
         Ok(Self {
             state,
             frame: grid.frame,
+            stop,
         })
     }
 
@@ -134,7 +141,13 @@ impl AdhesiveContact {
         tolerance: f64,
     ) -> PyResult<AdhesiveStep> {
         let load = crate::contact::one_load(mean_pressure, force, approach, true)?;
-        let step = self.frame.solve(py, || self.state.step(load, tolerance))?;
+        let (state, frame) = (&mut self.state, &self.frame);
+        let step = self.stop.run(
+            py,
+            "AdhesiveContact",
+            || state.step(load, tolerance),
+            |e| frame.err(py, e),
+        )?;
         Ok(AdhesiveStep {
             step,
             pressure: self.state.pressure().to_vec(),

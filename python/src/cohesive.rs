@@ -2,7 +2,7 @@
 //! Maugis-Dugdale or exponential) on numpy height maps, under a prescribed approach, on the free or the
 //! periodic half-space.
 
-use crate::contact::{grid_array, Frame, Grid};
+use crate::contact::{grid_array, Frame, Grid, Stop};
 use crate::errors::value_error;
 use crate::on_operator::OnOperator;
 use bem3d::cohesive::{CohesiveContact as Cohesive, CohesiveLaw, CohesiveStep as Step};
@@ -52,6 +52,9 @@ impl Solver {
     fn step(&mut self, approach: f64, tolerance: f64) -> bem3d::Result<Step> {
         on_operator!(self, c => c.step(approach, tolerance))
     }
+    fn interrupt_on(&mut self, flag: bem3d::Interrupt) {
+        on_operator!(self, c => c.interrupt_on(flag))
+    }
     fn pressure(&self) -> &[f64] {
         on_operator!(self, c => c.pressure())
     }
@@ -90,6 +93,7 @@ impl Solver {
 pub struct CohesiveContact {
     contact: Solver,
     frame: Frame,
+    stop: Stop,
 }
 
 grid_getters!(CohesiveContact);
@@ -129,14 +133,17 @@ impl CohesiveContact {
         let grid = Grid::new(py, heights, (size, Some(periodic)), mask, e_star, false)?;
         crate::errors::check_grid_memory("a cohesive", grid.frame.shape, 8.0 * 9.0)?;
         let (h, mask, frame) = (grid.heights, grid.mask, grid.frame);
-        let contact = frame.solve(py, || -> bem3d::Result<Solver> {
+        let mut contact = frame.solve(py, || -> bem3d::Result<Solver> {
             Ok(built_on!(frame, e_star, op => {
                 Cohesive::new(op, &h, mask.as_deref(), work, sigma0)?.with_law(law)
             }))
         })?;
+        let stop = Stop::default();
+        contact.interrupt_on(stop.flag.clone());
         Ok(Self {
             contact,
             frame: grid.frame,
+            stop,
         })
     }
 
@@ -150,9 +157,13 @@ impl CohesiveContact {
         if !approach.is_finite() {
             return Err(value_error(format!("approach = {approach} must be finite")));
         }
-        let step = self
-            .frame
-            .solve(py, || self.contact.step(approach, tolerance))?;
+        let (contact, frame) = (&mut self.contact, &self.frame);
+        let step = self.stop.run(
+            py,
+            "CohesiveContact",
+            || contact.step(approach, tolerance),
+            |e| frame.err(py, e),
+        )?;
         Ok(CohesiveStep {
             step,
             pressure: self.contact.pressure().to_vec(),

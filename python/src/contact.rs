@@ -651,6 +651,45 @@ pub fn interruptible<T: Send>(
     })
 }
 
+/// A history solver's stop on Ctrl-C: each step runs through [`interruptible`] (the
+/// solver polls `flag` once per iteration), and once a step was interrupted the next is
+/// refused, since the state is then the unfinished step's.
+#[derive(Default)]
+pub struct Stop {
+    pub flag: Interrupt,
+    stopped: bool,
+}
+
+impl Stop {
+    /// Runs a step of an object of `class` with the GIL released and Ctrl-C polled;
+    /// a solver's error as `err` makes it the Python exception.
+    pub fn run<T: Send>(
+        &mut self,
+        py: Python<'_>,
+        class: &str,
+        step: impl FnOnce() -> bem3d::Result<T> + Send,
+        err: impl FnOnce(bem3d::BemError) -> PyErr,
+    ) -> PyResult<T> {
+        if self.stopped {
+            return Err(pyo3::exceptions::PyRuntimeError::new_err(format!(
+                "a step of this {class} was interrupted: its state is the unfinished \
+                 step's; build a new {class} to go on"
+            )));
+        }
+        match interruptible(py, &self.flag, step) {
+            Err(raised) => {
+                self.stopped = true;
+                Err(raised)
+            }
+            Ok(Err(e @ bem3d::BemError::Interrupted { .. })) => {
+                self.stopped = true;
+                Err(err(e))
+            }
+            Ok(out) => out.map_err(err),
+        }
+    }
+}
+
 impl Contact {
     /// Solves one load with the GIL released.
     fn run(

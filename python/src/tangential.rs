@@ -2,7 +2,7 @@
 //! Cerruti's operator on the periodic or the free half-space, and the stick stiffness of
 //! a contact set (periodic), on numpy arrays.
 
-use crate::contact::{bem_err, grid_array};
+use crate::contact::{bem_err, grid_array, Stop};
 use crate::errors::value_error;
 use bem3d::tangential::{
     CerrutiFree, CerrutiPeriodic, PartialSlip as Slip, TangentialCompliance,
@@ -130,6 +130,7 @@ step_class! {
 pub struct PartialSlip {
     slip: Slip<Box<dyn TangentialCompliance + Sync>>,
     shape: (usize, usize),
+    stop: Stop,
 }
 
 #[pymethods]
@@ -147,8 +148,10 @@ impl PartialSlip {
         let (p, shape) = grid_of(pressure);
         let g = shear_modulus(e_star, poisson)?;
         let op = cerruti_on(shape, size, g, poisson, periodic)?;
-        let slip = Slip::new(op, &p, mu).map_err(|e| value_error(e.to_string()))?;
-        Ok(Self { slip, shape })
+        let mut slip = Slip::new(op, &p, mu).map_err(|e| value_error(e.to_string()))?;
+        let stop = Stop::default();
+        slip.interrupt_on(stop.flag.clone());
+        Ok(Self { slip, shape, stop })
     }
 
     /// load(force, *, tolerance=1e-8) -> TangentialStep
@@ -158,9 +161,13 @@ impl PartialSlip {
     /// ValueError for bad input, ConvergenceError if the iteration does not settle.
     #[pyo3(signature = (force, *, tolerance = 1e-8))]
     fn load(&mut self, py: Python<'_>, force: f64, tolerance: f64) -> PyResult<TangentialStep> {
-        let slip = &mut self.slip;
-        let out = py.detach(|| slip.load(force, tolerance));
-        let step = out.map_err(|e| bem_err(py, e, self.shape, 1.0))?;
+        let (slip, shape) = (&mut self.slip, self.shape);
+        let step = self.stop.run(
+            py,
+            "PartialSlip",
+            || slip.load(force, tolerance),
+            |e| bem_err(py, e, shape, 1.0),
+        )?;
         Ok(TangentialStep { step })
     }
 
@@ -178,9 +185,13 @@ impl PartialSlip {
         cycles: usize,
         tolerance: f64,
     ) -> PyResult<(f64, f64)> {
-        let slip = &mut self.slip;
-        let out = py.detach(|| slip.cycle(amplitude, steps, cycles, tolerance));
-        let c = out.map_err(|e| bem_err(py, e, self.shape, 1.0))?;
+        let (slip, shape) = (&mut self.slip, self.shape);
+        let c = self.stop.run(
+            py,
+            "PartialSlip",
+            || slip.cycle(amplitude, steps, cycles, tolerance),
+            |e| bem_err(py, e, shape, 1.0),
+        )?;
         Ok((c.dissipated, c.loop_area))
     }
 
@@ -286,6 +297,7 @@ step_class! {
 pub struct ViscoelasticSlip {
     slip: VeSlip<Box<dyn TangentialCompliance + Sync>>,
     shape: (usize, usize),
+    stop: Stop,
 }
 
 #[pymethods]
@@ -305,8 +317,10 @@ impl ViscoelasticSlip {
         let modulus = Relaxation::new(relaxed, terms).map_err(|e| value_error(e.to_string()))?;
         // The operator of unit shear modulus; the moduli live in the relaxation.
         let op = cerruti_on(shape, size, 1.0, poisson, periodic)?;
-        let slip = VeSlip::new(op, &p, mu, modulus).map_err(|e| value_error(e.to_string()))?;
-        Ok(Self { slip, shape })
+        let mut slip = VeSlip::new(op, &p, mu, modulus).map_err(|e| value_error(e.to_string()))?;
+        let stop = Stop::default();
+        slip.interrupt_on(stop.flag.clone());
+        Ok(Self { slip, shape, stop })
     }
 
     /// step(dt, shift, *, tolerance=1e-8) -> ViscoelasticStep
@@ -321,9 +335,13 @@ impl ViscoelasticSlip {
         shift: f64,
         tolerance: f64,
     ) -> PyResult<ViscoelasticStep> {
-        let slip = &mut self.slip;
-        let out = py.detach(|| slip.step(dt, shift, tolerance));
-        let step = out.map_err(|e| bem_err(py, e, self.shape, 1.0))?;
+        let (slip, shape) = (&mut self.slip, self.shape);
+        let step = self.stop.run(
+            py,
+            "ViscoelasticSlip",
+            || slip.step(dt, shift, tolerance),
+            |e| bem_err(py, e, shape, 1.0),
+        )?;
         Ok(ViscoelasticStep { step })
     }
 

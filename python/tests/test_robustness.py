@@ -1,5 +1,5 @@
 """The interpreter never dies and nothing is silently wrong: sizes that do not fit raise
-MemoryError (also under a process memory limit), Ctrl-C stops a 3D solve, the CLI's checks
+MemoryError (also under a process memory limit), Ctrl-C stops every 3D solver, the CLI's checks
 apply from Python, and a scene with missing results raises ConvergenceError."""
 
 import signal
@@ -63,26 +63,62 @@ def test_a_process_memory_limit_gives_memory_error_not_an_abort():
     assert "MemoryError:" in out.stdout and "address-space limit" in out.stdout, out.stdout
 
 
-def test_ctrl_c_stops_a_3d_solve():
-    # A solve that cannot converge (a tolerance below rounding) and would run its
-    # million iterations for minutes: SIGINT ends it within a second.
+# Each builds an object `o` and makes one call that would run for minutes: a tolerance
+# below rounding (each solve runs to its iteration cap) or a cycle of 1e8 steps.
+LONG_CALLS = {
+    "Contact": (
+        "o = mrdw.Contact(h)",
+        "o.solve(mean_pressure=0.01, tolerance=1e-300, max_iterations=10**7)",
+    ),
+    "PartialSlip": (
+        "o = mrdw.PartialSlip(p, 0.3)",
+        "o.cycle(0.5 * o.friction_limit, steps=10**8)",
+    ),
+    "ViscoelasticSlip": (
+        "o = mrdw.ViscoelasticSlip(p, 0.3, 1.0, [(1.0, 1.0)])",
+        "o.step(0.1, 1e-3, tolerance=1e-300)",
+    ),
+    "AdhesiveContact": (
+        "o = mrdw.AdhesiveContact(h, 1e-4, periodic=False)",
+        "o.step(approach=0.05, tolerance=1e-300)",
+    ),
+    "CohesiveContact": (
+        "o = mrdw.CohesiveContact(h, 1e-4, 0.03)",
+        "o.step(0.05, tolerance=1e-300)",
+    ),
+}
+
+
+@pytest.mark.parametrize("kind", sorted(LONG_CALLS))
+def test_ctrl_c_stops_a_3d_solve(kind):
+    # SIGINT ends the call within a second or two; an object whose step was interrupted
+    # refuses the next (its state is the unfinished step's).
+    build, call = LONG_CALLS[kind]
     proc = subprocess.Popen(
         [
             sys.executable,
             "-c",
             textwrap.dedent(
-                """
+                f"""
                 import signal, sys, numpy as np, mrdw
                 # A shell that starts the tests in the background hands its children
                 # SIGINT ignored, and Python keeps it so: install Python's handler.
                 signal.signal(signal.SIGINT, signal.default_int_handler)
                 h = mrdw.surface((128, 128), (1.0, 1.0), 0.8, 8.0, 8.0, 200.0, rms_slope=0.1, seed=1)
-                c = mrdw.Contact(h)
+                x = (np.arange(128) + 0.5) / 128 - 0.5
+                r2 = x[:, None] ** 2 + x[None, :] ** 2
+                p = np.sqrt(np.maximum(0.09 - r2, 0.0))
+                {build}
                 print("solving", flush=True)
                 try:
-                    c.solve(mean_pressure=0.01, tolerance=1e-300, max_iterations=10**7)
+                    {call}
                 except KeyboardInterrupt:
                     print("interrupted", flush=True)
+                    if "{kind}" != "Contact":
+                        try:
+                            {call}
+                        except RuntimeError as e:
+                            print("refused:", e, flush=True)
                     sys.exit(7)
                 """
             ),
@@ -93,7 +129,7 @@ def test_ctrl_c_stops_a_3d_solve():
     )
     assert proc.stdout.readline().strip() == "solving"
     time.sleep(1.0)
-    assert proc.poll() is None, "the solve ended before the interrupt: the test proves nothing"
+    assert proc.poll() is None, "the call ended before the interrupt: the test proves nothing"
     t0 = time.monotonic()
     proc.send_signal(signal.SIGINT)
     try:
@@ -103,6 +139,8 @@ def test_ctrl_c_stops_a_3d_solve():
     assert time.monotonic() - t0 < 2.0
     assert proc.returncode == 7, err
     assert "interrupted" in out
+    if kind != "Contact":
+        assert f"refused: a step of this {kind} was interrupted" in out, out
 
 
 def test_the_command_lines_checks_apply_from_python(mrdw_bin, tmp_path):

@@ -657,7 +657,7 @@ fn public_items(file: &Path, public: bool) -> usize {
     count
 }
 
-/// bem3d's public API has a budget per public module (175 items: declarations, the
+/// bem3d's public API has a budget per public module (192 items: declarations, the
 /// names of `pub use` re-exports, and the methods in a public module's private files):
 /// a change that adds public items raises the budget here, and the commit says who
 /// needs them (the crate doc names the users of `fft`, `wide` and `mask`). The crate
@@ -667,10 +667,12 @@ fn public_items(file: &Path, public: bool) -> usize {
 fn bem3d_public_api_stays_within_its_budget() {
     const BUDGET: &[(&str, usize)] = &[
         ("(crate root)", 25),
-        ("adhesion", 12),
+        // interrupt_on here, in cohesive and twice in tangential (PartialSlip,
+        // ViscoelasticSlip): Python stops a step on Ctrl-C through it.
+        ("adhesion", 13),
         // CohesiveLaw with CohesiveContact::with_law and ::law: the exponential law, chosen
         // by Python's CohesiveContact(law="exponential") (checked against Tamaas there).
-        ("cohesive", 12),
+        ("cohesive", 13),
         ("error", 3),
         ("fft", 25),
         ("mask", 2),
@@ -683,7 +685,7 @@ fn bem3d_public_api_stays_within_its_budget() {
         // CerrutiFree (the free half-space: tangential_3d, tangential_viscoelastic, Python
         // PartialSlip(periodic=False)), the TangentialCompliance trait both operators
         // implement, ViscoelasticSlip and its step (tangential_viscoelastic's 3D side).
-        ("tangential", 21),
+        ("tangential", 23),
         ("viscoelastic", 10),
         ("wide", 5),
     ];

@@ -4,6 +4,7 @@
 use super::cerruti::CerrutiPeriodic;
 use super::compliance::TangentialCompliance;
 use crate::error::{BemError, Result};
+use crate::solver::Interrupt;
 
 /// The energy of one cycle of an oscillating tangential force (Section 7).
 #[derive(Debug, Clone, PartialEq)]
@@ -53,6 +54,8 @@ pub struct PartialSlip<C = CerrutiPeriodic> {
     friction: f64,
     /// The cells in contact (`p > 0`), in grid order.
     contact: Vec<usize>,
+    /// Set by the caller (from another thread) to stop the iteration.
+    interrupt: Option<Interrupt>,
 }
 
 /// The largest friction coefficient a solver takes.
@@ -112,7 +115,15 @@ impl<C: TangentialCompliance> PartialSlip<C> {
             q: vec![0.0; n],
             friction,
             contact,
+            interrupt: None,
         })
+    }
+
+    /// Stops the iteration of a step with [`BemError::Interrupted`] once `flag` is set
+    /// (from another thread), polled once per iteration. The accumulated slip is then
+    /// that before the step; [`Self::traction`] holds the unfinished iterate.
+    pub fn interrupt_on(&mut self, flag: Interrupt) {
+        self.interrupt = Some(flag);
     }
 
     /// The traction of the last step [pressure], `ny x nx`.
@@ -287,6 +298,7 @@ impl<C: TangentialCompliance> PartialSlip<C> {
         let least_scale = (ROUNDING / tolerance * start).max(f64::MIN_POSITIVE);
         // Iterations since `u` was last computed as `K q` (0: it is `K q` itself).
         let mut followed = 0;
+        let interrupt = self.interrupt.clone();
         for it in 0..MAX_ITERATIONS {
             for (k, &i) in cells.iter().enumerate() {
                 r[k] = u[i] + slip[i];
@@ -309,6 +321,12 @@ impl<C: TangentialCompliance> PartialSlip<C> {
                 self.op.apply(q, &mut u);
                 followed = 0;
                 continue;
+            }
+            if interrupt.as_ref().is_some_and(Interrupt::is_set) {
+                return Err(BemError::Interrupted {
+                    what: "partial slip",
+                    iterations: it,
+                });
             }
             // Conjugate direction on the stick set from its residual about its mean,
             // preconditioned where the operator has a preconditioner (its image again
@@ -819,6 +837,50 @@ mod tests {
             super::super::CerrutiFree::new(24, 24, 1.0, 1.0, 1.0, 0.5).unwrap(),
             24,
         );
+    }
+
+    /// A set interrupt stops a step after its first iteration and leaves the slip as it
+    /// was before the step; cleared, the same step then ends where an uninterrupted
+    /// history does (to the tolerance: it starts from the unfinished traction).
+    #[test]
+    fn an_interrupted_step_keeps_the_history() {
+        let p = hertz(64, 0.2, 1.0);
+        let op = || CerrutiPeriodic::new(64, 64, 1.0, 1.0, 1.0, 0.5).unwrap();
+        let (mut ps, mut reference) = (
+            PartialSlip::new(op(), &p, 0.3).unwrap(),
+            PartialSlip::new(op(), &p, 0.3).unwrap(),
+        );
+        let flag = Interrupt::default();
+        ps.interrupt_on(flag.clone());
+        let limit = ps.friction_limit();
+        for f in [0.6, -0.3] {
+            ps.load(f * limit, 1e-10).unwrap();
+            reference.load(f * limit, 1e-10).unwrap();
+        }
+        let before = ps.slip.clone();
+        flag.set();
+        let e = ps.load(0.5 * limit, 1e-10).err().unwrap();
+        assert!(
+            matches!(e, BemError::Interrupted { iterations: 0, .. }),
+            "{e}"
+        );
+        assert_eq!(ps.slip, before);
+        flag.clear();
+        let (a, b) = (
+            ps.load(0.5 * limit, 1e-10).unwrap(),
+            reference.load(0.5 * limit, 1e-10).unwrap(),
+        );
+        assert_eq!(a.stick_cells, b.stick_cells);
+        assert!(
+            (a.shift - b.shift).abs() < 1e-8 * b.shift.abs(),
+            "{a:?} {b:?}"
+        );
+        let q_max = p.iter().fold(0.0f64, |m, x| m.max(0.3 * x));
+        let dq =
+            ps.q.iter()
+                .zip(&reference.q)
+                .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+        assert!(dq < 1e-7 * q_max, "{dq}");
     }
 
     #[test]

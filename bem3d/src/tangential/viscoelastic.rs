@@ -123,6 +123,12 @@ impl<C: TangentialCompliance> ViscoelasticSlip<C> {
         self.slip.friction_limit()
     }
 
+    /// Stops a step's partial-slip solves with [`BemError::Interrupted`] once `flag` is
+    /// set (from another thread). The history is then partly advanced: build a new one.
+    pub fn interrupt_on(&mut self, flag: crate::solver::Interrupt) {
+        self.slip.interrupt_on(flag);
+    }
+
     /// Moves the body to the shift `shift` over the time `dt` (linearly in time), to
     /// `tolerance` (relative, in (0, 0.1]: the partial-slip solves' and the shift's).
     pub fn step(&mut self, dt: f64, shift: f64, tolerance: f64) -> Result<ViscoelasticStep> {
