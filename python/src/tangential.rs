@@ -20,8 +20,19 @@ fn shear_modulus(e_star: f64, poisson: f64) -> PyResult<f64> {
             "e_star = {e_star} must be finite and > 0"
         )));
     }
+    let (lo, hi) = bem3d::operator::SCALE_RANGE;
+    if !(lo..=hi).contains(&e_star) {
+        return Err(value_error(format!(
+            "e_star = {e_star:e} must lie in [{lo:e}, {hi:e}]"
+        )));
+    }
     check_poisson(poisson)?;
     Ok(e_star * (1.0 - poisson) / 2.0)
+}
+
+/// `size` within the range the normal operators take, the error naming size[0] or size[1].
+fn check_size((lx, ly): (f64, f64)) -> PyResult<()> {
+    bem3d::operator::check_scales(lx, ly, 1.0).map_err(|e| value_error(e.to_string()))
 }
 
 fn check_poisson(poisson: f64) -> PyResult<()> {
@@ -47,6 +58,7 @@ fn cerruti(
     poisson: f64,
 ) -> PyResult<CerrutiPeriodic> {
     let g = shear_modulus(e_star, poisson)?;
+    check_size((lx, ly))?;
     check_memory(shape, 8.0 * 12.0)?;
     CerrutiPeriodic::new(shape.1, shape.0, lx, ly, g, poisson)
         .map_err(|e| value_error(e.to_string()))
@@ -62,6 +74,7 @@ fn cerruti_on(
     periodic: bool,
 ) -> PyResult<Box<dyn TangentialCompliance + Sync>> {
     check_poisson(poisson)?;
+    check_size((lx, ly))?;
     check_memory(shape, if periodic { 8.0 * 12.0 } else { 8.0 * 20.0 })?;
     let (nx, ny) = (shape.1, shape.0);
     let op: Box<dyn TangentialCompliance + Sync> = if periodic {

@@ -151,6 +151,21 @@ def test_the_command_lines_checks_apply_from_python(mrdw_bin, tmp_path):
             c.solve(mean_pressure=0.01, tolerance=tol)
     with pytest.raises(ValueError, match=r"size\[0\] \(lx, the map's size in x\) = 1e300 must lie in"):
         mrdw.Contact(h, size=(1e300, 1e300))
+    # The tangential solvers take the same range of sizes and moduli (outside it cell
+    # areas or tractions overflow to a NaN).
+    p = np.zeros((16, 16))
+    p[6:10, 6:10] = 1.0
+    for make in (
+        lambda **kw: mrdw.PartialSlip(p, 0.3, **kw),
+        lambda **kw: mrdw.PartialSlip(p, 0.3, periodic=False, **kw),
+        lambda **kw: mrdw.stick_stiffness(p > 0, **kw),
+    ):
+        with pytest.raises(ValueError, match=r"size\[0\] \(lx, the map's size in x\) = 1e300 must lie in"):
+            make(size=(1e300, 1e300))
+        with pytest.raises(ValueError, match=r"e_star = 1e-300 must lie in \[1e-100, 1e100\]"):
+            make(e_star=1e-300)
+    with pytest.raises(ValueError, match=r"size\[1\] \(ly, the map's size in y\) = 1e-300 must lie in"):
+        mrdw.ViscoelasticSlip(p, 0.3, 1.0, size=(1.0, 1e-300))
     # The CLI refuses the same with the same words.
     np.save(tmp_path / "h.npy", h)
     for key, message in [

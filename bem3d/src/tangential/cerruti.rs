@@ -105,14 +105,16 @@ pub(super) fn check_grid(
             "tangential grid {nx} x {ny}: at least 2 x 2 cells"
         )));
     }
-    if !(lx.is_finite() && ly.is_finite() && lx > 0.0 && ly > 0.0) {
+    // The normal operators' range: cell areas and moduli of products stay finite.
+    let (lo, hi) = crate::operator::SCALE_RANGE;
+    if !((lo..=hi).contains(&lx) && (lo..=hi).contains(&ly)) {
         return Err(BemError::InvalidInput(format!(
-            "tangential grid size {lx} x {ly} must be finite and > 0"
+            "tangential grid size {lx:e} x {ly:e} must lie in [{lo:e}, {hi:e}]"
         )));
     }
-    if !(shear_modulus.is_finite() && shear_modulus > 0.0) {
+    if !(lo..=hi).contains(&shear_modulus) {
         return Err(BemError::InvalidInput(format!(
-            "shear modulus G = {shear_modulus} must be finite and > 0"
+            "shear modulus G = {shear_modulus:e} must lie in [{lo:e}, {hi:e}]"
         )));
     }
     if !(0.0..=0.5).contains(&poisson) {

@@ -524,6 +524,13 @@ mod tests {
         for nu in [-0.1, 0.6] {
             assert!(CerrutiPeriodic::new(16, 16, 1.0, 1.0, 1.0, nu).is_err());
         }
+        // Sizes and moduli in the normal operators' range (beyond it a cell's area or
+        // the tractions overflow).
+        for (l, g) in [(1e300, 1.0), (1e-300, 1.0), (1.0, 1e-300), (1.0, 1e300)] {
+            assert!(CerrutiPeriodic::new(16, 16, l, 1.0, g, 0.3).is_err(), "{l} {g}");
+            let free = super::super::CerrutiFree::new(16, 16, 1.0, l, g, 0.3);
+            assert!(free.is_err(), "{l} {g}");
+        }
         let mut ps = PartialSlip::new(op(), &p, 0.3).unwrap();
         assert!(ps.load(f64::NAN, 1e-8).is_err() && ps.load(0.1, 0.0).is_err());
         let slide = ps.load(-2.0 * ps.friction_limit(), 1e-8).unwrap();
