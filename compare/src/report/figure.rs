@@ -17,6 +17,8 @@ pub struct Series {
     pub color: Option<usize>,
     /// Vertical error bars (x, low, high).
     pub bars: Vec<(f64, f64, f64)>,
+    /// Stroke width in pixels: 2, or 1 for a thin series ([`Series::thin`]).
+    pub width: u32,
 }
 
 impl Series {
@@ -27,6 +29,7 @@ impl Series {
             style,
             color: None,
             bars: Vec::new(),
+            width: 2,
         }
     }
     pub fn with_bars(mut self, bars: Vec<(f64, f64, f64)>) -> Self {
@@ -36,6 +39,12 @@ impl Series {
     /// Same colour as series `index` of the figure (e.g. both bounds of a band).
     pub fn colored(mut self, index: usize) -> Self {
         self.color = Some(index);
+        self
+    }
+    /// Drawn with a thin stroke: a third way, beside colour and style, to tell series
+    /// apart (e.g. a second lambda where the style already tells the rule).
+    pub fn thin(mut self) -> Self {
+        self.width = 1;
         self
     }
 }

@@ -106,12 +106,12 @@ fn layout(fig: &Figure) -> (Bounds, Option<SeriesLabelPosition>) {
 }
 
 /// The labelled series: (palette colour, style, label).
-fn legend_entries(fig: &Figure) -> Vec<(RGBColor, Style, &str)> {
+fn legend_entries(fig: &Figure) -> Vec<(RGBColor, Style, u32, &str)> {
     fig.series
         .iter()
         .enumerate()
         .filter(|(_, s)| !s.label.is_empty())
-        .map(|(i, s)| (series_color(i, s), s.style, s.label.as_str()))
+        .map(|(i, s)| (series_color(i, s), s.style, s.width, s.label.as_str()))
         .collect()
 }
 
@@ -123,7 +123,7 @@ fn series_color(index: usize, s: &Series) -> RGBColor {
 fn side_legend_width(fig: &Figure) -> u32 {
     let chars = legend_entries(fig)
         .iter()
-        .map(|e| e.2.chars().count())
+        .map(|e| e.3.chars().count())
         .max()
         .unwrap_or(0);
     (chars as f64 * 8.5 + 60.0) as u32
@@ -137,9 +137,9 @@ fn draw_side_legend<DB: DrawingBackend>(
     path: &Path,
 ) -> Result<()> {
     let err = |e| plot_err(path, e);
-    for (k, (color, style, label)) in legend_entries(fig).into_iter().enumerate() {
+    for (k, (color, style, width, label)) in legend_entries(fig).into_iter().enumerate() {
         let y = 66 + 21 * k as i32;
-        let pen = color.stroke_width(2);
+        let pen = color.stroke_width(width);
         match style {
             Style::Line => area.draw(&PathElement::new(vec![(4, y), (26, y)], pen)),
             Style::Dashed => area.draw(&PathElement::new(vec![(4, y), (12, y)], pen)),
@@ -256,6 +256,7 @@ macro_rules! draw_with {
             .map_err(|e| plot_err($path, e))?;
         for (i, s) in $fig.series.iter().enumerate() {
             let color = series_color(i, s);
+            let width = s.width;
             let drawable = |&(x, y): &(f64, f64)| {
                 x.is_finite()
                     && y.is_finite()
@@ -288,11 +289,14 @@ macro_rules! draw_with {
                 Style::Line => {
                     for (k, run) in runs.into_iter().enumerate() {
                         let anno = chart
-                            .draw_series(LineSeries::new(run, color.stroke_width(2)))
+                            .draw_series(LineSeries::new(run, color.stroke_width(width)))
                             .map_err(err)?;
                         if show && k == 0 {
                             anno.label(label).legend(move |(x, y)| {
-                                PathElement::new(vec![(x, y), (x + 22, y)], color.stroke_width(2))
+                                PathElement::new(
+                                    vec![(x, y), (x + 22, y)],
+                                    color.stroke_width(width),
+                                )
                             });
                         }
                     }
@@ -300,11 +304,19 @@ macro_rules! draw_with {
                 Style::Dashed => {
                     for (k, run) in runs.into_iter().enumerate() {
                         let anno = chart
-                            .draw_series(DashedLineSeries::new(run, 8, 6, color.stroke_width(2)))
+                            .draw_series(DashedLineSeries::new(
+                                run,
+                                8,
+                                6,
+                                color.stroke_width(width),
+                            ))
                             .map_err(err)?;
                         if show && k == 0 {
                             anno.label(label).legend(move |(x, y)| {
-                                PathElement::new(vec![(x, y), (x + 8, y)], color.stroke_width(2))
+                                PathElement::new(
+                                    vec![(x, y), (x + 8, y)],
+                                    color.stroke_width(width),
+                                )
                             });
                         }
                     }
@@ -313,12 +325,12 @@ macro_rules! draw_with {
                     let anno = chart
                         .draw_series(
                             pts.into_iter()
-                                .map(|p| Circle::new(p, 4, color.stroke_width(2))),
+                                .map(|p| Circle::new(p, 4, color.stroke_width(width))),
                         )
                         .map_err(err)?;
                     if show {
                         anno.label(label).legend(move |(x, y)| {
-                            Circle::new((x + 10, y), 4, color.stroke_width(2))
+                            Circle::new((x + 10, y), 4, color.stroke_width(width))
                         });
                     }
                 }
@@ -326,12 +338,12 @@ macro_rules! draw_with {
                     let anno = chart
                         .draw_series(
                             pts.into_iter()
-                                .map(|p| Cross::new(p, 6, color.stroke_width(2))),
+                                .map(|p| Cross::new(p, 6, color.stroke_width(width))),
                         )
                         .map_err(err)?;
                     if show {
                         anno.label(label).legend(move |(x, y)| {
-                            Cross::new((x + 10, y), 6, color.stroke_width(2))
+                            Cross::new((x + 10, y), 6, color.stroke_width(width))
                         });
                     }
                 }

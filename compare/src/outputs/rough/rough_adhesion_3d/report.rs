@@ -307,8 +307,9 @@ fn map_figure(
     );
     let title = format!("{title} (means, 95 % intervals)");
     let mut fig = Figure::new(name, &title, x, y);
-    // One colour per Hurst exponent; 3D markers, MRD lines (dashed for the first
-    // lambda); the smooth sphere at 0 starts every series.
+    // One colour per Hurst exponent; 3D markers, MRD lines (dashed for the outer radius,
+    // solid for the cluster's half-length; thin for every lambda after the first); the
+    // smooth sphere at 0 starts every series.
     let pick = |h: f64, grid: usize, how: Option<(f64, f64)>| -> Vec<&Vec<f64>> {
         let on_side =
             |r: &&Vec<f64>| r[ig] == grid as f64 && how.is_none_or(|(rule, _)| r[irule] == rule);
@@ -337,27 +338,28 @@ fn map_figure(
             .with_bars(rows.iter().map(|r| (r[x_col], r[lo], r[hi])).collect())
             .colored(k),
         );
-        for v in variants {
+        for (j, v) in variants.iter().enumerate() {
             let rows = pick(h, 0, Some((v.rule.code(), v.lambda[k])));
             let style = if v.rule == super::Rule::Outer {
                 Style::Dashed
             } else {
                 Style::Line
             };
-            fig = fig.with(
-                Series::new(
-                    format!(
-                        "MRD, H = {h}, {}, lambda {:.2} ({} lines)",
-                        v.rule.name(),
-                        v.lambda[k],
-                        spec.realisations_1d
-                    ),
-                    rows.iter().map(|r| (r[x_col], r[col])).collect(),
-                    style,
-                )
-                .with_bars(rows.iter().map(|r| (r[x_col], r[lo], r[hi])).collect())
-                .colored(k),
-            );
+            let series = Series::new(
+                format!(
+                    "MRD, H = {h}, {}, lambda {:.2} ({} lines)",
+                    v.rule.name(),
+                    v.lambda[k],
+                    spec.realisations_1d
+                ),
+                rows.iter().map(|r| (r[x_col], r[col])).collect(),
+                style,
+            )
+            .with_bars(rows.iter().map(|r| (r[x_col], r[lo], r[hi])).collect())
+            .colored(k);
+            // Variants run rule by rule, each through the lambdas in order.
+            let first_lambda = j % spec.lambda.len().max(1) == 0;
+            fig = fig.with(if first_lambda { series } else { series.thin() });
         }
     }
     fig
