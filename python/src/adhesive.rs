@@ -114,7 +114,7 @@ impl AdhesiveContact {
         let mut state = frame.solve(py, || -> bem3d::Result<State> {
             Ok(built_on!(frame, e_star, op => Adhesive::new(op, &h, mask.as_deref(), work)?))
         })?;
-        let stop = Stop::default();
+        let stop = Stop::new("AdhesiveContact", frame.shape, frame.area());
         state.interrupt_on(stop.flag.clone());
         Ok(Self {
             state,
@@ -141,13 +141,8 @@ impl AdhesiveContact {
         tolerance: f64,
     ) -> PyResult<AdhesiveStep> {
         let load = crate::contact::one_load(mean_pressure, force, approach, true)?;
-        let (state, frame) = (&mut self.state, &self.frame);
-        let step = self.stop.run(
-            py,
-            "AdhesiveContact",
-            || state.step(load, tolerance),
-            |e| frame.err(py, e),
-        )?;
+        let state = &mut self.state;
+        let step = self.stop.run(py, || state.step(load, tolerance))?;
         Ok(AdhesiveStep {
             step,
             pressure: self.state.pressure().to_vec(),

@@ -138,7 +138,7 @@ impl CohesiveContact {
                 Cohesive::new(op, &h, mask.as_deref(), work, sigma0)?.with_law(law)
             }))
         })?;
-        let stop = Stop::default();
+        let stop = Stop::new("CohesiveContact", frame.shape, frame.area());
         contact.interrupt_on(stop.flag.clone());
         Ok(Self {
             contact,
@@ -157,13 +157,8 @@ impl CohesiveContact {
         if !approach.is_finite() {
             return Err(value_error(format!("approach = {approach} must be finite")));
         }
-        let (contact, frame) = (&mut self.contact, &self.frame);
-        let step = self.stop.run(
-            py,
-            "CohesiveContact",
-            || contact.step(approach, tolerance),
-            |e| frame.err(py, e),
-        )?;
+        let contact = &mut self.contact;
+        let step = self.stop.run(py, || contact.step(approach, tolerance))?;
         Ok(CohesiveStep {
             step,
             pressure: self.contact.pressure().to_vec(),

@@ -654,28 +654,42 @@ pub fn interruptible<T: Send>(
 /// A history solver's stop on Ctrl-C: each step runs through [`interruptible`] (the
 /// solver polls `flag` once per iteration), and once a step was interrupted the next is
 /// refused, since the state is then the unfinished step's.
-#[derive(Default)]
 pub struct Stop {
     pub flag: Interrupt,
     stopped: bool,
+    /// The Python class, for the refusal.
+    class: &'static str,
+    /// The grid and its area, for the solver's errors ([`bem_err`]).
+    shape: (usize, usize),
+    area: f64,
 }
 
 impl Stop {
-    /// Runs a step of an object of `class` with the GIL released and Ctrl-C polled;
-    /// a solver's error as `err` makes it the Python exception.
+    pub fn new(class: &'static str, shape: (usize, usize), area: f64) -> Self {
+        Self {
+            flag: Interrupt::default(),
+            stopped: false,
+            class,
+            shape,
+            area,
+        }
+    }
+
+    /// Runs a step with the GIL released and Ctrl-C polled; a solver's error becomes
+    /// the Python exception.
     pub fn run<T: Send>(
         &mut self,
         py: Python<'_>,
-        class: &str,
         step: impl FnOnce() -> bem3d::Result<T> + Send,
-        err: impl FnOnce(bem3d::BemError) -> PyErr,
     ) -> PyResult<T> {
+        let class = self.class;
         if self.stopped {
             return Err(pyo3::exceptions::PyRuntimeError::new_err(format!(
                 "a step of this {class} was interrupted: its state is the unfinished \
                  step's; build a new {class} to go on"
             )));
         }
+        let err = |e| bem_err(py, e, self.shape, self.area);
         match interruptible(py, &self.flag, step) {
             Err(raised) => {
                 self.stopped = true;

@@ -162,7 +162,7 @@ impl PartialSlip {
         let g = shear_modulus(e_star, poisson)?;
         let op = cerruti_on(shape, size, g, poisson, periodic)?;
         let mut slip = Slip::new(op, &p, mu).map_err(|e| value_error(e.to_string()))?;
-        let stop = Stop::default();
+        let stop = Stop::new("PartialSlip", shape, 1.0);
         slip.interrupt_on(stop.flag.clone());
         Ok(Self { slip, shape, stop })
     }
@@ -174,13 +174,8 @@ impl PartialSlip {
     /// ValueError for bad input, ConvergenceError if the iteration does not settle.
     #[pyo3(signature = (force, *, tolerance = 1e-8))]
     fn load(&mut self, py: Python<'_>, force: f64, tolerance: f64) -> PyResult<TangentialStep> {
-        let (slip, shape) = (&mut self.slip, self.shape);
-        let step = self.stop.run(
-            py,
-            "PartialSlip",
-            || slip.load(force, tolerance),
-            |e| bem_err(py, e, shape, 1.0),
-        )?;
+        let slip = &mut self.slip;
+        let step = self.stop.run(py, || slip.load(force, tolerance))?;
         Ok(TangentialStep { step })
     }
 
@@ -198,13 +193,10 @@ impl PartialSlip {
         cycles: usize,
         tolerance: f64,
     ) -> PyResult<(f64, f64)> {
-        let (slip, shape) = (&mut self.slip, self.shape);
-        let c = self.stop.run(
-            py,
-            "PartialSlip",
-            || slip.cycle(amplitude, steps, cycles, tolerance),
-            |e| bem_err(py, e, shape, 1.0),
-        )?;
+        let slip = &mut self.slip;
+        let c = self
+            .stop
+            .run(py, || slip.cycle(amplitude, steps, cycles, tolerance))?;
         Ok((c.dissipated, c.loop_area))
     }
 
@@ -331,7 +323,7 @@ impl ViscoelasticSlip {
         // The operator of unit shear modulus; the moduli live in the relaxation.
         let op = cerruti_on(shape, size, 1.0, poisson, periodic)?;
         let mut slip = VeSlip::new(op, &p, mu, modulus).map_err(|e| value_error(e.to_string()))?;
-        let stop = Stop::default();
+        let stop = Stop::new("ViscoelasticSlip", shape, 1.0);
         slip.interrupt_on(stop.flag.clone());
         Ok(Self { slip, shape, stop })
     }
@@ -348,13 +340,8 @@ impl ViscoelasticSlip {
         shift: f64,
         tolerance: f64,
     ) -> PyResult<ViscoelasticStep> {
-        let (slip, shape) = (&mut self.slip, self.shape);
-        let step = self.stop.run(
-            py,
-            "ViscoelasticSlip",
-            || slip.step(dt, shift, tolerance),
-            |e| bem_err(py, e, shape, 1.0),
-        )?;
+        let slip = &mut self.slip;
+        let step = self.stop.run(py, || slip.step(dt, shift, tolerance))?;
         Ok(ViscoelasticStep { step })
     }
 
