@@ -2,7 +2,7 @@
 //! Cerruti's operator on the periodic or the free half-space, and the stick stiffness of
 //! a contact set (periodic), on numpy arrays.
 
-use crate::contact::{bem_err, grid_array, Stop};
+use crate::contact::{bem_err, grid_array, interruptible, Stop};
 use crate::errors::value_error;
 use bem3d::tangential::{
     CerrutiFree, CerrutiPeriodic, PartialSlip as Slip, TangentialCompliance,
@@ -247,9 +247,11 @@ pub fn stick_stiffness(
     let c: Vec<bool> = contact.as_array().iter().copied().collect();
     let mut op = cerruti(shape, size, e_star, poisson)?;
     let limit = 20 * shape.0.max(shape.1) + 2000;
-    let k = py
-        .detach(|| op.stick_stiffness(&c, tolerance, limit))
-        .map_err(|e| bem_err(py, e, shape, 1.0))?;
+    let flag = bem3d::Interrupt::default();
+    let k = interruptible(py, &flag, || {
+        op.stick_stiffness_until(&c, tolerance, limit, &flag)
+    })?
+    .map_err(|e| bem_err(py, e, shape, 1.0))?;
     Ok((k.x, k.y, k.x_along_only))
 }
 

@@ -657,7 +657,7 @@ fn public_items(file: &Path, public: bool) -> usize {
     count
 }
 
-/// bem3d's public API has a budget per public module (192 items: declarations, the
+/// bem3d's public API has a budget per public module (193 items: declarations, the
 /// names of `pub use` re-exports, and the methods in a public module's private files):
 /// a change that adds public items raises the budget here, and the commit says who
 /// needs them (the crate doc names the users of `fft`, `wide` and `mask`). The crate
@@ -668,7 +668,8 @@ fn bem3d_public_api_stays_within_its_budget() {
     const BUDGET: &[(&str, usize)] = &[
         ("(crate root)", 25),
         // interrupt_on here, in cohesive and twice in tangential (PartialSlip,
-        // ViscoelasticSlip): Python stops a step on Ctrl-C through it.
+        // ViscoelasticSlip), and CerrutiPeriodic::stick_stiffness_until: Python stops a
+        // step on Ctrl-C through them.
         ("adhesion", 13),
         // CohesiveLaw with CohesiveContact::with_law and ::law: the exponential law, chosen
         // by Python's CohesiveContact(law="exponential") (checked against Tamaas there).
@@ -685,7 +686,7 @@ fn bem3d_public_api_stays_within_its_budget() {
         // CerrutiFree (the free half-space: tangential_3d, tangential_viscoelastic, Python
         // PartialSlip(periodic=False)), the TangentialCompliance trait both operators
         // implement, ViscoelasticSlip and its step (tangential_viscoelastic's 3D side).
-        ("tangential", 23),
+        ("tangential", 24),
         ("viscoelastic", 10),
         ("wide", 5),
     ];

@@ -527,7 +527,10 @@ mod tests {
         // Sizes and moduli in the normal operators' range (beyond it a cell's area or
         // the tractions overflow).
         for (l, g) in [(1e300, 1.0), (1e-300, 1.0), (1.0, 1e-300), (1.0, 1e300)] {
-            assert!(CerrutiPeriodic::new(16, 16, l, 1.0, g, 0.3).is_err(), "{l} {g}");
+            assert!(
+                CerrutiPeriodic::new(16, 16, l, 1.0, g, 0.3).is_err(),
+                "{l} {g}"
+            );
             let free = super::super::CerrutiFree::new(16, 16, 1.0, l, g, 0.3);
             assert!(free.is_err(), "{l} {g}");
         }

@@ -20,6 +20,7 @@ use crate::error::{BemError, Result};
 use crate::fft::Fft2;
 use crate::operator::spectral_grid;
 use crate::set_solve::{SetEnd, SetOperator, SetSolve};
+use crate::solver::Interrupt;
 
 /// The tangential stiffnesses of a contact set held in full stick [force / length].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -87,6 +88,18 @@ impl CerrutiPeriodic {
         tolerance: f64,
         max_iterations: usize,
     ) -> Result<StickStiffness> {
+        self.stick_stiffness_until(contact, tolerance, max_iterations, &Interrupt::default())
+    }
+
+    /// [`Self::stick_stiffness`], stopped with [`BemError::Interrupted`] once `interrupt`
+    /// is set (from another thread; polled once per iteration).
+    pub fn stick_stiffness_until(
+        &mut self,
+        contact: &[bool],
+        tolerance: f64,
+        max_iterations: usize,
+        interrupt: &Interrupt,
+    ) -> Result<StickStiffness> {
         let n = self.cells();
         if contact.len() != n {
             return Err(BemError::InvalidInput(format!(
@@ -130,7 +143,7 @@ impl CerrutiPeriodic {
                 op,
                 tolerance,
                 max_iterations,
-                interrupted: &|| false,
+                interrupted: &|| interrupt.is_set(),
             }
             .run(set, b)?;
             match end {
