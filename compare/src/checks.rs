@@ -130,8 +130,13 @@ pub mod cell_bytes {
     /// (383 at 1024^2, 358 at 2048^2).
     pub const VISCOELASTIC_ROUGH: f64 = 2.0 * (FREE + 40.0);
     /// An adhesive cycle on the free half-space: `rough_adhesion_3d` (272 at 1024^2),
-    /// `adhesion_3d` (274 at 1024^2) and `tabor_3d` (174 at 512^2).
+    /// `adhesion_3d` (274 at 1024^2) and `tabor_3d` (174 at 512^2); from Python,
+    /// `AdhesiveContact` and `CohesiveContact` (275 and 192 at 512^2 above the
+    /// interpreter's own memory, the adhesive 221 at 1024^2).
     pub const ADHESION: f64 = FREE + 140.0;
+    /// The same on a periodic cell: Python's `AdhesiveContact` and `CohesiveContact`
+    /// (121 and 131 at 512^2).
+    pub const ADHESION_PERIODIC: f64 = PERIODIC + 100.0;
     /// `rough_slip_3d`: the normal solve, then partial slip on the free half-space
     /// (425 at 1024^2).
     pub const ROUGH_SLIP: f64 = FREE + 300.0;

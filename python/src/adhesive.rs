@@ -109,7 +109,11 @@ impl AdhesiveContact {
             )));
         }
         let grid = Grid::new(py, heights, (size, periodic), mask, e_star, false)?;
-        crate::errors::check_grid_memory("an adhesive", grid.frame.shape, 8.0 * 9.0)?;
+        crate::errors::check_grid_memory(
+            "an adhesive",
+            grid.frame.shape,
+            crate::errors::adhesive_bytes(grid.frame),
+        )?;
         let (h, mask, frame) = (grid.heights, grid.mask, grid.frame);
         let mut state = frame.solve(py, || -> bem3d::Result<State> {
             Ok(built_on!(frame, e_star, op => Adhesive::new(op, &h, mask.as_deref(), work)?))

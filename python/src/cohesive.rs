@@ -131,7 +131,11 @@ impl CohesiveContact {
             }
         }
         let grid = Grid::new(py, heights, (size, Some(periodic)), mask, e_star, false)?;
-        crate::errors::check_grid_memory("a cohesive", grid.frame.shape, 8.0 * 9.0)?;
+        crate::errors::check_grid_memory(
+            "a cohesive",
+            grid.frame.shape,
+            crate::errors::adhesive_bytes(grid.frame),
+        )?;
         let (h, mask, frame) = (grid.heights, grid.mask, grid.frame);
         let mut contact = frame.solve(py, || -> bem3d::Result<Solver> {
             Ok(built_on!(frame, e_star, op => {

@@ -79,6 +79,17 @@ pub fn memory_error(e: sysmem::MemoryError) -> PyErr {
 
 /// MemoryError unless `bytes_per_cell` on the `(ny, nx)` grid fits the memory available;
 /// the message names "`what` ny x nx contact".
+/// Peak bytes per cell of an adhesive or cohesive contact's steps, the operator included
+/// (measured: `compare::checks::cell_bytes`).
+pub fn adhesive_bytes(frame: crate::contact::Frame) -> f64 {
+    use compare::checks::cell_bytes::{ADHESION, ADHESION_PERIODIC};
+    if frame.periodic {
+        ADHESION_PERIODIC
+    } else {
+        ADHESION
+    }
+}
+
 pub fn check_grid_memory(
     what: &str,
     (ny, nx): (usize, usize),
