@@ -182,8 +182,9 @@ impl PartialSlip {
     /// cycle(amplitude, steps=10, cycles=2, *, tolerance=1e-8) -> (dissipated, loop_area)
     ///
     /// An oscillating force of `amplitude` (below mu P) from the current state: a ramp
-    /// of `steps` steps, then `cycles` cycles to -amplitude and back; returns the last
-    /// cycle's dissipated energy and the area of its force-shift loop [stress x length^3].
+    /// of `steps` steps, then `cycles` cycles to -amplitude and back (steps x (2 cycles + 1)
+    /// loads, at most 1e6); returns the last cycle's dissipated energy and the area of its
+    /// force-shift loop [stress x length^3].
     #[pyo3(signature = (amplitude, steps = 10, cycles = 2, *, tolerance = 1e-8))]
     fn cycle(
         &mut self,

@@ -64,6 +64,11 @@ const MAX_MU: f64 = 1e6;
 /// Iteration limit of a step.
 const MAX_ITERATIONS: usize = 20_000;
 
+/// The most loads one [`PartialSlip::cycle`] runs (ramp and cycles), each a
+/// partial-slip solve: a loop is resolved by tens of steps, and a million solves is
+/// hours on a fine grid.
+const MAX_CYCLE_LOADS: usize = 1_000_000;
+
 /// The rounding level of a step's displacements relative to the largest displacement
 /// it starts from: the residual's scale (the largest displacement) is floored at this
 /// over the tolerance times that start. A step whose answer is no traction at all (no
@@ -159,9 +164,14 @@ impl<C: TangentialCompliance> PartialSlip<C> {
                 self.friction
             )));
         }
-        if steps == 0 || cycles == 0 {
+        if !((1..=MAX_CYCLE_LOADS).contains(&steps)
+            && (1..=MAX_CYCLE_LOADS).contains(&cycles)
+            && steps * (2 * cycles + 1) <= MAX_CYCLE_LOADS)
+        {
             return Err(BemError::InvalidInput(format!(
-                "steps = {steps} and cycles = {cycles} must be >= 1"
+                "steps = {steps} and cycles = {cycles} must be >= 1, with steps x \
+                 (2 cycles + 1) = the loads of the whole history at most \
+                 {MAX_CYCLE_LOADS:e}"
             )));
         }
         for k in 1..=steps {
@@ -899,14 +909,18 @@ mod tests {
         let op = CerrutiPeriodic::new(32, 32, 1.0, 1.0, 1.0, 0.5).unwrap();
         let mut ps = PartialSlip::new(op, &p, 0.5).unwrap();
         let limit = ps.friction_limit();
-        for (amp, steps) in [
-            (limit, 4),
-            (-0.1 * limit, 4),
-            (f64::NAN, 4),
-            (0.5 * limit, 0),
+        for (amp, steps, cycles) in [
+            (limit, 4, 1),
+            (-0.1 * limit, 4, 1),
+            (f64::NAN, 4, 1),
+            (0.5 * limit, 0, 1),
+            (0.5 * limit, 4, 0),
+            (0.5 * limit, 1_000_000_000, 1),
+            (0.5 * limit, 1, usize::MAX),
+            (0.5 * limit, 1000, 500),
         ] {
             assert!(matches!(
-                ps.cycle(amp, steps, 1, 1e-8),
+                ps.cycle(amp, steps, cycles, 1e-8),
                 Err(BemError::InvalidInput(_))
             ));
         }

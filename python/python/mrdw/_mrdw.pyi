@@ -414,7 +414,8 @@ class PartialSlip:
     def cycle(
         self, amplitude: float, steps: int = 10, cycles: int = 2, *, tolerance: float = 1e-8
     ) -> Tuple[float, float]:
-        """The last cycle's dissipated energy and loop area [stress x length^3]."""
+        """The last cycle's dissipated energy and loop area [stress x length^3]; at most
+        1e6 loads, steps x (2 cycles + 1)."""
     @property
     def friction_limit(self) -> float:
         """mu P [stress x length^2]."""
