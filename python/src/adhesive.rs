@@ -112,7 +112,7 @@ impl AdhesiveContact {
         crate::errors::check_grid_memory(
             "an adhesive",
             grid.frame.shape,
-            crate::errors::adhesive_bytes(grid.frame),
+            crate::errors::adhesive_bytes(grid.frame.periodic),
         )?;
         let (h, mask, frame) = (grid.heights, grid.mask, grid.frame);
         let mut state = frame.solve(py, || -> bem3d::Result<State> {

@@ -134,7 +134,7 @@ impl CohesiveContact {
         crate::errors::check_grid_memory(
             "a cohesive",
             grid.frame.shape,
-            crate::errors::adhesive_bytes(grid.frame),
+            crate::errors::adhesive_bytes(grid.frame.periodic),
         )?;
         let (h, mask, frame) = (grid.heights, grid.mask, grid.frame);
         let mut contact = frame.solve(py, || -> bem3d::Result<Solver> {

@@ -81,9 +81,9 @@ pub fn memory_error(e: sysmem::MemoryError) -> PyErr {
 /// the message names "`what` ny x nx contact".
 /// Peak bytes per cell of an adhesive or cohesive contact's steps, the operator included
 /// (measured: `compare::checks::cell_bytes`).
-pub fn adhesive_bytes(frame: crate::contact::Frame) -> f64 {
+pub fn adhesive_bytes(periodic: bool) -> f64 {
     use compare::checks::cell_bytes::{ADHESION, ADHESION_PERIODIC};
-    if frame.periodic {
+    if periodic {
         ADHESION_PERIODIC
     } else {
         ADHESION
