@@ -502,7 +502,8 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(Failure::Error(e, code)) => {
             // One readable line.
-            note!("error: {}", e.replace('\n', " "));
+            let line = compare::error::readable_numbers(&e.replace('\n', " "));
+            note!("error: {line}");
             ExitCode::from(code)
         }
     }

@@ -98,3 +98,91 @@ pub(crate) fn io_err(context: impl Into<String>) -> impl FnOnce(std::io::Error) 
     let context = context.into();
     move |source| CompareError::Io { context, source }
 }
+
+/// `message` with each number that Rust's `Display` wrote out digit by digit at an
+/// extreme magnitude in the shortest scientific form: more than 20 digits before the
+/// point (1e300 prints as 1 and 300 zeros) or six or more zeros after "0." (1e-300
+/// prints 299 of them). The numbers a user gave at the edge of double precision then
+/// stay legible in an error line; integers of up to 20 digits (any `u64`, e.g. a seed)
+/// and every other number are left as written.
+pub fn readable_numbers(message: &str) -> String {
+    let b = message.as_bytes();
+    let mut out = String::with_capacity(message.len());
+    let mut copied = 0;
+    let mut i = 0;
+    while i < b.len() {
+        let starts = b[i].is_ascii_digit() && (i == 0 || !is_word(b[i - 1]));
+        if !starts {
+            i += 1;
+            continue;
+        }
+        let int_end = digits_from(b, i);
+        let mut end = int_end;
+        if end + 1 < b.len() && b[end] == b'.' && b[end + 1].is_ascii_digit() {
+            end = digits_from(b, end + 1);
+        }
+        let whole = end == b.len() || !is_word(b[end]);
+        let long = int_end - i > 20;
+        let tiny = &message[i..int_end] == "0" && message[int_end..end].starts_with(".000000");
+        if whole && (long || tiny) {
+            if let Ok(v) = message[i..end].parse::<f64>() {
+                out.push_str(&message[copied..i]);
+                out.push_str(&format!("{v:e}"));
+                copied = end;
+            }
+        }
+        i = end;
+    }
+    out.push_str(&message[copied..]);
+    out
+}
+
+/// A byte that continues a word or a number (a number glued to one is not rewritten).
+fn is_word(c: u8) -> bool {
+    c.is_ascii_alphanumeric() || c == b'_' || c == b'.'
+}
+
+/// The end of the run of ASCII digits that starts at `i`.
+fn digits_from(b: &[u8], i: usize) -> usize {
+    i + b[i..].iter().take_while(|c| c.is_ascii_digit()).count()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::readable_numbers;
+
+    #[test]
+    fn extreme_numbers_read_in_scientific_form() {
+        for v in [
+            1e300,
+            1e21,
+            1.5e250,
+            f64::MAX,
+            1e-300,
+            2.5e-7,
+            1e-7,
+            f64::MIN_POSITIVE,
+        ] {
+            let message = format!("mu = {v} must lie in (0, 10]; also -{v}, `{v}`");
+            assert_eq!(
+                readable_numbers(&message),
+                format!("mu = {v:e} must lie in (0, 10]; also -{v:e}, `{v:e}`"),
+                "{v:e}"
+            );
+        }
+        // Left as written: ordinary numbers, any u64, numbers inside words, versions.
+        for m in [
+            "seed = 18446744073709551615 and 1e300 as typed",
+            "r_max = 0.000001, 123456.789, 1e-12, x86_64, v0.1.0, 3.14159",
+            "name_100000000000000000000000000000 a100000000000000000000000",
+            "1000000000000000000000px",
+        ] {
+            assert_eq!(readable_numbers(m), m);
+        }
+        // The value is the one given (Display round-trips).
+        for v in [1e300, 1.2345678901234567e-200] {
+            let r = readable_numbers(&format!("{v}"));
+            assert_eq!(r.parse::<f64>().unwrap(), v);
+        }
+    }
+}

@@ -25,7 +25,7 @@ pub fn convergence(
     residual: f64,
     last: Option<Py<PyAny>>,
 ) -> PyErr {
-    let err = ConvergenceError::new_err(message);
+    let err = ConvergenceError::new_err(compare::error::readable_numbers(&message));
     let value = err.value(py);
     // Setting attributes on a fresh exception instance cannot fail.
     let _ = value.setattr("what", what);
@@ -68,8 +68,10 @@ pub fn finite(what: &str, v: f64) -> PyResult<f64> {
     }
 }
 
+/// A ValueError with the message's extreme numbers in scientific form, as the command
+/// line prints them ([`compare::error::readable_numbers`]).
 pub fn value_error(message: impl Into<String>) -> PyErr {
-    PyValueError::new_err(message.into())
+    PyValueError::new_err(compare::error::readable_numbers(&message.into()))
 }
 
 /// A size that does not fit this process's memory: `MemoryError` naming the size.
@@ -77,8 +79,6 @@ pub fn memory_error(e: sysmem::MemoryError) -> PyErr {
     PyMemoryError::new_err(e.to_string())
 }
 
-/// MemoryError unless `bytes_per_cell` on the `(ny, nx)` grid fits the memory available;
-/// the message names "`what` ny x nx contact".
 /// Peak bytes per cell of an adhesive or cohesive contact's steps, the operator included
 /// (measured: `compare::checks::cell_bytes`).
 pub fn adhesive_bytes(periodic: bool) -> f64 {
@@ -90,6 +90,8 @@ pub fn adhesive_bytes(periodic: bool) -> f64 {
     }
 }
 
+/// MemoryError unless `bytes_per_cell` on the `(ny, nx)` grid fits the memory available;
+/// the message names "`what` ny x nx contact".
 pub fn check_grid_memory(
     what: &str,
     (ny, nx): (usize, usize),

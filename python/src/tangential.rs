@@ -13,19 +13,9 @@ use numpy::{AllowTypeChange, PyArray2, PyArrayLike2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
 /// The substrate's shear modulus G = E* (1 - nu) / 2 under a rigid body, with E* and
-/// nu checked.
+/// nu checked (E* in the normal operators' range, with `Contact`'s words).
 fn shear_modulus(e_star: f64, poisson: f64) -> PyResult<f64> {
-    if !(e_star.is_finite() && e_star > 0.0) {
-        return Err(value_error(format!(
-            "e_star = {e_star} must be finite and > 0"
-        )));
-    }
-    let (lo, hi) = bem3d::operator::SCALE_RANGE;
-    if !(lo..=hi).contains(&e_star) {
-        return Err(value_error(format!(
-            "e_star = {e_star:e} must lie in [{lo:e}, {hi:e}]"
-        )));
-    }
+    bem3d::operator::check_scales(1.0, 1.0, e_star).map_err(|e| value_error(e.to_string()))?;
     check_poisson(poisson)?;
     Ok(e_star * (1.0 - poisson) / 2.0)
 }

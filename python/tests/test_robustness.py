@@ -170,10 +170,13 @@ def test_the_command_lines_checks_apply_from_python(mrdw_bin, tmp_path):
     ):
         with pytest.raises(ValueError, match=r"size\[0\] \(lx, the map's size in x\) = 1e300 must lie in"):
             make(size=(1e300, 1e300))
-        with pytest.raises(ValueError, match=r"e_star = 1e-300 must lie in \[1e-100, 1e100\]"):
+        with pytest.raises(ValueError, match=r"e_star \(the contact modulus E\*\) = 1e-300 must lie in \[1e-100, 1e100\]"):
             make(e_star=1e-300)
     with pytest.raises(ValueError, match=r"size\[1\] \(ly, the map's size in y\) = 1e-300 must lie in"):
         mrdw.ViscoelasticSlip(p, 0.3, 1.0, size=(1.0, 1e-300))
+    # Extreme values read as given (1e300), not as their 300 digits.
+    with pytest.raises(ValueError, match=r"mu = 1e300 must lie in \(0, 1e6\]$"):
+        mrdw.PartialSlip(p, 1e300)
     # The CLI refuses the same with the same words.
     np.save(tmp_path / "h.npy", h)
     for key, message in [

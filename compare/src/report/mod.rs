@@ -21,6 +21,18 @@ pub fn tool_version() -> String {
     format!("mrdw {}", env!("CARGO_PKG_VERSION"))
 }
 
+/// `x` as a file name or a title shows a parameter: as `Display` writes it where that is
+/// short (0.7, 1.25), in the shortest scientific form where it would run to dozens of
+/// digits (1e-300, not 0.000...1), which a file name could not hold.
+pub fn number_label(x: f64) -> String {
+    let s = x.to_string();
+    if s.len() > 12 {
+        format!("{x:e}")
+    } else {
+        s
+    }
+}
+
 /// Provenance written at the top of every CSV and into summary.json.
 #[derive(Debug, Clone)]
 pub struct Provenance {
@@ -218,6 +230,15 @@ impl Report {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn number_labels_stay_short() {
+        assert_eq!(number_label(0.7), "0.7");
+        assert_eq!(number_label(-0.25), "-0.25");
+        assert_eq!(number_label(1e-300), "1e-300");
+        assert_eq!(number_label(1e300), "1e300");
+        assert_eq!(number_label(0.123456789012345), "1.23456789012345e-1");
+    }
 
     #[test]
     fn names_are_unique_and_results_prefixed() {

@@ -1,7 +1,7 @@
 //! `profile_1d`: the 3D profile z(r) and its MRD image z1d(x) by the rule of Hess
 //! (Eq. 11), per-shape closed form against independent quadrature.
 
-use crate::checks::{default_points, rel, require_positive};
+use crate::checks::{bad, default_points, rel, require_positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::hess;
@@ -23,6 +23,18 @@ impl Output for Profile1d {
     fn validate(&self, ctx: &Context) -> Result<()> {
         hess::check_scene(ctx, self.points)?;
         require_positive("r_max", self.r_max)?;
+        // The profile rises with r: its heights at the largest radius drawn bound the
+        // table's.
+        let profile = ctx.profile()?;
+        let limit = self.r_max.min(profile.max_contact_radius());
+        let (z, z1d) = (profile.z(limit), profile.z1d(limit));
+        if !(z.is_finite() && z1d.is_finite()) {
+            return bad(format!(
+                "r_max = {:e}: the profile's height there (z = {z:e}, z1d = {z1d:e}) is not \
+                 representable in double precision; give a smaller r_max",
+                self.r_max
+            ));
+        }
         Ok(())
     }
 

@@ -53,9 +53,9 @@ pub struct RoughPartialSlip3d {
     pressure: f64,
     /// Coulomb friction coefficient.
     mu: f64,
-    /// Tangential forces of the monotonic loading over mu F_N, increasing, in (0, 1).
+    /// Tangential forces of the monotonic loading over mu F_N, increasing, in [1e-6, 1).
     fractions: Vec<f64>,
-    /// Force amplitudes of the cycles over mu F_N, in (0, 1).
+    /// Force amplitudes of the cycles over mu F_N, in [1e-6, 1).
     amplitudes: Vec<f64>,
     /// Force steps per half cycle.
     #[serde(default = "crate::checks::default_count::<10>")]

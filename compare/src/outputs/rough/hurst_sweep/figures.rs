@@ -6,7 +6,7 @@ use super::aggregate::{PerHurst, Results};
 use super::HurstSweep;
 use crate::experiment::fit::Estimate;
 use crate::experiment::rough_punch::SolveRecord;
-use crate::report::{Figure, Section, Series, Style, Table};
+use crate::report::{number_label, Figure, Section, Series, Style, Table};
 use mrd::roughness::lambda_cut;
 use std::f64::consts::PI;
 
@@ -350,8 +350,8 @@ fn kf_figure(spec: &HurstSweep, r: &Results, h: &PerHurst, label: &str) -> Figur
             .collect()
     };
     let mut fig = Figure::new(
-        &format!("{label}_kf_h{}", h.hurst),
-        &format!("k(F), H = {} (Eq. 77)", h.hurst),
+        &format!("{label}_kf_h{}", number_label(h.hurst)),
+        &format!("k(F), H = {} (Eq. 77)", number_label(h.hurst)),
         "F/(E* h L) [1]",
         "k/(E* L) [1]",
     )

@@ -8,7 +8,7 @@ use super::scatter::Scatter;
 use super::tasks::Role;
 use super::LambdaStudy;
 use crate::experiment::fit::Estimate;
-use crate::report::{Figure, Section, Series, Style, Table};
+use crate::report::{number_label, Figure, Section, Series, Style, Table};
 use std::f64::consts::PI;
 
 pub fn report(s: &LambdaStudy, r: &Results, sc: &[Scatter], out: &mut Section) {
@@ -470,9 +470,10 @@ fn local_exponent_figure(r: &Results, c: &CaseResult, label: &str) -> Figure {
             .filter_map(|(&x, v)| v.map(|v| (x, v)))
             .collect();
     let mut fig = Figure::new(
-        &format!("{label}_local_exponent_h{h}"),
+        &format!("{label}_local_exponent_h{}", number_label(h)),
         &format!(
-            "Local exponent d ln k / d ln f, H = {h}, bandwidth {} ({} cells per shortest wavelength)",
+            "Local exponent d ln k / d ln f, H = {}, bandwidth {} ({} cells per shortest wavelength)",
+            number_label(h),
             c.case.band, c.case.cells
         ),
         "reduced force f = F/(E* h L) [1]",

@@ -6,6 +6,7 @@
 use super::LambdaStudy;
 use crate::error::{io_err, CompareError, Context as _, Result};
 use crate::experiment::rough_punch::{line_stiffness, punch_curve, BemCurve, MrdEnsemble};
+use crate::report::number_label;
 use mrd::rough_contact::RoughLine;
 use mrd::roughness::nested;
 use mrd::roughness::synthesis::Grid;
@@ -48,19 +49,22 @@ impl Case {
     fn file(&self, r: u64) -> String {
         format!(
             "bem_H{}_B{}_c{}_t{:e}_r{r}.json",
-            self.hurst, self.band, self.cells, self.tolerance
+            number_label(self.hurst),
+            self.band,
+            self.cells,
+            self.tolerance
         )
     }
 }
 
 /// The MRD ensemble of one H and bandwidth.
 pub fn mrd_file(hurst: f64, band: usize) -> String {
-    format!("mrd_H{hurst}_B{band}.json")
+    format!("mrd_H{}_B{band}.json", number_label(hurst))
 }
 
 /// The MRD forces at fixed approach of one H and bandwidth (the scatter's).
 pub fn approach_file(hurst: f64, band: usize) -> String {
-    format!("mrdu_H{hurst}_B{band}.json")
+    format!("mrdu_H{}_B{band}.json", number_label(hurst))
 }
 
 /// The study's MRD lines at fixed approach: F/(E* h L) of each line at each reduced
@@ -158,7 +162,9 @@ pub(super) fn top_checked(s: &LambdaStudy, case: &Case) -> bool {
 pub fn control_file(case: &Case, m: u64) -> String {
     format!(
         "ctl_H{}_B{}_c{}_m{m}.json",
-        case.hurst, case.band, case.cells
+        number_label(case.hurst),
+        case.band,
+        case.cells
     )
 }
 

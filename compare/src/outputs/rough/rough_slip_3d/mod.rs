@@ -67,9 +67,9 @@ pub struct RoughSlip3d {
     /// MRD springs per cell of the finest 3D grid.
     #[serde(default = "crate::experiment::rough_sphere::default_points_1d_factor")]
     points_1d_factor: usize,
-    /// Tangential forces of the monotonic loading over mu F_N, increasing, in (0, 1).
+    /// Tangential forces of the monotonic loading over mu F_N, increasing, in [1e-6, 1).
     fractions: Vec<f64>,
-    /// Force amplitudes of the cycles over mu F_N, in (0, 1).
+    /// Force amplitudes of the cycles over mu F_N, in [1e-6, 1).
     amplitudes: Vec<f64>,
     /// Force steps per half cycle.
     #[serde(default = "crate::checks::default_count::<8>")]
