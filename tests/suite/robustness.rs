@@ -822,6 +822,12 @@ fn periodic_patch_studies_bad_input_names_the_key() {
             ("hurst = [0.5]", "hurst = []", "hurst"),
             ("cells = [4, 8]", "cells = [8, 4]", "cells"),
             ("mu = 0.5", "mu = 0.0", "mu"),
+            // Too small a force for the mapped shift to keep its digits.
+            (
+                "fractions = [0.2, 0.5, 0.8]",
+                "fractions = [1e-300, 0.5, 0.8]",
+                "fractions = [1e-300, 0.5, 0.8]: give increasing fractions of mu F_N in [1e-6, 1)",
+            ),
             ("pressure = 0.05", "pressure = 0.0", "pressure"),
             (
                 "pressure = 0.05",
