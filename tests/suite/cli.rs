@@ -797,6 +797,12 @@ fn bad_input_is_one_clear_line_and_no_output() {
         &format!("name = \"x\"\n{mat}{SPHERE}[[outputs]]\nkind = \"force_depth\"\nmax = 0.01\nsprings = 1e300\n"),
         "floating point `1e300`",
     );
+    for rho in ["nan", "0.0", "-1.0"] {
+        expect_failure(
+            &format!("name = \"x\"\n{mat}{SPHERE}{FD}resistivity_sum = {rho}\n"),
+            "resistivity_sum = ",
+        );
+    }
     // A radius whose height overflows is refused before the table holds an infinity.
     expect_failure(
         &format!("name = \"x\"\n{mat}[profile]\nshapes = [{{ kind = \"power_law\", c = 1.0, n = 4.5 }}]\n[[outputs]]\nkind = \"profile_1d\"\nr_max = 1e300\n"),

@@ -25,6 +25,8 @@ pub struct ForceDepth {
     /// Springs of the discrete foundation on [-half_length, half_length] (optional).
     springs: Option<usize>,
     half_length: Option<f64>,
+    /// rho1 + rho2, the two bodies' electrical resistivities summed: adds the column
+    /// electrical_conductance, 2 k / (E* (rho1 + rho2)) (end of Section 8).
     resistivity_sum: Option<f64>,
 }
 
@@ -32,6 +34,9 @@ impl Output for ForceDepth {
     fn validate(&self, ctx: &Context) -> Result<()> {
         hess::check_scene(ctx, self.points)?;
         crate::checks::check_magnitudes(&[("max", self.max)])?;
+        if let Some(rho) = self.resistivity_sum {
+            crate::checks::check_magnitudes(&[("resistivity_sum", rho)])?;
+        }
         if let Some(n) = self.springs {
             check_springs(n, crate::checks::spring_bytes::FORCE_DEPTH)?;
         }
