@@ -201,7 +201,9 @@ impl<C: Preconditioner + GridForms> AdhesiveContact<C> {
 
     /// Loads to `load` from the last state (`tolerance` relative, in (0, 0.01]).
     /// `Load::Approach` needs a non-periodic operator (a periodic surface has no
-    /// defined mean displacement): prescribe the force there.
+    /// defined mean displacement): prescribe the force there. A load beyond
+    /// [`crate::solver::MAX_LOAD`] in magnitude (mean pressure over E*, approach over the map's
+    /// size) is refused, as by the normal solve.
     pub fn step(&mut self, load: Load, tolerance: f64) -> Result<AdhesiveStep> {
         if !(tolerance > 0.0 && tolerance <= 0.01) {
             return Err(BemError::InvalidInput(format!(
@@ -226,6 +228,8 @@ impl<C: Preconditioner + GridForms> AdhesiveContact<C> {
                 )))
             }
         };
+        let op = &self.op;
+        crate::solver::check_load_magnitude(load, op.e_star(), (op.lx(), op.ly()))?;
         crate::pool::on_pool(|| self.settle(target, tolerance))
     }
 
@@ -971,6 +975,23 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("must be finite"), "{e}");
+        // Loads beyond the normal solve's bound, pushing or pulling, are refused as
+        // input (they broke the iteration down); at the bound the step runs.
+        for (load, what) in [
+            (
+                Load::Force(1e300),
+                "a force of 1e300 is a mean pressure of 1e300",
+            ),
+            (Load::Force(-2e10), "a force of -2e10"),
+            (Load::MeanPressure(-1e300), "a mean pressure of -1e300"),
+            (Load::Approach(1e300), "approach = 1e300 is more than 1e10"),
+            (Load::Approach(-1e300), "approach = -1e300"),
+        ] {
+            let e = c.step(load, 1e-8).unwrap_err();
+            assert!(matches!(e, BemError::InvalidInput(_)), "{e}");
+            assert!(e.to_string().contains(what), "{e}");
+        }
+        assert!(c.step(Load::Approach(-1e10), 1e-8).is_ok());
         // Retraction past separation is a state, not an error; so is a history that
         // reverses at every step.
         let s = c.step(Load::Approach(-1.0), 1e-8).unwrap();

@@ -52,7 +52,7 @@
 use crate::adhesion::rigid_surface;
 use crate::error::{BemError, Result};
 use crate::operator::Preconditioner;
-use crate::solver::Interrupt;
+use crate::solver::{Interrupt, Load};
 
 mod passes;
 
@@ -215,7 +215,7 @@ impl<C: Preconditioner> CohesiveContact<C> {
     }
 
     /// Loads to the approach `d` (from first contact) from the last state; `tolerance`
-    /// relative, in (0, 0.01].
+    /// relative, in (0, 0.01]; `|d|` at most [`crate::solver::MAX_LOAD`] times the map's size.
     pub fn step(&mut self, d: f64, tolerance: f64) -> Result<CohesiveStep> {
         if !d.is_finite() {
             return Err(BemError::InvalidInput(format!(
@@ -227,6 +227,8 @@ impl<C: Preconditioner> CohesiveContact<C> {
                 "tolerance {tolerance} must lie in (0, 0.01]"
             )));
         }
+        let op = &self.op;
+        crate::solver::check_load_magnitude(Load::Approach(d), op.e_star(), (op.lx(), op.ly()))?;
         if let Some(full) = self.complete.filter(|full| d >= *full) {
             return Err(BemError::InvalidInput(format!(
                 "approach {d} reaches complete contact of the periodic cell (mean gap {} <= 0): the force is unbounded; keep the approach below {full}",
@@ -736,6 +738,14 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("tolerance"));
+        // Approaches beyond the normal solve's bound are refused as input (they broke
+        // the iteration down); at the bound the step runs.
+        for d in [1e300, -1e300, 1.01e10] {
+            let e = c.step(d, 1e-8).unwrap_err();
+            assert!(matches!(e, BemError::InvalidInput(_)), "{e}");
+            assert!(e.to_string().contains("times the map's size"), "{e}");
+        }
+        assert!(c.step(-1e10, 1e-8).is_ok());
         // Retraction beyond the range: no contact, no force.
         let s = c.step(-1.0, 1e-8).unwrap();
         assert!(s.contact_cells == 0 && s.cohesive_cells == 0 && s.force == 0.0);

@@ -193,6 +193,7 @@ mod sweeps;
 pub(crate) mod window;
 
 pub use crate::solution::{Path, Solution};
+pub(crate) use options::check_load_magnitude;
 use options::Target;
 pub use options::{Choice, Interrupt, Load, Paths, SolverOptions, MAX_LOAD, MAX_TOLERANCE};
 use state::{chunk_cells, Gap0, Problem, Tuning, Values, Work, ZMap, LARGE_GRID_CELLS};
@@ -743,24 +744,7 @@ impl<K: SolverOperator> ContactSolver<K> {
             Load::Force(f) | Load::MeanPressure(f) => bad(f, "load")?,
             Load::Approach(d) => bad(d, "approach")?,
         }
-        // Linear elasticity and double precision both end long before a mean pressure
-        // of MAX_LOAD E* or an approach of MAX_LOAD times the map's size.
-        let (e, size) = (self.op.e_star(), self.op.lx().max(self.op.ly()));
-        match (load, target) {
-            (_, Target::Force(f)) if !(..=MAX_LOAD * e).contains(&(f / (self.op.lx() * self.op.ly()))) => {
-                return Err(BemError::InvalidInput(format!(
-                    "load: a force of {f:e} is a mean pressure of {:e}, more than {MAX_LOAD:e} E* = {:e}",
-                    f / (self.op.lx() * self.op.ly()),
-                    MAX_LOAD * e
-                )))
-            }
-            (Load::Approach(d), _) if d > MAX_LOAD * size => {
-                return Err(BemError::InvalidInput(format!(
-                    "approach = {d:e} is more than {MAX_LOAD:e} times the map's size {size:e}"
-                )))
-            }
-            _ => {}
-        }
+        check_load_magnitude(load, self.op.e_star(), (self.op.lx(), self.op.ly()))?;
         opts.validate()?;
         if let Load::Approach(d) = load {
             if self.op.is_periodic() && self.problem.domain_cells == n && d >= self.problem.z_mean {

@@ -216,6 +216,27 @@ impl Paths {
 /// size.
 pub const MAX_LOAD: f64 = 1e10;
 
+/// Refuses a load of a history solver (adhesive, cohesive: its loads may pull) beyond
+/// [`MAX_LOAD`] in magnitude, the normal solve's bound: linear elasticity and double
+/// precision both end long before it.
+pub(crate) fn check_load_magnitude(load: Load, e_star: f64, (lx, ly): (f64, f64)) -> Result<()> {
+    let (bound, size) = (MAX_LOAD * e_star, lx.max(ly));
+    let too_large = match load {
+        Load::Force(f) if (f / (lx * ly)).abs() > bound => format!(
+            "load: a force of {f:e} is a mean pressure of {:e}, more than {MAX_LOAD:e} E* = {bound:e} in magnitude",
+            f / (lx * ly)
+        ),
+        Load::MeanPressure(p) if p.abs() > bound => format!(
+            "load: a mean pressure of {p:e} is more than {MAX_LOAD:e} E* = {bound:e} in magnitude"
+        ),
+        Load::Approach(d) if d.abs() > MAX_LOAD * size => format!(
+            "approach = {d:e} is more than {MAX_LOAD:e} times the map's size {size:e} in magnitude"
+        ),
+        _ => return Ok(()),
+    };
+    Err(BemError::InvalidInput(too_large))
+}
+
 /// Largest tolerance a solve accepts: beyond it the criterion no longer bounds the
 /// answer's error usefully (at 1 the pressures of a rough contact are off by 10 % or
 /// more).
