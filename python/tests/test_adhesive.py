@@ -100,5 +100,10 @@ def test_bad_steps_name_the_parameter():
         c.step(approach=float("nan"))
     with pytest.raises(ValueError, match="tolerance"):
         c.step(approach=0.01, tolerance=0.5)
+    # Beyond the normal solve's bound, pushing or pulling: bad input, not a breakdown.
+    with pytest.raises(ValueError, match="a mean pressure of -1e300, more than 1e10 E"):
+        c.step(force=-1e300)
+    with pytest.raises(ValueError, match="approach = 1e300 is more than 1e10 times"):
+        c.step(approach=1e300)
     s = c.step(approach=-1.0)  # retraction past separation is a state
     assert s.separated and s.force == 0.0
