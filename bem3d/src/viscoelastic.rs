@@ -189,6 +189,9 @@ impl<K: SolverOperator> TransientContact<K> {
                 "time step {dt} must be finite and > 0"
             )));
         }
+        // The bound on the load as given (the solve below sees it scaled by E* / E_eff).
+        let op = self.solver.operator();
+        crate::solver::check_load_magnitude(load, op.e_star(), (op.lx(), op.ly()))?;
         let factors = self.modulus.step_factors(dt);
         let e_eff = self.modulus.effective(&factors);
         // H_n / E_eff: the history's displacement, raising the heights it acts on.

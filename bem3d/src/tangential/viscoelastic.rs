@@ -101,9 +101,18 @@ const MAX_TRIALS: usize = 80;
 impl<C: TangentialCompliance> ViscoelasticSlip<C> {
     /// `op` of unit shear modulus (e.g. [`super::CerrutiFree`] with `G = 1`), the held
     /// `pressure` (`ny x nx`), friction coefficient `mu`, shear relaxation `modulus`.
+    /// The glassy modulus G*(0) lies in the operators' [`crate::operator::SCALE_RANGE`].
     pub fn new(op: C, pressure: &[f64], mu: f64, modulus: Relaxation) -> Result<Self> {
         let n = op.cells();
-        let factor = 1.0 / modulus.glassy();
+        let (lo, hi) = crate::operator::SCALE_RANGE;
+        let glassy = modulus.glassy();
+        if !(lo..=hi).contains(&glassy) {
+            return Err(BemError::InvalidInput(format!(
+                "the glassy shear modulus G*(0) = relaxed + sum of the terms' G_k = {glassy:e} \
+                 must lie in [{lo:e}, {hi:e}]"
+            )));
+        }
+        let factor = 1.0 / glassy;
         let slip = PartialSlip::new(Scaled { op, factor }, pressure, mu)?;
         Ok(Self {
             slip,
@@ -433,6 +442,21 @@ mod tests {
         ] {
             let e = ve.step(dt, shift, tol).unwrap_err().to_string();
             assert!(e.contains(key), "{e}");
+        }
+        // A glassy modulus outside the operators' range is refused by name (1e-300 broke
+        // the iteration down); at the range's ends the history is built.
+        for (relaxed, terms) in [
+            (1e-300, vec![]),
+            (1e300, vec![]),
+            (1e-200, vec![(1e-200, 1.0)]),
+        ] {
+            let m = Relaxation::new(relaxed, terms).unwrap();
+            let e = ViscoelasticSlip::new(op(n), &p, 0.3, m).err().unwrap();
+            assert!(e.to_string().contains("glassy shear modulus G*(0)"), "{e}");
+        }
+        for g in [1e-100, 1e100] {
+            let m = Relaxation::new(g, vec![]).unwrap();
+            assert!(ViscoelasticSlip::new(op(n), &p, 0.3, m).is_ok());
         }
     }
 }

@@ -229,6 +229,14 @@ fn lifted_off_surface_recovers_and_bad_steps_are_refused() {
             "dt = {dt}"
         );
     }
+    // A load beyond the bound is refused naming the value given (the solve sees it
+    // scaled by E*(0) / E_eff).
+    let e = vc.step(0.05, Load::Force(1e300), &opts()).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("a force of 1e300 is a mean pressure of 1e300"),
+        "{e}"
+    );
     for (e_inf, terms) in [
         (-1.0, vec![]),
         (0.0, vec![]),
