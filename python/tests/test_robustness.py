@@ -177,6 +177,10 @@ def test_the_command_lines_checks_apply_from_python(mrdw_bin, tmp_path):
     # Extreme values read as given (1e300), not as their 300 digits.
     with pytest.raises(ValueError, match=r"mu = 1e300 must lie in \(0, 1e6\]$"):
         mrdw.PartialSlip(p, 1e300)
+    # A glassy shear modulus out of that range (1e-300 broke the iteration down).
+    for relaxed in (1e-300, 1e300):
+        with pytest.raises(ValueError, match=r"glassy shear modulus G\*\(0\) = .* must lie in"):
+            mrdw.ViscoelasticSlip(p, 0.3, relaxed)
     # The CLI refuses the same with the same words.
     np.save(tmp_path / "h.npy", h)
     for key, message in [
