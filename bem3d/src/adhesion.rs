@@ -976,7 +976,7 @@ mod tests {
             .to_string();
         assert!(e.contains("must be finite"), "{e}");
         // Loads beyond the normal solve's bound, pushing or pulling, are refused as
-        // input (they broke the iteration down); at the bound the step runs.
+        // input, not left to break the iteration down; at the bound the step runs.
         for (load, what) in [
             (
                 Load::Force(1e300),

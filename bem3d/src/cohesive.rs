@@ -738,8 +738,8 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("tolerance"));
-        // Approaches beyond the normal solve's bound are refused as input (they broke
-        // the iteration down); at the bound the step runs.
+        // Approaches beyond the normal solve's bound are refused as input, not left to
+        // break the iteration down; at the bound the step runs.
         for d in [1e300, -1e300, 1.01e10] {
             let e = c.step(d, 1e-8).unwrap_err();
             assert!(matches!(e, BemError::InvalidInput(_)), "{e}");

@@ -177,7 +177,7 @@ def test_the_command_lines_checks_apply_from_python(mrdw_bin, tmp_path):
     # Extreme values read as given (1e300), not as their 300 digits.
     with pytest.raises(ValueError, match=r"mu = 1e300 must lie in \(0, 1e6\]$"):
         mrdw.PartialSlip(p, 1e300)
-    # A glassy shear modulus out of that range (1e-300 broke the iteration down).
+    # A glassy shear modulus out of that range (at 1e-300 the iteration breaks down).
     for relaxed in (1e-300, 1e300):
         with pytest.raises(ValueError, match=r"glassy shear modulus G\*\(0\) = .* must lie in"):
             mrdw.ViscoelasticSlip(p, 0.3, relaxed)

@@ -443,8 +443,8 @@ mod tests {
             let e = ve.step(dt, shift, tol).unwrap_err().to_string();
             assert!(e.contains(key), "{e}");
         }
-        // A glassy modulus outside the operators' range is refused by name (1e-300 broke
-        // the iteration down); at the range's ends the history is built.
+        // A glassy modulus outside the operators' range is refused by name (at 1e-300
+        // the iteration breaks down); at the range's ends the history is built.
         for (relaxed, terms) in [
             (1e-300, vec![]),
             (1e300, vec![]),
