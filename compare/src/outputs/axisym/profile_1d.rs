@@ -19,6 +19,13 @@ pub struct Profile1d {
     points: usize,
 }
 
+impl Profile1d {
+    /// The largest radius drawn: r_max, within the profile's contact radii.
+    fn largest_radius(&self, profile: &mrd::Profile) -> f64 {
+        self.r_max.min(profile.max_contact_radius())
+    }
+}
+
 impl Output for Profile1d {
     fn validate(&self, ctx: &Context) -> Result<()> {
         hess::check_scene(ctx, self.points)?;
@@ -26,7 +33,7 @@ impl Output for Profile1d {
         // The profile rises with r: its heights at the largest radius drawn bound the
         // table's.
         let profile = ctx.profile()?;
-        let limit = self.r_max.min(profile.max_contact_radius());
+        let limit = self.largest_radius(profile);
         let (z, z1d) = (profile.z(limit), profile.z1d(limit));
         if !(z.is_finite() && z1d.is_finite()) {
             return bad(format!(
@@ -56,7 +63,7 @@ impl Output for Profile1d {
             ],
         );
         t.notes.push("z1d by the rule of Hess (Eq. 11): per-shape closed form and independent tanh-sinh quadrature".into());
-        let limit = self.r_max.min(profile.max_contact_radius());
+        let limit = self.largest_radius(profile);
         let mut max_dev: f64 = 0.0;
         for k in 0..self.points {
             let x = limit * k as f64 / (self.points - 1) as f64;
