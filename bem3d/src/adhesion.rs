@@ -30,7 +30,9 @@
 //! `sigma_c` leave, and cells outside with `g < 0` join; the rounds repeat from the
 //! last pressures until no cell moves. Each round is a linear, symmetric positive
 //! definite solve, stopped when `max_C |u + z - d| <= tolerance * l` with
-//! `l = max(rms of z, max_C |u|, |d|, w / sigma_c)`; the set update is exact. On a
+//! `l = max(rms of z, max_C |u|, |d|, min(w / sigma_c, L))` (L the map's larger side:
+//! an adhesive length beyond it would not set the size of the displacements' errors);
+//! the set update is exact. On a
 //! free half-space a round solves on the smallest box of cells that holds `C` (module
 //! `window`), at the box's transform size; `K` is applied on the grid, for the gaps
 //! outside the box, once the set holds in it. The
@@ -41,6 +43,8 @@
 //! rounds, or a solve that stalls, is an error carrying the residual reached.
 
 use crate::error::{BemError, Result};
+use crate::kit::chunks::dot;
+use crate::kit::surface::{rigid_surface, RigidSurface};
 use crate::operator::{GridForms, Preconditioner};
 use crate::solver::window::Window;
 use crate::solver::{Interrupt, Load};
@@ -109,7 +113,8 @@ pub struct AdhesiveContact<C: Preconditioner + GridForms> {
     domain: Vec<bool>,
     critical: f64,
     work: f64,
-    /// Length scale floor of the criterion: rms of z, or `w / sigma_c`.
+    /// Length scale floor of the criterion: the rms of z, or `w / sigma_c` up to the
+    /// map's larger side.
     scale: f64,
     contact: Vec<bool>,
     p: Vec<f64>,
@@ -139,7 +144,7 @@ impl<C: Preconditioner + GridForms> AdhesiveContact<C> {
                 "work of adhesion w = {work} must be finite and > 0 (without adhesion use the normal solver)"
             )));
         }
-        let (z, domain, rms) = rigid_surface(&op, heights, mask)?;
+        let RigidSurface { z, domain, rms, .. } = rigid_surface(&op, heights, mask)?;
         let n = z.len();
         let (hx, hy) = (op.lx() / op.nx() as f64, op.ly() / op.ny() as f64);
         let critical = critical_stress(op.e_star(), work, hx, hy);
@@ -149,8 +154,11 @@ impl<C: Preconditioner + GridForms> AdhesiveContact<C> {
                 op.e_star()
             )));
         }
+        let side = op.lx().max(op.ly());
         Ok(Self {
-            scale: rms.max(work / critical),
+            // `w / sigma_c` grows as sqrt(w) while the displacements stay set by the
+            // geometry: beyond the map's size it would loosen every solve's stop.
+            scale: rms.max((work / critical).min(side)),
             op,
             z,
             domain,
@@ -506,7 +514,7 @@ fn solve_set<O: Preconditioner>(
         rho_old = rho;
         passes::direction(on, y, mean, beta, t);
         op.apply(t, kt);
-        let curvature = passes::dot(t, kt);
+        let curvature = dot(t, kt);
         if !(curvature > 0.0 && rho.is_finite()) {
             return Err(BemError::Breakdown {
                 what: "adhesive contact",
@@ -523,60 +531,6 @@ fn solve_set<O: Preconditioner>(
         residual: f64::NAN,
         reason: "the solve on a contact set did not converge within the iteration limit",
     })
-}
-
-/// The rigid surface of the adhesive solvers from the caller's heights and mask, checked:
-/// `z = max(h) - h` over the cells that may touch, those cells, and the rms of z over
-/// them (the normal solver's conventions).
-pub(crate) fn rigid_surface<C: Preconditioner>(
-    op: &C,
-    heights: &[f64],
-    mask: Option<&[bool]>,
-) -> Result<(Vec<f64>, Vec<bool>, f64)> {
-    let n = op.cells();
-    if heights.len() != n {
-        return Err(BemError::InvalidInput(format!(
-            "heights have {} values for a grid of {} x {} cells",
-            heights.len(),
-            op.nx(),
-            op.ny()
-        )));
-    }
-    if let Some(i) = heights.iter().position(|h| !h.is_finite()) {
-        return Err(BemError::InvalidInput(format!(
-            "heights[{i}] = {} must be finite",
-            heights[i]
-        )));
-    }
-    let domain: Vec<bool> = match mask {
-        Some(m) if m.len() != n => {
-            return Err(BemError::InvalidInput(format!(
-                "mask has {} values for a grid of {n} cells",
-                m.len()
-            )))
-        }
-        Some(m) => m.to_vec(),
-        None => vec![true; n],
-    };
-    let cells = domain.iter().filter(|d| **d).count();
-    if cells == 0 {
-        return Err(BemError::InvalidInput(
-            "the mask leaves no cell that may touch".into(),
-        ));
-    }
-    let top = (0..n)
-        .filter(|&i| domain[i])
-        .map(|i| heights[i])
-        .fold(f64::NEG_INFINITY, f64::max);
-    let z: Vec<f64> = heights.iter().map(|h| top - h).collect();
-    let mean = (0..n).filter(|&i| domain[i]).map(|i| z[i]).sum::<f64>() / cells as f64;
-    let rms = ((0..n)
-        .filter(|&i| domain[i])
-        .map(|i| (z[i] - mean).powi(2))
-        .sum::<f64>()
-        / cells as f64)
-        .sqrt();
-    Ok((z, domain, rms))
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -915,6 +869,36 @@ mod tests {
         let s = c.step(Load::Approach(d), 1e-10).unwrap();
         let op = NonPeriodicHalfSpace::new(n, n, l, l, 1.0);
         is_the_normal_solve(op, &heights, d, c.pressure(), s.force, s.contact_cells);
+    }
+
+    /// The stopping criterion's length scale does not grow with the work of adhesion: a
+    /// loading step, where no cell detaches, gives the same contact whatever w (the
+    /// critical stress only matters on unloading). With a scale of `w / sigma_c` a
+    /// work of 1e15 stopped after 0-1 iterations (+48 % force; 1e16: no force at all).
+    #[test]
+    fn a_huge_work_of_adhesion_still_converges() {
+        let n = 48;
+        let heights = crate::mask::centred(n, 1.0, |x, y| {
+            -(x * x + y * y) / 2.0 - 0.002 * (9.0 * x).sin() * (7.0 * y).cos()
+        });
+        let apex = heights.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+        let load = |w: f64| {
+            let op = NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
+            let mut c = AdhesiveContact::new(op, &heights, None, w).unwrap();
+            let s = c.step(Load::Approach(apex + 0.01), 1e-10).unwrap();
+            assert_eq!(s.detached, 0, "w = {w}");
+            (s.force, s.contact_cells)
+        };
+        let (f0, cells0) = load(1.0);
+        assert!(cells0 > 50, "{cells0} cells");
+        for w in [1e6, 1e15, 1e16, 1e30] {
+            let (f, cells) = load(w);
+            assert_eq!(cells, cells0, "w = {w}");
+            assert!(
+                (f / f0 - 1.0).abs() < 1e-7,
+                "w = {w}: force {f} against {f0}"
+            );
+        }
     }
 
     /// A periodic surface under a mean pressure: the force is held and an approach is

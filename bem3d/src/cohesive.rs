@@ -16,11 +16,14 @@
 //! `p >= -sigma0` on `S`, solved by Polonsky & Keer's projected conjugate gradient with
 //! the bound moved from 0 to `-sigma0` (where no bound cuts a step, `u = K p` follows it
 //! by `-tau K t` without a transform; afresh every 50 such steps and before a stop is
-//! accepted). Then `S` is updated from the gaps (cells with
+//! accepted; the kit's iteration, `kit::box_cg`). Then `S` is updated from the gaps (cells with
 //! `g >= delta` leave, cells outside with `g < delta` join) and the rounds repeat from the
 //! last pressures until `S` holds. Each round is convex and stops when every cell of `S`
 //! satisfies the complementarity within `tolerance` times the length scale
-//! `max(rms of z, |d|, delta)`; the set update is exact. The whole problem is not
+//! `max(rms of z, |d|, min(delta, L))` (L the map's larger side: a range beyond it does
+//! not set the size of the gaps' errors), capped where `tolerance` times it would reach
+//! `delta / 10` (a deep approach would let gaps of several ranges pass for contact); the
+//! set update is exact. The whole problem is not
 //! convex (the cohesive energy is not), so the result is the equilibrium reached from
 //! the previous state along the history; a set that keeps changing is an error.
 //!
@@ -49,12 +52,11 @@
 //! Dugdale length, 9 % with 8.5, 22 % with 4.3, 32 % with 1.9, first order in the cell;
 //! [`CohesiveContact::resolved`] asks for 10 cells, and a caller warns below.
 
-use crate::adhesion::rigid_surface;
 use crate::error::{BemError, Result};
+use crate::kit::box_cg::{self, Bound, BoxProblem, Scratch};
+use crate::kit::surface::{rigid_surface, RigidSurface};
 use crate::operator::Preconditioner;
 use crate::solver::{Interrupt, Load};
-
-mod passes;
 
 /// Cells per Dugdale length for [`CohesiveContact::resolved`].
 pub const RESOLVED_CELLS: f64 = 10.0;
@@ -64,8 +66,6 @@ const MAX_ITERATIONS: usize = 20_000;
 /// Smallest range `w / sigma0` over the relief of the surface (`max - min` of the
 /// heights that may touch) a solve takes.
 const MIN_RANGE_OVER_RELIEF: f64 = 1e-9;
-/// Iterations between computations of `K p` afresh while its running update is used.
-const REFRESH: usize = 50;
 
 /// The traction-gap law of the cohesive zone (module docs); both have the work of
 /// adhesion `w`, the peak tension `sigma0` and the range `delta = w / sigma0`.
@@ -102,7 +102,9 @@ pub struct CohesiveContact<C: Preconditioner> {
     domain: Vec<bool>,
     sigma0: f64,
     range: f64,
-    rms: f64,
+    /// The criterion's length floor: the rms of z, or the range up to the map's larger
+    /// side (a range beyond it does not set the size of the gaps' errors).
+    scale: f64,
     /// The mean of z over an unmasked periodic cell: the approach of complete contact
     /// (module docs); `None` where the approach is not bounded so.
     complete: Option<f64>,
@@ -116,6 +118,7 @@ pub struct CohesiveContact<C: Preconditioner> {
     u: Vec<f64>,
     /// Set by the caller (from another thread) to stop the iteration.
     interrupt: Option<Interrupt>,
+    scratch: Scratch,
 }
 
 impl<C: Preconditioner> CohesiveContact<C> {
@@ -139,16 +142,15 @@ impl<C: Preconditioner> CohesiveContact<C> {
                 )));
             }
         }
-        let (z, domain, rms) = rigid_surface(&op, heights, mask)?;
+        let RigidSurface {
+            z,
+            domain,
+            rms,
+            relief,
+        } = rigid_surface(&op, heights, mask)?;
         // Gaps carry rounding of about 1e-16 of the map's relief: a range within a few
         // million of those leaves the set updates chasing noise (a range of 4e-11 of
         // the relief does not converge within 280,000 iterations).
-        let (lo, hi) = (0..z.len())
-            .filter(|&i| domain[i])
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), i| {
-                (lo.min(z[i]), hi.max(z[i]))
-            });
-        let relief = hi - lo;
         if work / sigma0 < MIN_RANGE_OVER_RELIEF * relief {
             return Err(BemError::InvalidInput(format!(
                 "the range w / sigma0 = {:e} lies below {MIN_RANGE_OVER_RELIEF:e} of the surface's relief {relief:e}: a cohesive zone that thin is lost to the gaps' rounding; its zero-range (JKR) limit is the adhesive contact",
@@ -158,13 +160,14 @@ impl<C: Preconditioner> CohesiveContact<C> {
         let n = z.len();
         let complete = (op.is_periodic() && domain.iter().all(|d| *d))
             .then(|| z.iter().sum::<f64>() / n as f64);
+        let side = op.lx().max(op.ly());
         Ok(Self {
             op,
             z,
             domain,
             sigma0,
             range: work / sigma0,
-            rms,
+            scale: rms.max((work / sigma0).min(side)),
             complete,
             law: CohesiveLaw::Dugdale,
             cohesive: vec![false; n],
@@ -172,6 +175,7 @@ impl<C: Preconditioner> CohesiveContact<C> {
             p: vec![0.0; n],
             u: vec![0.0; n],
             interrupt: None,
+            scratch: Scratch::default(),
         })
     }
 
@@ -248,7 +252,7 @@ impl<C: Preconditioner> CohesiveContact<C> {
         let (mut iterations, mut residual) = (0, 0.0);
         self.op.apply(&self.p, &mut self.u);
         let (sigma0, range) = (self.sigma0, self.range);
-        let scale = self.rms.max(d.abs()).max(range);
+        let scale = self.criterion_scale(d, tolerance);
         let tension = move |g: f64| -sigma0 * (-g.max(0.0) / range).exp();
         for round in 1..=MAX_ROUNDS {
             // The law's departure on the cells out of contact (at their bound).
@@ -341,83 +345,38 @@ impl<C: Preconditioner> CohesiveContact<C> {
         }
     }
 
+    /// The criterion's length scale at approach `d` (module docs): `max(floor, |d|)`, but
+    /// never so large that `tolerance` times it reaches a tenth of the range (the set is
+    /// read from the gaps against the range: a deep approach would otherwise let gaps
+    /// of several ranges pass as contact, and the set would never settle).
+    fn criterion_scale(&self, d: f64, tolerance: f64) -> f64 {
+        self.scale.max(d.abs()).min(0.1 * self.range / tolerance)
+    }
+
     /// Polonsky & Keer's projected conjugate gradient on the set, each cell's pressure
-    /// bounded below by its `bound` (module docs). Returns the iterations and the
-    /// criterion reached.
+    /// bounded below by its `bound` (module docs, `kit::box_cg`). Returns the iterations
+    /// and the criterion reached.
     fn solve_on_set(&mut self, d: f64, tolerance: f64) -> Result<(usize, f64)> {
-        let n = self.z.len();
-        let scale = self.rms.max(d.abs()).max(self.range);
-        let (mut t, mut kt, mut y) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-        // The first iteration's beta is 0 (rho_old = 0), whatever free_old holds.
-        let (mut free, mut free_old) = (vec![false; n], vec![false; n]);
-        let mut rho_old = 0.0;
-        self.op.apply(&self.p, &mut self.u);
-        // Iterations since `u` was last computed as `K p` (0: it is `K p` itself).
-        let mut followed = 0;
-        for it in 0..MAX_ITERATIONS {
-            let cells = passes::Cells {
-                cohesive: &self.cohesive,
-                bound: &self.bound,
-                z: &self.z,
-                u: &self.u,
-                d,
-            };
-            // Free cells (above the bound, or at it and penetrating) carry g = 0.
-            let (worst, same) = passes::free_set(&cells, &self.p, &free_old, &mut free, &mut y);
-            let residual = worst / scale;
-            if residual <= tolerance {
-                if followed == 0 {
-                    return Ok((it, residual));
-                }
-                // Stop only on `u = K p` itself, not on its running update.
-                self.op.apply(&self.p, &mut self.u);
-                followed = 0;
-                continue;
-            }
-            if self.interrupt.as_ref().is_some_and(Interrupt::is_set) {
-                return Err(BemError::Interrupted {
-                    what: "cohesive contact",
-                    iterations: it,
-                });
-            }
-            self.op.precondition(&mut y);
-            let rho = passes::restrict(&cells, &free, &mut y);
-            let beta = if same && rho_old > 0.0 {
-                rho / rho_old
-            } else {
-                0.0
-            };
-            rho_old = rho;
-            std::mem::swap(&mut free, &mut free_old);
-            passes::direction(&y, beta, &mut t);
-            self.op.apply(&t, &mut kt);
-            let curvature = crate::adhesion::passes::dot(&t, &kt);
-            if !(curvature > 0.0 && rho.is_finite()) {
-                return Err(BemError::Breakdown {
-                    what: "cohesive contact",
-                    iterations: it,
-                    residual,
-                    reason: "a direction without curvature",
-                });
-            }
-            let tau = rho / curvature;
-            let cut = passes::project(&free_old, &self.bound, &t, tau, &mut self.p);
-            // A step no bound cut moves K p by -tau K t: no transform (afresh every
-            // `REFRESH` iterations against rounding).
-            if cut || followed + 1 >= REFRESH {
-                self.op.apply(&self.p, &mut self.u);
-                followed = 0;
-            } else {
-                passes::follow(&kt, tau, &mut self.u);
-                followed += 1;
-            }
-        }
-        Err(BemError::Breakdown {
+        let problem = BoxProblem {
+            set: &self.cohesive,
+            lo: Bound::Cells(&self.bound),
+            hi: Bound::Uniform(f64::INFINITY),
+            z: &self.z,
+            d,
+            scale: self.criterion_scale(d, tolerance),
+            tolerance,
+            max_iterations: MAX_ITERATIONS,
             what: "cohesive contact",
-            iterations: MAX_ITERATIONS,
-            residual: f64::NAN,
-            reason: "the solve on a cohesive set did not converge within the iteration limit",
-        })
+            interrupt: self.interrupt.as_ref(),
+        };
+        let r = box_cg::solve(
+            &mut self.op,
+            &problem,
+            &mut self.p,
+            &mut self.u,
+            &mut self.scratch,
+        )?;
+        Ok((r.iterations, r.residual))
     }
 }
 
@@ -588,6 +547,86 @@ mod tests {
                 s.force,
                 s.contact_cells,
             );
+        }
+    }
+
+    /// A flat periodic face at a mean gap g0 > 0 carries the law's tension at g0 on every
+    /// cell (Tamaas' gap-controlled standard case): `-sigma0 exp(-g0 / delta)` under the
+    /// exponential law, `-sigma0` under Dugdale's while g0 < delta. The uniform pressure
+    /// is the periodic operator's null direction: the iteration follows it to the bound.
+    #[test]
+    fn a_flat_periodic_face_carries_a_uniform_tension() {
+        let n = 16;
+        let (w, sigma0) = (0.002, 0.1);
+        let delta = w / sigma0;
+        for g0 in [0.2 * delta, delta, 3.0 * delta] {
+            for law in [CohesiveLaw::Dugdale, CohesiveLaw::Exponential] {
+                let op = crate::PeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
+                let mut c = CohesiveContact::new(op, &vec![0.0; n * n], None, w, sigma0)
+                    .unwrap()
+                    .with_law(law);
+                let s = c.step(-g0, 1e-10).unwrap();
+                let want = match law {
+                    CohesiveLaw::Exponential => -sigma0 * (-g0 / delta).exp(),
+                    CohesiveLaw::Dugdale if g0 < delta => -sigma0,
+                    CohesiveLaw::Dugdale => 0.0,
+                };
+                for (i, p) in c.pressure().iter().enumerate() {
+                    assert!(
+                        (p - want).abs() <= 1e-9 * sigma0,
+                        "{law:?}, g0 = {g0}: p[{i}] = {p}, law {want}"
+                    );
+                }
+                assert!((s.force - want).abs() <= 1e-9 * sigma0, "{law:?} g0 = {g0}");
+            }
+        }
+    }
+
+    /// A vanishing cohesive stress (the range w / sigma0 far beyond the surface's relief)
+    /// leaves the normal contact: the same force and contact cells as the normal solver
+    /// at the same approach. The criterion's scale is the range only up to the map's size;
+    /// with the range itself a solve at sigma0 = 1e-12 stopped before any cell touched.
+    #[test]
+    fn a_vanishing_cohesive_stress_is_the_normal_contact() {
+        let n = 48;
+        let heights = crate::mask::centred(n, 1.0, |x, y| -(x * x + y * y) / 2.0);
+        let apex = heights.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+        for sigma0 in [1e-12, 1e-20] {
+            let op = NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
+            let mut c = CohesiveContact::new(op, &heights, None, 1e-12, sigma0).unwrap();
+            let s = c.step(apex + 0.05, 1e-10).unwrap();
+            assert!(s.contact_cells > 100, "sigma0 = {sigma0}: {s:?}");
+            let op = NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
+            crate::adhesion::is_the_normal_solve(
+                op,
+                &heights,
+                apex + 0.05,
+                c.pressure(),
+                s.force,
+                s.contact_cells,
+            );
+        }
+    }
+
+    /// A deep approach (complete contact, the force linear in it) settles in two rounds:
+    /// the criterion's scale grows with |d| only until it resolves a tenth of the range
+    /// (with |d| itself, gaps of 50 ranges passed for contact at d = 1e8 and the set
+    /// cycled for 20,000 rounds).
+    #[test]
+    fn a_deep_approach_settles_at_once() {
+        let n = 32;
+        let heights = crate::mask::centred(n, 1.0, |x, y| -(x * x + y * y) / 2.0);
+        let step = |d: f64| {
+            let op = NonPeriodicHalfSpace::new(n, n, 1.0, 1.0, 1.0);
+            let mut c = CohesiveContact::new(op, &heights, None, 0.002, 0.1).unwrap();
+            c.step(d, 1e-8).unwrap()
+        };
+        let base = step(1e6);
+        for d in [1e7, 1e8, 1e9] {
+            let s = step(d);
+            assert!(s.rounds <= 2 && s.contact_cells == n * n, "d = {d}: {s:?}");
+            let linear = base.force * d / 1e6;
+            assert!((s.force / linear - 1.0).abs() < 1e-6, "d = {d}: {s:?}");
         }
     }
 

@@ -27,6 +27,7 @@ pub mod adhesion;
 pub mod cohesive;
 pub mod error;
 pub mod fft;
+mod kit;
 mod love;
 pub mod mask;
 pub mod operator;

@@ -92,7 +92,15 @@ pub fn run_to_folder(
     }
     let dest = Destination::claim(out)?;
     let work_root = work.map_or_else(|| dest.work_root(), Path::to_path_buf);
-    let report = run_in(scene, &work_root, control)?;
+    let report = match run_in(scene, &work_root, control) {
+        Ok(r) => r,
+        // A failure leaves no folder behind that holds nothing to resume from.
+        Err(e) if work.is_none() && !matches!(e, CompareError::Stopped { .. }) => {
+            remove_unfinished_checkpoints(scene, &work_root);
+            return Err(e);
+        }
+        Err(e) => return Err(e),
+    };
     let files = dest.write_report(&report, &provenance(scene), t0.elapsed().as_secs_f64())?;
     if work.is_none() {
         remove_checkpoints(scene, &work_root);
@@ -156,6 +164,21 @@ pub(crate) fn remove_checkpoints(scene: &Scene, work_root: &Path) {
     for e in &scene.outputs {
         if let Some(c) = e.output.checkpointed() {
             let _ = std::fs::remove_dir_all(work_root.join(c.key()));
+        }
+    }
+    let _ = std::fs::remove_dir(work_root); // only if empty
+}
+
+/// Removes the checkpoint folders of the scene's resumable outputs that hold no finished
+/// task (and the work root if that leaves it empty); a folder with finished tasks is
+/// kept: the same command resumes from it.
+fn remove_unfinished_checkpoints(scene: &Scene, work_root: &Path) {
+    for e in &scene.outputs {
+        if let Some(c) = e.output.checkpointed() {
+            let dir = work_root.join(c.key());
+            if !c.task_files().iter().any(|f| dir.join(f).exists()) {
+                let _ = std::fs::remove_dir_all(dir);
+            }
         }
     }
     let _ = std::fs::remove_dir(work_root); // only if empty

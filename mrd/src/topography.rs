@@ -488,6 +488,13 @@ fn parse_xyz(text: &str) -> std::result::Result<WithCell, String> {
 
 /// Reads a two-column profile table (r, z): `#` comments and one header line allowed.
 pub fn read_profile_csv(path: &Path) -> Result<(Vec<f64>, Vec<f64>)> {
+    read_two_columns(path, ["r", "z"])
+}
+
+/// Reads a table of two numeric columns named `names` (for the messages): columns
+/// separated by commas, semicolons or tabs, or else by spaces; `#` comments and one
+/// header line allowed.
+pub fn read_two_columns(path: &Path, names: [&str; 2]) -> Result<(Vec<f64>, Vec<f64>)> {
     let text = std::fs::read_to_string(path).map_err(|e| bad(path, e))?;
     let (mut r, mut z) = (Vec::new(), Vec::new());
     let mut header_seen = false;
@@ -496,7 +503,11 @@ pub fn read_profile_csv(path: &Path) -> Result<(Vec<f64>, Vec<f64>)> {
         if line.is_empty() || line.starts_with('#') {
             continue;
         }
-        let cols: Vec<&str> = line.split([',', ';', '\t']).map(str::trim).collect();
+        let cols: Vec<&str> = if line.contains([',', ';', '\t']) {
+            line.split([',', ';', '\t']).map(str::trim).collect()
+        } else {
+            line.split_whitespace().collect()
+        };
         let parsed: Option<Vec<f64>> = cols.iter().map(|c| c.parse::<f64>().ok()).collect();
         match parsed {
             Some(v) if v.len() == 2 => {
@@ -508,8 +519,10 @@ pub fn read_profile_csv(path: &Path) -> Result<(Vec<f64>, Vec<f64>)> {
                 return Err(bad(
                     path,
                     format!(
-                        "line {}: expected two numeric columns `r, z`, found `{line}`",
-                        i + 1
+                        "line {}: expected two numeric columns `{}, {}`, found `{line}`",
+                        i + 1,
+                        names[0],
+                        names[1]
                     ),
                 ))
             }

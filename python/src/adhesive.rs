@@ -144,7 +144,8 @@ impl AdhesiveContact {
         approach: Option<f64>,
         tolerance: f64,
     ) -> PyResult<AdhesiveStep> {
-        let load = crate::contact::one_load(mean_pressure, force, approach, true)?;
+        let load =
+            crate::contact::one_load(mean_pressure, force, approach, crate::contact::Signed::All)?;
         let state = &mut self.state;
         let step = self.stop.run(py, || state.step(load, tolerance))?;
         Ok(AdhesiveStep {

@@ -539,22 +539,36 @@ fn parse_paths(given: Option<&std::collections::HashMap<String, String>>) -> PyR
     Ok(paths)
 }
 
+/// Which loads may be negative: none (a non-adhesive contact), the approach (a body
+/// that lifts off), or all (an adhesive contact pulls).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Signed {
+    None,
+    Approach,
+    All,
+}
+
 /// The one load of the keywords `mean_pressure`, `force` and `approach` (exactly one
-/// given), finite and, unless `signed` (an adhesive contact pulls), >= 0; messages name
-/// the keyword.
+/// given), finite and >= 0 unless `signed` lets it be negative; messages name the
+/// keyword.
 pub(crate) fn one_load(
     mean_pressure: Option<f64>,
     force: Option<f64>,
     approach: Option<f64>,
-    signed: bool,
+    signed: Signed,
 ) -> PyResult<Load> {
     for (name, v) in [
         ("mean_pressure", mean_pressure),
         ("force", force),
         ("approach", approach),
     ] {
-        if let Some(v) = v.filter(|v| !(v.is_finite() && (signed || *v >= 0.0))) {
-            let need = if signed { "finite" } else { "finite and >= 0" };
+        let negative = signed == Signed::All || (signed == Signed::Approach && name == "approach");
+        if let Some(v) = v.filter(|v| !(v.is_finite() && (negative || *v >= 0.0))) {
+            let need = if negative {
+                "finite"
+            } else {
+                "finite and >= 0"
+            };
             return Err(value_error(format!("{name} = {v} must be {need}")));
         }
     }
@@ -569,15 +583,13 @@ pub(crate) fn one_load(
 }
 
 pub(crate) fn request(
-    mean_pressure: Option<f64>,
-    force: Option<f64>,
-    approach: Option<f64>,
+    (mean_pressure, force, approach, signed): (Option<f64>, Option<f64>, Option<f64>, Signed),
     (tolerance, max_iterations): (f64, usize),
     stiffness: bool,
     paths: Paths,
 ) -> PyResult<Request> {
     // Checked here, under the names the caller gave (a solver may see the load rescaled).
-    let load = one_load(mean_pressure, force, approach, false)?;
+    let load = one_load(mean_pressure, force, approach, signed)?;
     // The command line's check (bem3d::SolverOptions::validate).
     let opts = SolverOptions {
         paths,
@@ -813,9 +825,7 @@ impl Contact {
         paths: Option<std::collections::HashMap<String, String>>,
     ) -> PyResult<ContactResult> {
         let req = request(
-            mean_pressure,
-            force,
-            approach,
+            (mean_pressure, force, approach, Signed::None),
             (tolerance, max_iterations),
             stiffness,
             parse_paths(paths.as_ref())?,
@@ -867,7 +877,12 @@ impl Contact {
             };
         let mut out: Vec<ContactResult> = Vec::with_capacity(loads.len());
         for (p, f, d) in loads {
-            let req = request(p, f, d, (tolerance, max_iterations), stiffness, paths)?;
+            let req = request(
+                (p, f, d, Signed::None),
+                (tolerance, max_iterations),
+                stiffness,
+                paths,
+            )?;
             let warm = out.last().map(|r| r.step.clone());
             out.push(self.run(py, &req, warm.as_ref())?);
         }

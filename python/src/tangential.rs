@@ -93,24 +93,33 @@ step_class! {
     getters {
         /// The tangential force reached [stress x length^2].
         force: f64,
-        /// Rigid shift of the body along x [length]: from the mean surface displacement on
-        /// the periodic half-space, absolute on the free one (NaN when sliding).
-        shift: f64,
         /// Cells that stick (|q| < mu p) and cells that slip.
         stick_cells: usize,
         slip_cells: usize,
-        /// Energy dissipated by slip in this step [stress x length^3].
-        dissipated: f64,
         iterations: usize,
         residual: f64,
         /// The force reached the total friction mu P: the body slides as a whole.
         sliding: bool,
     }
     methods {
+        /// Rigid shift of the body along x [length]: from the mean surface displacement on
+        /// the periodic half-space, absolute on the free one; None when sliding (how far
+        /// the body slides at mu P is not set by a quasi-static step).
+        #[getter]
+        fn shift(&self) -> Option<f64> {
+            (!self.step.sliding).then_some(self.step.shift)
+        }
+        /// Energy dissipated by slip in this step [stress x length^3]; None when sliding
+        /// (mu P times a slide distance the step does not set).
+        #[getter]
+        fn dissipated(&self) -> Option<f64> {
+            (!self.step.sliding).then_some(self.step.dissipated)
+        }
         fn __repr__(&self) -> String {
+            let shift = self.shift().map_or("None".into(), |v| format!("{v:.6e}"));
             format!(
-                "TangentialStep(force={:.6e}, shift={:.6e}, stick_cells={}, sliding={})",
-                self.step.force, self.step.shift, self.step.stick_cells, self.step.sliding
+                "TangentialStep(force={:.6e}, shift={shift}, stick_cells={}, sliding={})",
+                self.step.force, self.step.stick_cells, self.step.sliding
             )
         }
     }

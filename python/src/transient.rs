@@ -1,6 +1,6 @@
 //! Transient viscoelastic contact in 3D (`bem3d::viscoelastic`) on numpy height maps.
 
-use crate::contact::{grid_array, interruptible, request, Frame, Grid};
+use crate::contact::{grid_array, interruptible, request, Frame, Grid, Signed};
 use crate::errors::value_error;
 use crate::on_operator::OnOperator;
 use bem3d::viscoelastic::{Relaxation, Step, TransientContact as Transient};
@@ -157,10 +157,9 @@ impl TransientContact {
         tolerance: f64,
         max_iterations: usize,
     ) -> PyResult<TransientStep> {
+        // A negative approach lifts the body off (no contact, the history relaxing).
         let req = request(
-            mean_pressure,
-            force,
-            approach,
+            (mean_pressure, force, approach, Signed::Approach),
             (tolerance, max_iterations),
             false,
             Paths::default(),

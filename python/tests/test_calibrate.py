@@ -63,9 +63,28 @@ def test_a_map_and_its_psd_table_end_to_end(tmp_path):
         ({"hurst": 0.5}, {"realisations": (8, 4, 2)}, "realisations.max"),
         ({"hurst": 0.5}, {"size": 1.0}, "size"),
         ({"hurst": 0.5}, {"solve_map": False}, "solve_map"),
+        # a masked array's masked cells are undefined, as for Topography
+        (np.ma.masked_array(np.random.default_rng(1).normal(size=(64, 64)),
+                            mask=np.eye(64, dtype=bool)), {"size": (1.0, 1.0)}, "undefined"),
+        # a plane has no roughness; a constant map neither
+        (np.add.outer(0.01 * np.arange(64), 0.02 * np.arange(64)), {"size": (1.0, 1.0)}, "flat"),
+        (np.full((64, 64), 3.0), {"size": (1.0, 1.0)}, "flat"),
+        # whole numbers are not rounded, pairs not truncated
+        ({"hurst": 0.5}, {"bandwidth": 8.9}, "bandwidth = 8.9 must be a whole number"),
+        ({"hurst": 0.5}, {"cells": 4.7}, "cells"),
+        ({"hurst": 0.5}, {"seed": 1.5}, "seed"),
+        ({"hurst": 0.5}, {"bandwidth": "a"}, "bandwidth"),
+        ({"hurst": 0.5}, {"window": (0.02, 0.3, 0.5)}, "window"),
+        ({"hurst": 0.5}, {"realisations": (8, 16)}, "realisations"),
+        ({"hurst": 0.5}, {"cells": 2}, "cells = 2 must lie in"),
+        ((np.array([1.0, 2.0, 3.0]), np.array([1.0, 0.5, 0.2])), {"size": (1.0, 2.0)}, "one diameter"),
+        ((np.array([7.0, 20.0, 60.0]), np.array([1.0, -0.5, 0.2])), {"size": 1.0}, "C2D = -0.5"),
+        ((np.array([7.0, 20.0, 60.0]), np.array([1.0, np.nan, 0.2])), {"size": 1.0}, "C2D = NaN"),
     ],
 )
 def test_bad_input_names_the_parameter(tmp_path, source, kwargs, needle):
-    with pytest.raises(ValueError, match=needle):
+    with pytest.raises(ValueError, match=needle) as e:
         mrdw.calibrate(source, out=tmp_path / "x", **{**SMALL, **kwargs})
-    assert not (tmp_path / "x").exists()
+    assert not (tmp_path / "x").exists() and not (tmp_path / "x.work").exists()
+    # the message speaks of what the caller gave, not of a temporary scene file
+    assert "mrdw-calibrate-" not in str(e.value)

@@ -43,6 +43,18 @@ def test_a_held_load_creeps_to_the_relaxed_elastic_contact():
     assert v.displacement.shape == h.shape
 
 
+def test_a_negative_approach_lifts_the_body_off():
+    # Lift-off: no contact, no force, and the medium relaxes from where it was.
+    h = rough(32)
+    v = mrdw.TransientContact(h, relaxed=1.0, terms=[(3.0, 1.0)])
+    pressed = v.step(0.1, approach=0.01)
+    assert pressed.force > 0
+    off = v.step(0.1, approach=-1.0)
+    assert off.force == 0.0 and off.contact_cells == 0 and off.approach == -1.0
+    with pytest.raises(ValueError, match="force = -1"):
+        v.step(0.1, force=-1.0)
+
+
 def test_bad_input_is_refused():
     h = rough(16)
     with pytest.raises(ValueError, match="Prony term"):

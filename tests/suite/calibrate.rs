@@ -139,3 +139,77 @@ fn keys_without_effect_are_refused() {
         assert!(!out.exists());
     }
 }
+
+/// Unconverged 3D solves are not dropped in silence: they are listed in the solves
+/// table and in summary.json's failures, and the run exits with 4 (a tolerance below
+/// what double precision reaches: before, lambda moved from 3.02 to 3.71 with exit 0).
+#[test]
+fn unconverged_solves_fail_the_run_visibly() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (o, out) = run_scene_text(
+        tmp.path(),
+        &format!("name = \"c\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"calibrate\"\nself_affine = {{ hurst = 0.5 }}\ntolerance = 1e-16\n{SMALL}"),
+    );
+    assert_eq!(o.status.code(), Some(4), "{}", stderr(&o));
+    let s = summary(&out);
+    let failures = s["failures"].as_array().unwrap();
+    assert!(
+        failures
+            .iter()
+            .any(|f| f.as_str().unwrap().contains("did not converge")),
+        "{failures:?}"
+    );
+    assert!(
+        s["results"]["calibrate.unconverged_3d_solves"]
+            .as_f64()
+            .unwrap()
+            > 0.0
+    );
+    let solves = std::fs::read_to_string(out.join("solves.csv")).unwrap();
+    assert!(
+        solves.lines().any(|l| l.ends_with(",0,0")),
+        "no unconverged row"
+    );
+}
+
+/// A PSD table written with spaces reads as one with commas; corrupt rows (C2D <= 0,
+/// NaN) are refused naming the row, not dropped; a failed run leaves no checkpoint
+/// folder behind.
+#[test]
+fn psd_tables_are_read_or_refused_row_by_row() {
+    let tmp = tempfile::tempdir().unwrap();
+    // C2D ~ q^-3 from 2 pi to 80 pi, the second row's C2D times `sign`
+    let table = |sign: f64| -> String {
+        (1..=40)
+            .map(|k| {
+                let q = std::f64::consts::TAU * k as f64;
+                let c = if k == 2 { sign } else { 1.0 } * q.powf(-3.0);
+                format!("{q:e} {c:e}\n")
+            })
+            .collect()
+    };
+    let rows = table(1.0);
+    let scene = |table: &str| {
+        std::fs::write(tmp.path().join("psd.txt"), table).unwrap();
+        format!("name = \"c\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"calibrate\"\npsd = \"psd.txt\"\nsize = [1.0, 1.0]\n{SMALL}")
+    };
+    let (o, out) = run_scene_text(tmp.path(), &scene(&format!("q C2D\n{rows}")));
+    ok(&o);
+    std::fs::remove_dir_all(out).unwrap();
+    for (bad, needle) in [
+        (table(-1.0), "row 2: C2D = -"),
+        (format!("{rows}6.3e2 NaN\n"), "C2D = NaN"),
+        (format!("{rows}6.3e2 0\n"), "C2D = 0"),
+    ] {
+        let (o, out) = run_scene_text(tmp.path(), &scene(&bad));
+        failed_with(&o, 2, needle);
+        assert!(!out.exists());
+    }
+    // cells = 2 puts two cells on the shortest wavelength, less than its Nyquist needs
+    let (o, out) = run_scene_text(
+        tmp.path(),
+        "name = \"c\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"calibrate\"\nself_affine = { hurst = 0.5 }\nbandwidth = 16\ncells = 2\nlines = 10\n",
+    );
+    failed_with(&o, 2, "cells = 2");
+    assert!(!out.exists() && !tmp.path().join("o.work").exists());
+}

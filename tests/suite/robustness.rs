@@ -4,7 +4,7 @@
 //! run, report folders keep what a user added, and the benchmark commands refuse what
 //! they cannot do.
 
-use crate::common::{mrdw_in, stderr, summary};
+use crate::common::{mrdw_in, run_scene_text, stderr, summary};
 use std::path::Path;
 use std::process::{Command, Output};
 
@@ -732,6 +732,8 @@ fn tangential_3d_bad_input_names_the_key() {
         (base.clone() + "fractions = [0.5, 0.2]\n", "must increase"),
         (base.clone() + "amplitudes = [0.5, 1.0]\n", "amplitudes"),
         (base.replace("cells = 256", "cells = 8"), "cells = 8"),
+        // 3.2 cells per contact radius: no cell of the slip annulus, a dissipation of 0
+        (base.replace("cells = 256", "cells = 32"), "cells per contact radius"),
         (
             base.replace("period = 10.0", "period = 2.0\nperiodic = false"),
             "on the free half-space",
@@ -757,6 +759,16 @@ fn tangential_viscoelastic_3d_bad_input_names_the_key() {
         &[
             ("cells_3d = 64", "cells_3d = 8", "cells_3d = 8"),
             ("side_3d = 2.5", "side_3d = 2.0", "side_3d"),
+            (
+                "side_3d = 2.5",
+                "side_3d = 10.0",
+                "cells per contact radius",
+            ),
+            (
+                "amplitude = 0.2",
+                "amplitude = 1e-300",
+                "amplitude = 1e-300",
+            ),
             // A key of the 3D side without the 3D side is refused, not ignored.
             ("cells_3d = 64\n", "", "give cells_3d"),
             (
@@ -966,4 +978,28 @@ fn refuses_each(dir: &Path, base: &str, cases: &[(String, &str)]) {
         );
         refused(&o, needle);
     }
+}
+
+/// `adhesion_3d` on a body without a closed-form pull-off (a power law) runs the 3D cycle
+/// beside MRD alone: no closed-form columns (it ended in an internal error on the stage
+/// it did not declare).
+#[test]
+fn adhesion_3d_runs_bodies_without_a_closed_form() {
+    let tmp = tempfile::tempdir().unwrap();
+    let base = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/adhesion-3d.toml"),
+    )
+    .unwrap();
+    let text = base
+        .replace(
+            "{ kind = \"sphere\", radius = 1.0 }",
+            "{ kind = \"power_law\", c = 0.5, n = 2.5 }",
+        )
+        .replace("cells = [32, 64, 128, 256]", "cells = [24, 48]")
+        .replace("steps = 100", "steps = 30");
+    let (o, out) = run_scene_text(tmp.path(), &text);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = summary(&out);
+    let stages = s["outputs"][0]["stages"].as_array().unwrap();
+    assert!(!stages.iter().any(|v| v == "closed_form"), "{stages:?}");
 }

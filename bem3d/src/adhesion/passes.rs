@@ -8,20 +8,8 @@
 //! and the new direction) and use every thread of the pool, which would otherwise wait
 //! for the next transform (measurements: bench/HISTORY.md).
 
+use crate::kit::chunks::{max, CHUNK};
 use rayon::prelude::*;
-
-/// Cells per chunk of a pass (small in the unit tests, so that their grids split).
-pub(crate) const CHUNK: usize = if cfg!(test) { 128 } else { 8192 };
-
-/// `max(a, b)` as a select (vectorizes); a NaN `b` leaves `a`.
-#[inline(always)]
-pub(crate) fn max(a: f64, b: f64) -> f64 {
-    if b > a {
-        b
-    } else {
-        a
-    }
-}
 
 /// The residual of a round on its set: `r = d - u - z` on the set (0 off it), `y = r`,
 /// after the update `p += alpha t`, `u += alpha kt` when `alpha` is given. Returns the
@@ -136,14 +124,4 @@ pub(super) fn direction(on: &[bool], y: &[f64], mean: f64, beta: f64, t: &mut [f
             };
         }
     });
-}
-
-/// `sum a b`.
-pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let parts: Vec<f64> = a
-        .par_chunks(CHUNK)
-        .zip(b.par_chunks(CHUNK))
-        .map(|(a, b)| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>())
-        .collect();
-    parts.into_iter().sum()
 }

@@ -15,6 +15,9 @@ pub const MIN_PIXELS: usize = 32;
 
 /// The slope anisotropy above which a warning says the isotropic PSD is a simplification.
 pub const ANISOTROPY_WARN: f64 = 0.2;
+/// The rms height, over the largest height before the plane is removed, below which a
+/// map counts as flat (a tilted plane leaves about 1e-19 of it).
+const FLAT: f64 = 1e-12;
 
 /// A measured map reduced to what the studies use.
 #[derive(Debug, Clone)]
@@ -76,7 +79,15 @@ impl Measured {
                     .copied()
             })
             .collect();
+        let extent = heights.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         remove_plane(&mut heights, n);
+        let rms = (heights.iter().map(|v| v * v).sum::<f64>() / (n * n) as f64).sqrt();
+        // What a plane leaves in rounding: some 1e-16 of the heights' magnitude.
+        if rms <= FLAT * extent || rms.is_nan() {
+            return bad(format!(
+                "topography: the map is flat once its mean plane is removed (rms height {rms:.3e} against heights up to {extent:.3e}): it has no roughness to calibrate"
+            ));
+        }
         let side = n as f64 * dx;
         let psd = windowed_psd(&heights, n, side);
         Ok(Self {

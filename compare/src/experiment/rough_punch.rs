@@ -76,6 +76,51 @@ pub struct BemCurve {
     pub seconds: f64,
 }
 
+/// The 3D solves of a study that did not converge, counted over its punches' records.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SolveTally {
+    pub solves: usize,
+    pub unconverged: usize,
+    /// Converged solves whose tangent-stiffness solve did not converge.
+    pub stiffness_failed: usize,
+    /// The largest residual of the unconverged solves.
+    pub worst: f64,
+}
+
+impl SolveTally {
+    pub fn add(&mut self, s: &SolveRecord) {
+        self.solves += 1;
+        if !s.converged {
+            self.unconverged += 1;
+            self.worst = self.worst.max(s.residual);
+        } else if !s.stiffness_converged {
+            self.stiffness_failed += 1;
+        }
+    }
+
+    pub fn add_curve(&mut self, c: &BemCurve) {
+        c.solves.iter().for_each(|s| self.add(s));
+    }
+
+    /// Makes unconverged solves fail the run visibly (the report is still written, the
+    /// exit code is 4) and records their count as `unconverged_3d_solves`.
+    pub fn report(&self, tolerance: f64, out: &mut Section) {
+        if self.unconverged > 0 {
+            out.failures.push(format!(
+                "{} of {} 3D solves did not converge (largest residual {:.2e}, tolerance {tolerance:.1e}); left out of the curves, listed in the solves table",
+                self.unconverged, self.solves, self.worst
+            ));
+        }
+        if self.stiffness_failed > 0 {
+            out.failures.push(format!(
+                "{} 3D stiffness solves did not converge; left out of the curves",
+                self.stiffness_failed
+            ));
+        }
+        out.value("unconverged_3d_solves", serde_json::json!(self.unconverged));
+    }
+}
+
 /// Result of the 1D ensemble at one H: k/(E* L) per realisation on the f grid.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct MrdEnsemble {

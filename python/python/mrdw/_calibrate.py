@@ -33,16 +33,23 @@ def _stage_source(source, size, folder, name):
             )
         path = os.path.join(folder, "psd.csv")
         np.savetxt(path, np.column_stack([q, c]), delimiter=",", header="q, C2D", fmt="%.17g")
-        length = float(size[0] if np.ndim(size) else size)
+        if np.ndim(size):
+            sides = [_number("size", v) for v in np.ravel(size)]
+            if len(sides) != 2 or sides[0] != sides[1]:
+                raise ValueError(
+                    f"size = {size!r}: a PSD's punch is a disc of one diameter L; give size=L"
+                )
+            length = sides[0]
+        else:
+            length = _number("size", size)
         return ["psd = \"psd.csv\"", f"size = [{length!r}, {length!r}]"], "1"
     if isinstance(source, np.ndarray):
         from ._topography import Topography
 
-        data = np.asarray(source, dtype=float)
-        if data.ndim != 2:
-            raise ValueError(f"source: a height map is 2D, got shape {data.shape}")
-        nan = ~np.isfinite(data)
-        source = Topography(data, nan if nan.any() else None)
+        if source.ndim != 2:
+            raise ValueError(f"source: a height map is 2D, got shape {source.shape}")
+        # Topography reads a masked array's mask and NaN cells as undefined.
+        source = Topography(source)
     topo = read_topography(source)
     if topo.undefined is not None and topo.undefined.any():
         raise ValueError(
@@ -69,21 +76,57 @@ def _stage_source(source, size, folder, name):
     return [f"topography = \"{stem}.npy\"", f"size = [{lx!r}, {ly!r}]"], str(unit or "1")
 
 
+def _count(name, value):
+    """`value` as an int, refused (naming `name`) unless it is a whole number."""
+    if isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} = {value!r} must be a whole number")
+    if isinstance(value, (int, np.integer)):
+        return int(value)
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} = {value!r} must be a whole number") from None
+    if not (np.isfinite(v) and v == int(v)):
+        raise ValueError(f"{name} = {value!r} must be a whole number")
+    return int(v)
+
+
+def _number(name, value):
+    """`value` as a float, refused (naming `name`) unless it is a real number."""
+    if isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} = {value!r} must be a number")
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} = {value!r} must be a number") from None
+
+
+def _pair(name, value):
+    """`value` as two floats, refused (naming `name`) unless it has exactly two."""
+    try:
+        items = list(value)
+    except TypeError:
+        raise ValueError(f"{name} = {value!r} must be a pair (lo, hi)") from None
+    if len(items) != 2:
+        raise ValueError(f"{name} = {value!r} must be a pair (lo, hi), got {len(items)} values")
+    return tuple(_number(f"{name}[{k}]", v) for k, v in enumerate(items))
+
+
 def calibrate(
     source,
     *,
     out,
     size=None,
     work=None,
-    bandwidth=32,
-    cells=8,
-    realisations=(16, 400, 16),
-    target=0.10,
-    window=(0.02, 0.5),
-    loads=16,
-    lines=1000,
+    bandwidth=None,
+    cells=None,
+    realisations=None,
+    target=None,
+    window=None,
+    loads=None,
+    lines=None,
     solve_map=True,
-    seed=0,
+    seed=None,
     progress=True,
     name=None,
 ):
@@ -92,13 +135,14 @@ def calibrate(
     lambda of Eq. (76) (C1D = lambda q C2D of the same C2D) for this surface: rigid
     circular 3D punches of diameter L whose faces carry the source's spectrum, against MRD
     lines of the same spectrum; lambda makes MRD's k(F) match the 3D ensemble mean over
-    k/(E* L) in `window`. The same computation as the CLI's `calibrate` output kind (the
-    scene is written into `out` as scene.toml).
+    k/(E* L) in `window`. The same computation as the CLI's `calibrate` output kind; the
+    scene it ran is recorded in `out`'s summary.json (key "scene").
 
     source: a measured topography (a path read as `read_topography` reads it, a
-        `Topography`, a SurfaceTopography topography or an ndarray with `size=`), an
-        isotropic PSD `(q [1/length], C2D [length^4])` with `size=L` (the punch
-        diameter), or a self-affine spectrum `{"hurst": H, "rolloff": q_r / q0}`.
+        `Topography`, a SurfaceTopography topography or an ndarray with `size=`; the
+        masked cells of a numpy masked array and NaN heights count as undefined and are
+        refused), an isotropic PSD `(q [1/length], C2D [length^4])` with `size=L` (the
+        punch diameter), or a self-affine spectrum `{"hurst": H, "rolloff": q_r / q0}`.
     out: the report folder (CSV + PNG + summary.json), written as `mrdw run --out` does.
     size: (lx, ly) [length] of a map whose source states none, or L for a PSD.
     work: a checkpoint folder kept after the run: a rerun with the same arguments resumes
@@ -107,18 +151,39 @@ def calibrate(
         map's Nyquist wavenumber) and cells per shortest wavelength.
     realisations: (min, max, batch) punches: batches are added while lambda's 95 %
         interval is wider than +/- `target`.
-    window: the calibration range in k/(E* L); loads: approaches per punch; lines: MRD
-        lines; solve_map: also solve the measured map itself in 3D; seed: the random
-        phases; name: the map's name in titles (default: the file's name, else "map").
+    window: the calibration range (lo, hi) in k/(E* L); loads: approaches per punch;
+        lines: MRD lines; solve_map: also solve the measured map itself in 3D; seed: the
+        random phases; name: the map's name in titles (default: the file's name, else
+        "map").
+
+    Parameters left at None take the `calibrate` scene kind's defaults (the same as the
+    CLI's; `mrdw show calibrate-ci` and cases/README.md list them). Whole-number
+    parameters refuse fractions; every bad value raises ValueError naming it.
 
     Returns {"lambda", "interval" (95 %), "misfit" (max, rms |Delta ln k| over the
     range), "alpha_3d", "alpha_3d_interval", "alpha_mrd", "realisations", "bandwidth",
     "results" (every scalar of summary.json), "warnings", "files"}. Raises ValueError
     for bad input (the parameter named), MemoryError for grids that do not fit.
     """
-    r = tuple(int(v) for v in realisations)
-    if len(r) != 3:
-        raise ValueError("realisations: give (min, max, batch)")
+    keys_given = []
+    for key, value in (("bandwidth", bandwidth), ("cells", cells), ("loads", loads),
+                       ("lines", lines), ("seed", seed)):
+        if value is not None:
+            keys_given.append(f"{key} = {_count(key, value)}")
+    if realisations is not None:
+        try:
+            r = list(realisations)
+        except TypeError:
+            raise ValueError(f"realisations = {realisations!r}: give (min, max, batch)") from None
+        if len(r) != 3:
+            raise ValueError(f"realisations = {realisations!r}: give (min, max, batch)")
+        lo, hi, batch = (_count(f"realisations.{k}", v) for k, v in zip(("min", "max", "batch"), r))
+        keys_given.append(f"realisations = {{ min = {lo}, max = {hi}, batch = {batch} }}")
+    if target is not None:
+        keys_given.append(f"target = {_number('target', target)!r}")
+    if window is not None:
+        lo, hi = _pair("window", window)
+        keys_given.append(f"window = [{lo!r}, {hi!r}]")
     out = os.fspath(out)
     with tempfile.TemporaryDirectory(prefix="mrdw-calibrate-") as folder:
         keys, unit = _stage_source(source, size, folder, name)
@@ -137,21 +202,24 @@ def calibrate(
             "[[outputs]]",
             'kind = "calibrate"',
             *keys,
-            f"bandwidth = {int(bandwidth)}",
-            f"cells = {int(cells)}",
-            f"realisations = {{ min = {r[0]}, max = {r[1]}, batch = {r[2]} }}",
-            f"target = {float(target)!r}",
-            f"window = [{float(window[0])!r}, {float(window[1])!r}]",
-            f"loads = {int(loads)}",
-            f"lines = {int(lines)}",
-            f"seed = {int(seed)}",
+            *keys_given,
         ]
         scene = os.path.join(folder, "scene.toml")
         with open(scene, "w") as f:
             f.write("\n".join(lines_toml) + "\n")
-        done = _mrdw._run_to_folder(
-            scene, out, None if work is None else os.fspath(work), bool(progress)
-        )
+        try:
+            done = _mrdw._run_to_folder(
+                scene, out, None if work is None else os.fspath(work), bool(progress)
+            )
+        except ValueError as e:
+            # The scene file is this function's own: its path means nothing to the caller.
+            message = (
+                str(e)
+                .removeprefix(f"{scene}: ")
+                .replace(os.path.join(folder, "psd.csv"), "source (q, C2D)")
+                .replace(folder + os.sep, "")
+            )
+            raise ValueError(message) from None
     res = {k.split(".", 1)[1]: v for k, v in done["results"].items()}
     return {
         "lambda": res["lambda"],

@@ -376,16 +376,16 @@ class TangentialStep:
     def force(self) -> float:
         """The tangential force reached [stress x length^2]."""
     @property
-    def shift(self) -> float:
+    def shift(self) -> Optional[float]:
         """Rigid shift along x [length]: from the mean surface displacement (periodic),
-        absolute (free); NaN when sliding."""
+        absolute (free); None when sliding (a quasi-static step does not set how far)."""
     @property
     def stick_cells(self) -> int: ...
     @property
     def slip_cells(self) -> int: ...
     @property
-    def dissipated(self) -> float:
-        """Energy dissipated by slip in this step [stress x length^3]."""
+    def dissipated(self) -> Optional[float]:
+        """Energy dissipated by slip in this step [stress x length^3]; None when sliding."""
     @property
     def iterations(self) -> int: ...
     @property

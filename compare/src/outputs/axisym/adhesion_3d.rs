@@ -92,12 +92,7 @@ impl Output for Adhesion3d {
 
     fn stages(&self, ctx: &Context) -> Vec<Stage> {
         let mut s = vec![Stage::HessTransform, Stage::AdhesionSemiAnalytic];
-        if ctx
-            .profile
-            .as_ref()
-            .and_then(|p| for_profile::pull_off(p, 1.0, 1.0, true))
-            .is_some()
-        {
+        if has_closed_form(ctx) {
             s.push(Stage::ClosedForm);
         }
         s.push(Stage::Adhesion3d);
@@ -112,12 +107,18 @@ impl Output for Adhesion3d {
             .stage(Stage::AdhesionSemiAnalytic, || self.mrd(contact))
             .ctx("MRD adhesion")?;
         let profile = env.ctx.profile()?;
-        let closed = out.stage(Stage::ClosedForm, || {
-            (
-                for_profile::pull_off(profile, e, gamma, true),
-                for_profile::pull_off(profile, e, gamma, false),
-            )
-        });
+        // Bodies without a closed-form pull-off (a power law, a tabulated profile, ...)
+        // are compared with MRD alone.
+        let closed = if has_closed_form(env.ctx) {
+            out.stage(Stage::ClosedForm, || {
+                (
+                    for_profile::pull_off(profile, e, gamma, true),
+                    for_profile::pull_off(profile, e, gamma, false),
+                )
+            })
+        } else {
+            (None, None)
+        };
         let a_top = mrd.curve.iter().map(|c| c.2).fold(0.0, f64::max);
         self.check_resolution(&mrd, a_top)?;
         let grids = out
@@ -132,6 +133,15 @@ impl Output for Adhesion3d {
         self.report_pull_off(env, out, &mrd, closed, &grids);
         Ok(())
     }
+}
+
+/// Whether the scene's body has a closed-form pull-off (under force control; the
+/// approach-controlled one exists for the same bodies).
+fn has_closed_form(ctx: &Context) -> bool {
+    ctx.profile
+        .as_ref()
+        .and_then(|p| for_profile::pull_off(p, 1.0, 1.0, true))
+        .is_some()
 }
 
 /// Fewest cells per pull-off radius on the finest grid, and the largest approach step

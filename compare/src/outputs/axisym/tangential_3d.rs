@@ -100,6 +100,15 @@ impl Output for Tangential3d {
                 if self.periodic { "periodic" } else { "free" }
             ));
         }
+        let per_radius = self.cells as f64 / self.period;
+        if per_radius < crate::checks::MIN_CELLS_PER_CONTACT_RADIUS {
+            return bad(format!(
+                "cells / period = {} / {} = {per_radius:.3} cells per contact radius: the 3D contact needs at least {} (raise cells or lower period)",
+                self.cells,
+                self.period,
+                crate::checks::MIN_CELLS_PER_CONTACT_RADIUS
+            ));
+        }
         for (key, v) in [
             ("fractions", &self.fractions),
             ("amplitudes", &self.amplitudes),
@@ -165,6 +174,22 @@ impl Output for Tangential3d {
                 },
             )
             .ctx("MRD tangential springs")?;
+        // An amplitude whose slip annulus (MRD's exact stick radius) is thinner than a
+        // cell slips in no 3D cell: its dissipation is not resolved.
+        let cell = self.period * a / self.cells as f64;
+        for x in &self.amplitudes {
+            let c = tc
+                .at_force(x * mu * fn_)
+                .ctx("MRD tangential springs")?
+                .stick_radius;
+            if a - c < cell {
+                out.warn(format!(
+                    "amplitude {x} of mu F_N: the slip annulus is {:.2} cells wide ({:.1} cells per contact radius); the 3D dissipation there is not resolved: raise cells",
+                    (a - c) / cell,
+                    a / cell
+                ));
+            }
+        }
         // Cattaneo-Mindlin and Mindlin-Deresiewicz are the sphere's; other bodies have
         // MRD (exact for bodies of revolution, Jaeger) as their reference.
         let closed = for_profile::sphere_radius(&profile).map(|_| {

@@ -110,8 +110,14 @@ impl Output for TangentialViscoelastic {
         require_positive("friction coefficient mu", self.mu)?;
         require_positive("normal_force", self.normal_force)?;
         require_positive("g_inf", self.g_inf)?;
-        if !(self.amplitude > 0.0 && self.amplitude < 1.0) {
-            return bad("amplitude must lie in (0, 1) (a fraction of the full-slip displacement)");
+        // Below 1e-6 the slip annulus is a millionth of the contact radius: the response
+        // is the stick one, linear in the amplitude, and the 3D shift search works at
+        // forces within the rounding of the normal contact's.
+        if !(self.amplitude >= 1e-6 && self.amplitude < 1.0) {
+            return bad(format!(
+                "amplitude = {} must lie in [1e-6, 1) (a fraction of the full-slip displacement; below, the contact sticks and the response is linear in it)",
+                self.amplitude
+            ));
         }
         if !(positive(self.ramp_time) && self.hold_time.is_finite() && self.hold_time >= 0.0) {
             return bad("ramp_time must be > 0 and hold_time >= 0");
@@ -143,6 +149,13 @@ impl Output for TangentialViscoelastic {
             if !(side.is_finite() && (2.2..=100.0).contains(&side)) {
                 return bad(format!(
                     "side_3d = {side} contact radii must lie in [2.2, 100]"
+                ));
+            }
+            let per_radius = n as f64 / side;
+            let least = crate::checks::MIN_CELLS_PER_CONTACT_RADIUS;
+            if per_radius < least {
+                return bad(format!(
+                    "cells_3d / side_3d = {n} / {side} = {per_radius:.3} cells per contact radius: the 3D side needs at least {least} (raise cells_3d or lower side_3d)"
                 ));
             }
             let (nu, _) = equivalent_body(ctx.material.e_star, self.g_inf);

@@ -17,7 +17,7 @@ impl Output for Calibrate {
     fn validate(&self, ctx: &Context) -> Result<()> {
         self.realisations.validate()?;
         count_in("bandwidth", self.bandwidth as u64, 8..=512)?;
-        count_in("cells", self.cells as u64, 2..=32)?;
+        count_in("cells", self.cells as u64, 3..=32)?;
         count_in("loads", self.loads as u64, 6..=MAX_LOADS)?;
         count_in("lines", self.lines, 2..=MAX_REALISATIONS)?;
         count_in("points_1d_per_cell", self.points_1d_per_cell as u64, 2..=64)?;
@@ -67,7 +67,8 @@ impl Output for Calibrate {
             out.warn(w.clone());
         }
         let work = env.work_root.join(self.key());
-        let plan = rough_punch::run_tasks(out, || self.realise(&case, &work, env.control))?;
+        let (plan, mut solves) =
+            rough_punch::run_tasks(out, || self.realise(&case, &work, env.control))?;
         let (cal, map) = out.stage(Stage::SweepFit, || -> Result<_> {
             let map = match (&case.map, self.solves_map()) {
                 (Some(_), true) => Some(report::MapCurves {
@@ -79,7 +80,12 @@ impl Output for Calibrate {
             };
             Ok((plan, map))
         })?;
-        report::report(self, &case, &cal, map.as_ref(), &env.ctx.units.length, out)
+        if let Some(m) = &map {
+            solves.push((None, m.bem.solves.clone()));
+        }
+        report::report(self, &case, &cal, map.as_ref(), &env.ctx.units.length, out)?;
+        report::solves(self, &solves, out);
+        Ok(())
     }
 }
 
@@ -94,12 +100,19 @@ impl Calibrate {
     /// Computes (unless `report_only`) and calibrates on `min` realisations, then on
     /// batches more while lambda's interval is wider than the target; a sharded run
     /// computes every realisation up to `max` and reports nothing. Each punch's curve is
-    /// read and reduced once, when its batch is first calibrated.
-    fn realise(&self, case: &Case, work: &Path, control: &RunControl) -> Result<Calibration> {
+    /// read and reduced once, when its batch is first calibrated; its solves' records
+    /// are returned beside the calibration.
+    fn realise(
+        &self,
+        case: &Case,
+        work: &Path,
+        control: &RunControl,
+    ) -> Result<(Calibration, Vec<report::Solves>)> {
         let r = self.realisations;
         let head = tasks::all(self).len() - r.max as usize;
         let fs = tasks::f_grid();
         let (mut k1, mut k3): (Option<Vec<Option<f64>>>, _) = (None, Vec::new());
+        let mut solves = Vec::new();
         let mut n = r.min;
         loop {
             if !control.report_only {
@@ -114,11 +127,12 @@ impl Calibrate {
             for r in k3.len() as u64..n {
                 let curve = tasks::load::<BemCurve>(work, Task::Bem(r))?;
                 k3.push(analysis::reduce(&curve, &fs));
+                solves.push((Some(r), curve.solves));
             }
             let c = self.calibrate(case, &fs, &k3, k1.as_deref().unwrap_or_default())?;
             let met = c.lambda.relative_half_width() <= self.target;
             if met || n >= r.max {
-                return Ok(c);
+                return Ok((c, solves));
             }
             n = (n + r.batch).min(r.max);
         }

@@ -5,7 +5,7 @@ use super::tasks::{f_grid, Case, Lines, Spectrum};
 use super::Calibrate;
 use crate::error::Result;
 use crate::experiment::fit::{calibrate_lambda_at, fit_points, window_points};
-use crate::experiment::rough_punch::BemCurve;
+use crate::experiment::rough_punch::{BemCurve, SolveRecord, SolveTally};
 use crate::report::{Figure, Section, Series, Style, Table};
 use std::f64::consts::TAU;
 
@@ -81,6 +81,13 @@ pub fn report(
         out.scalar(k, v);
     }
     let check = map.map(|m| map_check(spec, cal, m));
+    if let Some(c) = check.as_ref().filter(|c| !c.misfit.0.is_finite()) {
+        let inside = c.k3.iter().flatten().count();
+        out.warn(format!(
+            "the measured map's own 3D curve reaches {inside} reduced forces, none of them with k/(E* L) in window = {:?}: the map is not checked against MRD (its columns stay empty)",
+            spec.window
+        ));
+    }
     if let (Some(c), Some(m)) = (&check, &case.map) {
         out.scalar("map_misfit_max", c.misfit.0);
         out.scalar("map_misfit_rms", c.misfit.1);
@@ -98,6 +105,49 @@ pub fn report(
     out.figures.push(psd_figure(&psd, case, l.value));
     out.tables.push(psd);
     Ok(())
+}
+
+/// One punch's solves (`None`: the measured map's own).
+pub type Solves = (Option<u64>, Vec<SolveRecord>);
+
+/// Every 3D solve of the calibration as a table; unconverged ones fail the run visibly
+/// (they are left out of the curves, so lambda rests on fewer points than asked).
+pub fn solves(spec: &Calibrate, solves: &[Solves], out: &mut Section) {
+    let mut t = Table::new(
+        "solves",
+        &[
+            "punch [index, -1: the map]",
+            "load [index]",
+            "approach [L]",
+            "force [E* L^2]",
+            "iterations [count]",
+            "residual [1]",
+            "converged [0/1]",
+            "stiffness_converged [0/1]",
+        ],
+    );
+    t.notes.push(format!(
+        "every 3D solve of the calibration (units of the punch diameter L, E* = 1): tolerance {:e} (criterion: bem3d::solver docs); unconverged solves (converged = 0, the residual reached) and failed stiffness solves are left out of the curves and listed in summary.json's failures",
+        spec.tolerance
+    ));
+    let mut tally = SolveTally::default();
+    for (punch, records) in solves {
+        for (k, s) in records.iter().enumerate() {
+            tally.add(s);
+            t.push(vec![
+                punch.map_or(-1.0, |r| r as f64),
+                k as f64,
+                s.approach,
+                s.force,
+                s.iterations as f64,
+                s.residual,
+                s.converged as u8 as f64,
+                s.stiffness_converged as u8 as f64,
+            ]);
+        }
+    }
+    tally.report(spec.tolerance, out);
+    out.tables.push(t);
 }
 
 fn summary_table(spec: &Calibrate, case: &Case, cal: &Calibration) -> Table {
@@ -164,8 +214,10 @@ fn curves_table(spec: &Calibrate, grid: usize, cal: &Calibration, map: Option<&M
         cols.push("kMRD/(E* L) of the map's spectrum at lambda [1]".into());
     }
     let mut t = Table::new("curves", &cols);
+    // The map's own curve covers the forces its solves reached: empty cells elsewhere.
+    t.missing_ok = map.is_some();
     t.notes.push(format!(
-        "k(f) where the 3D mean is defined and above 3 contact cells' worth (k/(E* L) >= 3 / grid = {:.4}; below, a handful of cells set k and the curve is the grid's, not the surface's): the punches' mean with its pointwise 95 % bootstrap interval, MRD at the calibrated lambda; in_range marks the calibration range k/(E* L) in [{}, {}]; the map's columns (NaN outside its range): the measured map itself as a punch, and MRD lines of its whole spectrum (to its Nyquist wavenumber) at the same lambda",
+        "k(f) where the 3D mean is defined and above 3 contact cells' worth (k/(E* L) >= 3 / grid = {:.4}; below, a handful of cells set k and the curve is the grid's, not the surface's): the punches' mean with its pointwise 95 % bootstrap interval, MRD at the calibrated lambda; in_range marks the calibration range k/(E* L) in [{}, {}]; the map's columns (empty outside its range): the measured map itself as a punch, and MRD lines of its whole spectrum (to its Nyquist wavenumber) at the same lambda",
         3.0 / grid as f64,
         spec.window[0],
         spec.window[1]

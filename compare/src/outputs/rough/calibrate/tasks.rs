@@ -105,10 +105,12 @@ impl Case {
             )
         } else if let Some(p) = &spec.psd {
             let path = ctx.resolve(p);
-            let (q, c) = mrd::topography::read_profile_csv(&path).ctx(format!(
+            let (q, c) = mrd::topography::read_two_columns(&path, ["q", "C2D"]).ctx(format!(
                 "psd table {} (columns q [1/length], C2D [length^4])",
                 path.display()
             ))?;
+            check_psd(&q, &c)
+                .map_err(|m| CompareError::Scene(format!("psd table {}: {m}", path.display())))?;
             let side = match spec.size {
                 Some([a, b]) if a == b && a > 0.0 && a.is_finite() => a,
                 _ => {
@@ -190,6 +192,51 @@ impl Case {
         use crate::experiment::lambda_meaning::{rms_matched, Face};
         rms_matched(1.0, &|q| self.spectrum.c2d(q), band as f64, 1.0, Face::Disc)
     }
+}
+
+/// Refuses a PSD table a calibration cannot trust: rows out of order, a wavenumber or a
+/// C2D that is not a positive finite number (corrupt or clipped data; a band limit is
+/// the table's last row, not zeros after it), or values whose spectral moments overflow
+/// or vanish in double precision (rescale the unit of length).
+fn check_psd(q: &[f64], c: &[f64]) -> std::result::Result<(), String> {
+    if q.len() < 2 {
+        return Err("needs at least 2 rows".into());
+    }
+    for (k, (&q, &c)) in q.iter().zip(c).enumerate() {
+        if !(q.is_finite() && q > 0.0) {
+            return Err(format!("row {}: q = {q} must be finite and > 0", k + 1));
+        }
+        if !(c.is_finite() && c > 0.0) {
+            return Err(format!(
+                "row {}: C2D = {c} must be finite and > 0 (end the table at the band limit instead of padding it)",
+                k + 1
+            ));
+        }
+    }
+    if let Some(k) = q.windows(2).position(|w| w[1] <= w[0]) {
+        return Err(format!(
+            "row {}: q = {} does not increase from {}",
+            k + 2,
+            q[k + 1],
+            q[k]
+        ));
+    }
+    // The mean square height and slope, by the trapezoid rule on q dq: both must be
+    // normal positive numbers.
+    let moment = |power: i32| -> f64 {
+        q.windows(2)
+            .zip(c.windows(2))
+            .map(|(q, c)| 0.5 * (q[1] - q[0]) * (q[0].powi(power) * c[0] + q[1].powi(power) * c[1]))
+            .sum::<f64>()
+    };
+    for (name, m) in [("rms height", moment(1)), ("rms slope", moment(3))] {
+        if !(m.is_normal() && m > 0.0) {
+            return Err(format!(
+                "its {name} squared is {m:e}, outside double precision's normal range: give q and C2D in another unit of length"
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// One unit of checkpointed work.

@@ -5,7 +5,7 @@
 use super::aggregate::{PerHurst, Results};
 use super::HurstSweep;
 use crate::experiment::fit::Estimate;
-use crate::experiment::rough_punch::SolveRecord;
+use crate::experiment::rough_punch::SolveTally;
 use crate::report::{number_label, Figure, Section, Series, Style, Table};
 use mrd::roughness::lambda_cut;
 use std::f64::consts::PI;
@@ -205,32 +205,9 @@ fn solves_table(spec: &HurstSweep, r: &Results, label: &str) -> Table {
 
 /// Unconverged 3D solves make the run fail visibly (the report is still written).
 fn failures(spec: &HurstSweep, r: &Results, out: &mut Section) {
-    let bad: Vec<&SolveRecord> = r
-        .solves
-        .iter()
-        .map(|s| &s.4)
-        .filter(|s| !s.converged)
-        .collect();
-    if !bad.is_empty() {
-        let worst = bad.iter().map(|s| s.residual).fold(0.0f64, f64::max);
-        out.failures.push(format!(
-            "{} of {} 3D solves did not converge (largest residual {worst:.2e}, tolerance {:.1e}); left out of the curves, listed in the solves table",
-            bad.len(),
-            r.solves.len(),
-            spec.tolerance
-        ));
-    }
-    let stiff = r
-        .solves
-        .iter()
-        .filter(|s| s.4.converged && !s.4.stiffness_converged)
-        .count();
-    if stiff > 0 {
-        out.failures.push(format!(
-            "{stiff} 3D stiffness solves did not converge; left out of the curves"
-        ));
-    }
-    out.value("unconverged_3d_solves", serde_json::json!(bad.len()));
+    let mut tally = SolveTally::default();
+    r.solves.iter().for_each(|s| tally.add(&s.4));
+    tally.report(spec.tolerance, out);
 }
 
 /// The shipped calibration (hurst, lambda, lo95, hi95) from its CSV text.

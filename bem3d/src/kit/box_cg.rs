@@ -1,0 +1,318 @@
+//! The projected conjugate gradient of the families: Polonsky & Keer's iteration for the
+//! pressures `p` of a set of cells under a prescribed approach `d`, each cell's pressure
+//! held in its box `lo_i <= p_i <= hi_i`. It minimises the convex energy
+//! `p.K p / 2 + p.(z - d)` over the boxes, whose optimality conditions per cell of the set
+//! are, with the gap `g = u + z - d` and `u = K p`:
+//!
+//! - `lo < p < hi`: `g = 0` (in contact, the pressure free);
+//! - `p = lo`: `g >= 0` (held at the lower bound: out of contact, or a cohesive tension);
+//! - `p = hi`: `g <= 0` (held at the upper bound: a saturated, plastic cell).
+//!
+//! A family is a choice of boxes and of the set: the non-adhesive contact has `[0, inf)`,
+//! the Maugis-Dugdale zone `[-sigma0, inf)`, the exponential law's tangent problem
+//! `[-sigma(g_last), inf)`, the elastic-perfectly plastic contact `[0, H]`; cells off the
+//! set keep `p = 0` and are not constrained.
+//!
+//! **Iteration.** The free cells are those of the set inside their box, or at a bound with
+//! the gap pulling them inside (`p = lo, g < 0` or `p = hi, g > 0`). The residual is the
+//! gap on the free cells; the direction is the preconditioned residual (the operator's
+//! approximate inverse, [`Preconditioner::precondition`]) restricted to them, conjugate
+//! (Fletcher-Reeves) while the free set holds and restarted when it changes; the step is
+//! the exact one along it (`rho / <t, K t>`), then every free cell is clamped into its
+//! box. Where no bound cut the step, `u = K p` follows by `-tau K t` without a transform
+//! (afresh every [`REFRESH`] such steps and before a stop is accepted). A direction
+//! without curvature (the periodic half-space's uniform mode, which K does not see:
+//! a flat periodic face under a uniform tension) is followed to the first bound it
+//! meets, and is an error where it meets none (the energy falls without bound).
+//!
+//! **Criterion** (stated exactly): the largest violation of the conditions above over the
+//! set, `|g|` on a free cell, `max(-g, 0)` at the lower bound, `max(g, 0)` at the upper,
+//! over the caller's length scale, at most `tolerance`, evaluated on `u = K p` itself.
+//!
+//! The passes run in chunks on the pool (`kit::chunks`): the same bits whatever the
+//! number of threads.
+
+use super::chunks::{dot, max, CHUNK};
+use crate::error::{BemError, Result};
+use crate::operator::Preconditioner;
+use crate::solver::Interrupt;
+use rayon::prelude::*;
+
+/// Iterations between computations of `K p` afresh while its running update is used.
+pub(crate) const REFRESH: usize = 50;
+
+/// A direction counts as without curvature where `<t, K t>` lies below this fraction of
+/// `<r, M r>` (the two are of one size when M approximates K's inverse).
+const NO_CURVATURE: f64 = 1e-12;
+
+/// One side of the cells' boxes: one value for every cell, or a value per cell.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Bound<'a> {
+    Uniform(f64),
+    Cells(&'a [f64]),
+}
+
+impl Bound<'_> {
+    #[inline(always)]
+    pub(crate) fn at(&self, i: usize) -> f64 {
+        match self {
+            Bound::Uniform(v) => *v,
+            Bound::Cells(v) => v[i],
+        }
+    }
+}
+
+/// The problem of one solve: the set, its boxes, the surface and approach, and how to
+/// stop.
+pub(crate) struct BoxProblem<'a> {
+    /// The cells that take part (the others keep `p = 0`).
+    pub set: &'a [bool],
+    pub lo: Bound<'a>,
+    pub hi: Bound<'a>,
+    /// `max(h) - h` [length].
+    pub z: &'a [f64],
+    /// The approach [length].
+    pub d: f64,
+    /// The criterion's length scale [length].
+    pub scale: f64,
+    pub tolerance: f64,
+    pub max_iterations: usize,
+    /// The family's name in errors.
+    pub what: &'static str,
+    pub interrupt: Option<&'a Interrupt>,
+}
+
+/// What a finished solve reached.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Reached {
+    pub iterations: usize,
+    /// The criterion at the stop (at most the tolerance).
+    pub residual: f64,
+}
+
+/// The conjugate gradient's vectors, asked for once per family and reused.
+#[derive(Debug, Default)]
+pub(crate) struct Scratch {
+    t: Vec<f64>,
+    kt: Vec<f64>,
+    y: Vec<f64>,
+    free: Vec<bool>,
+    free_old: Vec<bool>,
+}
+
+impl Scratch {
+    fn fit(&mut self, n: usize) {
+        for v in [&mut self.t, &mut self.kt, &mut self.y] {
+            v.clear();
+            v.resize(n, 0.0);
+        }
+        for v in [&mut self.free, &mut self.free_old] {
+            v.clear();
+            v.resize(n, false);
+        }
+    }
+}
+
+/// Solves the problem from the pressures `p` (inside their boxes on the set, 0 off it);
+/// `u` is set to `K p` and kept so. Returns the iterations and the criterion reached, or
+/// [`BemError::Breakdown`] with what it reached.
+pub(crate) fn solve<O: Preconditioner>(
+    op: &mut O,
+    pb: &BoxProblem,
+    p: &mut [f64],
+    u: &mut [f64],
+    w: &mut Scratch,
+) -> Result<Reached> {
+    let n = pb.z.len();
+    w.fit(n);
+    let mut rho_old = 0.0;
+    op.apply(p, u);
+    // Iterations since `u` was last computed as `K p` (0: it is `K p` itself).
+    let mut followed = 0;
+    let mut residual = f64::NAN;
+    for it in 0..pb.max_iterations {
+        let (worst, same) = free_set(pb, p, u, &w.free_old, &mut w.free, &mut w.y);
+        residual = worst / pb.scale;
+        if residual <= pb.tolerance {
+            if followed == 0 {
+                return Ok(Reached {
+                    iterations: it,
+                    residual,
+                });
+            }
+            // Stop only on `u = K p` itself, not on its running update.
+            op.apply(p, u);
+            followed = 0;
+            continue;
+        }
+        if pb.interrupt.is_some_and(Interrupt::is_set) {
+            return Err(BemError::Interrupted {
+                what: pb.what,
+                iterations: it,
+            });
+        }
+        op.precondition(&mut w.y);
+        let rho = restrict(pb, u, &w.free, &mut w.y);
+        let beta = if same && rho_old > 0.0 {
+            rho / rho_old
+        } else {
+            0.0
+        };
+        rho_old = rho;
+        std::mem::swap(&mut w.free, &mut w.free_old);
+        direction(&w.y, beta, &mut w.t);
+        op.apply(&w.t, &mut w.kt);
+        let curvature = dot(&w.t, &w.kt);
+        let tau = if curvature > NO_CURVATURE * rho && rho.is_finite() {
+            rho / curvature
+        } else {
+            match to_first_bound(pb, &w.free_old, &w.t, p) {
+                Some(tau) if rho > 0.0 => tau,
+                _ => {
+                    return Err(BemError::Breakdown {
+                        what: pb.what,
+                        iterations: it,
+                        residual,
+                        reason: "a direction without curvature that meets no bound",
+                    })
+                }
+            }
+        };
+        let cut = project(pb, &w.free_old, &w.t, tau, p);
+        // A step no bound cut moves K p by -tau K t: no transform (afresh every
+        // `REFRESH` iterations against rounding).
+        if cut || followed + 1 >= REFRESH {
+            op.apply(p, u);
+            followed = 0;
+        } else {
+            follow(&w.kt, tau, u);
+            followed += 1;
+        }
+    }
+    Err(BemError::Breakdown {
+        what: pb.what,
+        iterations: pb.max_iterations,
+        residual,
+        reason: "the solve did not converge within the iteration limit",
+    })
+}
+
+/// The free cells into `free`, `y = g` on them (0 elsewhere). Returns the criterion's
+/// largest term and whether `free` equals `old`.
+fn free_set(
+    pb: &BoxProblem,
+    p: &[f64],
+    u: &[f64],
+    old: &[bool],
+    free: &mut [bool],
+    y: &mut [f64],
+) -> (f64, bool) {
+    let parts: Vec<(f64, bool)> = free
+        .par_chunks_mut(CHUNK)
+        .zip(y.par_chunks_mut(CHUNK))
+        .enumerate()
+        .map(|(k, (free, y))| {
+            let first = k * CHUNK;
+            let (mut worst, mut same) = (0.0f64, true);
+            for (j, (f, y)) in free.iter_mut().zip(y.iter_mut()).enumerate() {
+                let i = first + j;
+                let g = u[i] + pb.z[i] - pb.d;
+                let (lo, hi) = (pb.lo.at(i), pb.hi.at(i));
+                *f = pb.set[i] && (p[i] > lo || g < 0.0) && (p[i] < hi || g > 0.0);
+                if *f {
+                    worst = max(worst, g.abs());
+                } else if pb.set[i] {
+                    let off = if p[i] <= lo {
+                        (-g).max(0.0)
+                    } else {
+                        g.max(0.0)
+                    };
+                    worst = max(worst, off);
+                }
+                *y = if *f { g } else { 0.0 };
+                same &= old[i] == *f;
+            }
+            (worst, same)
+        })
+        .collect();
+    parts
+        .into_iter()
+        .fold((0.0, true), |(w, s), (pw, ps)| (max(w, pw), s && ps))
+}
+
+/// `y` zeroed off the free cells; returns `sum g y`.
+fn restrict(pb: &BoxProblem, u: &[f64], free: &[bool], y: &mut [f64]) -> f64 {
+    let parts: Vec<f64> = y
+        .par_chunks_mut(CHUNK)
+        .enumerate()
+        .map(|(k, y)| {
+            let first = k * CHUNK;
+            let mut s = 0.0;
+            for (j, y) in y.iter_mut().enumerate() {
+                let i = first + j;
+                if !free[i] {
+                    *y = 0.0;
+                }
+                s += (u[i] + pb.z[i] - pb.d) * *y;
+            }
+            s
+        })
+        .collect();
+    parts.into_iter().sum()
+}
+
+/// The largest step along `-t` before a free cell meets a bound (`None`: it meets none).
+fn to_first_bound(pb: &BoxProblem, free: &[bool], t: &[f64], p: &[f64]) -> Option<f64> {
+    let tau = (0..p.len())
+        .filter(|&i| free[i] && t[i] != 0.0)
+        .map(|i| {
+            if t[i] > 0.0 {
+                (p[i] - pb.lo.at(i)) / t[i]
+            } else {
+                (pb.hi.at(i) - p[i]) / -t[i]
+            }
+        })
+        .fold(f64::INFINITY, f64::min);
+    tau.is_finite().then_some(tau.max(0.0))
+}
+
+/// `p = min(max(p - tau t, lo), hi)` on the free cells. Returns whether a bound cut any
+/// cell's step.
+fn project(pb: &BoxProblem, free: &[bool], t: &[f64], tau: f64, p: &mut [f64]) -> bool {
+    p.par_chunks_mut(CHUNK)
+        .enumerate()
+        .map(|(k, p)| {
+            let first = k * CHUNK;
+            let mut cut = false;
+            for (j, p) in p.iter_mut().enumerate() {
+                let i = first + j;
+                if free[i] {
+                    let step = *p - tau * t[i];
+                    *p = step.max(pb.lo.at(i)).min(pb.hi.at(i));
+                    cut |= *p != step;
+                }
+            }
+            cut
+        })
+        .reduce(|| false, |a, b| a || b)
+}
+
+/// `u -= tau kt` on every cell: `u = K p` after a step `-tau t` that no bound cut.
+fn follow(kt: &[f64], tau: f64, u: &mut [f64]) {
+    u.par_chunks_mut(CHUNK).enumerate().for_each(|(k, u)| {
+        let kt = &kt[k * CHUNK..k * CHUNK + u.len()];
+        for (u, kt) in u.iter_mut().zip(kt) {
+            *u -= tau * kt;
+        }
+    });
+}
+
+/// `t = y + beta t` on every cell.
+fn direction(y: &[f64], beta: f64, t: &mut [f64]) {
+    t.par_chunks_mut(CHUNK).enumerate().for_each(|(k, t)| {
+        let y = &y[k * CHUNK..k * CHUNK + t.len()];
+        for (t, y) in t.iter_mut().zip(y) {
+            *t = y + beta * *t;
+        }
+    });
+}
