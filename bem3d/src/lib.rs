@@ -31,6 +31,7 @@ mod kit;
 mod love;
 pub mod mask;
 pub mod operator;
+pub mod plastic;
 mod pool;
 mod set_solve;
 

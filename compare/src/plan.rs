@@ -54,6 +54,10 @@ pub enum Stage {
     Psd,
     /// Fits of Eq. (77), bootstrap intervals, lambda calibration.
     SweepFit,
+    /// Elastic-perfectly plastic contact by MRD in incremental form (`mrd::plasticity`).
+    PlasticMrd,
+    /// Elastic-perfectly plastic contact in 3D, the pressure cap (`bem3d::plastic`).
+    Plastic3d,
 }
 
 impl Stage {
@@ -81,6 +85,8 @@ impl Stage {
             Stage::Bem3dStiffness => "bem3d_stiffness",
             Stage::Psd => "measured_psd",
             Stage::SweepFit => "sweep_fit",
+            Stage::PlasticMrd => "plastic_mrd",
+            Stage::Plastic3d => "plastic_3d",
         }
     }
 }

@@ -63,6 +63,10 @@ pub const KINDS: &[Kind] = &[
         "tabor_3d",
         "a sphere's pull-off against the Tabor-Maugis parameter: 3D Maugis-Dugdale, Maugis' closed form and MRD's JKR limit (Section 5)",
     ),
+    Kind::of::<axisym::plastic_3d::Plastic3d>(
+        "plastic_3d",
+        "elastic-perfectly plastic contact of a body of revolution (pressure cap H) along a force history, in 3D beside MRD in incremental form: loops, imprint, grid convergence; a sphere against Kogut-Etsion's finite elements (Section 11)",
+    ),
     Kind::of::<axisym::tangential::Tangential>(
         "tangential",
         "Cattaneo-Mindlin tangential loading and tractions (Eqs. 41-51)",

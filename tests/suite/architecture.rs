@@ -677,6 +677,11 @@ fn bem3d_public_api_stays_within_its_budget() {
         ("error", 3),
         ("fft", 25),
         ("mask", 2),
+        // PlasticContact (new, step, pressure, plastic_displacement, gap, force_limit,
+        // hardness, interrupt_on), PlasticStep, AT_CAP and STEP_TOLERANCE (the bindings'
+        // default): the pressure-cap family, for compare's plastic_3d and Python's
+        // PlasticContact.
+        ("plastic", 12),
         ("operator", 34),
         ("sliding", 4),
         ("solution", 5),

@@ -1003,3 +1003,29 @@ fn adhesion_3d_runs_bodies_without_a_closed_form() {
     let stages = s["outputs"][0]["stages"].as_array().unwrap();
     assert!(!stages.iter().any(|v| v == "closed_form"), "{stages:?}");
 }
+
+/// `plastic_3d` refuses what it cannot run, naming the key: no hardness or a NaN one, a
+/// negative force (a history beyond separation), a ladder that does not refine, a rule
+/// that does not exist, a flat punch.
+#[test]
+fn plastic_3d_bad_input_names_the_key() {
+    refuses_each_edit(
+        "plastic-sphere-ci",
+        &[
+            ("hardness = 0.05", "hardness = 0.0", "hardness = 0"),
+            ("hardness = 0.05", "hardness = nan", "hardness = NaN"),
+            ("forces = [0.001,", "forces = [-0.001,", "forces: -0.001"),
+            ("cells = [24, 48]", "cells = [48, 24]", "cells = [48, 24]"),
+            (
+                "rings = 200",
+                "rings = 200\nrules = [\"nope\"]",
+                "rule `nope`",
+            ),
+            (
+                "shapes = [{ kind = \"sphere\", radius = 1.0 }]",
+                "shapes = [{ kind = \"sphere\", radius = 1.0 }]\nrim = 0.2",
+                "flat punch",
+            ),
+        ],
+    );
+}

@@ -327,6 +327,83 @@ class CohesiveStep:
     def pressure(self) -> F64:
         """Cell pressures, shape (ny, nx) [stress], negative in tension (>= -sigma0)."""
 
+class PlasticStep:
+    """The state after a step of PlasticContact.step."""
+
+    @property
+    def approach(self) -> float:
+        """Approach from the first contact of the undeformed surface [length]."""
+    @property
+    def force(self) -> float:
+        """Total normal force [stress x length^2]."""
+    @property
+    def contact_cells(self) -> int: ...
+    @property
+    def plastic_cells(self) -> int:
+        """Cells at the hardness (within 1e-6 of it)."""
+    @property
+    def contact_area(self) -> float: ...
+    @property
+    def plastic_area(self) -> float: ...
+    @property
+    def plastic_depth(self) -> float:
+        """The largest plastic displacement so far [length]."""
+    @property
+    def flowed(self) -> int:
+        """Cells whose plastic displacement grew in this step."""
+    @property
+    def iterations(self) -> int: ...
+    @property
+    def solves(self) -> int: ...
+    @property
+    def residual(self) -> float: ...
+    @property
+    def pressure(self) -> F64:
+        """Cell pressures (ny, nx) [stress], in [0, hardness]."""
+    @property
+    def plastic_displacement(self) -> F64:
+        """The plastic displacement so far (ny, nx) [length]: after unloading, the imprint."""
+
+class PlasticContact:
+    """A rigid surface pressed on an elastic-perfectly plastic half-space (the pressure
+    cap: pressures saturate at the hardness, the surface flows where they would exceed
+    it and stays lowered), free or periodic, loaded along a history."""
+
+    def __init__(
+        self,
+        heights: Union[ArrayLike, Any],
+        hardness: float,
+        size: Optional[Tuple[float, float]] = None,
+        e_star: float = 1.0,
+        mask: Optional[ArrayLike] = None,
+        periodic: bool = False,
+    ) -> None:
+        """hardness: H [stress] > 0 (inf: the elastic contact); heights, size, e_star,
+        mask as for Contact. Starts out of contact, the surface undeformed."""
+    def step(
+        self,
+        *,
+        mean_pressure: Optional[float] = None,
+        force: Optional[float] = None,
+        approach: Optional[float] = None,
+        tolerance: Optional[float] = None,
+    ) -> PlasticStep:
+        """Load from the last state to exactly one of a mean pressure, a force (>= 0,
+        below force_limit; 0: just touching) or an approach from the undeformed first
+        contact (any finite value). tolerance: relative, in (0, 0.01] (None: 1e-8).
+        Releases the GIL."""
+    @property
+    def hardness(self) -> float: ...
+    @property
+    def force_limit(self) -> float:
+        """H times the domain's area: the largest force a step carries."""
+    @property
+    def shape(self) -> Tuple[int, int]: ...
+    @property
+    def size(self) -> Tuple[float, float]: ...
+    @property
+    def periodic(self) -> bool: ...
+
 class CohesiveContact:
     """A rigid surface in finite-range adhesive contact with an elastic half-space, free
     or periodic, loaded along an approach history. law="dugdale": a tension sigma0

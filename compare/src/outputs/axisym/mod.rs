@@ -5,6 +5,7 @@ pub mod adhesion;
 pub mod adhesion_3d;
 pub mod damping;
 pub mod force_depth;
+pub mod plastic_3d;
 pub mod pressure;
 pub mod profile_1d;
 pub mod tabor_3d;
