@@ -94,6 +94,24 @@ impl<T> Context<T> for std::result::Result<T, bem3d::BemError> {
     }
 }
 
+impl<T> Context<T> for std::result::Result<T, dynamics::DynamicsError> {
+    fn ctx(self, context: impl Into<String>) -> Result<T> {
+        self.map_err(|e| match e {
+            dynamics::DynamicsError::InvalidInput(m) => {
+                CompareError::Scene(format!("{}: {m}", context.into()))
+            }
+            dynamics::DynamicsError::Mrd(source) => CompareError::Mrd {
+                context: context.into(),
+                source,
+            },
+            dynamics::DynamicsError::Bem(source) => CompareError::Bem {
+                context: context.into(),
+                source,
+            },
+        })
+    }
+}
+
 pub(crate) fn io_err(context: impl Into<String>) -> impl FnOnce(std::io::Error) -> CompareError {
     let context = context.into();
     move |source| CompareError::Io { context, source }

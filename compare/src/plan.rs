@@ -58,6 +58,10 @@ pub enum Stage {
     PlasticMrd,
     /// Elastic-perfectly plastic contact in 3D, the pressure cap (`bem3d::plastic`).
     Plastic3d,
+    /// A time integration with MRD's contact at every step (`dynamics`).
+    Dynamics,
+    /// A time integration with the 3D contact at every step (`dynamics`, `bem3d`).
+    Dynamics3d,
 }
 
 impl Stage {
@@ -87,6 +91,8 @@ impl Stage {
             Stage::SweepFit => "sweep_fit",
             Stage::PlasticMrd => "plastic_mrd",
             Stage::Plastic3d => "plastic_3d",
+            Stage::Dynamics => "dynamics_mrd",
+            Stage::Dynamics3d => "dynamics_3d",
         }
     }
 }

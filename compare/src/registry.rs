@@ -3,7 +3,7 @@
 //! `outputs/` plus one line here; no kind imports this module.
 
 use crate::output::Output;
-use crate::outputs::{axisym, friction, reference3d, rough, viscoelastic};
+use crate::outputs::{axisym, dynamics, friction, reference3d, rough, viscoelastic};
 use serde::de::DeserializeOwned;
 
 /// A registered output kind.
@@ -66,6 +66,14 @@ pub const KINDS: &[Kind] = &[
     Kind::of::<axisym::plastic_3d::Plastic3d>(
         "plastic_3d",
         "elastic-perfectly plastic contact of a body of revolution (pressure cap H) along a force history, in 3D beside MRD in incremental form: loops, imprint, grid convergence; a sphere against Kogut-Etsion's finite elements (Section 11)",
+    ),
+    Kind::of::<dynamics::impact::Impact>(
+        "impact",
+        "a sphere's impact integrated in time with the contact at every step, MRD's springs and the 3D solve in the loop, against Hertz's impact (Section 12)",
+    ),
+    Kind::of::<dynamics::ring_down::RingDown>(
+        "ring_down",
+        "a mass ringing down on a sphere's frictional contact, MRD's Coulomb springs at every step, against Mindlin-Deresiewicz's loss per cycle (Sections 7 and 12)",
     ),
     Kind::of::<axisym::tangential::Tangential>(
         "tangential",

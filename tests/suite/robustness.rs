@@ -1029,3 +1029,30 @@ fn plastic_3d_bad_input_names_the_key() {
         ],
     );
 }
+
+/// The time-integrated scenes refuse what they cannot run, naming the key: no mass, a
+/// speed of zero, a time step count out of range, an amplitude at which the body slides.
+#[test]
+fn dynamics_bad_input_names_the_key() {
+    refuses_each_edit(
+        "impact",
+        &[
+            ("mass = 1e-3", "mass = 0.0", "mass = 0"),
+            ("speed = 0.05", "speed = nan", "speed = NaN"),
+            ("speed = 0.05", "speed = 5.0", "a tenth of its radius"),
+            (
+                "cells = [32, 64]",
+                "cells = [32, 64]\nsteps = 3",
+                "steps = 3",
+            ),
+        ],
+    );
+    refuses_each_edit(
+        "ring-down",
+        &[
+            ("amplitude = 0.9", "amplitude = 1.0", "amplitude = 1"),
+            ("mu = 0.3", "mu = -0.3", "mu = -0.3"),
+            ("g_star = 1.0", "", "ring_down"),
+        ],
+    );
+}

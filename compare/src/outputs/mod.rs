@@ -6,6 +6,8 @@
 
 /// Axisymmetric MRD, exact by the rule of Hess (Sections 3-7).
 pub mod axisym;
+/// The contact inside a time integration (Section 12).
+pub mod dynamics;
 /// Friction: static (Section 10.2) and sliding (Section 10.1, Fig. 7).
 pub mod friction;
 /// 3D boundary-element references on the user's own height maps.

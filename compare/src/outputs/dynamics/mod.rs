@@ -1,0 +1,6 @@
+//! The contact inside a time integration (Section 12): macroscopic systems whose contact
+//! is evaluated at every time step, by MRD and by the 3D reference (`dynamics`), each
+//! against a closed form.
+
+pub mod impact;
+pub mod ring_down;

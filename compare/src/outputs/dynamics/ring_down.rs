@@ -1,0 +1,292 @@
+//! `ring_down`: frictional damping in time (Section 7 inside a time integration): a mass
+//! held on a sphere by a constant normal force is released from a tangential
+//! displacement and rings down on the contact alone, MRD's tangential springs with
+//! Coulomb slip evaluated at every step (exact for the sphere: Cattaneo-Mindlin). Each
+//! cycle's slip energy is held against Mindlin and Deresiewicz's loss per cycle at the
+//! cycle's force amplitude (Johnson, Contact Mechanics, Eq. 7.59: `W(Q*)`); the
+//! amplitude's decay and the equivalent damping ratio `zeta = W / (4 pi U)` (U the
+//! energy stored at the turning point) against the amplitude follow.
+//!
+//! Set-up: the normal approach carries `normal_force` (MRD's springs, Hertz's law); the
+//! mass is pulled quasi-statically to the tangential force `amplitude mu F_N` (a virgin
+//! loading, 200 steps), then released at rest; velocity Verlet at `steps` steps per
+//! period of the contact's initial tangential stiffness `2 a G*` (MRD's, Mindlin's
+//! `8 G a`). Without a dashpot all loss is slip. The 3D tangential solver takes a force,
+//! not a displacement, per step (`bem3d::tangential`): it is not in this loop.
+
+use crate::checks::bad;
+use crate::context::Context;
+use crate::error::{Context as _, Result};
+use crate::output::{Env, Output};
+use crate::plan::Stage;
+use crate::report::{Figure, Section, Style, Table};
+use dynamics::integrate::{Axis, Oscillator, Sample, Stop};
+use dynamics::law::Motion;
+use dynamics::{ContactLaw, Springs};
+use mrd::reference::{for_profile, hertz, mindlin_damping as md};
+use serde::Deserialize;
+use std::f64::consts::PI;
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RingDown {
+    normal_force: f64,
+    mu: f64,
+    mass: f64,
+    /// The starting tangential force over mu F_N, in (0, 1).
+    amplitude: f64,
+    /// Periods integrated.
+    #[serde(default = "default_periods")]
+    periods: usize,
+    /// Time steps per period of the initial tangential stiffness.
+    #[serde(default = "default_steps")]
+    steps: usize,
+    /// MRD springs on the half line (over 1.5 contact radii).
+    #[serde(default = "default_springs")]
+    springs: usize,
+}
+
+fn default_periods() -> usize {
+    30
+}
+fn default_steps() -> usize {
+    400
+}
+fn default_springs() -> usize {
+    2000
+}
+
+/// A turning point of the motion: where the velocity changes sign.
+#[derive(Debug, Clone, Copy)]
+struct Turn {
+    t: f64,
+    x: f64,
+    force: f64,
+    /// Slip energy since the start [force x length].
+    dissipated: f64,
+}
+
+impl Output for RingDown {
+    fn validate(&self, ctx: &Context) -> Result<()> {
+        if for_profile::sphere_radius(ctx.profile()?).is_none() {
+            return bad("ring_down needs a sphere (profile = paraboloid): Mindlin and Deresiewicz's loss per cycle is the reference");
+        }
+        ctx.material.g_star().ctx("ring_down")?;
+        for (key, v) in [
+            ("normal_force", self.normal_force),
+            ("mu", self.mu),
+            ("mass", self.mass),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return bad(format!("{key} = {v} must be finite and > 0"));
+            }
+        }
+        if !(self.amplitude > 0.0 && self.amplitude < 1.0) {
+            return bad(format!(
+                "amplitude = {} must lie in (0, 1) (a fraction of mu F_N; at 1 the body slides)",
+                self.amplitude
+            ));
+        }
+        if !(2..=100_000).contains(&self.periods)
+            || !(50..=100_000).contains(&self.steps)
+            || self.periods * self.steps > 50_000_000
+        {
+            return bad(format!(
+                "periods = {} in 2..=100000 and steps = {} per period in 50..=100000, at most 5e7 steps in all",
+                self.periods, self.steps
+            ));
+        }
+        if !(100..=1_000_000).contains(&self.springs) {
+            return bad(format!(
+                "springs = {} must lie in 100..=1000000",
+                self.springs
+            ));
+        }
+        Ok(())
+    }
+
+    fn stages(&self, _: &Context) -> Vec<Stage> {
+        vec![Stage::HessTransform, Stage::ClosedForm, Stage::Dynamics]
+    }
+
+    fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
+        let ctx = env.ctx;
+        let profile = ctx.profile()?.clone();
+        let (e, g) = (ctx.material.e_star, ctx.material.g_star().ctx("ring_down")?);
+        let r = for_profile::sphere_radius(&profile).unwrap_or(1.0);
+        let (mu, fn_) = (self.mu, self.normal_force);
+        out.stage(Stage::HessTransform, || profile.z1d(0.0));
+        let a = out.stage(Stage::ClosedForm, || {
+            hertz::radius(r, hertz::depth(e, r, fn_))
+        });
+        let k_t = 2.0 * a * g;
+        let period = 2.0 * PI * (self.mass / k_t).sqrt();
+        let samples = out
+            .stage(Stage::Dynamics, || -> dynamics::Result<Vec<Sample>> {
+                let mut law =
+                    Springs::body(&profile, e, self.springs, 1.5 * a)?.with_friction(g, mu)?;
+                let d = law.approach_at(fn_)?;
+                // The virgin loading to the starting force, quasi-statically.
+                let target = self.amplitude * mu * fn_;
+                let mut u = 0.0;
+                let du = target / k_t / 100.0;
+                loop {
+                    let f = law.trial(Motion {
+                        normal: d,
+                        tangential: u + du,
+                        dt: 1.0,
+                    })?;
+                    if f.tangential >= target {
+                        law.rollback();
+                        break;
+                    }
+                    law.commit()?;
+                    u += du;
+                }
+                let drive = |_t: f64| 0.0;
+                let osc = Oscillator {
+                    mass: self.mass,
+                    damping: 0.0,
+                    drive: &drive,
+                    axis: Axis::Tangential { approach: d },
+                    dt: period / self.steps as f64,
+                    dt_min: period / (100.0 * self.steps as f64),
+                    max_jump: 0.05,
+                    force_scale: mu * fn_,
+                };
+                let (s, _) = osc.run(
+                    &mut law,
+                    (u, 0.0),
+                    Stop::At(self.periods as f64 * period),
+                    1,
+                )?;
+                Ok(s)
+            })
+            .ctx("MRD in the loop")?;
+        self.report(out, &samples, (g, a, k_t, period))
+    }
+}
+
+impl RingDown {
+    fn report(
+        &self,
+        out: &mut Section,
+        s: &[Sample],
+        (g, a, k_t, period): (f64, f64, f64, f64),
+    ) -> Result<()> {
+        let (mu, fn_) = (self.mu, self.normal_force);
+        // Turning points, with the slip energy accumulated up to each.
+        let mut turns = Vec::new();
+        let mut dissipated = 0.0;
+        for w in s.windows(2) {
+            dissipated += w[1].dissipated;
+            if w[0].v * w[1].v < 0.0 || w[1].v == 0.0 {
+                turns.push(Turn {
+                    t: w[1].t,
+                    x: w[1].x,
+                    force: w[1].force,
+                    dissipated,
+                });
+            }
+        }
+        // A cycle: from a turning point to the second after it (same sign); its force
+        // amplitude the mean of the three extremes' magnitudes.
+        let mut t = Table::new(
+            "cycles",
+            &[
+                "cycle [index]",
+                "time over period [1]",
+                "force_amplitude over mu F_N [1]",
+                "loss per cycle, MRD in the loop [force x length]",
+                "loss per cycle, Mindlin-Deresiewicz [force x length]",
+                "loss ratio MRD / MD [1]",
+                "damping ratio zeta [1]",
+                "damping ratio zeta, MD [1]",
+            ],
+        );
+        t.notes.push(format!(
+            "sphere under F_N = {fn_} with mu = {mu}, G* = {g}, contact radius a = {a:.6e}; mass {} released at rest from {} mu F_N (virgin loading); MRD's {} springs with Coulomb slip, velocity Verlet at {} steps per period 2 pi sqrt(m / k_t) = {period:.6e} (k_t = 2 a G*); loss per cycle: the slip energy between turning points two apart, against Johnson's Eq. 7.59 at the mean of the cycle's three force extremes; zeta = W / (4 pi U), U = Q*^2 / (2 k_sec) with the secant stiffness of the cycle's extremes",
+            self.mass, self.amplitude, self.springs, self.steps
+        ));
+        let mut worst: f64 = 0.0;
+        let mut rows = 0;
+        for (c, w) in turns.windows(3).step_by(2).enumerate() {
+            let q = (w[0].force.abs() + w[1].force.abs() + w[2].force.abs()) / 3.0;
+            let xa = (w[0].x.abs() + w[1].x.abs() + w[2].x.abs()) / 3.0;
+            let loss = w[2].dissipated - w[0].dissipated;
+            let exact = md::dissipation_force_amplitude_exact(g, a, mu, fn_, q);
+            let stored = 0.5 * q * xa;
+            let exact_stored = 0.5 * q * self.md_displacement(g, a, q);
+            let ratio = loss / exact;
+            worst = worst.max((ratio - 1.0).abs());
+            t.push(vec![
+                c as f64,
+                w[0].t / period,
+                q / (mu * fn_),
+                loss,
+                exact,
+                ratio,
+                loss / (4.0 * PI * stored),
+                exact / (4.0 * PI * exact_stored),
+            ]);
+            rows += 1;
+        }
+        if rows == 0 {
+            out.failures.push("the motion made no full cycle".into());
+            return Ok(());
+        }
+        out.scalar("loss_per_cycle_max_rel_dev_vs_mindlin_deresiewicz", worst);
+        out.scalar("initial_tangential_stiffness", k_t);
+        let first = t.rows[0][2];
+        let last = t.rows[rows - 1][2];
+        out.scalar("amplitude_decay_first_to_last_cycle", last / first);
+        let fig = Figure::new(
+            "ring_down",
+            "Frictional ring-down of a mass on a sphere: tangential force against time (MRD in the loop)",
+            "time over the stick period t / T [1]",
+            "tangential force over mu F_N [1]",
+        )
+        .plot(
+            format!("MRD, {} springs, Coulomb slip", self.springs),
+            s.iter()
+                .step_by((s.len() / 2000).max(1))
+                .map(|p| (p.t / period, p.force / (mu * fn_)))
+                .collect(),
+            Style::Line,
+        );
+        out.figures.push(fig);
+        let amp: Vec<(f64, f64)> = t.rows.iter().map(|r| (r[2], r[5])).collect();
+        let zeta = Figure::new(
+            "damping",
+            "Loss per cycle over Mindlin-Deresiewicz's, and damping ratio, against amplitude",
+            "force amplitude over mu F_N [1]",
+            "[1]",
+        )
+        .plot(
+            "loss per cycle: MRD in the loop / Mindlin-Deresiewicz",
+            amp,
+            Style::Markers,
+        )
+        .plot(
+            "damping ratio zeta, MRD in the loop",
+            t.rows.iter().map(|r| (r[2], r[6])).collect(),
+            Style::Crosses,
+        )
+        .plot(
+            "damping ratio zeta, Mindlin-Deresiewicz",
+            t.rows.iter().map(|r| (r[2], r[7])).collect(),
+            Style::Line,
+        );
+        out.tables.push(t);
+        out.figures.push(zeta);
+        Ok(())
+    }
+
+    /// Mindlin's tangential displacement at the force `q` on the virgin loading:
+    /// `3 mu F_N / (8 G* a) ... ` in MRD's terms `(3 mu F_N / (4 a G*)) (1 - (1 - q /
+    /// (mu F_N))^(2/3))` (Eq. 45 with G* the composite tangential modulus).
+    fn md_displacement(&self, g: f64, a: f64, q: f64) -> f64 {
+        let (mu, fn_) = (self.mu, self.normal_force);
+        3.0 * mu * fn_ / (4.0 * a * g) * (1.0 - (1.0 - q / (mu * fn_)).powf(2.0 / 3.0))
+    }
+}

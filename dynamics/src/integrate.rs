@@ -1,0 +1,322 @@
+//! One degree of freedom through a contact law: a mass `m` moving along the normal or
+//! the tangential direction, pushed by an external force `f(t)`, a viscous dashpot `c`
+//! and the contact, `m x'' = f(t) - c x' - F_contact(x, history)`.
+//!
+//! **Scheme.** Velocity Verlet (second order, symplectic without the dashpot): the
+//! half-step velocity `v + a dt / 2`, the new position, the contact force there (a
+//! trial of the law), the new acceleration with the dashpot on the half-step velocity,
+//! the velocity's second half step. A step whose contact force changes by more than
+//! `max_jump` of the force scale is rejected ([`crate::ContactLaw::rollback`]) and
+//! retried at half the time step, down to `dt_min`; accepted steps let the step grow
+//! again by a quarter up to `dt`. First contact, a contact lost, a hard impact are the
+//! steps where this matters; a smooth motion runs at `dt`.
+
+use crate::law::{ContactLaw, Motion};
+use crate::{bad, Result};
+
+/// Which way the mass moves, and the other coordinate held.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Axis {
+    /// Along the normal: x is the approach; the tangential displacement is held.
+    Normal { tangential: f64 },
+    /// Along the tangential direction: x is the displacement; the approach is held.
+    Tangential { approach: f64 },
+}
+
+/// The problem and the scheme's settings.
+pub struct Oscillator<'a> {
+    pub mass: f64,
+    /// Viscous dashpot [force x time / length], >= 0.
+    pub damping: f64,
+    /// The external force on the mass at time t [force].
+    pub drive: &'a dyn Fn(f64) -> f64,
+    pub axis: Axis,
+    /// The time step, and the smallest a rejection may reach [time].
+    pub dt: f64,
+    pub dt_min: f64,
+    /// The largest change of the contact force in a step, over `force_scale`.
+    pub max_jump: f64,
+    pub force_scale: f64,
+}
+
+/// One accepted step's end.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sample {
+    pub t: f64,
+    pub x: f64,
+    pub v: f64,
+    /// The contact force along the axis [force].
+    pub force: f64,
+    /// The normal force (equal to `force` on the normal axis) [force].
+    pub normal: f64,
+    pub contact_area: f64,
+    /// Slip energy of the step [force x length].
+    pub dissipated: f64,
+    /// The law's solver work of the step (3D iterations, summed over its trials).
+    pub iterations: usize,
+}
+
+/// What a run did besides its samples.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Counts {
+    pub accepted: usize,
+    pub rejected: usize,
+    /// Trials of the law (accepted and rejected).
+    pub trials: usize,
+}
+
+/// Where a run stops.
+pub enum Stop<'a> {
+    /// At time `t`.
+    At(f64),
+    /// When `until` holds for the last sample (checked after each accepted step), or at
+    /// `t_max`.
+    When {
+        until: &'a dyn Fn(&Sample) -> bool,
+        t_max: f64,
+    },
+}
+
+/// Largest accepted steps of one run (a guard against a stop that never comes).
+pub const MAX_STEPS: usize = 100_000_000;
+
+impl Oscillator<'_> {
+    fn check(&self) -> Result<()> {
+        for (name, v) in [
+            ("mass", self.mass),
+            ("dt", self.dt),
+            ("force_scale", self.force_scale),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return bad(format!("{name} = {v} must be finite and > 0"));
+            }
+        }
+        if !(self.damping.is_finite() && self.damping >= 0.0) {
+            return bad(format!(
+                "damping = {} must be finite and >= 0",
+                self.damping
+            ));
+        }
+        if !(self.dt_min.is_finite() && self.dt_min > 0.0 && self.dt_min <= self.dt) {
+            return bad(format!(
+                "dt_min = {} must lie in (0, dt = {}]",
+                self.dt_min, self.dt
+            ));
+        }
+        if !(self.max_jump.is_finite() && self.max_jump > 0.0) {
+            return bad(format!(
+                "max_jump = {} must be finite and > 0",
+                self.max_jump
+            ));
+        }
+        Ok(())
+    }
+
+    fn motion(&self, x: f64, dt: f64) -> Motion {
+        match self.axis {
+            Axis::Normal { tangential } => Motion {
+                normal: x,
+                tangential,
+                dt,
+            },
+            Axis::Tangential { approach } => Motion {
+                normal: approach,
+                tangential: x,
+                dt,
+            },
+        }
+    }
+
+    fn along(&self, f: &crate::Forces) -> f64 {
+        match self.axis {
+            Axis::Normal { .. } => f.normal,
+            Axis::Tangential { .. } => f.tangential,
+        }
+    }
+
+    /// Integrates from `(x0, v0)` at t = 0 (the law's accepted state is the start's
+    /// history; the first sample is the start) until `stop`; `every`: keep one sample
+    /// in so many accepted steps (the last always).
+    pub fn run(
+        &self,
+        law: &mut dyn ContactLaw,
+        (x0, v0): (f64, f64),
+        stop: Stop,
+        every: usize,
+    ) -> Result<(Vec<Sample>, Counts)> {
+        self.check()?;
+        if !(x0.is_finite() && v0.is_finite()) {
+            return bad(format!("x0 = {x0} and v0 = {v0} must be finite"));
+        }
+        let every = every.max(1);
+        let t_end = match stop {
+            Stop::At(t) | Stop::When { t_max: t, .. } => t,
+        };
+        if !(t_end.is_finite() && t_end > 0.0) {
+            return bad(format!("the end time {t_end} must be finite and > 0"));
+        }
+        let mut counts = Counts::default();
+        // The start: the contact force at x0 accepted as the history's first state.
+        let f0 = law.trial(self.motion(x0, self.dt))?;
+        counts.trials += 1;
+        law.commit()?;
+        let mut s = Sample {
+            t: 0.0,
+            x: x0,
+            v: v0,
+            force: self.along(&f0),
+            normal: f0.normal,
+            contact_area: f0.contact_area,
+            dissipated: 0.0,
+            iterations: f0.iterations,
+        };
+        let mut a = ((self.drive)(0.0) - s.force - self.damping * v0) / self.mass;
+        let mut out = vec![s];
+        let mut dt = self.dt;
+        let mut iterations = 0;
+        while s.t < t_end {
+            if counts.accepted >= MAX_STEPS {
+                return bad(format!(
+                    "{MAX_STEPS} steps did not reach the end time {t_end}: raise dt"
+                ));
+            }
+            let h = dt.min(t_end - s.t);
+            let half = s.v + 0.5 * h * a;
+            let x = s.x + h * half;
+            let f = law.trial(self.motion(x, h))?;
+            counts.trials += 1;
+            iterations += f.iterations;
+            let force = self.along(&f);
+            let jump = (force - s.force).abs() / self.force_scale;
+            if jump > self.max_jump && h > self.dt_min {
+                law.rollback();
+                counts.rejected += 1;
+                dt = (0.5 * h).max(self.dt_min);
+                continue;
+            }
+            law.commit()?;
+            counts.accepted += 1;
+            let t = s.t + h;
+            let a_new = ((self.drive)(t) - force - self.damping * half) / self.mass;
+            s = Sample {
+                t,
+                x,
+                v: half + 0.5 * h * a_new,
+                force,
+                normal: f.normal,
+                contact_area: f.contact_area,
+                dissipated: f.dissipated,
+                iterations,
+            };
+            iterations = 0;
+            a = a_new;
+            dt = (1.25 * dt).min(self.dt);
+            let stop_now = match &stop {
+                Stop::When { until, .. } => until(&s),
+                Stop::At(_) => false,
+            };
+            if counts.accepted % every == 0 || stop_now || s.t >= t_end {
+                out.push(s);
+            }
+            if stop_now {
+                break;
+            }
+        }
+        Ok((out, counts))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::law::Springs;
+    use mrd::profile::{Profile, Shape};
+    use mrd::reference::hertz_impact;
+
+    /// The contact time of the first contact of a run (x > 0), by linear interpolation
+    /// of the crossings of x = 0, and the speeds at them.
+    fn contact(samples: &[Sample]) -> (f64, f64, f64) {
+        let cross = |i: usize| {
+            let (a, b) = (samples[i], samples[i + 1]);
+            let w = a.x / (a.x - b.x);
+            (a.t + w * (b.t - a.t), a.v + w * (b.v - a.v))
+        };
+        let start = samples
+            .windows(2)
+            .position(|w| w[0].x <= 0.0 && w[1].x > 0.0)
+            .unwrap();
+        let end = start
+            + samples[start..]
+                .windows(2)
+                .position(|w| w[0].x > 0.0 && w[1].x <= 0.0)
+                .unwrap();
+        let (t0, v_in) = cross(start);
+        let (t1, v_out) = cross(end);
+        (t1 - t0, v_in, v_out)
+    }
+
+    /// Hertz's impact on MRD's springs: contact time and largest force against Hertz's
+    /// impact solution (Johnson 11.4) within 1e-3 at 4000 springs and t_c / 4000 steps,
+    /// the restitution coefficient 1 within 1e-4.
+    #[test]
+    fn hertz_impact_on_mrd_springs() {
+        let (e, r, m, v) = (1.0, 1.0, 1e-3, 0.05);
+        let profile = Profile::single(Shape::paraboloid(r).unwrap());
+        let dmax = hertz_impact::max_approach(e, r, m, v);
+        let tc = hertz_impact::duration(e, r, m, v);
+        let mut law = Springs::body(&profile, e, 4000, 2.0 * (r * dmax).sqrt()).unwrap();
+        let drive = |_t: f64| 0.0;
+        let osc = Oscillator {
+            mass: m,
+            damping: 0.0,
+            drive: &drive,
+            axis: Axis::Normal { tangential: 0.0 },
+            dt: tc / 4000.0,
+            dt_min: tc / 4e6,
+            max_jump: 0.05,
+            force_scale: hertz_impact::max_force(e, r, m, v),
+        };
+        let (s, counts) = osc
+            .run(&mut law, (-1e-3 * dmax, v), Stop::At(1.3 * tc), 1)
+            .unwrap();
+        let (t, v_in, v_out) = contact(&s);
+        let peak = s.iter().map(|s| s.force).fold(0.0, f64::max);
+        assert!((t / tc - 1.0).abs() < 1e-3, "t_c {t} against {tc}");
+        assert!((peak / hertz_impact::max_force(e, r, m, v) - 1.0).abs() < 1e-3);
+        assert!((-v_out / v_in - 1.0).abs() < 1e-4, "{v_in} {v_out}");
+        assert_eq!(counts.trials, counts.accepted + counts.rejected + 1);
+    }
+
+    /// A rejected step leaves the law's history as it was: the same run with every
+    /// step tried twice (a rollback, then the same trial again) gives the same bits.
+    #[test]
+    fn a_rollback_restores_the_state() {
+        let profile = Profile::single(Shape::paraboloid(1.0).unwrap());
+        let mut a = Springs::body(&profile, 1.0, 500, 0.3)
+            .unwrap()
+            .with_friction(0.8, 0.3)
+            .unwrap();
+        let mut b = a.clone();
+        let motions: Vec<Motion> = (0..200)
+            .map(|k| Motion {
+                normal: 0.01,
+                tangential: 1e-4 * (k as f64 * 0.1).sin(),
+                dt: 1e-3,
+            })
+            .collect();
+        for m in &motions {
+            a.trial(*m).unwrap();
+            a.commit().unwrap();
+            b.trial(Motion {
+                tangential: m.tangential * 3.0,
+                ..*m
+            })
+            .unwrap();
+            b.rollback();
+            b.trial(*m).unwrap();
+            b.commit().unwrap();
+        }
+        assert_eq!(a.committed(), b.committed());
+        assert!(b.commit().is_err());
+    }
+}

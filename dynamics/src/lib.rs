@@ -1,0 +1,44 @@
+//! # dynamics: the contact inside a macroscopic simulation (the review's Section 12)
+//!
+//! A contact law a time integrator calls at every step ([`ContactLaw`]): it takes the
+//! relative motion of the step (normal approach, tangential displacement, time step)
+//! and returns the contact forces, keeps its own history (stick and slip of each
+//! spring or cell), and lets the integrator try a step and accept it ([`ContactLaw::commit`])
+//! or reject it ([`ContactLaw::rollback`]), so implicit and adaptive integrators can
+//! use it. One trait, two families behind it:
+//!
+//! - MRD ([`law::Springs`]): the independent springs of the method of reduction of
+//!   dimensionality: a body of revolution by the rule of Hess (Eq. 11), or a rough line
+//!   (C1D = lambda q C2D, Eq. 76), normal springs `E* dx` found in O(log N) per step from
+//!   sorted gaps and prefix sums; tangential springs `G* dx` with Coulomb slip, each
+//!   with its own history (Sections 6-7).
+//! - 3D ([`law::Bem3d`]): the boundary-element normal solve of `bem3d`, under the step's
+//!   approach, warm-started from the last accepted state.
+//!
+//! The integrator ([`integrate`]) advances one degree of freedom: a mass under an
+//! external force and the contact force, by velocity Verlet, with step rejection on a
+//! force jump (the rollback in use). `mrd` and `bem3d` know nothing of time stepping;
+//! the scenes that use this crate live in `compare`.
+
+pub mod integrate;
+pub mod law;
+
+pub use law::{Bem3d, ContactLaw, Forces, Motion, Springs};
+
+/// What can go wrong in a contact law or an integration.
+#[derive(Debug, thiserror::Error)]
+pub enum DynamicsError {
+    /// A parameter outside its range; the message names it.
+    #[error("{0}")]
+    InvalidInput(String),
+    #[error("MRD: {0}")]
+    Mrd(#[from] mrd::error::MrdError),
+    #[error("3D: {0}")]
+    Bem(#[from] bem3d::BemError),
+}
+
+pub type Result<T> = std::result::Result<T, DynamicsError>;
+
+fn bad<T>(message: impl Into<String>) -> Result<T> {
+    Err(DynamicsError::InvalidInput(message.into()))
+}
