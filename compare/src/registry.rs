@@ -71,6 +71,10 @@ pub const KINDS: &[Kind] = &[
         "impact",
         "a sphere's impact integrated in time with the contact at every step, MRD's springs and the 3D solve in the loop, against Hertz's impact (Section 12)",
     ),
+    Kind::of::<dynamics::resonance::ContactResonance>(
+        "contact_resonance",
+        "free normal vibration on a rough contact with the contact at every step, MRD's rough lines and the 3D punch in the loop: frequency against k(F0), backbone and contact loss; the cost of a step against the grid (Section 12)",
+    ),
     Kind::of::<dynamics::ring_down::RingDown>(
         "ring_down",
         "a mass ringing down on a sphere's frictional contact, MRD's Coulomb springs at every step, against Mindlin-Deresiewicz's loss per cycle (Sections 7 and 12)",

@@ -14,6 +14,7 @@ mod axisym;
 mod cohesive;
 mod contact;
 mod errors;
+mod law;
 mod plastic;
 mod rough;
 mod scene;
@@ -40,6 +41,8 @@ fn _mrdw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<adhesive::AdhesiveStep>()?;
     m.add_class::<cohesive::CohesiveContact>()?;
     m.add_class::<cohesive::CohesiveStep>()?;
+    m.add_class::<law::ContactLaw>()?;
+    m.add_class::<law::LawForces>()?;
     m.add_class::<plastic::PlasticContact>()?;
     m.add_class::<plastic::PlasticStep>()?;
     m.add_class::<tangential::PartialSlip>()?;

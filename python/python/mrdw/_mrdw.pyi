@@ -327,6 +327,73 @@ class CohesiveStep:
     def pressure(self) -> F64:
         """Cell pressures, shape (ny, nx) [stress], negative in tension (>= -sigma0)."""
 
+class LawForces:
+    """The forces of one state of a ContactLaw."""
+
+    @property
+    def normal(self) -> float:
+        """Normal force [stress x length^2], >= 0."""
+    @property
+    def tangential(self) -> float:
+        """Tangential force [stress x length^2], resisting the displacement."""
+    @property
+    def contact_area(self) -> float: ...
+    @property
+    def stiffness(self) -> Optional[float]:
+        """Normal tangent stiffness dF/dd; None where the law does not compute it (3D)."""
+    @property
+    def dissipated(self) -> float:
+        """Energy dissipated by slip in the step [stress x length^3]."""
+    @property
+    def iterations(self) -> int: ...
+
+class ContactLaw:
+    """A contact law with history for a time integrator (Section 12): trial a step's
+    motion, then commit or rollback. MRD's springs (body, rough_line) or the 3D solve
+    (bem3d) behind one interface."""
+
+    @staticmethod
+    def body(
+        profile: Profile,
+        e_star: float = 1.0,
+        springs: int = 2000,
+        half_length: Optional[float] = None,
+        g_star: Optional[float] = None,
+        mu: Optional[float] = None,
+    ) -> "ContactLaw":
+        """MRD's springs for a body of revolution (rule of Hess), with Coulomb friction
+        when g_star and mu are given."""
+    @staticmethod
+    def rough_line(
+        heights: ArrayLike,
+        length: float,
+        e_star: float = 1.0,
+        nominal_area: Optional[float] = None,
+        g_star: Optional[float] = None,
+        mu: Optional[float] = None,
+    ) -> "ContactLaw":
+        """MRD's rough line (springs E* dx under 1D heights over `length`)."""
+    @staticmethod
+    def bem3d(
+        heights: Union[ArrayLike, Any],
+        size: Optional[Tuple[float, float]] = None,
+        e_star: float = 1.0,
+        mask: Optional[ArrayLike] = None,
+        periodic: bool = False,
+        tolerance: Optional[float] = None,
+    ) -> "ContactLaw":
+        """The 3D normal contact of a height map, warm-started from the last step."""
+    def trial(self, normal: float, tangential: float = 0.0, dt: float = 1.0) -> LawForces:
+        """The forces at the step's end motion from the last accepted state."""
+    def commit(self) -> None:
+        """Accept the last trial."""
+    def rollback(self) -> None:
+        """Discard the last trial."""
+    @property
+    def committed(self) -> LawForces: ...
+    def approach_at(self, force: float) -> float:
+        """The approach carrying `force` with the history as accepted."""
+
 class PlasticStep:
     """The state after a step of PlasticContact.step."""
 

@@ -3,4 +3,5 @@
 //! against a closed form.
 
 pub mod impact;
+pub mod resonance;
 pub mod ring_down;

@@ -1,0 +1,88 @@
+"""mrdw.ContactLaw: a contact law in the user's own integrator (Section 12), MRD's springs
+and the 3D solve behind one class, checked against Hertz's impact solution."""
+
+import math
+
+import numpy as np
+import pytest
+
+import mrdw
+
+E, R, M, V = 1.0, 1.0, 1e-3, 0.05
+
+
+def hertz_impact():
+    d = (15 * M * V * V / (16 * E * math.sqrt(R))) ** 0.4
+    c = 0.8 * math.gamma(0.4) * math.gamma(0.5) / math.gamma(0.9)
+    return c * d / V, 4 / 3 * E * math.sqrt(R) * d**1.5, d
+
+
+def impact(law, steps):
+    """A plain velocity-Verlet loop: the contact time and largest force."""
+    tc, _, d = hertz_impact()
+    dt = tc / steps
+    x, v = -1e-3 * d, V
+    a = -law.trial(x).normal / M
+    law.commit()
+    t, t_in, peak = 0.0, None, 0.0
+    while t < 1.3 * tc:
+        half = v + 0.5 * dt * a
+        x_new = x + dt * half
+        f = law.trial(x_new, dt=dt)
+        law.commit()
+        a = -f.normal / M
+        v = half + 0.5 * dt * a
+        if x <= 0 < x_new:
+            t_in = t + dt * (-x / (x_new - x))
+        if x > 0 >= x_new:
+            return t + dt * (x / (x - x_new)) - t_in, peak
+        peak = max(peak, f.normal)
+        x, t = x_new, t + dt
+    raise AssertionError("no separation")
+
+
+def test_hertz_impact_in_a_users_loop_with_mrd_and_3d():
+    tc, fmax, d = hertz_impact()
+    a = math.sqrt(R * d)
+    law = mrdw.ContactLaw.body(mrdw.Profile.sphere(R), e_star=E, springs=4000, half_length=2 * a)
+    t, peak = impact(law, 2000)
+    assert abs(t / tc - 1) < 1e-4 and abs(peak / fmax - 1) < 1e-3
+    n, side = 48, 3 * a
+    x = (np.arange(n) + 0.5) * side / n - side / 2
+    h = -(x[None, :] ** 2 + x[:, None] ** 2) / (2 * R)
+    t3, peak3 = impact(mrdw.ContactLaw.bem3d(h, size=(side, side), e_star=E), 200)
+    assert abs(t3 / tc - 1) < 5e-3 and abs(peak3 / fmax - 1) < 5e-3
+
+
+def test_trial_commit_rollback():
+    law = mrdw.ContactLaw.body(mrdw.Profile.sphere(1.0), springs=500, half_length=0.3,
+                               g_star=0.8, mu=0.3)
+    d = law.approach_at(1e-3)
+    law.trial(d, 0.0)
+    law.commit()
+    first = law.trial(d, 1e-4)
+    law.rollback()
+    law.trial(d, 5e-4)  # another trial replaces it ...
+    law.rollback()
+    again = law.trial(d, 1e-4)  # ... and the state is the accepted one
+    assert again.tangential == first.tangential and again.tangential > 0
+    law.commit()
+    assert law.committed.tangential == again.tangential
+    with pytest.raises(ValueError, match="no trial"):
+        law.commit()
+
+
+def test_bad_input_names_the_parameter():
+    sphere = mrdw.Profile.sphere(1.0)
+    with pytest.raises(ValueError, match="half_length"):
+        mrdw.ContactLaw.body(sphere)
+    with pytest.raises(ValueError, match="g_star and mu"):
+        mrdw.ContactLaw.body(sphere, half_length=0.3, mu=0.3)
+    law = mrdw.ContactLaw.body(sphere, half_length=0.3)
+    with pytest.raises(ValueError, match="dt"):
+        law.trial(0.01, dt=0.0)
+    with pytest.raises(ValueError, match="finite"):
+        law.trial(float("nan"))
+    h = np.zeros((16, 16))
+    with pytest.raises(ValueError, match="frictionless"):
+        mrdw.ContactLaw.bem3d(h, size=(1.0, 1.0)).trial(0.01, tangential=1e-3)
