@@ -5,10 +5,11 @@ Tamaas' tutorial builds a self-affine surface with an isotropic power-law spectr
 0.8), scales it to an rms slope and solves with PolonskyKeerRey at a mean pressure. The
 same here with mrdw; the contact map is plotted when matplotlib is installed.
 
-    python examples/periodic_contact.py [--n 256] [--plot contact.png]
+    python examples/periodic_contact.py [--n 256] [--plot reports/contact.png]
 """
 
 import argparse
+import os
 import math
 
 import numpy as np
@@ -55,6 +56,7 @@ def main():
         ax.set_ylabel("y / L")
         ax.set_title(f"contact pressure, area {100 * r.contact_fraction:.2f} %")
         fig.tight_layout()
+        os.makedirs(os.path.dirname(os.path.abspath(args.plot)), exist_ok=True)
         fig.savefig(args.plot, dpi=110)
         print(f"wrote {args.plot}")
 

@@ -14,7 +14,7 @@ cargo build --release --quiet --bin mrdw
 # scene[:figure,figure,...] (no list: every figure of the report).
 all=(
   fig6-converged:lambda_study_lambda_vs_bandwidth.png,lambda_study_scatter_quantiles.png
-  fig6:hurst_sweep_fig6.png,hurst_sweep_lambda.png
+  fig6-large:hurst_sweep_fig6.png,hurst_sweep_lambda.png
   fig7-3d:sliding_friction_3d.png
   static-friction-3d:static_friction_3d_periodic.png,static_friction_3d_disc.png
   rough-sphere:rough_sphere_stiffness.png,rough_sphere_radius.png
@@ -24,6 +24,7 @@ all=(
   tangential-3d-free tangential-viscoelastic-3d tangential-stiffness-3d
   rough-partial-slip-3d rough-slip-3d rough-slip-3d-punch
   calibrate-rolloff:curves.png,curves_4.png
+  plastic-sphere plastic-cone impact ring-down contact-resonance
 )
 wanted=("$@")
 for entry in "${all[@]}"; do
@@ -46,3 +47,4 @@ for entry in "${all[@]}"; do
   fi
   echo "docs/figures/$scene/: $(cd "docs/figures/$scene" && ls *.png | xargs)"
 done
+bash scripts/docs-gallery.sh

@@ -25,8 +25,8 @@ struct Cli {
 }
 
 const EXAMPLES: &str = "Examples:
-  mrdw run                      the default scene, fig6 (about a minute on 2 cores), into reports/fig6/
-  mrdw run tour                 every axisymmetric output on one sphere (instant)
+  mrdw run                      the default scene, fig6 (run times: docs/times.md), into reports/fig6/
+  mrdw run tour                 every axisymmetric output on one sphere
   mrdw run cases/jkr.toml --out /tmp/jkr
   mrdw scenes                   list the embedded scenes
   mrdw kinds                    list the output kinds a scene can request
@@ -72,8 +72,8 @@ enum Command {
         #[arg(long)]
         work: Option<PathBuf>,
         /// Compute no 3D task: report what the checkpoints hold (a lambda_study reports
-        /// its cases with data, computing its MRD ensembles first where they are missing,
-        /// about two CPU-minutes; other outputs compute as usual).
+        /// its cases with data, computing its MRD ensembles first where they are missing;
+        /// other outputs compute as usual).
         #[arg(long)]
         report_only: bool,
     },
@@ -115,7 +115,7 @@ enum Command {
         /// bench/tamaas_compare.py.
         #[arg(long)]
         write_surfaces: Option<PathBuf>,
-        /// Small ladders (report): well under a minute instead of about 10.
+        /// Small ladders (report): a quick look, not the numbers docs/performance.md shows.
         #[arg(long)]
         quick: bool,
         /// Report folder (report); default reports/bench (reports/bench-quick with

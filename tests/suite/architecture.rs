@@ -757,3 +757,224 @@ fn the_contact_solver_stays_small() {
         "ContactSolver has {fields} fields"
     );
 }
+
+/// The keys of the scene struct `name` (its fields, serde's names: the field names; no
+/// struct of an output kind renames or flattens them), from its source under
+/// `compare/src`.
+fn struct_keys(name: &str) -> Option<Vec<String>> {
+    for f in files(&src("compare")) {
+        let text = std::fs::read_to_string(&f).unwrap();
+        let head = format!("pub struct {name} {{");
+        let Some(start) = text.find(&head) else {
+            continue;
+        };
+        let body = &text[start + head.len()..];
+        let body = &body[..body.find("\n}").unwrap_or(body.len())];
+        let keys = body
+            .lines()
+            .map(str::trim)
+            .filter(|l| !l.starts_with("//") && !l.starts_with('#') && l.contains(':'))
+            .map(|l| {
+                l.trim_start_matches("pub ")
+                    .trim_start_matches("pub(crate) ")
+                    .trim_start_matches("pub(super) ")
+                    .split(':')
+                    .next()
+                    .unwrap()
+                    .trim()
+                    .to_string()
+            })
+            .collect();
+        return Some(keys);
+    }
+    None
+}
+
+/// Every output kind has its section in cases/README.md (`mrdw kinds` sends users
+/// there), and every key its struct accepts appears in that section.
+#[test]
+fn every_kind_and_key_is_documented() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("cases/README.md")).unwrap();
+    let registry = std::fs::read_to_string(src("compare").join("registry.rs")).unwrap();
+    // `points` is every axisymmetric output's, documented once above the kinds.
+    let common = ["points"];
+    let mut missing = Vec::new();
+    for kind in compare::registry::KINDS {
+        let marker = format!("### `{}`", kind.name);
+        let Some(at) = readme.find(&marker) else {
+            missing.push(format!("{}: no section `{marker}`", kind.name));
+            continue;
+        };
+        let section = &readme[at..];
+        let section = &section[..section[4..].find("\n##").map_or(section.len(), |e| e + 4)];
+        // The struct of the kind: `Kind::of::<path::Type>(\n "name"`.
+        let entry = registry
+            .find(&format!("\"{}\",", kind.name))
+            .map(|e| &registry[..e])
+            .and_then(|before| before.rfind("Kind::of::<").map(|s| &before[s + 11..]))
+            .and_then(|t| t.split(">(").next())
+            .map(|t| t.rsplit("::").next().unwrap().to_string())
+            .unwrap_or_else(|| panic!("{}: no registry entry", kind.name));
+        let keys = struct_keys(&entry).unwrap_or_else(|| panic!("no struct {entry}"));
+        for k in keys.into_iter().filter(|k| !common.contains(&k.as_str())) {
+            if !section.contains(&format!("{k} =")) && !section.contains(&format!("`{k}`")) {
+                missing.push(format!("{}: key `{k}`", kind.name));
+            }
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "undocumented in cases/README.md:\n{}",
+        missing.join("\n")
+    );
+}
+
+/// The Markdown pages of the repository (README, docs/, cases/, bench/).
+fn pages() -> Vec<PathBuf> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut p = vec![root.join("README.md"), root.join("cases/README.md")];
+    for dir in ["docs", "bench"] {
+        for e in std::fs::read_dir(root.join(dir)).unwrap() {
+            let f = e.unwrap().path();
+            if f.extension().is_some_and(|x| x == "md") {
+                p.push(f);
+            }
+        }
+    }
+    p
+}
+
+/// The relative links `](target)` of a page (no URLs, no anchors).
+fn links(text: &str) -> Vec<String> {
+    text.split("](")
+        .skip(1)
+        .filter_map(|rest| rest.split(')').next())
+        .map(|l| l.split('#').next().unwrap().trim().to_string())
+        .filter(|l| !l.is_empty() && !l.contains("://") && !l.starts_with("mailto:"))
+        .collect()
+}
+
+/// Every relative link of the pages leads to a file, and every figure under docs/ is
+/// shown on a page (a figure nobody sees is either shown or removed).
+#[test]
+fn links_resolve_and_every_docs_figure_is_shown() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut broken = Vec::new();
+    let mut shown = BTreeSet::new();
+    for page in pages() {
+        let text = std::fs::read_to_string(&page).unwrap();
+        for l in links(&text) {
+            let target = page.parent().unwrap().join(&l);
+            match target.canonicalize() {
+                Ok(t) => {
+                    shown.insert(t);
+                }
+                Err(_) => broken.push(format!("{}: {l}", page.display())),
+            }
+        }
+    }
+    assert!(broken.is_empty(), "broken links:\n{}", broken.join("\n"));
+    let mut unshown = Vec::new();
+    let mut stack = vec![root.join("docs")];
+    while let Some(dir) = stack.pop() {
+        for e in std::fs::read_dir(dir).unwrap() {
+            let f = e.unwrap().path();
+            if f.is_dir() {
+                stack.push(f);
+            } else if f.extension().is_some_and(|x| x == "png")
+                && !shown.contains(&f.canonicalize().unwrap())
+            {
+                unshown.push(f.display().to_string());
+            }
+        }
+    }
+    assert!(
+        unshown.is_empty(),
+        "figures shown on no page:\n{}",
+        unshown.join("\n")
+    );
+}
+
+/// Phrases that quote a run time ("40 s on 2 cores", "about a minute", "a few CPU-minutes").
+const TIME_PHRASES: &[&str] = &[
+    "on 2 cores",
+    "on two cores",
+    "cpu-seconds",
+    "cpu-minutes",
+    "cpu-hours",
+    "about a second",
+    "about a minute",
+    "about an hour",
+    "a few seconds",
+    "a few minutes",
+    "under a second",
+    "under a minute",
+    "(instant)",
+];
+
+/// docs/times.md is the one table of run times (written by scripts/setup-times.sh from
+/// one dated run): it times every embedded scene, the pages a newcomer reads first (the
+/// README, cases/, the scenes' own comments, the CLI's help, the Python page) quote no
+/// run time of their own, and a time the README quotes beside its link is in the table.
+#[test]
+fn run_times_have_one_table() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let table = std::fs::read_to_string(root.join("docs/times.md")).unwrap();
+    let mut missing = Vec::new();
+    let mut quoted = Vec::new();
+    let mut sources = vec![
+        root.join("README.md"),
+        root.join("cases/README.md"),
+        root.join("docs/python.md"),
+        root.join("src/main.rs"),
+    ];
+    for e in std::fs::read_dir(root.join("cases")).unwrap() {
+        let f = e.unwrap().path();
+        if f.extension().is_some_and(|x| x == "toml") {
+            let text = std::fs::read_to_string(&f).unwrap();
+            let name = text
+                .lines()
+                .find_map(|l| l.strip_prefix("name = \""))
+                .and_then(|l| l.split('"').next())
+                .unwrap_or_default()
+                .to_string();
+            let long = ["fig6-full", "fig6-converged"].contains(&name.as_str());
+            if !long && !table.contains(&format!("| `{name}` |")) {
+                missing.push(name);
+            }
+            sources.push(f);
+        }
+    }
+    for f in &sources {
+        let text = std::fs::read_to_string(f).unwrap();
+        for (i, line) in text.lines().enumerate() {
+            let lower = line.to_lowercase();
+            let linked = line.contains("docs/times.md");
+            if !linked && TIME_PHRASES.iter().any(|p| lower.contains(p)) {
+                quoted.push(format!("{}:{}: {line}", f.display(), i + 1));
+            }
+            // "N min M s" beside the link: the table must hold it.
+            if linked {
+                for (at, _) in line.match_indices(" min ") {
+                    let m = line[..at].rsplit(' ').next().unwrap_or("");
+                    let sec = line[at + 5..].split(' ').next().unwrap_or("");
+                    let quote = format!("{m} min {sec} s");
+                    if !table.contains(&quote) {
+                        let at = format!("{}:{}", f.display(), i + 1);
+                        quoted.push(format!("{at}: {quote} is not in docs/times.md"));
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "scenes docs/times.md does not time (bash scripts/setup-times.sh): {missing:?}"
+    );
+    assert!(
+        quoted.is_empty(),
+        "run times quoted outside docs/times.md (link to it instead):\n{}",
+        quoted.join("\n")
+    );
+}

@@ -135,9 +135,10 @@ fn runs_elsewhere(name: &str) -> bool {
 /// One test per embedded scene (so that the test harness runs them side by side), and the
 /// list they make.
 macro_rules! embedded_scene_tests {
-    ($($test:ident => $scene:literal),* $(,)?) => {
+    ($($(#[$meta:meta])* $test:ident => $scene:literal),* $(,)?) => {
         $(
             #[test]
+            $(#[$meta])*
             fn $test() {
                 check_embedded_scene($scene);
             }
@@ -147,18 +148,23 @@ macro_rules! embedded_scene_tests {
 }
 
 embedded_scene_tests! {
+    #[ignore = "slow: the full tier, `cargo test --workspace --release -- --ignored` (.ci/run)"]
     embedded_adhesion_3d => "adhesion-3d",
     embedded_adhesion_3d_punch => "adhesion-3d-punch",
+    #[ignore = "slow: the full tier, `cargo test --workspace --release -- --ignored` (.ci/run)"]
     embedded_adhesion_tabor => "adhesion-tabor",
+    #[ignore = "slow: the full tier, `cargo test --workspace --release -- --ignored` (.ci/run)"]
     embedded_adhesion_3d_cone => "adhesion-3d-cone",
     embedded_adhesive_cone => "adhesive-cone",
     embedded_cattaneo_mindlin => "cattaneo-mindlin",
     embedded_tangential_3d => "tangential-3d",
+    #[ignore = "slow: the full tier, `cargo test --workspace --release -- --ignored` (.ci/run)"]
     embedded_tangential_3d_free => "tangential-3d-free",
     embedded_tangential_3d_cone => "tangential-3d-cone",
     embedded_impact => "impact",
     embedded_contact_resonance_ci => "contact-resonance-ci",
     embedded_ring_down => "ring-down",
+    #[ignore = "slow: the full tier, `cargo test --workspace --release -- --ignored` (.ci/run)"]
     embedded_plastic_sphere => "plastic-sphere",
     embedded_plastic_sphere_ci => "plastic-sphere-ci",
     embedded_plastic_cone => "plastic-cone",
@@ -171,7 +177,9 @@ embedded_scene_tests! {
     embedded_ejike => "ejike",
     embedded_fig7_ci => "fig7-ci",
     embedded_fig7_3d_ci => "fig7-3d-ci",
+    #[ignore = "slow: the full tier, `cargo test --workspace --release -- --ignored` (.ci/run)"]
     embedded_fig7_viscous => "fig7-viscous",
+    #[ignore = "slow: the full tier, `cargo test --workspace --release -- --ignored` (.ci/run)"]
     embedded_fig9 => "fig9",
     embedded_rough_sphere_ci => "rough-sphere-ci",
     embedded_rough_slip_3d_ci => "rough-slip-3d-ci",
@@ -179,6 +187,7 @@ embedded_scene_tests! {
     embedded_tangential_viscoelastic_3d => "tangential-viscoelastic-3d",
     embedded_viscoelastic_rough_ci => "viscoelastic-rough-ci",
     embedded_static_friction_3d_ci => "static-friction-3d-ci",
+    #[ignore = "slow: the full tier, `cargo test --workspace --release -- --ignored` (.ci/run)"]
     embedded_fig9_readings => "fig9-readings",
     embedded_flat_punch => "flat-punch",
     embedded_hertz => "hertz",
@@ -1123,6 +1132,7 @@ fn bench_large_reports_converged_cases_and_their_memory() {
 /// with the calibrated lambda MRD's mean approach after the hold lies inside the 3D
 /// interval (deterministic numbers; the times are not checked).
 #[test]
+#[ignore = "slow: the full tier, `cargo test --workspace --release -- --ignored` (.ci/run)"]
 fn bench_viscoelastic_states_the_speed_up_at_equal_error() {
     let o = mrdw(&["bench", "viscoelastic", "--max-n", "128"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));

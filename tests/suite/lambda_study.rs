@@ -41,6 +41,7 @@ fn rows(path: &Path) -> Vec<Vec<f64>> {
 }
 
 #[test]
+#[ignore = "slow: the full tier, `cargo test --workspace --release -- --ignored` (.ci/run)"]
 fn the_study_machinery_runs_pairs_and_reproduces() {
     let tmp = tempfile::tempdir().unwrap();
     let p = |n: &str| tmp.path().join(n);
@@ -234,6 +235,7 @@ fn the_study_machinery_runs_pairs_and_reproduces() {
 /// interval (the shift itself lies outside), and with the table's lambda the misfit stays
 /// within the table's misfit_max plus 0.03 (other lines than the study's).
 #[test]
+#[ignore = "slow: the full tier, `cargo test --workspace --release -- --ignored` (.ci/run)"]
 fn the_calibrated_lambda_reproduces_the_3d_stiffness_through_the_public_api() {
     use compare::experiment::fit::{calibrate_lambda_at, interp_loglog, window_points};
     use compare::experiment::lambda_meaning::{rms_matched, Face};

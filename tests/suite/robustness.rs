@@ -630,6 +630,7 @@ fn peak_of_run(dir: &Path, scene: &str) -> f64 {
 /// own memory drops out; both runs last long enough for the polls to see their peak).
 #[cfg(target_os = "linux")]
 #[test]
+#[ignore = "slow: the full tier, `cargo test --workspace --release -- --ignored` (.ci/run)"]
 fn spring_memory_estimates_hold() {
     use compare::checks::spring_bytes as b;
     let tmp = tempfile::tempdir().unwrap();
@@ -678,6 +679,7 @@ fn growth_within(
 /// where the growth per cell is lower still.
 #[cfg(target_os = "linux")]
 #[test]
+#[ignore = "slow: the full tier, `cargo test --workspace --release -- --ignored` (.ci/run)"]
 fn cell_memory_estimates_hold() {
     use compare::checks::cell_bytes as b;
     let tmp = tempfile::tempdir().unwrap();

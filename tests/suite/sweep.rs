@@ -43,6 +43,27 @@ fn fig6_ci_exponents_agree_between_3d_and_mrd() {
     for o in s["outputs"].as_array().unwrap() {
         assert_eq!(o["stages"], o["declared"], "{o}");
     }
+    // The stages' times add up to the run and each interleaved stage gets its share
+    // (all of the 3D work was booked to the synthesis, 40 ns to the 3D solves).
+    let o = &s["outputs"][0];
+    let seconds: Vec<f64> = o["stage_seconds"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let names: Vec<&str> = o["stages"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    let wall = s["wall_time_s"].as_f64().unwrap();
+    let total: f64 = seconds.iter().sum();
+    assert!(total <= wall && total > 0.5 * wall, "{total} of {wall}");
+    let solve = seconds[names.iter().position(|n| *n == "bem3d").unwrap()];
+    let synthesis = seconds[names.iter().position(|n| *n == "rough_synthesis").unwrap()];
+    assert!(solve > 2.0 * synthesis, "{names:?} {seconds:?}");
     assert!(
         !tmp.path().join("fig6-ci.work").exists(),
         "checkpoints not cleaned up"

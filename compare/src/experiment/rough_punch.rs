@@ -6,7 +6,7 @@
 use crate::error::{Context as _, Result};
 use crate::output::{Checkpointed, Env};
 use crate::plan::Stage;
-use crate::report::Section;
+use crate::report::{clock, Section};
 use bem3d::{BemError, ContactSolver, Load, NonPeriodicHalfSpace, SolverOptions};
 use serde::{Deserialize, Serialize};
 
@@ -178,7 +178,10 @@ pub fn punch_curve(heights: &[f64], g: usize, loads: usize, tolerance: f64) -> R
     let mut warm: Option<bem3d::Solution> = None;
     for k in 0..loads {
         let d = full * 10f64.powf(-3.0 * (1.0 - k as f64 / (loads - 1) as f64));
-        let (sol, converged) = match solver.solve(Load::Approach(d), &opts, warm.as_ref()) {
+        let solved = clock::time(Stage::Bem3d, || {
+            solver.solve(Load::Approach(d), &opts, warm.as_ref())
+        });
+        let (sol, converged) = match solved {
             Ok(s) => (s, true),
             Err(BemError::NoConvergence { last, .. }) => {
                 out.unconverged += 1;
@@ -189,7 +192,11 @@ pub fn punch_curve(heights: &[f64], g: usize, loads: usize, tolerance: f64) -> R
         out.iterations += sol.iterations;
         out.max_residual = out.max_residual.max(sol.residual);
         // Unconverged iterates are recorded, not used.
-        let kk = match converged.then(|| solver.tangent_stiffness(&sol, &stiffness_opts)) {
+        let kk = match converged.then(|| {
+            clock::time(Stage::Bem3dStiffness, || {
+                solver.tangent_stiffness(&sol, &stiffness_opts)
+            })
+        }) {
             Some(Ok(v)) => v,
             Some(Err(e)) if e.progress().is_none() => return Err(e).ctx("3D stiffness"),
             _ => f64::NAN,
@@ -216,14 +223,16 @@ pub fn punch_curve(heights: &[f64], g: usize, loads: usize, tolerance: f64) -> R
 /// k/(E* L) of one MRD line on the foundation E* = 1, L = 1 at each reduced force
 /// f = F/(E* h L) of `fs`, h the line's own rms height; past complete contact k = E* L.
 pub fn line_stiffness(rl: &mrd::rough_contact::RoughLine, fs: &[f64]) -> Result<Vec<f64>> {
-    let full_force = rl.at_depth(rl.full_contact_depth()).ctx("1D")?.force;
-    fs.iter()
-        .map(|&f| {
-            let force = f * rl.rms_height;
-            if full_force <= force {
-                return Ok(1.0);
-            }
-            Ok(rl.at_force(force).ctx("1D")?.stiffness)
-        })
-        .collect()
+    clock::time(Stage::RoughContact, || {
+        let full_force = rl.at_depth(rl.full_contact_depth()).ctx("1D")?.force;
+        fs.iter()
+            .map(|&f| {
+                let force = f * rl.rms_height;
+                if full_force <= force {
+                    return Ok(1.0);
+                }
+                Ok(rl.at_force(force).ctx("1D")?.stiffness)
+            })
+            .collect()
+    })
 }

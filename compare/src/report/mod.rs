@@ -92,12 +92,31 @@ impl Section {
         out
     }
 
-    /// Runs stages that execute interleaved (e.g. each rough line is synthesised and
-    /// loaded in one pass): records them all; the wall time goes to the first.
+    /// Runs stages that execute interleaved (e.g. each rough punch is synthesised,
+    /// solved and its stiffness computed in one task, tasks on several threads): records
+    /// them all and shares the wall time among them in proportion to the time each spent
+    /// on all threads ([`clock::time`] inside the tasks), so that the stages' times add
+    /// up to the wall time; where the tasks timed nothing (checkpoints read back), the
+    /// first stage takes it.
     pub fn stages_together<T>(&mut self, stages: &[Stage], f: impl FnOnce() -> T) -> T {
-        let out = self.stage(stages[0], f);
-        for &s in &stages[1..] {
+        clock::take();
+        let t0 = Instant::now();
+        let out = f();
+        let wall = t0.elapsed().as_secs_f64();
+        let spent = clock::take();
+        let timed: f64 = stages.iter().map(|s| spent[*s as usize]).sum();
+        for (k, &s) in stages.iter().enumerate() {
+            let share = if timed > 0.0 {
+                spent[s as usize] / timed
+            } else if k == 0 {
+                1.0
+            } else {
+                0.0
+            };
             self.stage(s, || ());
+            if let Some((_, t)) = self.ran.iter_mut().find(|(r, _)| *r == s) {
+                *t += share * wall;
+            }
         }
         out
     }
@@ -269,5 +288,30 @@ mod tests {
             r.sections[1].stages(),
             [Stage::Bem3d, Stage::Bem3dStiffness]
         );
+    }
+}
+
+/// The time spent in each stage by the tasks of interleaved stages, summed over threads
+/// ([`Section::stages_together`] reads and resets it). One output runs at a time.
+pub mod clock {
+    use crate::plan::Stage;
+    use std::sync::atomic::{AtomicU64, Ordering};
+    use std::time::Instant;
+
+    const SLOTS: usize = 64;
+    static NANOS: [AtomicU64; SLOTS] = [const { AtomicU64::new(0) }; SLOTS];
+
+    /// Runs `f`, adding its duration to `stage`.
+    pub fn time<T>(stage: Stage, f: impl FnOnce() -> T) -> T {
+        let t0 = Instant::now();
+        let out = f();
+        let nanos = t0.elapsed().as_nanos().min(u64::MAX as u128) as u64;
+        NANOS[stage as usize % SLOTS].fetch_add(nanos, Ordering::Relaxed);
+        out
+    }
+
+    /// Each stage's accumulated seconds (indexed by `Stage as usize`), reset to zero.
+    pub(crate) fn take() -> [f64; SLOTS] {
+        std::array::from_fn(|k| NANOS[k].swap(0, Ordering::Relaxed) as f64 * 1e-9)
     }
 }

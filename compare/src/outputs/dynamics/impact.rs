@@ -356,9 +356,17 @@ impl Impact {
         for (i, r) in runs.iter().enumerate().skip(2) {
             let style = if i == 2 { Style::Line } else { Style::Markers };
             let label = format!("{} (dt = t_c/{:.0})", r.label, tc / r.dt);
-            let every = (r.samples.len() / 200).max(1);
+            // The line at 200 points; markers at 40, each run's shifted by a fraction of
+            // the spacing so that runs on the same steps do not hide each other or the line.
+            let (every, start) = match style {
+                Style::Markers => {
+                    let every = (r.samples.len() / 40).max(1);
+                    (every, (i - 3) * every / 3)
+                }
+                _ => ((r.samples.len() / 200).max(1), 0),
+            };
             let pts = |f: &dyn Fn(&Sample) -> (f64, f64)| -> Vec<(f64, f64)> {
-                r.samples.iter().step_by(every).map(f).collect()
+                r.samples.iter().skip(start).step_by(every).map(f).collect()
             };
             fig = fig.plot(label.clone(), pts(&|s| (s.t / tc, s.force / fmax)), style);
             phase = phase.plot(

@@ -9,6 +9,8 @@ use crate::experiment::measured::Measured;
 use crate::experiment::rough_punch::{line_stiffness, punch_curve, BemCurve};
 use crate::experiment::tasks;
 use crate::output::RunControl;
+use crate::plan::Stage;
+use crate::report::clock;
 use mrd::rough_contact::RoughLine;
 use mrd::roughness::nested;
 use mrd::roughness::synthesis::Grid;
@@ -290,8 +292,10 @@ pub fn f_grid() -> Vec<f64> {
 fn run_bem(spec: &Calibrate, case: &Case, r: u64) -> Result<BemCurve> {
     let g = case.grid;
     let c2d = |q: f64| case.spectrum.c2d(q);
-    let h = nested::surface(&c2d, case.band, &Grid::square(g, 1.0), spec.seed, r)
-        .ctx("3D punch face")?;
+    let h = clock::time(Stage::RoughSynthesis, || {
+        nested::surface(&c2d, case.band, &Grid::square(g, 1.0), spec.seed, r)
+    })
+    .ctx("3D punch face")?;
     punch_curve(&h, g, spec.loads, spec.tolerance)
 }
 
@@ -308,7 +312,10 @@ fn run_lines(spec: &Calibrate, case: &Case, band: usize, points: usize) -> Resul
     let stiffness = (0..spec.lines)
         .into_par_iter()
         .map(|r| -> Result<Vec<f64>> {
-            let z = nested::line(&c1d, band, points, 1.0, spec.seed, r).ctx("MRD line")?;
+            let z = clock::time(Stage::RoughSynthesis, || {
+                nested::line(&c1d, band, points, 1.0, spec.seed, r)
+            })
+            .ctx("MRD line")?;
             line_stiffness(&RoughLine::new(&z, 1.0, 1.0).ctx("MRD line")?, &fs)
         })
         .collect::<Result<_>>()?;

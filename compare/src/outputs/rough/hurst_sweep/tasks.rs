@@ -7,6 +7,8 @@ use crate::error::{Context as _, Result};
 use crate::experiment::rough_punch::{line_stiffness, punch_curve, BemCurve, MrdEnsemble};
 use crate::experiment::tasks::json;
 use crate::output::RunControl;
+use crate::plan::Stage;
+use crate::report::clock;
 use mrd::rough_contact::RoughLine;
 use mrd::roughness::synthesis::{line, surface, Amplitudes, Grid};
 use mrd::roughness::SelfAffine;
@@ -77,13 +79,15 @@ fn run_bem(spec: &HurstSweep, h: usize, g: usize, r: u64) -> Result<BemCurve> {
     let t0 = Instant::now();
     let sa = spectrum(spec, spec.hurst[h], g).ctx("sweep spectrum")?;
     let (seed, id) = stream(spec.seed, 1, h, g, r);
-    let heights = surface(
-        &sa,
-        &Grid::square(g, 1.0),
-        seed,
-        id,
-        Amplitudes::Deterministic,
-    )
+    let heights = clock::time(Stage::RoughSynthesis, || {
+        surface(
+            &sa,
+            &Grid::square(g, 1.0),
+            seed,
+            id,
+            Amplitudes::Deterministic,
+        )
+    })
     .ctx("3D surface")?;
     let mut out = punch_curve(&heights, g, spec.loads, spec.tolerance)?;
     out.seconds = t0.elapsed().as_secs_f64();
@@ -101,8 +105,10 @@ fn run_mrd(spec: &HurstSweep, h: usize) -> Result<MrdEnsemble> {
         .into_par_iter()
         .map(|r| -> Result<Vec<f64>> {
             let (seed, id) = stream(spec.seed, 2, h, spec.grid, r);
-            let z =
-                line(&line_spec, n1, 1.0, seed, id, Amplitudes::Deterministic).ctx("1D line")?;
+            let z = clock::time(Stage::RoughSynthesis, || {
+                line(&line_spec, n1, 1.0, seed, id, Amplitudes::Deterministic)
+            })
+            .ctx("1D line")?;
             line_stiffness(&RoughLine::new(&z, 1.0, 1.0).ctx("1D line")?, &fs)
         })
         .collect::<Result<_>>()?;

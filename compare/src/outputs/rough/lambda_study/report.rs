@@ -13,8 +13,8 @@ use std::f64::consts::PI;
 
 pub fn report(s: &LambdaStudy, r: &Results, sc: &[Scatter], out: &mut Section) {
     let label = out.label.clone();
-    out.scalar("wall_time_3d_s", r.seconds_3d);
-    out.scalar("wall_time_mrd_s", r.seconds_mrd);
+    out.scalar("cpu_time_3d_s", r.seconds_3d);
+    out.scalar("cpu_time_mrd_s", r.seconds_mrd);
     out.scalar("cases_with_data", r.cases.len() as f64);
     out.tables.push(cases_table(s, r, &label));
     out.tables.push(pairs_table(r, &label));
