@@ -363,11 +363,10 @@ pub mod sliding {
     }
 }
 
-/// The closed forms that apply to a whole profile: a flat punch (no shapes, a rim), or a
-/// single analytic shape without a rim. Sums of shapes and tables have none.
-/// Kogut & Etsion (J. Tribol. 124 (2002) 657-664): finite-element fits for an
-/// elastic-perfectly plastic sphere (yield stress Y, Poisson's ratio nu) pressed by a
-/// rigid flat, in the interference w over its value at the onset of yield,
+/// Kogut & Etsion (J. Appl. Mech. 69 (2002) 657-662, doi 10.1115/1.1490373):
+/// finite-element fits for an elastic-perfectly plastic sphere (yield stress Y, Poisson's
+/// ratio nu) pressed by a rigid flat, in the interference w over its value at the onset
+/// of yield,
 /// `w_c = (pi K H / (2 E*))^2 R` with `K = 0.454 + 0.41 nu` and the hardness
 /// `H = 2.8 Y` (so that `K H` is the peak Hertz pressure at first yield, 1.6 Y at nu =
 /// 0.3). Load over `P_c = (4/3) E* sqrt(R) w_c^(3/2)`, area over `A_c = pi R w_c`. Valid
@@ -406,6 +405,8 @@ pub mod kogut_etsion {
     }
 }
 
+/// The closed forms that apply to a whole profile: a flat punch (no shapes, a rim), or a
+/// single analytic shape without a rim. Sums of shapes and tables have none.
 pub mod for_profile {
     use super::*;
     use crate::profile::{Profile, Shape};

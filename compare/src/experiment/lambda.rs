@@ -11,6 +11,10 @@ use serde::Deserialize;
 /// (provenance in the file).
 pub const DEFAULT_LAMBDA_CSV: &str = include_str!("../../data/lambda_calibrated.csv");
 
+/// The same study's lambda(H) at each of its bandwidths, 32 to 256 (provenance in the
+/// file): what a sweep at one of those bandwidths is held against.
+pub const LAMBDA_BY_BANDWIDTH_CSV: &str = include_str!("../../data/lambda_by_bandwidth.csv");
+
 /// lambda of Eq. (76) as written, C1D = lambda q C2D of the same C2D, the line not
 /// rescaled ([`super::lambda_meaning`]): a number, "pi" (Eq. 73), "cut" (straight cut),
 /// "calibrated" (the embedded table from the `fig6-converged` study), or the path of a

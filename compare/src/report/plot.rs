@@ -274,13 +274,22 @@ macro_rules! draw_with {
                 .collect();
             let label = s.label.as_str();
             let show = !label.is_empty();
+            // Error bars: a stroke as wide as the series' with caps of 8 pixels, so that
+            // an interval reads at a glance and stays visible beside a marker.
             for &(x, lo, hi) in &s.bars {
                 if x.is_finite() && lo.is_finite() && hi.is_finite() && (!$fig.log_y || lo > 0.0) {
+                    let stroke = color.stroke_width(width.min(2));
                     chart
                         .draw_series(std::iter::once(PathElement::new(
                             vec![(x, lo), (x, hi)],
-                            color.stroke_width(1),
+                            stroke,
                         )))
+                        .map_err(|e| plot_err($path, e))?;
+                    chart
+                        .draw_series([lo, hi].into_iter().map(|y| {
+                            EmptyElement::at((x, y))
+                                + PathElement::new(vec![(-4, 0), (4, 0)], stroke)
+                        }))
                         .map_err(|e| plot_err($path, e))?;
                 }
             }

@@ -358,6 +358,34 @@ impl Adhesion3d {
                 branch(0, true),
                 Style::Line,
             );
+        // The two ends of an adhesive contact on MRD's unloading branch: the force minimum
+        // (the pull-off a force-controlled test reads) and the last contact (the jump-out
+        // of an approach-controlled one).
+        let unloading = branch(0, true);
+        if let (Some(&min), Some(&last)) = (
+            unloading.iter().min_by(|a, b| a.1.total_cmp(&b.1)),
+            unloading.last(),
+        ) {
+            // Drawn as a horizontal line at the pull-off force and a vertical one at the
+            // jump-out depth, over the branch's range, so that both read at a glance.
+            let (x0, x1) = unloading
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                    (a.min(p.0), b.max(p.0))
+                });
+            let span = -min.1;
+            fig = fig
+                .plot(
+                    format!("pull-off under force control: F = {:.4e}", min.1),
+                    vec![(x0, min.1), (x1, min.1)],
+                    Style::Dashed,
+                )
+                .plot(
+                    format!("jump-out under approach control: d = {:.4e}", last.0),
+                    vec![(last.0, min.1 - 0.5 * span), (last.0, 0.5 * span)],
+                    Style::Dashed,
+                );
+        }
         out.tables.push(t);
         out.figures.push(fig);
     }

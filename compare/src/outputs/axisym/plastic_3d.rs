@@ -490,7 +490,7 @@ impl Plastic3d {
         let mut t = Table::new("kogut_etsion", &cols);
         t.missing_ok = true;
         t.notes.push(format!(
-            "Kogut & Etsion (J. Tribol. 124 (2002) 657), finite elements with J2 plasticity (Y = H / 2.8 = {y:.6e}, nu = {}): w_c = {wc:.6e}, P_c = {pc:.6e}; the pressure-cap runs' first loading (the steps before the force first falls), each at its own interference w (approach); empty: w/w_c outside the fits' range [1, 110]; the cap yields at p0 = H, the finite elements at p0 = K H = {:.3} H",
+            "Kogut & Etsion (J. Appl. Mech. 69 (2002) 657), finite elements with J2 plasticity (Y = H / 2.8 = {y:.6e}, nu = {}): w_c = {wc:.6e}, P_c = {pc:.6e}; the pressure-cap runs' first loading (the steps before the force first falls), each at its own interference w (approach); empty: w/w_c outside the fits' range [1, 110]; the cap yields at p0 = H, the finite elements at p0 = K H = {:.3} H",
             self.poisson,
             ke::k(self.poisson)
         ));

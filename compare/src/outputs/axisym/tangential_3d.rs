@@ -345,8 +345,50 @@ impl Tangential3d {
         let closed = c_cf.is_some().then_some("Cattaneo-Mindlin (closed form)");
         let without = "Stick radius against tangential force: 3D and MRD (Jaeger)";
         let fig = self.three_ways(fig, &t, (x, "stick_radius_over_a"), closed, without);
+        // The agreement is below a marker's size on the figure above: the differences on
+        // an axis of their own, against the closed form where there is one, else MRD, and
+        // the size of one cell (the 3D stick radius is counted in cells).
+        let (reference, name) = match c_cf {
+            Some(cf) => (cf, "Cattaneo-Mindlin"),
+            None => (c_mrd, "MRD"),
+        };
+        let diff = |c: &[f64]| -> Vec<(f64, f64)> {
+            self.fractions
+                .iter()
+                .zip(c.iter().zip(reference))
+                .map(|(f, (c, r))| (*f, c - r))
+                .collect()
+        };
+        let cell = self.period / self.cells as f64;
+        let ends = (
+            self.fractions.first().copied(),
+            self.fractions.last().copied(),
+        );
+        let mut residual = Figure::new(
+            "stick_residual",
+            &format!("Stick radius minus {name}'s, over the contact radius"),
+            "tangential force F_x / (mu F_N) [1]",
+            &format!("(c - c_{name}) / a [1]"),
+        )
+        .plot("3D boundary elements", diff(c_3d), Style::Markers);
+        if c_cf.is_some() {
+            residual = residual.plot("MRD (exact springs)", diff(c_mrd), Style::Crosses);
+        }
+        if let (Some(f0), Some(f1)) = ends {
+            let index = residual.series.len();
+            residual = residual
+                .plot(
+                    format!("+/- one cell ({cell:.3} a)"),
+                    vec![(f0, cell), (f1, cell)],
+                    Style::Dashed,
+                )
+                .with(
+                    Series::new("", vec![(f0, -cell), (f1, -cell)], Style::Dashed).colored(index),
+                );
+        }
         out.tables.push(t);
         out.figures.push(fig);
+        out.figures.push(residual);
         self.report_dissipation(out, &energy, (w_mrd, w_cf, w_3d));
     }
 
@@ -458,10 +500,18 @@ impl Tangential3d {
         let mrd_u = |f: f64| tc.at_force(f).map(|s| s.displacement);
         let cf_u = |f: f64| -> mrd::Result<f64> { Ok(mindlin(f).unwrap_or(f64::NAN)) };
         let (mut dev_cf, mut dev_mrd) = (0.0f64, 0.0f64);
+        // The loops are drawn with the elastic part of the shift removed (F_x times MRD's
+        // initial compliance): on u_x itself they are slivers along one line, and an
+        // affine shear of the axis leaves each loop's area, the energy lost, unchanged.
+        let eps = 1e-6 * mu_fn;
+        let compliance = mrd_u(eps)? / eps;
         let mut fig = Figure::new(
             "loops",
             "Hysteresis loops: 3D, MRD and Mindlin-Deresiewicz",
-            &format!("shift of the body u_x [{length}]"),
+            &format!(
+                "shift minus its elastic part, u_x - F_x / k_t0 [{length}] (k_t0 = {:.4e}: MRD's initial stiffness)",
+                1.0 / compliance
+            ),
             "tangential force F_x / (mu F_N) [1]",
         );
         if sphere.is_none() {
@@ -479,13 +529,13 @@ impl Tangential3d {
                     let uc = masing(&cf_u, amp, k, f)?;
                     dev_cf = dev_cf.max((u3 - uc).abs() / scale);
                     row.push(uc);
-                    pc.push((uc, f / mu_fn));
+                    pc.push((uc - compliance * f, f / mu_fn));
                 }
                 dev_mrd = dev_mrd.max((u3 - um).abs() / scale);
                 row.extend([um, u3]);
                 t.push(row);
-                p3.push((u3, f / mu_fn));
-                pm.push((um, f / mu_fn));
+                p3.push((u3 - compliance * f, f / mu_fn));
+                pm.push((um - compliance * f, f / mu_fn));
             }
             let mut series = Vec::new();
             if sphere.is_some() {

@@ -102,7 +102,7 @@ pub fn report(
         .push(curves_figure(spec, case, cal, &curves, check.is_some()));
     out.tables.push(curves);
     let psd = psd_table(case, l.value, unit);
-    out.figures.push(psd_figure(&psd, case, l.value));
+    out.figures.extend(psd_figures(&psd, case, l.value));
     out.tables.push(psd);
     Ok(())
 }
@@ -312,11 +312,16 @@ fn psd_table(case: &Case, lambda: f64, unit: &str) -> Table {
         Spectrum::SelfAffine(_) => ("L", 1.0),
         Spectrum::Table { side, .. } => (unit, side),
     };
-    let (unit_q, unit_c, unit_1) = (
-        format!("[1/{unit}]"),
-        format!("[{unit}^4]"),
-        format!("[{unit}^3]"),
-    );
+    // A dimensionless map (length unit "1") has dimensionless spectra: "[1]", not "[1^4]".
+    let (unit_q, unit_c, unit_1) = if unit == "1" {
+        ("[1]".to_string(), "[1]".to_string(), "[1]".to_string())
+    } else {
+        (
+            format!("[1/{unit}]"),
+            format!("[{unit}^4]"),
+            format!("[{unit}^3]"),
+        )
+    };
     let mut t = Table::new(
         "psd",
         &[
@@ -339,36 +344,58 @@ fn psd_table(case: &Case, lambda: f64, unit: &str) -> Table {
     t
 }
 
-fn psd_figure(t: &Table, case: &Case, lambda: f64) -> Figure {
+/// The 2D spectrum (the punches' and, for a map, the map's own) and, on an axis of its
+/// own units, the MRD line's C1D = lambda q C2D.
+fn psd_figures(t: &Table, case: &Case, lambda: f64) -> [Figure; 2] {
     let q = &t.columns[0];
-    let fig = Figure::new(
+    let punches = t.xy(&t.columns[0], &t.columns[1]);
+    let mut c2d = Figure::new(
         "psd",
-        "The spectrum of the punches and of the MRD lines",
+        if case.map.is_some() {
+            "The 2D spectrum of the punches and of the map"
+        } else {
+            "The 2D spectrum of the punches"
+        },
         &format!("wavenumber {q}"),
-        &format!("C2D {}, C1D {}", unit(&t.columns[1]), unit(&t.columns[2])),
+        &format!("C2D {}", unit(&t.columns[1])),
     )
     .plot(
         format!("C2D of the 3D punch faces (to B = {})", case.band),
-        t.xy(&t.columns[0], &t.columns[1]),
+        punches.clone(),
         Style::Line,
-    )
-    .plot(
-        format!("C1D = lambda q C2D, lambda = {lambda:.3} (MRD lines)"),
-        t.xy(&t.columns[0], &t.columns[2]),
-        Style::Dashed,
     );
-    match &case.map {
-        Some(m) => fig.plot(
+    if let Some(m) = &case.map {
+        // The map's periodogram to twice the punches' band, and above a floor 1e-12 below
+        // the punches' smallest C2D: beyond, it is the heights' rounding, not the surface.
+        let q_max = punches.iter().map(|p| p.0).fold(0.0, f64::max);
+        let c_min = punches.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+        let shown: Vec<(f64, f64)> = m
+            .psd
+            .iter()
+            .copied()
+            .filter(|&(q, c)| q <= 2.0 * q_max && c >= 1e-12 * c_min)
+            .collect();
+        c2d = c2d.plot(
             format!(
-                "the map's PSD ({0} x {0}, mean plane removed, Hann window, radial average)",
+                "the map's PSD ({0} x {0}, mean plane removed, Hann window, radial average; to 2 B)",
                 m.n
             ),
-            m.psd.clone(),
+            shown,
             Style::Markers,
-        ),
-        None => fig,
+        );
     }
-    .log_log()
+    let c1d = Figure::new(
+        "psd_line",
+        "The MRD line's spectrum, C1D = lambda q C2D (Eq. 76)",
+        &format!("wavenumber {q}"),
+        &format!("C1D {}", unit(&t.columns[2])),
+    )
+    .plot(
+        format!("C1D of the MRD lines, lambda = {lambda:.3}"),
+        t.xy(&t.columns[0], &t.columns[2]),
+        Style::Line,
+    );
+    [c2d.log_log(), c1d.log_log()]
 }
 
 /// The "[unit]" at the end of a column header.

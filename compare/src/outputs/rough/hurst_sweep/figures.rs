@@ -211,8 +211,11 @@ fn failures(spec: &HurstSweep, r: &Results, out: &mut Section) {
     tally.report(spec.tolerance, out);
 }
 
-/// The shipped calibration (hurst, lambda, lo95, hi95) from its CSV text.
-fn shipped_lambda(csv: &str) -> Vec<(f64, f64, f64, f64)> {
+/// One H of a lambda table: (hurst, lambda, lo95, hi95).
+type LambdaRow = (f64, f64, f64, f64);
+
+/// The shipped calibration from its CSV text.
+fn shipped_lambda(csv: &str) -> Vec<LambdaRow> {
     csv.lines()
         .filter(|l| !l.starts_with('#'))
         .filter_map(|l| {
@@ -220,6 +223,31 @@ fn shipped_lambda(csv: &str) -> Vec<(f64, f64, f64, f64)> {
             (v.len() >= 4).then(|| (v[0], v[1], v[2], v[3]))
         })
         .collect()
+}
+
+/// The lambda study's (hurst, lambda, lo95, hi95) at the bandwidth it has nearest to
+/// `bandwidth` (in ratio), with that bandwidth.
+fn study_at_bandwidth(bandwidth: f64) -> Option<(f64, Vec<LambdaRow>)> {
+    let rows: Vec<[f64; 5]> = crate::experiment::lambda::LAMBDA_BY_BANDWIDTH_CSV
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .filter_map(|l| {
+            let v: Vec<f64> = l.split(',').map_while(|x| x.parse().ok()).collect();
+            (v.len() >= 5).then(|| [v[0], v[1], v[2], v[3], v[4]])
+        })
+        .collect();
+    let b = rows.iter().map(|r| r[1]).min_by(|x, y| {
+        (x / bandwidth)
+            .ln()
+            .abs()
+            .total_cmp(&(y / bandwidth).ln().abs())
+    })?;
+    let at: Vec<_> = rows
+        .iter()
+        .filter(|r| r[1] == b)
+        .map(|r| (r[0], r[2], r[3], r[4]))
+        .collect();
+    Some((b, at))
 }
 
 /// alpha(H) (Fig. 6), lambda(H) and zeta(H).
@@ -240,9 +268,10 @@ fn summary_figures(r: &Results, label: &str, bandwidth: f64) -> [Figure; 3] {
             .map(|h| (h.hurst, f(h).lo, f(h).hi))
             .collect()
     };
-    // Eq. (80) is drawn where it stays in the plotted range (H >= -0.2).
+    // Eq. (80) is drawn from H = 1/4 (alpha 0.8, the top of the data), so that it does
+    // not set the range and the data with their intervals fill the plot.
     let theory: Vec<(f64, f64)> = (0..=64)
-        .map(|i| -0.2 + 3.2 * i as f64 / 64.0)
+        .map(|i| 0.25 + 2.75 * i as f64 / 64.0)
         .map(|h| (h, 1.0 / (1.0 + h)))
         .collect();
     // One quantity's 3D and MRD estimates against H, with their intervals.
@@ -288,13 +317,31 @@ fn summary_figures(r: &Results, label: &str, bandwidth: f64) -> [Figure; 3] {
             Style::Markers,
         )
         .with_bars(shipped.iter().map(|s| (s.0, s.2, s.3)).collect()),
-    )
-    .plot("pi (Eq. 73)", vec![(-1.0, PI), (3.0, PI)], Style::Dashed)
-    .plot(
-        "straight cut sqrt(pi) G(H+1/2)/G(H+1)",
-        lam_cut_pts,
-        Style::Line,
     );
+    // The study's value at this sweep's bandwidth (or the nearest it has): what the
+    // sweep's intervals should hold, lambda depending on the bandwidth for H <= 0.
+    if let Some((b, rows)) = study_at_bandwidth(bandwidth).filter(|(b, _)| *b != 128.0) {
+        let which = if b == bandwidth {
+            "the same"
+        } else {
+            "the nearest studied"
+        };
+        figl = figl.with(
+            Series::new(
+                format!("fig6-converged at bandwidth {b} ({which}; 95% CI; drawn at H + 0.08)"),
+                rows.iter().map(|s| (s.0 + 0.08, s.1)).collect(),
+                Style::Markers,
+            )
+            .with_bars(rows.iter().map(|s| (s.0 + 0.08, s.2, s.3)).collect()),
+        );
+    }
+    figl = figl
+        .plot("pi (Eq. 73)", vec![(-1.0, PI), (3.0, PI)], Style::Dashed)
+        .plot(
+            "straight cut sqrt(pi) G(H+1/2)/G(H+1)",
+            lam_cut_pts,
+            Style::Line,
+        );
     figl.log_y = true;
     let figz = sides(
         Figure::new(
@@ -309,8 +356,10 @@ fn summary_figures(r: &Results, label: &str, bandwidth: f64) -> [Figure; 3] {
     [fig6, figl, figz]
 }
 
-/// k(F) at one H: 3D mean with its 95 % band, MRD, the 3D fit over its window, and
-/// MRD with the calibrated lambda.
+/// k(F) at one H: the 3D mean with its 95 % interval as bars, MRD over the same force
+/// range, the 3D fit over its window (drawn at half height, so that it does not hide
+/// under the points it fits), MRD with the calibrated lambda, and the stiffness of one
+/// contacting cell: the grid's floor, below which no 3D k can fall.
 fn kf_figure(spec: &HurstSweep, r: &Results, h: &PerHurst, label: &str) -> Figure {
     let fs = &r.f;
     let pts = |m: &[Option<f64>]| -> Vec<(f64, f64)> {
@@ -319,43 +368,53 @@ fn kf_figure(spec: &HurstSweep, r: &Results, h: &PerHurst, label: &str) -> Figur
             .filter_map(|(&f, v)| v.map(|v| (f, v)))
             .collect()
     };
-    let band = |sign: f64| -> Vec<(f64, f64)> {
-        fs.iter()
-            .zip(&h.mean_3d)
-            .zip(&h.ci_3d)
-            .filter_map(|((&f, m), c)| m.map(|m| (f, m + sign * c)))
-            .filter(|p| p.1 > 0.0)
-            .collect()
-    };
+    let three_d = pts(&h.mean_3d);
+    // MRD over the 3D force range and half a decade either side: below it the line
+    // carries loads no 3D punch of this grid resolves.
+    let (f_lo, f_hi) = three_d.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+        (a.min(p.0), b.max(p.0))
+    });
+    let in_range = |p: &(f64, f64)| p.0 >= f_lo / 3.0 && p.0 <= f_hi * 3.0;
+    let bars: Vec<(f64, f64, f64)> = fs
+        .iter()
+        .zip(&h.mean_3d)
+        .zip(&h.ci_3d)
+        .filter_map(|((&f, m), c)| m.map(|m| (f, m - c, m + c)))
+        .collect();
     let mut fig = Figure::new(
         &format!("{label}_kf_h{}", number_label(h.hurst)),
         &format!("k(F), H = {} (Eq. 77)", number_label(h.hurst)),
         "F/(E* h L) [1]",
         "k/(E* L) [1]",
     )
-    .plot(
-        format!(
-            "3D BEM, {}^2, {} realisations",
-            spec.grid, h.realisations_3d
-        ),
-        pts(&h.mean_3d),
-        Style::Crosses,
+    .with(
+        Series::new(
+            format!(
+                "3D BEM, {}^2, mean of {} realisations (95% CI)",
+                spec.grid, h.realisations_3d
+            ),
+            three_d.clone(),
+            Style::Markers,
+        )
+        .with_bars(bars),
     )
     .plot(
         format!("MRD, {} lines, lambda = pi", h.realisations_mrd),
-        pts(&h.mean_mrd),
+        pts(&h.mean_mrd).into_iter().filter(in_range).collect(),
         Style::Line,
-    )
-    .with(Series::new("3D mean +/- 95% CI", band(1.0), Style::Dashed).colored(0))
-    .with(Series::new("", band(-1.0), Style::Dashed).colored(0));
+    );
     if let Some((a, z)) = h.fit_3d {
         let (lo, hi) = h.window;
-        let w: Vec<(f64, f64)> = pts(&h.mean_3d)
-            .into_iter()
+        let w: Vec<(f64, f64)> = three_d
+            .iter()
             .filter(|p| p.1 >= lo && p.1 <= hi)
-            .map(|(f, _)| (f, z * f.powf(a)))
+            .map(|&(f, _)| (f, 0.5 * z * f.powf(a)))
             .collect();
-        fig = fig.plot(format!("3D fit window: alpha = {a:.3}"), w, Style::Dashed);
+        fig = fig.plot(
+            format!("3D fit over its window, alpha = {a:.3} (drawn at half height)"),
+            w,
+            Style::Dashed,
+        );
     }
     if h.lambda.value.is_finite() {
         let l = h.lambda.value;
@@ -364,10 +423,22 @@ fn kf_figure(spec: &HurstSweep, r: &Results, h: &PerHurst, label: &str) -> Figur
         let shifted: Vec<(f64, f64)> = fs
             .iter()
             .filter_map(|&f| crate::experiment::fit::interp_loglog(&f1, &v1, f * s).map(|v| (f, v)))
+            .filter(in_range)
             .collect();
         fig = fig.plot(
             format!("MRD with calibrated lambda = {l:.3}"),
             shifted,
+            Style::Dashed,
+        );
+    }
+    // One contacting square cell of side dx under a rigid flat: k = pi E* dx / (4
+    // ln(1 + sqrt 2)) (Love's deflection at the centre of a uniformly loaded square),
+    // with dx = L / grid (the punch fills the grid).
+    let floor = PI / (4.0 * (1.0 + 2f64.sqrt()).ln()) / spec.grid as f64;
+    if f_lo.is_finite() {
+        fig = fig.plot(
+            format!("one cell in contact: k/(E* L) = {floor:.2e}, the grid's floor"),
+            vec![(f_lo / 3.0, floor), (f_hi * 3.0, floor)],
             Style::Dashed,
         );
     }
@@ -403,20 +474,38 @@ fn convergence(spec: &HurstSweep, r: &Results, label: &str) -> (Table, Figure) {
         &format!("{label}_convergence"),
         "Finite-size study: 3D alpha against system size (8 cells per shortest wavelength)",
         "grid cells across the punch, = 8 L / shortest wavelength [1]",
-        "alpha_3d [1]",
+        "alpha_3d [1] (95% CI)",
     );
-    for &hurst in &spec.hurst {
-        let mut pts: Vec<(f64, f64)> = r
+    let mut grids: Vec<f64> = r.convergence.iter().map(|c| c.grid as f64).collect();
+    grids.push(spec.grid as f64);
+    grids.sort_by(f64::total_cmp);
+    grids.dedup();
+    fig.log_x = true;
+    fig.x_keys = Some(grids);
+    // Each H: markers with their intervals, joined by a thin line of the same colour;
+    // the H are offset by a few per cent along x so that their bars stay apart.
+    let n = spec.hurst.len().max(1) as f64;
+    for (j, &hurst) in spec.hurst.iter().enumerate() {
+        let shift = 1.0 + 0.06 * (j as f64 - (n - 1.0) / 2.0) / n;
+        let mut est: Vec<(f64, Estimate)> = r
             .convergence
             .iter()
             .filter(|c| c.hurst == hurst && c.alpha_3d.value.is_finite())
-            .map(|c| (c.grid as f64, c.alpha_3d.value))
+            .map(|c| (c.grid as f64, c.alpha_3d))
             .collect();
         if let Some(h) = r.per_hurst.iter().find(|h| h.hurst == hurst) {
-            pts.push((spec.grid as f64, h.alpha_3d.value));
+            est.push((spec.grid as f64, h.alpha_3d));
         }
-        pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-        fig = fig.plot(format!("H = {hurst}"), pts, Style::Line);
+        est.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let pts: Vec<(f64, f64)> = est.iter().map(|(g, e)| (g * shift, e.value)).collect();
+        let bars = est.iter().map(|(g, e)| (g * shift, e.lo, e.hi)).collect();
+        fig = fig
+            .with(
+                Series::new(format!("H = {hurst}"), pts.clone(), Style::Markers)
+                    .with_bars(bars)
+                    .colored(j),
+            )
+            .with(Series::new("", pts, Style::Line).colored(j).thin());
     }
     (t, fig)
 }
