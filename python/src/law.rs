@@ -83,6 +83,26 @@ impl ContactLaw {
         }
     }
 
+    /// An MRD spring law, with tangential springs and Coulomb slip when `g_star` and `mu`
+    /// are both given.
+    fn springs(
+        py: Python<'_>,
+        law: dynamics::Springs,
+        g_star: Option<f64>,
+        mu: Option<f64>,
+    ) -> PyResult<Self> {
+        let law = match (g_star, mu) {
+            (Some(g), Some(mu)) => law.with_friction(g, mu).map_err(|e| law_err(py, None, e))?,
+            (None, None) => law,
+            _ => {
+                return Err(value_error(
+                    "give g_star and mu together (friction) or neither",
+                ))
+            }
+        };
+        Ok(Self::new(Box::new(law), None))
+    }
+
     fn law(&self) -> std::sync::MutexGuard<'_, Box<dyn Law>> {
         // A panic while stepping cannot leave a half-written state worse than the error
         // it raised: the lock is taken again.
@@ -131,16 +151,7 @@ impl ContactLaw {
         };
         let law = dynamics::Springs::body(&profile.inner, e_star, springs, half)
             .map_err(|e| law_err(py, None, e))?;
-        let law = match (g_star, mu) {
-            (Some(g), Some(mu)) => law.with_friction(g, mu).map_err(|e| law_err(py, None, e))?,
-            (None, None) => law,
-            _ => {
-                return Err(value_error(
-                    "give g_star and mu together (friction) or neither",
-                ))
-            }
-        };
-        Ok(Self::new(Box::new(law), None))
+        Self::springs(py, law, g_star, mu)
     }
 
     /// rough_line(heights, length, e_star=1.0, nominal_area=None, g_star=None, mu=None)
@@ -164,16 +175,7 @@ impl ContactLaw {
         let area = nominal_area.unwrap_or(std::f64::consts::PI * length * length / 4.0);
         let law = dynamics::Springs::rough_line(&h, length, e_star, area)
             .map_err(|e| law_err(py, None, e))?;
-        let law = match (g_star, mu) {
-            (Some(g), Some(mu)) => law.with_friction(g, mu).map_err(|e| law_err(py, None, e))?,
-            (None, None) => law,
-            _ => {
-                return Err(value_error(
-                    "give g_star and mu together (friction) or neither",
-                ))
-            }
-        };
-        Ok(Self::new(Box::new(law), None))
+        Self::springs(py, law, g_star, mu)
     }
 
     /// bem3d(heights, size=None, e_star=1.0, mask=None, periodic=False, tolerance=None)
