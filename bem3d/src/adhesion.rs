@@ -136,9 +136,13 @@ struct Work {
 }
 
 impl<C: Preconditioner + GridForms> AdhesiveContact<C> {
-    /// `heights` (`ny x nx`, finite), an optional `mask` of the cells that may touch, and
-    /// the work of adhesion `work` > 0 [energy / length^2]. Starts out of contact.
-    pub fn new(op: C, heights: &[f64], mask: Option<&[bool]>, work: f64) -> Result<Self> {
+    /// [`Self::new`] for any operator (its compiled entry, in `compiled.rs`, calls this).
+    pub(crate) fn new_generic(
+        op: C,
+        heights: &[f64],
+        mask: Option<&[bool]>,
+        work: f64,
+    ) -> Result<Self> {
         if !(work.is_finite() && work > 0.0) {
             return Err(BemError::InvalidInput(format!(
                 "work of adhesion w = {work} must be finite and > 0 (without adhesion use the normal solver)"
@@ -207,12 +211,8 @@ impl<C: Preconditioner + GridForms> AdhesiveContact<C> {
             .collect()
     }
 
-    /// Loads to `load` from the last state (`tolerance` relative, in (0, 0.01]).
-    /// `Load::Approach` needs a non-periodic operator (a periodic surface has no
-    /// defined mean displacement): prescribe the force there. A load beyond
-    /// [`crate::solver::MAX_LOAD`] in magnitude (mean pressure over E*, approach over the map's
-    /// size) is refused, as by the normal solve.
-    pub fn step(&mut self, load: Load, tolerance: f64) -> Result<AdhesiveStep> {
+    /// [`Self::step`] for any operator (its compiled entry, in `compiled.rs`, calls this).
+    pub(crate) fn step_generic(&mut self, load: Load, tolerance: f64) -> Result<AdhesiveStep> {
         if !(tolerance > 0.0 && tolerance <= 0.01) {
             return Err(BemError::InvalidInput(format!(
                 "tolerance {tolerance} must lie in (0, 0.01]"
@@ -551,7 +551,7 @@ fn masked_sum(on: &[bool], f: impl Fn(usize) -> f64) -> f64 {
 /// An adhesive solve at a vanishing work of adhesion against the normal solver's at
 /// the same approach `d` on `op`: pressures within 1e-6 of the peak, force within 1e-7,
 /// the same contact cells.
-pub(crate) fn is_the_normal_solve<K: crate::operator::SolverOperator>(
+pub(crate) fn is_the_normal_solve<K: crate::SolverOperator>(
     op: K,
     heights: &[f64],
     d: f64,

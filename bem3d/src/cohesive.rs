@@ -122,10 +122,8 @@ pub struct CohesiveContact<C: Preconditioner> {
 }
 
 impl<C: Preconditioner> CohesiveContact<C> {
-    /// `heights` (`ny x nx`), an optional mask, the work of adhesion `work` > 0 and the
-    /// cohesive stress `sigma0` > 0 (the range is `work / sigma0`). On a periodic operator
-    /// the approach fixes the mean gap (module docs). Starts out of contact.
-    pub fn new(
+    /// [`Self::new`] for any operator (its compiled entry, in `compiled.rs`, calls this).
+    pub(crate) fn new_generic(
         op: C,
         heights: &[f64],
         mask: Option<&[bool]>,
@@ -218,9 +216,8 @@ impl<C: Preconditioner> CohesiveContact<C> {
         &self.p
     }
 
-    /// Loads to the approach `d` (from first contact) from the last state; `tolerance`
-    /// relative, in (0, 0.01]; `|d|` at most [`crate::solver::MAX_LOAD`] times the map's size.
-    pub fn step(&mut self, d: f64, tolerance: f64) -> Result<CohesiveStep> {
+    /// [`Self::step`] for any operator (its compiled entry, in `compiled.rs`, calls this).
+    pub(crate) fn step_generic(&mut self, d: f64, tolerance: f64) -> Result<CohesiveStep> {
         if !d.is_finite() {
             return Err(BemError::InvalidInput(format!(
                 "approach {d} must be finite"

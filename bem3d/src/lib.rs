@@ -19,12 +19,18 @@
 //! stencil preconditioner are internal. [`ContactSolver::new_shared`] with
 //! [`solver::SharedHeights`]: the Python package's `Contact` reads the caller's numpy
 //! heights in place instead of keeping a second copy of the map.
+//!
+//! Each solver's constructor and solve or step is compiled here, once per operator
+//! ([`SolverOperator`], [`SlipOperator`]: their hidden methods are the entry points), so
+//! that a crate calling a solver links to that copy instead of compiling the generic
+//! solver again.
 
 // Numerical kernels index several parallel arrays with one index.
 #![allow(clippy::needless_range_loop)]
 
 pub mod adhesion;
 pub mod cohesive;
+mod compiled;
 pub mod error;
 pub mod fft;
 mod kit;
@@ -35,6 +41,7 @@ pub mod plastic;
 mod pool;
 mod set_solve;
 
+pub use compiled::{SlipOperator, SolverOperator};
 pub use error::{BemError, Result};
 pub mod sliding;
 pub mod solution;
@@ -46,7 +53,7 @@ pub mod viscoelastic;
 pub mod wide;
 pub use operator::{
     Compliance, DenseCompliance, GridForms, NonPeriodicHalfSpace, Operand, PeriodicHalfSpace,
-    Precision, Preconditioner, RealSpace, SolverOperator, Spectral, Transform,
+    Precision, Preconditioner, RealSpace, Spectral, Transform,
 };
 pub use sliding::{SlidingContact, SlidingSolution};
 pub use solver::{

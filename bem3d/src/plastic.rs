@@ -108,10 +108,13 @@ pub struct PlasticContact<C: Preconditioner> {
 }
 
 impl<C: Preconditioner> PlasticContact<C> {
-    /// `heights` (`ny x nx`, finite), an optional mask of the cells that may touch, and
-    /// the hardness `H` > 0 [stress] (`f64::INFINITY`: the elastic contact). Starts out
-    /// of contact, the surface undeformed.
-    pub fn new(op: C, heights: &[f64], mask: Option<&[bool]>, hardness: f64) -> Result<Self> {
+    /// [`Self::new`] for any operator (its compiled entry, in `compiled.rs`, calls this).
+    pub(crate) fn new_generic(
+        op: C,
+        heights: &[f64],
+        mask: Option<&[bool]>,
+        hardness: f64,
+    ) -> Result<Self> {
         if hardness.is_nan() || hardness <= 0.0 {
             return Err(BemError::InvalidInput(format!(
                 "hardness H = {hardness} must be > 0 (infinite: no plasticity)"
@@ -172,10 +175,8 @@ impl<C: Preconditioner> PlasticContact<C> {
         self.hardness * cells as f64 * self.op.cell_area()
     }
 
-    /// Loads to `load` from the last state (`tolerance` relative, in (0, 0.01]): an
-    /// approach (any finite value: below first contact the body is apart) or a force
-    /// or mean pressure in [0, [`Self::force_limit`]).
-    pub fn step(&mut self, load: Load, tolerance: f64) -> Result<PlasticStep> {
+    /// [`Self::step`] for any operator (its compiled entry, in `compiled.rs`, calls this).
+    pub(crate) fn step_generic(&mut self, load: Load, tolerance: f64) -> Result<PlasticStep> {
         if !(tolerance > 0.0 && tolerance <= 0.01) {
             return Err(BemError::InvalidInput(format!(
                 "tolerance {tolerance} must lie in (0, 0.01]"

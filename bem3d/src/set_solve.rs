@@ -16,7 +16,7 @@ pub(crate) trait SetOperator {
     fn precondition(&mut self, r: &mut [f64]);
 }
 
-impl<K: crate::operator::SolverOperator> SetOperator for K {
+impl<K: crate::operator::GridOperator> SetOperator for K {
     fn apply(&mut self, v: &[f64], out: &mut [f64]) {
         crate::operator::Compliance::apply(self, v, out);
     }

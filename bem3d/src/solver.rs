@@ -174,7 +174,7 @@
 //! `docs/solver.md`). Outside the window the solve starts cold.
 
 use crate::error::{BemError, Result};
-use crate::operator::SolverOperator;
+use crate::operator::GridOperator;
 use crate::set_solve::{SetEnd, SetSolve};
 use rayon::prelude::*;
 
@@ -223,20 +223,44 @@ fn warm_pays(warm: &Solution, target: Target) -> bool {
     warm.force > 0.0 && warm.approach > 0.0 && window.contains(&ratio)
 }
 
-impl<K: SolverOperator> ContactSolver<K> {
-    /// `heights` (`ny x nx`, peaks up, finite); `mask`: cells that may touch (None: all).
-    /// The solver keeps a copy of the heights.
-    pub fn new(op: K, heights: &[f64], mask: Option<Vec<bool>>) -> Result<Self> {
-        // On the pool, as a solve (its parallel loops start in place).
-        crate::pool::on_pool(|| Self::new_on_pool(op, Values::Owned(heights.to_vec()), mask))
+impl<K: GridOperator> ContactSolver<K> {
+    /// [`Self::new`] for any operator (its compiled entry, in `compiled.rs`, calls this).
+    pub(crate) fn new_generic(op: K, heights: &[f64], mask: Option<Vec<bool>>) -> Result<Self> {
+        let heights = Values::Owned(heights.to_vec());
+        crate::pool::on_pool(|| Self::new_on_pool(op, heights, mask))
     }
 
-    /// As [`ContactSolver::new`] on heights the caller keeps: the solver reads them in
-    /// place and holds no copy (the gap at zero approach is computed from them where it
-    /// is read, bit for bit as from a copy). They must not change while the solver holds
-    /// them (from Python: the array is checked before each solve).
-    pub fn new_shared(op: K, heights: SharedHeights, mask: Option<Vec<bool>>) -> Result<Self> {
+    /// [`Self::new_shared`] for any operator.
+    pub(crate) fn new_shared_generic(
+        op: K,
+        heights: SharedHeights,
+        mask: Option<Vec<bool>>,
+    ) -> Result<Self> {
         crate::pool::on_pool(|| Self::new_on_pool(op, Values::Shared(heights), mask))
+    }
+
+    /// [`Self::set_heights`] for any operator.
+    pub(crate) fn set_heights_generic(&mut self, heights: &[f64]) -> Result<()> {
+        self.install_heights(Values::Owned(heights.to_vec()))
+    }
+
+    /// [`Self::solve`] for any operator.
+    pub(crate) fn solve_generic(
+        &mut self,
+        load: Load,
+        opts: &SolverOptions,
+        warm: Option<&Solution>,
+    ) -> Result<Solution> {
+        crate::pool::on_pool(|| self.solve_on_pool(load, opts, warm))
+    }
+
+    /// [`Self::tangent_stiffness`] for any operator.
+    pub(crate) fn tangent_stiffness_generic(
+        &mut self,
+        sol: &Solution,
+        opts: &SolverOptions,
+    ) -> Result<f64> {
+        crate::pool::on_pool(|| self.tangent_stiffness_on_pool(sol, opts))
     }
 
     fn new_on_pool(op: K, heights: Values, mask: Option<Vec<bool>>) -> Result<Self> {
@@ -303,12 +327,6 @@ impl<K: SolverOperator> ContactSolver<K> {
             },
             coarse: None,
         }
-    }
-
-    /// Replaces the height map (same grid and mask), keeping the operator and buffers;
-    /// the solver keeps a copy.
-    pub fn set_heights(&mut self, heights: &[f64]) -> Result<()> {
-        self.install_heights(Values::Owned(heights.to_vec()))
     }
 
     /// Checks the heights, records their statistics and z's map, and sets w = z.
@@ -428,32 +446,6 @@ impl<K: SolverOperator> ContactSolver<K> {
     /// Cells per sweep chunk: whole rows, about [`CHUNK`] cells.
     fn chunk(&self) -> usize {
         chunk_cells(self.op.nx())
-    }
-
-    /// Solves for `load`, starting from a previous solution `warm` where that pays (see
-    /// the module docs; [`Solution::warm_started`] says whether it was used). A cold
-    /// solve of a compact contact runs on a window first, one with a small start set
-    /// restricted to a candidate set (module docs, [`Solution::path`]); if the
-    /// window or the set outgrows its limit or a round does not converge, the attempt is
-    /// dropped and the next path (last: the full iteration below) runs from its own
-    /// start with `max_iterations` of its own (an attempt spends at most
-    /// `max_iterations` iterations, over at most 8 rounds for a window and 24 for a
-    /// set).
-    ///
-    /// Each iteration applies K once, to the conjugate direction t: `K p` moves by
-    /// `-tau K t` and, where the projection clips a cell or re-admits an interpenetrating
-    /// one, by K of those few point changes (a direct real-space sum below the operator's
-    /// [`RealSpace::point_load_limit`](crate::operator::RealSpace::point_load_limit), a
-    /// fresh `K p` above it). Before the solver reports convergence, `K p` is recomputed
-    /// from scratch and the criterion re-evaluated, so rounding in the updates cannot pass
-    /// for a solution.
-    pub fn solve(
-        &mut self,
-        load: Load,
-        opts: &SolverOptions,
-        warm: Option<&Solution>,
-    ) -> Result<Solution> {
-        crate::pool::on_pool(|| self.solve_on_pool(load, opts, warm))
     }
 
     fn solve_on_pool(
@@ -643,22 +635,9 @@ impl<K: SolverOperator> ContactSolver<K> {
                 -0.25 * (z.at(i) + z.at(i + 1) + z.at(i + nx) + z.at(i + nx + 1))
             })
             .collect();
-        let mut s = ContactSolver::new(op, &heights, None).ok()?;
+        let mut s = ContactSolver::new_generic(op, &heights, None).ok()?;
         s.tuning.nested_min = start::COARSE_NESTED_MIN;
         Some(s)
-    }
-
-    /// Tangent normal stiffness dF/dd with the contact set held fixed: solves
-    /// `K_CC x = 1` on the contact cells C by conjugate gradients (K_CC is symmetric
-    /// positive definite; preconditioned by the operator's M restricted to C) to
-    /// relative residual `opts.tolerance` within `opts.max_iterations`;
-    /// k = sum(x) * cell area.
-    ///
-    /// No contact: k = 0. Complete contact of an unmasked periodic surface: k = +inf
-    /// (K_CC is then K itself, whose mean mode is free: the force grows at a fixed
-    /// approach). A non-finite or vanishing step is a [`BemError::Breakdown`].
-    pub fn tangent_stiffness(&mut self, sol: &Solution, opts: &SolverOptions) -> Result<f64> {
-        crate::pool::on_pool(|| self.tangent_stiffness_on_pool(sol, opts))
     }
 
     fn tangent_stiffness_on_pool(&mut self, sol: &Solution, opts: &SolverOptions) -> Result<f64> {

@@ -29,7 +29,7 @@
 //! elastic solver), so D is measured in the same convention there.
 
 use crate::error::{BemError, Result};
-use crate::operator::SolverOperator;
+use crate::operator::GridOperator;
 use crate::solver::{ContactSolver, Load, Solution, SolverOptions};
 use rayon::prelude::*;
 
@@ -126,7 +126,7 @@ pub struct Step {
 }
 
 /// A rough rigid surface on a viscoelastic half-space, stepped in time.
-pub struct TransientContact<K: SolverOperator> {
+pub struct TransientContact<K: GridOperator> {
     solver: ContactSolver<K>,
     modulus: Relaxation,
     heights: Vec<f64>,
@@ -140,7 +140,7 @@ pub struct TransientContact<K: SolverOperator> {
     last: Option<Solution>,
 }
 
-impl<K: SolverOperator> TransientContact<K> {
+impl<K: GridOperator> TransientContact<K> {
     /// `op` gives the grid and the reference modulus its solves run at (any value: the
     /// pressures are rescaled); `heights` and `mask` as for [`ContactSolver::new`]. The
     /// medium starts undeformed at t = 0.
@@ -152,7 +152,7 @@ impl<K: SolverOperator> TransientContact<K> {
     ) -> Result<Self> {
         let n = op.cells();
         let mask = mask.unwrap_or_else(|| vec![true; n]);
-        let solver = ContactSolver::new(op, heights, Some(mask.clone()))?;
+        let solver = ContactSolver::new_generic(op, heights, Some(mask.clone()))?;
         let top = heights
             .iter()
             .zip(&mask)
@@ -181,9 +181,13 @@ impl<K: SolverOperator> TransientContact<K> {
         &self.u
     }
 
-    /// Advances by `dt` to the load `load` at the step's end (force, mean pressure or
-    /// approach D, module docs); the load varies linearly over the step.
-    pub fn step(&mut self, dt: f64, load: Load, opts: &SolverOptions) -> Result<Step> {
+    /// [`Self::step`] for any operator (its compiled entry, in `compiled.rs`, calls this).
+    pub(crate) fn step_generic(
+        &mut self,
+        dt: f64,
+        load: Load,
+        opts: &SolverOptions,
+    ) -> Result<Step> {
         if !(dt.is_finite() && dt > 0.0) {
             return Err(BemError::InvalidInput(format!(
                 "time step {dt} must be finite and > 0"
@@ -222,9 +226,9 @@ impl<K: SolverOperator> TransientContact<K> {
         let sol = match solver_load {
             Load::Approach(d) if d <= 0.0 => None,
             _ => {
-                self.solver.set_heights(&raised)?;
+                self.solver.set_heights_generic(&raised)?;
                 let warm = self.last.as_ref();
-                Some(self.solver.solve(solver_load, opts, warm)?)
+                Some(self.solver.solve_generic(solver_load, opts, warm)?)
             }
         };
         // u = K_ref p_ref - lift, K_ref p_ref from the solver's operator.

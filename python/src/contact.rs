@@ -772,7 +772,7 @@ impl Contact {
         let heights = shared.clone();
         let solver = grid.frame.solve(py, || -> bem3d::Result<Solver> {
             // The caller's heights in place where numpy's layout allows, else the copy.
-            fn solver<K: bem3d::operator::SolverOperator>(
+            fn solver<K: bem3d::SolverOperator>(
                 op: K,
                 h: &[f64],
                 shared: Option<Arc<PyHeights>>,

@@ -62,7 +62,7 @@ fn row(w: &mut dyn Write, n: usize, periodic: bool) -> Result<(), Box<dyn std::e
     };
     let normal = t0.elapsed().as_secs_f64();
     let t0 = Instant::now();
-    let op: Box<dyn TangentialCompliance> = if periodic {
+    let op: Box<dyn TangentialCompliance + Sync> = if periodic {
         Box::new(CerrutiPeriodic::new(n, n, 1.0, 1.0, 0.25, 0.5)?)
     } else {
         Box::new(CerrutiFree::new(n, n, 1.0, 1.0, 0.25, 0.5)?)

@@ -1,6 +1,6 @@
 //! The forms of an operator on other grids that the solver's strategies build: the
 //! 2 x 2 coarsened operator of a nested start and the operator of a window, with the
-//! operator bound the solver takes ([`SolverOperator`]).
+//! operator bound the solvers build on ([`GridOperator`]).
 
 use super::dense::DenseCompliance;
 use super::non_periodic::NonPeriodicHalfSpace;
@@ -31,11 +31,13 @@ pub trait GridForms: Compliance {
     }
 }
 
-/// Everything the contact solver asks of an operator (implemented for every type with
-/// the four traits).
-pub trait SolverOperator: Compliance + Preconditioner + RealSpace + GridForms {}
+/// An operator with every form the solvers' strategies use (implemented for every type
+/// with the four traits); the solvers take it through
+/// [`SolverOperator`](crate::solver::SolverOperator), which adds their compiled entry
+/// points.
+pub trait GridOperator: Compliance + Preconditioner + RealSpace + GridForms {}
 
-impl<T: Compliance + Preconditioner + RealSpace + GridForms> SolverOperator for T {}
+impl<T: Compliance + Preconditioner + RealSpace + GridForms> GridOperator for T {}
 
 impl GridForms for PeriodicHalfSpace {
     fn coarse(&self) -> Option<Self> {

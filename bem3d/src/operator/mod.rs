@@ -22,7 +22,7 @@ mod traits;
 
 pub use crate::love::love_coefficient;
 pub use dense::DenseCompliance;
-pub use forms::{GridForms, SolverOperator};
+pub use forms::{GridForms, GridOperator};
 pub use non_periodic::NonPeriodicHalfSpace;
 pub use periodic::{spectral_grid, PeriodicHalfSpace, COMPUTED_SYMBOLS_ABOVE};
 pub use space::{
@@ -105,7 +105,7 @@ mod tests {
     fn shared_row_buffer_changes_no_bit_and_refuses_abandoned_rows() {
         use crate::fft::copy_in;
         // K by its single-precision transform (what the solver's early iterations use).
-        fn k_single(op: &mut dyn SolverOperator, p: &[f64]) -> Vec<f64> {
+        fn k_single(op: &mut dyn GridOperator, p: &[f64]) -> Vec<f64> {
             let mut u = vec![0.0; p.len()];
             let s = op.spectral(Operand::ComplianceSingle).unwrap();
             match s.transform {
@@ -114,7 +114,7 @@ mod tests {
             }
             u
         }
-        type Make = fn(usize, usize) -> Box<dyn SolverOperator>;
+        type Make = fn(usize, usize) -> Box<dyn GridOperator>;
         // Each from an operator of its own.
         fn each(make: Make, nx: usize, ny: usize, p: &[f64]) -> [Vec<f64>; 3] {
             let (mut k, mut m) = (vec![0.0; p.len()], p.to_vec());

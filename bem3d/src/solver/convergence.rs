@@ -5,7 +5,7 @@
 use super::fused::reduce;
 use super::state::{chunk_cells, Problem};
 use super::sweeps;
-use crate::operator::SolverOperator;
+use crate::operator::GridOperator;
 use rayon::prelude::*;
 
 /// In complete contact the criterion is met to at most this many ulps of the load's
@@ -23,7 +23,7 @@ impl Problem {
     /// contact"): the requested one, or [`COMPLETE_CONTACT_FLOOR`] ulps of the
     /// displacement scale of the mean pressure, `p_mean sqrt(lx ly) / E*`, over the rms
     /// height if that is larger. `pressure_sum`: the sum of p over the domain cells.
-    pub(super) fn complete_contact_tolerance<K: SolverOperator>(
+    pub(super) fn complete_contact_tolerance<K: GridOperator>(
         &self,
         op: &K,
         tolerance: f64,

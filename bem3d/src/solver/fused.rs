@@ -5,7 +5,8 @@
 //! form goes through a plain buffer (`fallback`) with the same chunks and sums.
 
 use crate::fft::ROWS_PER_CHUNK;
-use crate::operator::{Operand, SolverOperator, Transform};
+use crate::operator::GridOperator;
+use crate::operator::{Operand, Transform};
 use rayon::prelude::*;
 
 thread_local! {
@@ -70,7 +71,7 @@ pub(super) fn load_fused<K, I, F, const A: usize>(
     load: F,
 ) -> Vec<[f64; A]>
 where
-    K: SolverOperator,
+    K: GridOperator,
     I: IntoParallelIterator,
     I::Iter: IndexedParallelIterator,
     F: Fn(I::Item, &mut [f64]) -> [f64; A] + Sync,
@@ -98,7 +99,7 @@ where
 /// [`Fft2::transform_columns`](crate::fft::Fft2::transform_columns); the fallback sums
 /// in a fixed order) for a caller that needs it before the rows, else 0; the rows
 /// follow with [`store_fused`].
-pub(super) fn apply_fused<K: SolverOperator>(
+pub(super) fn apply_fused<K: GridOperator>(
     op: &mut K,
     which: Operand,
     fallback: &mut [Vec<f64>; 2],
@@ -145,7 +146,7 @@ pub(super) fn apply_fused<K: SolverOperator>(
 /// `<x, K x>` of the loaded input x alone, as [`apply_fused`] with `energy` returns it
 /// (bit for bit, [`Fft2::column_energy`](crate::fft::Fft2::column_energy)), without K x:
 /// no rows follow.
-pub(super) fn energy_fused<K: SolverOperator>(
+pub(super) fn energy_fused<K: GridOperator>(
     op: &mut K,
     which: Operand,
     fallback: &mut [Vec<f64>; 2],
@@ -171,7 +172,7 @@ pub(super) fn store_fused<K, I, F, const B: usize>(
     wanted: Option<&[bool]>,
 ) -> Vec<[f64; B]>
 where
-    K: SolverOperator,
+    K: GridOperator,
     I: IntoParallelIterator,
     I::Iter: IndexedParallelIterator,
     F: Fn(I::Item, &[f64]) -> [f64; B] + Sync,

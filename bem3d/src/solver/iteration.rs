@@ -10,7 +10,8 @@ use super::stored::with_directions;
 use super::sweeps;
 use crate::error::{BemError, Result};
 use crate::fft::{copy_in, copy_out, ROWS_PER_CHUNK};
-use crate::operator::{Operand, SolverOperator};
+use crate::operator::GridOperator;
+use crate::operator::Operand;
 use crate::solution::Solution;
 use rayon::prelude::*;
 
@@ -39,7 +40,7 @@ pub(super) enum Refresh<'a> {
     AddZ,
 }
 
-impl<K: SolverOperator> ContactSolver<K> {
+impl<K: GridOperator> ContactSolver<K> {
     /// The projected, preconditioned conjugate-gradient iteration from the pressure `p`
     /// (on the domain, meeting the load), holding `target` (a force or an approach). One
     /// iteration, in order:

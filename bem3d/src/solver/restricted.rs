@@ -37,7 +37,8 @@
 use super::options::{SolverOptions, Target};
 use super::rounds::{Part, Round, Tally};
 use super::state::ContactSolver;
-use crate::operator::{DenseCompliance, SolverOperator};
+use crate::operator::DenseCompliance;
+use crate::operator::GridOperator;
 use crate::solution::{Path, Solution};
 use rayon::prelude::*;
 
@@ -71,7 +72,7 @@ impl CandidateSet {
     /// `target`: the set and the grid's pressure (scaled to the target force). Err: why
     /// it does not apply (the full iteration then runs from its own start, unless the
     /// candidate set is forced: then its limit is [`MAX_CELLS`] alone).
-    pub(super) fn start<K: SolverOperator>(
+    pub(super) fn start<K: GridOperator>(
         grid: &ContactSolver<K>,
         target: Target,
         opts: &SolverOptions,
@@ -97,7 +98,7 @@ impl CandidateSet {
     }
 }
 
-impl<K: SolverOperator> Part<K> for CandidateSet {
+impl<K: GridOperator> Part<K> for CandidateSet {
     type Op = DenseCompliance;
     const NAME: &'static str = "candidate set";
     const MAX_ROUNDS: usize = 24;
@@ -194,7 +195,7 @@ impl<K: SolverOperator> Part<K> for CandidateSet {
 /// The candidate set's start: the pressure (scaled to the target force) and its
 /// cells, or why it does not fit in `limit` cells or the operator has no real-space
 /// table.
-fn candidate_start<K: SolverOperator>(
+fn candidate_start<K: GridOperator>(
     grid: &ContactSolver<K>,
     target: Target,
     limit: usize,

@@ -14,7 +14,7 @@
 use super::iteration::{Refresh, Start};
 use super::options::{SolverOptions, Target};
 use super::state::{ContactSolver, Gap0};
-use crate::operator::SolverOperator;
+use crate::operator::GridOperator;
 use crate::solution::{Path, Solution};
 
 /// Tolerance of the rounds while a part may still grow.
@@ -32,9 +32,9 @@ pub(super) enum Round {
 
 /// Part of the grid solved in rounds: a window or a candidate set. `K` is the grid's
 /// operator.
-pub(super) trait Part<K: SolverOperator>: Sized {
+pub(super) trait Part<K: GridOperator>: Sized {
     /// The operator between the part's cells.
-    type Op: SolverOperator;
+    type Op: GridOperator;
     /// What the part is, in messages ("window", "candidate set").
     const NAME: &'static str;
     /// Rounds before the attempt is given up.
@@ -98,7 +98,7 @@ impl Tally {
     }
 }
 
-impl<K: SolverOperator> ContactSolver<K> {
+impl<K: GridOperator> ContactSolver<K> {
     /// Solves holding `target` on `part` in rounds (module docs), from the grid
     /// pressure `p` (meeting the load); `tight`: whether the first round solves to the
     /// tolerance. Err: why the attempt was given up.

@@ -3,7 +3,7 @@
 //! coarsened 2 x 2 (nested start); solver module docs.
 
 use super::state::{chunk_cells, Problem};
-use crate::operator::SolverOperator;
+use crate::operator::GridOperator;
 use rayon::prelude::*;
 
 /// Cold start under force control: the initial overlap covers this many times
@@ -35,7 +35,7 @@ impl Problem {
     /// ([`FULL_GRID_START_AREA`]
     /// for the full iteration); the rescale to the force follows. Uniform pressure when
     /// the heights have no slope.
-    pub(super) fn cold_start<K: SolverOperator>(
+    pub(super) fn cold_start<K: GridOperator>(
         &self,
         op: &K,
         p: &mut [f64],
@@ -122,7 +122,7 @@ impl Problem {
 
     /// The fraction of the domain the cold start's overlap covers (may be >= 1 or not
     /// finite: then the start is uniform).
-    pub(super) fn start_fraction<K: SolverOperator>(
+    pub(super) fn start_fraction<K: GridOperator>(
         &self,
         op: &K,
         force: f64,
@@ -134,7 +134,7 @@ impl Problem {
 
     /// Start at the approach `d`: the overlap `(d - z)+` times the stiffness of the
     /// longest wavelength.
-    pub(super) fn overlap_start<K: SolverOperator>(&self, op: &K, p: &mut [f64], d: f64) {
+    pub(super) fn overlap_start<K: GridOperator>(&self, op: &K, p: &mut [f64], d: f64) {
         let scale = op.e_star() / (op.lx() * op.ly()).sqrt();
         let map = self.z.map;
         p.par_iter_mut()

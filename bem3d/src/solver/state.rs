@@ -4,13 +4,13 @@
 //! module docs list.
 
 use super::{domain, stored};
-use crate::operator::SolverOperator;
+use crate::operator::GridOperator;
 use std::sync::Arc;
 
 /// Solver for one height map on one operator; buffers are allocated once. Its state
 /// by job: the operator, the problem (heights, mask and their statistics), the work
 /// buffers of the iteration, the tuning knobs, and the coarse solver of nested starts.
-pub struct ContactSolver<K: SolverOperator> {
+pub struct ContactSolver<K: GridOperator> {
     pub(super) op: K,
     pub(super) problem: Problem,
     pub(super) work: Work,

@@ -186,7 +186,7 @@ fn stencil_and_transforms_reach_the_same_solution() {
             })
             .collect()
     };
-    fn run<K: SolverOperator>(op: K, h: &[f64], fraction: f64, threads: usize) -> Solution {
+    fn run<K: crate::SolverOperator>(op: K, h: &[f64], fraction: f64, threads: usize) -> Solution {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()

@@ -25,7 +25,8 @@
 use super::options::{SolverOptions, Target};
 use super::rounds::{Part, Round, Tally};
 use super::state::{ContactSolver, Gap0};
-use crate::operator::{NonPeriodicHalfSpace, SolverOperator};
+use crate::operator::GridOperator;
+use crate::operator::NonPeriodicHalfSpace;
 use crate::solution::{Path, Solution};
 use rayon::prelude::*;
 
@@ -110,7 +111,7 @@ impl WindowPart {
     /// round solves to the tolerance. Err: why it does not apply (the next path then
     /// runs from its own start, unless the window is forced: then the windows' size
     /// limit is lifted and the reason is the solve's error).
-    pub(super) fn start<K: SolverOperator>(
+    pub(super) fn start<K: GridOperator>(
         grid: &ContactSolver<K>,
         target: Target,
         opts: &SolverOptions,
@@ -151,7 +152,7 @@ impl WindowPart {
     }
 }
 
-impl<K: SolverOperator> Part<K> for WindowPart {
+impl<K: GridOperator> Part<K> for WindowPart {
     type Op = NonPeriodicHalfSpace;
     const NAME: &'static str = "window";
     const MAX_ROUNDS: usize = 8;
@@ -248,7 +249,7 @@ impl<K: SolverOperator> Part<K> for WindowPart {
 /// there by direct sums. None when the sums would cost more than one product per grid
 /// cell (an application of K on the grid costs several times that) or the operator has
 /// no real-space table.
-fn gaps_outside<K: SolverOperator>(
+fn gaps_outside<K: GridOperator>(
     grid: &ContactSolver<K>,
     p: &[f64],
     win: Window,
@@ -289,7 +290,7 @@ fn gaps_outside<K: SolverOperator>(
 
 /// A solver for the problem on a window: `op` its half-space, the grid's heights and
 /// mask there, and the criterion's and the re-admission's scales of the whole domain.
-fn on_window<K: SolverOperator>(
+fn on_window<K: GridOperator>(
     grid: &ContactSolver<K>,
     op: NonPeriodicHalfSpace,
     win: Window,

@@ -81,9 +81,8 @@ const ROUNDING: f64 = 1e-14;
 const REFRESH: usize = 50;
 
 impl<C: TangentialCompliance> PartialSlip<C> {
-    /// `pressure` (`ny x nx`, >= 0, finite) held, friction coefficient `mu` in
-    /// (0, 1e6].
-    pub fn new(op: C, pressure: &[f64], mu: f64) -> Result<Self> {
+    /// [`Self::new`] for any operator (its compiled entry, in `compiled.rs`, calls this).
+    pub(crate) fn new_generic(op: C, pressure: &[f64], mu: f64) -> Result<Self> {
         if pressure.len() != op.cells() {
             return Err(BemError::InvalidInput(format!(
                 "pressure has {} values for a grid of {} cells",
@@ -146,12 +145,8 @@ impl<C: TangentialCompliance> PartialSlip<C> {
         self.friction
     }
 
-    /// An oscillating tangential force of `amplitude` (below the friction limit): from the
-    /// current state the force ramps to `amplitude` in `steps` steps, then runs `cycles`
-    /// cycles down to `-amplitude` and back (`steps` steps each way); returns the last
-    /// cycle (the first after a fresh start is already the steady loop of Masing's rule,
-    /// a second one shows it).
-    pub fn cycle(
+    /// [`Self::cycle`] for any operator (its compiled entry, in `compiled.rs`, calls this).
+    pub(crate) fn cycle_generic(
         &mut self,
         amplitude: f64,
         steps: usize,
@@ -175,7 +170,7 @@ impl<C: TangentialCompliance> PartialSlip<C> {
             )));
         }
         for k in 1..=steps {
-            self.load(amplitude * k as f64 / steps as f64, tolerance)?;
+            self.load_generic(amplitude * k as f64 / steps as f64, tolerance)?;
         }
         let mut out = Cycle {
             dissipated: 0.0,
@@ -183,7 +178,7 @@ impl<C: TangentialCompliance> PartialSlip<C> {
             points: Vec::new(),
         };
         for cycle in 0..cycles {
-            let mut last = self.load(amplitude, tolerance)?;
+            let mut last = self.load_generic(amplitude, tolerance)?;
             if cycle + 1 == cycles {
                 out.points.push((last.force, last.shift));
             }
@@ -194,7 +189,7 @@ impl<C: TangentialCompliance> PartialSlip<C> {
                 } else {
                     amplitude * (-1.0 + 2.0 * (k - steps) as f64 / steps as f64)
                 };
-                let s = self.load(f, tolerance)?;
+                let s = self.load_generic(f, tolerance)?;
                 if cycle + 1 == cycles {
                     out.dissipated += s.dissipated;
                     out.loop_area += 0.5 * (s.force + last.force) * (s.shift - last.shift);
@@ -206,9 +201,8 @@ impl<C: TangentialCompliance> PartialSlip<C> {
         Ok(out)
     }
 
-    /// Loads to the tangential force `force` from the last state (`tolerance` relative,
-    /// in (0, 0.1]).
-    pub fn load(&mut self, force: f64, tolerance: f64) -> Result<TangentialStep> {
+    /// [`Self::load`] for any operator (its compiled entry, in `compiled.rs`, calls this).
+    pub(crate) fn load_generic(&mut self, force: f64, tolerance: f64) -> Result<TangentialStep> {
         if !force.is_finite() {
             return Err(BemError::InvalidInput(format!(
                 "tangential force {force} must be finite"
@@ -714,7 +708,7 @@ mod tests {
     /// on both half-spaces (steps that project cells and steps that do not).
     #[test]
     fn each_step_obeys_the_law_on_a_fresh_displacement() {
-        fn check<C: TangentialCompliance>(make: impl Fn() -> C, n: usize) {
+        fn check<C: crate::SlipOperator>(make: impl Fn() -> C, n: usize) {
             let (mu, tol) = (0.3, 1e-8);
             let p = hertz(n, 0.3, 1.0);
             let mut ps = PartialSlip::new(make(), &p, mu).unwrap();
@@ -784,14 +778,14 @@ mod tests {
         fn check<C: TangentialCompliance>(make: impl Fn() -> C, n: usize, what: &str) {
             let (mu, tol) = (0.3, 1e-10);
             let p = hertz(n, 0.3, 1.0);
-            let mut pre = PartialSlip::new(make(), &p, mu).unwrap();
-            let mut plain = PartialSlip::new(Plain(make()), &p, mu).unwrap();
+            let mut pre = PartialSlip::new_generic(make(), &p, mu).unwrap();
+            let mut plain = PartialSlip::new_generic(Plain(make()), &p, mu).unwrap();
             let (mut it_pre, mut it_plain) = (0, 0);
             for x in [0.3, 0.6, 0.2, -0.4, 0.5] {
                 let force = x * pre.friction_limit();
                 let (a, b) = (
-                    pre.load(force, tol).unwrap(),
-                    plain.load(force, tol).unwrap(),
+                    pre.load_generic(force, tol).unwrap(),
+                    plain.load_generic(force, tol).unwrap(),
                 );
                 it_pre += a.iterations;
                 it_plain += b.iterations;
@@ -835,7 +829,7 @@ mod tests {
     /// residual of 0.2-0.8 relative to rounding.
     #[test]
     fn a_step_whose_answer_is_no_traction_ends() {
-        fn check<C: TangentialCompliance>(op: C, n: usize) {
+        fn check<C: crate::SlipOperator>(op: C, n: usize) {
             let p = hertz(n, 0.1, 1.0);
             let mut ps = PartialSlip::new(op, &p, 0.5).unwrap();
             let limit = ps.friction_limit();

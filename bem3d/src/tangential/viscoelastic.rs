@@ -99,10 +99,13 @@ pub struct ViscoelasticSlip<C: TangentialCompliance> {
 const MAX_TRIALS: usize = 80;
 
 impl<C: TangentialCompliance> ViscoelasticSlip<C> {
-    /// `op` of unit shear modulus (e.g. [`super::CerrutiFree`] with `G = 1`), the held
-    /// `pressure` (`ny x nx`), friction coefficient `mu`, shear relaxation `modulus`.
-    /// The glassy modulus G*(0) lies in the operators' [`crate::operator::SCALE_RANGE`].
-    pub fn new(op: C, pressure: &[f64], mu: f64, modulus: Relaxation) -> Result<Self> {
+    /// [`Self::new`] for any operator (its compiled entry, in `compiled.rs`, calls this).
+    pub(crate) fn new_generic(
+        op: C,
+        pressure: &[f64],
+        mu: f64,
+        modulus: Relaxation,
+    ) -> Result<Self> {
         let n = op.cells();
         let (lo, hi) = crate::operator::SCALE_RANGE;
         let glassy = modulus.glassy();
@@ -113,7 +116,7 @@ impl<C: TangentialCompliance> ViscoelasticSlip<C> {
             )));
         }
         let factor = 1.0 / glassy;
-        let slip = PartialSlip::new(Scaled { op, factor }, pressure, mu)?;
+        let slip = PartialSlip::new_generic(Scaled { op, factor }, pressure, mu)?;
         Ok(Self {
             slip,
             h: vec![vec![0.0; n]; modulus.terms.len()],
@@ -138,9 +141,13 @@ impl<C: TangentialCompliance> ViscoelasticSlip<C> {
         self.slip.interrupt_on(flag);
     }
 
-    /// Moves the body to the shift `shift` over the time `dt` (linearly in time), to
-    /// `tolerance` (relative, in (0, 0.1]: the partial-slip solves' and the shift's).
-    pub fn step(&mut self, dt: f64, shift: f64, tolerance: f64) -> Result<ViscoelasticStep> {
+    /// [`Self::step`] for any operator (its compiled entry, in `compiled.rs`, calls this).
+    pub(crate) fn step_generic(
+        &mut self,
+        dt: f64,
+        shift: f64,
+        tolerance: f64,
+    ) -> Result<ViscoelasticStep> {
         if !(dt.is_finite() && dt > 0.0) {
             return Err(BemError::InvalidInput(format!(
                 "time step dt = {dt} must be finite and > 0"
@@ -275,7 +282,7 @@ impl<C: TangentialCompliance> ViscoelasticSlip<C> {
             }
             self.slip.slip.clone_from(&start.0);
             self.slip.q.clone_from(&start.1);
-            let s = self.slip.load(trial, tolerance)?;
+            let s = self.slip.load_generic(trial, tolerance)?;
             let miss = s.shift - shift;
             best = best.min(miss.abs() / self.reach);
             if miss.abs() <= goal || hi.0 - lo.0 <= 1e-13 * limit {

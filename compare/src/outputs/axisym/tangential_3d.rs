@@ -266,8 +266,8 @@ impl Tangential3d {
     fn partial_slip(&self, p: &[f64], a: f64, e: f64, g_star: f64) -> bem3d::Result<Results3d> {
         let (nu, g) = equivalent_body(e, g_star);
         let (n, l) = (self.cells, self.period * a);
-        let fresh = || -> bem3d::Result<PartialSlip<Box<dyn TangentialCompliance>>> {
-            let op: Box<dyn TangentialCompliance> = if self.periodic {
+        let fresh = || -> bem3d::Result<PartialSlip<Box<dyn TangentialCompliance + Sync>>> {
+            let op: Box<dyn TangentialCompliance + Sync> = if self.periodic {
                 Box::new(CerrutiPeriodic::new(n, n, l, l, g, nu)?)
             } else {
                 Box::new(CerrutiFree::new(n, n, l, l, g, nu)?)
