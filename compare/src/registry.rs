@@ -3,7 +3,7 @@
 //! `outputs/` plus one line here; no kind imports this module.
 
 use crate::output::Output;
-use crate::outputs::{axisym, dynamics, friction, reference3d, rough, viscoelastic};
+use crate::outputs::{axisym, dynamics, friction, literature, reference3d, rough, viscoelastic};
 use serde::de::DeserializeOwned;
 
 /// A registered output kind.
@@ -78,6 +78,10 @@ pub const KINDS: &[Kind] = &[
     Kind::of::<dynamics::ring_down::RingDown>(
         "ring_down",
         "a mass ringing down on a sphere's frictional contact, MRD's Coulomb springs at every step, against Mindlin-Deresiewicz's loss per cycle (Sections 7 and 12)",
+    ),
+    Kind::of::<literature::references::References>(
+        "references",
+        "published reference results (compare/data/references.toml: Hertz's impact time, JKR's pull-off, Cattaneo-Mindlin's stick radius), each by MRD and in 3D, with its deviation and verdict",
     ),
     Kind::of::<axisym::tangential::Tangential>(
         "tangential",

@@ -10,6 +10,8 @@ pub mod axisym;
 pub mod dynamics;
 /// Friction: static (Section 10.2) and sliding (Section 10.1, Fig. 7).
 pub mod friction;
+/// Published reference results held against MRD and the 3D solvers (all sections).
+pub mod literature;
 /// 3D boundary-element references on the user's own height maps.
 pub mod reference3d;
 /// Rough contact: Eq. (76), Fig. 6, the calibration of lambda (Section 9, 11).

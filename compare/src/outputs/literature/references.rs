@@ -1,0 +1,560 @@
+//! `references`: published reference results (`compare/data/references.toml`: each with
+//! its citation, units, uncertainty and the problem's statement), each reproduced by MRD
+//! and by the 3D solvers on the problem as the source states it, with the deviation and
+//! a verdict against a tolerance the workbench justifies for its own discretisation.
+//!
+//! A computation holds when `|workbench - published| <= k u + tolerance |published|`,
+//! with u the published uncertainty (k = 1 for a bound such as the rounding of printed
+//! digits, 2 for a standard uncertainty, u = 0 for an exact result) and the tolerance
+//! the workbench's discretisation error at the resolution the scene gives, stated beside
+//! each computation below. A computation that does not hold is a failure of the run
+//! (exit status 4), reported with its numbers.
+//!
+//! The problems are the references' own, dimensionless (E* = R = 1): the kind reads no
+//! profile, and the scene's material must be `e_star = 1`.
+
+use crate::checks::{bad, count_in};
+use crate::context::Context;
+use crate::error::{Context as _, Result};
+use crate::experiment::axisym_3d::{equivalent_body, AxisymGrid};
+use crate::output::{Env, Output};
+use crate::plan::Stage;
+use crate::report::{Section, Table};
+use bem3d::adhesion::AdhesiveContact;
+use bem3d::tangential::{CerrutiFree, PartialSlip};
+use bem3d::{Load, NonPeriodicHalfSpace, SolverOptions};
+use dynamics::integrate::{Axis, Oscillator, Sample, Stop};
+use dynamics::{Bem3d, ContactLaw, Springs};
+use mrd::adhesion::Control;
+use mrd::normal::AxisymmetricContact;
+use mrd::reference::{hertz, hertz_impact};
+use mrd::tangential::TangentialContact;
+use mrd::{Profile, Shape};
+use serde::Deserialize;
+use std::f64::consts::PI;
+
+/// The published results, embedded: the data file is their one owner.
+const DATA: &str = include_str!("../../../data/references.toml");
+
+/// One published result (the data file's header documents each key).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Published {
+    pub id: String,
+    pub quantity: String,
+    pub units: String,
+    pub value: f64,
+    pub uncertainty: f64,
+    pub uncertainty_kind: String,
+    pub uncertainty_basis: String,
+    pub citation: String,
+    pub doi: String,
+    pub location: String,
+    pub problem: String,
+}
+
+impl Published {
+    /// How many published uncertainties the verdict allows (module docs).
+    fn coverage(&self) -> f64 {
+        match self.uncertainty_kind.as_str() {
+            "standard" => 2.0,
+            _ => 1.0,
+        }
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct File {
+    reference: Vec<Published>,
+}
+
+/// Parses and checks a references file: every key present (serde), every text
+/// non-empty (the DOI may be empty for a book), the value finite, the uncertainty finite
+/// and >= 0 and of a known kind (0 exactly when the result is exact), the ids unique.
+pub fn parse(text: &str) -> std::result::Result<Vec<Published>, String> {
+    let file: File = toml::from_str(text).map_err(|e| format!("references: {e}"))?;
+    let mut seen = Vec::new();
+    for r in &file.reference {
+        let id = &r.id;
+        for (key, v) in [
+            ("id", &r.id),
+            ("quantity", &r.quantity),
+            ("units", &r.units),
+            ("uncertainty_basis", &r.uncertainty_basis),
+            ("citation", &r.citation),
+            ("location", &r.location),
+            ("problem", &r.problem),
+        ] {
+            if v.trim().is_empty() {
+                return Err(format!("reference '{id}': {key} is empty"));
+            }
+        }
+        if !r.value.is_finite() {
+            return Err(format!("reference '{id}': value {} is not finite", r.value));
+        }
+        let exact = r.uncertainty_kind == "exact";
+        let known = ["exact", "bound", "standard"].contains(&r.uncertainty_kind.as_str());
+        let sound = known && r.uncertainty.is_finite() && r.uncertainty >= 0.0;
+        if !sound || exact != (r.uncertainty == 0.0) {
+            return Err(format!(
+                "reference '{id}': uncertainty {} of kind '{}': give a finite uncertainty >= 0 of kind exact (0), bound or standard (> 0)",
+                r.uncertainty, r.uncertainty_kind
+            ));
+        }
+        if seen.contains(id) {
+            return Err(format!("reference '{id}' is listed twice"));
+        }
+        seen.push(id.clone());
+    }
+    if file.reference.is_empty() {
+        return Err("references: the file lists no [[reference]]".into());
+    }
+    Ok(file.reference)
+}
+
+/// The embedded published results.
+pub fn published() -> std::result::Result<Vec<Published>, String> {
+    parse(DATA)
+}
+
+/// The references this kind computes, in the data file's order of ids.
+pub const COMPUTED: &[&str] = &[
+    "hertz-impact-duration",
+    "jkr-pull-off",
+    "cattaneo-stick-radius",
+];
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct References {
+    /// Cells per side of the 3D grids (the tolerances of the 3D computations follow
+    /// from it, module docs).
+    #[serde(default = "default_cells")]
+    cells: usize,
+    /// MRD springs on the half line.
+    #[serde(default = "default_springs")]
+    springs: usize,
+    /// Time steps per contact time of the impacts (MRD's; the 3D run takes a tenth).
+    #[serde(default = "default_steps")]
+    steps: usize,
+}
+
+fn default_cells() -> usize {
+    64
+}
+fn default_springs() -> usize {
+    2000
+}
+fn default_steps() -> usize {
+    2000
+}
+
+/// One computation of a reference: the method, its value, and the tolerance of its
+/// discretisation with the reason.
+struct Computed {
+    method: &'static str,
+    value: f64,
+    tolerance: f64,
+    why: String,
+}
+
+impl Output for References {
+    fn validate(&self, ctx: &Context) -> Result<()> {
+        if ctx.profile.is_some() {
+            return bad(
+                "references solve the published problems on their own bodies: remove [profile]",
+            );
+        }
+        if ctx.material.e_star != 1.0 {
+            return bad(format!(
+                "references solve the published problems in their own dimensionless units: set e_star = 1 (the scene gives {})",
+                ctx.material.e_star
+            ));
+        }
+        count_in("cells", self.cells as u64, 32..=512)?;
+        count_in("springs", self.springs as u64, 200..=1_000_000)?;
+        count_in("steps", self.steps as u64, 500..=1_000_000)?;
+        published().map_err(crate::error::CompareError::Scene)?;
+        Ok(())
+    }
+
+    fn stages(&self, _: &Context) -> Vec<Stage> {
+        vec![
+            Stage::Dynamics,
+            Stage::Dynamics3d,
+            Stage::AdhesionSemiAnalytic,
+            Stage::Adhesion3d,
+            Stage::Tangential,
+            Stage::Tangential3d,
+        ]
+    }
+
+    fn run(&self, _: &Env, out: &mut Section) -> Result<()> {
+        let refs = published().map_err(crate::error::CompareError::Scene)?;
+        let mut rows = Vec::new();
+        for (k, r) in refs.iter().enumerate() {
+            let computed = match r.id.as_str() {
+                "hertz-impact-duration" => self.impact(out)?,
+                "jkr-pull-off" => self.jkr(out)?,
+                "cattaneo-stick-radius" => self.cattaneo(out)?,
+                other => {
+                    out.failures
+                        .push(format!("reference '{other}' has no computation"));
+                    continue;
+                }
+            };
+            for c in computed {
+                rows.push((k, r, c));
+            }
+        }
+        self.report(out, &rows);
+        Ok(())
+    }
+}
+
+impl References {
+    /// Hertz's impact (E* = R = 1, m = 1e-3, v = 0.05), integrated in time by velocity
+    /// Verlet with the contact at every step. MRD (the rule of Hess, exact for the
+    /// sphere) errs by the time step only, at second order: 1e-3 of the contact time at
+    /// 2000 steps bounds it with room (the `impact` scene measures 3e-8 at 4000). The 3D
+    /// solve in the loop errs by its grid (the highest cell below the apex, the disc of
+    /// cells): 1 % at 32 cells per side or more (the `impact` scene measures 4.3e-4 at
+    /// 64^2).
+    fn impact(&self, out: &mut Section) -> Result<Vec<Computed>> {
+        let (e, r, m, v) = (1.0, 1.0, 1e-3, 0.05);
+        let profile = sphere(r)?;
+        let tc = hertz_impact::duration(e, r, m, v);
+        let dmax = hertz_impact::max_approach(e, r, m, v);
+        let fmax = hertz_impact::max_force(e, r, m, v);
+        let a = hertz::radius(r, dmax);
+        // t_c / (m^2 / (R E*^2 v))^(1/5): the published coefficient.
+        let scale = (m * m / (r * e * e * v)).powf(0.2);
+        let run = |law: &mut dyn ContactLaw, steps: usize| -> dynamics::Result<f64> {
+            let drive = |_t: f64| 0.0;
+            let osc = Oscillator {
+                mass: m,
+                damping: 0.0,
+                drive: &drive,
+                axis: Axis::Normal { tangential: 0.0 },
+                dt: tc / steps as f64,
+                dt_min: tc / (1000.0 * steps as f64),
+                max_jump: 0.05,
+                force_scale: fmax,
+            };
+            let (samples, _) = osc.run(law, (-1e-3 * dmax, v), Stop::At(1.3 * tc), 1)?;
+            Ok(contact_time(&samples).unwrap_or(f64::NAN) / scale)
+        };
+        let mrd = out
+            .stage(Stage::Dynamics, || {
+                let mut law = Springs::body(&profile, e, self.springs, 2.0 * a)?;
+                run(&mut law, self.steps)
+            })
+            .ctx("MRD in the loop")?;
+        let n = self.cells;
+        let three = out
+            .stage(Stage::Dynamics3d, || -> dynamics::Result<f64> {
+                let side = 2.0 * 1.5 * a;
+                let grid = AxisymGrid {
+                    cells: n,
+                    side,
+                    periodic: false,
+                };
+                let (z, _) = grid.heights(&profile);
+                let op = NonPeriodicHalfSpace::try_new(n, n, side, side, e)?;
+                let mut law = Bem3d::new(op, &z, None, 1e-8, 10_000)?;
+                run(&mut law, (self.steps / 10).max(100))
+            })
+            .ctx("3D in the loop")?;
+        Ok(vec![
+            Computed {
+                method: "MRD",
+                value: mrd,
+                tolerance: 1e-3,
+                why: format!(
+                    "{} springs, {} steps per contact time: second order in the step",
+                    self.springs, self.steps
+                ),
+            },
+            Computed {
+                method: "3D",
+                value: three,
+                tolerance: 1e-2,
+                why: format!(
+                    "{n}^2 cells over 1.5 contact diameters: the grid's apex and disc of cells"
+                ),
+            },
+        ])
+    }
+
+    /// JKR's pull-off (E* = R = 1, w = 0.002). MRD with Eq. 33 is exact for the sphere
+    /// (its pull-off found by a root search to 1e-15 of the radius): 1e-6. The 3D
+    /// JKR-limit solve under approach control (loaded to 1.3 a0, unloaded in steps; its
+    /// smallest force is force control's pull-off) converges at first order in the cell:
+    /// 1.5 / (cells per pull-off radius), above the errors the `adhesion-3d` ladder
+    /// measures (24, 9.3, 4.7, 1.7 % at 6.2, 12.5, 25 and 50 cells per pull-off radius).
+    fn jkr(&self, out: &mut Section) -> Result<Vec<Computed>> {
+        let (e, r, w) = (1.0, 1.0, 0.002);
+        let profile = sphere(r)?;
+        let scale = PI * w * r;
+        let depth_max = 0.155;
+        let mrd = out
+            .stage(Stage::AdhesionSemiAnalytic, || -> mrd::Result<f64> {
+                let contact = AxisymmetricContact::new(profile.clone(), e)?;
+                let a_max = contact.state_at_depth(depth_max)?.radius;
+                let ad = mrd::adhesion::AdhesiveContact::new(contact, w)?;
+                Ok(-ad.pull_off(a_max, Control::Force)?.force / scale)
+            })
+            .ctx("MRD adhesion (Eq. 33)")?;
+        let a_top = hertz::radius(r, depth_max);
+        // JKR's pull-off radius under force control: (9 pi w R^2 / (8 E*))^(1/3).
+        let a_pull = (9.0 * PI * w * r * r / (8.0 * e)).cbrt();
+        let n = self.cells;
+        let side = 1.25 * 2.0 * a_top;
+        let per_radius = a_pull / (side / n as f64);
+        let three = out
+            .stage(Stage::Adhesion3d, || -> bem3d::Result<f64> {
+                let grid = AxisymGrid {
+                    cells: n,
+                    side,
+                    periodic: false,
+                };
+                let (z, _) = grid.heights(&profile);
+                let apex = z.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+                let op = NonPeriodicHalfSpace::try_new(n, n, side, side, e)?;
+                let mut c = AdhesiveContact::new(op, &z, None, w)?;
+                let steps = 100;
+                let dd = depth_max / steps as f64;
+                for k in 1..=steps {
+                    c.step(Load::Approach(dd * k as f64 + apex), 1e-8)?;
+                }
+                let mut smallest = f64::INFINITY;
+                for k in 0..100 * steps {
+                    let s = c.step(Load::Approach(depth_max - dd * k as f64 + apex), 1e-8)?;
+                    if s.separated {
+                        return Ok(-smallest / scale);
+                    }
+                    smallest = smallest.min(s.force);
+                }
+                Err(bem3d::BemError::Infeasible(
+                    "the sphere did not separate while unloading".into(),
+                ))
+            })
+            .ctx("3D adhesion (JKR limit)")?;
+        Ok(vec![
+            Computed {
+                method: "MRD",
+                value: mrd,
+                tolerance: 1e-6,
+                why: "the rule of Hess with Eq. 33, exact for the sphere".into(),
+            },
+            Computed {
+                method: "3D",
+                value: three,
+                tolerance: 1.5 / per_radius,
+                why: format!("{n}^2 cells, {per_radius:.1} cells per pull-off radius: first order in the cell"),
+            },
+        ])
+    }
+
+    /// Cattaneo-Mindlin's stick radius at Q = mu P / 2 (E* = R = 1, nu = 0.3, mu = 0.3,
+    /// P = 1e-3). MRD's tangential springs are exact for the sphere: 1e-9. The 3D partial
+    /// slip under the 3D Hertz pressure counts its stick cells (c = sqrt(cells x area /
+    /// pi)): a rim of cells, one cell per contact radius at most.
+    fn cattaneo(&self, out: &mut Section) -> Result<Vec<Computed>> {
+        let (e, r, nu, mu, p) = (1.0, 1.0, 0.3, 0.3, 1e-3);
+        let g = e * (1.0 - nu) / 2.0;
+        let g_star = 4.0 * g / (2.0 - nu);
+        debug_assert!((equivalent_body(e, g_star).0 - nu).abs() < 1e-12);
+        let profile = sphere(r)?;
+        let q = 0.5 * mu * p;
+        let (mrd, a) = out
+            .stage(Stage::Tangential, || -> mrd::Result<(f64, f64)> {
+                let contact = AxisymmetricContact::new(profile.clone(), e)?;
+                let tc = TangentialContact::new(contact, g_star, mu, p)?;
+                let a = tc.normal.radius;
+                Ok((tc.at_force(q)?.stick_radius / a, a))
+            })
+            .ctx("MRD tangential springs")?;
+        let n = self.cells;
+        let side = 2.5 * a;
+        let h = side / n as f64;
+        let three = out
+            .stage(Stage::Tangential3d, || -> bem3d::Result<f64> {
+                let grid = AxisymGrid {
+                    cells: n,
+                    side,
+                    periodic: false,
+                };
+                let sol = grid.press(&profile, e, p, &SolverOptions::new(1e-10, 10_000))?;
+                let op = CerrutiFree::new(n, n, side, side, g, nu)?;
+                let mut ps = PartialSlip::new(op, &sol.pressure, mu)?;
+                let s = ps.load(q, 1e-10)?;
+                Ok((s.stick_cells as f64 * h * h / PI).sqrt() / a)
+            })
+            .ctx("3D partial slip")?;
+        Ok(vec![
+            Computed {
+                method: "MRD",
+                value: mrd,
+                tolerance: 1e-9,
+                why: "MRD's tangential springs (G*), exact for the sphere".into(),
+            },
+            Computed {
+                method: "3D",
+                value: three,
+                tolerance: h / a,
+                why: format!(
+                    "{n}^2 cells, {:.1} cells per contact radius: the stick zone counted in cells",
+                    a / h
+                ),
+            },
+        ])
+    }
+
+    /// The table (one row per computation), its Markdown twin with the citations, the
+    /// scalars, and a failure per computation that does not hold.
+    fn report(&self, out: &mut Section, rows: &[(usize, &Published, Computed)]) {
+        let mut t = Table::new(
+            "references",
+            &[
+                "reference [1]",
+                "method [0 MRD, 1 3D]",
+                "published [1]",
+                "uncertainty [1]",
+                "workbench [1]",
+                "deviation_rel [1]",
+                "allowed_rel [1]",
+                "holds [0/1]",
+            ],
+        );
+        t.notes.push(
+            "reference: the row of compare/data/references.toml (from 1); holds when |workbench - published| <= k u + tolerance |published| (k = 1 for a bound, 2 for a standard uncertainty)".into(),
+        );
+        let mut md = String::from(
+            "| reference | quantity | published | method | workbench | deviation | allowed | verdict | resolution | source |\n|---|---|---|---|---|---|---|---|---|---|\n",
+        );
+        for (k, r, c) in rows {
+            let allowed = r.coverage() * r.uncertainty + c.tolerance * r.value.abs();
+            let dev = c.value - r.value;
+            let holds = dev.abs() <= allowed;
+            t.push(vec![
+                (*k + 1) as f64,
+                (c.method == "3D") as u8 as f64,
+                r.value,
+                r.uncertainty,
+                c.value,
+                dev / r.value,
+                allowed / r.value.abs(),
+                holds as u8 as f64,
+            ]);
+            let key = format!("{}_{}", r.id.replace('-', "_"), c.method.to_lowercase());
+            out.scalar(key.clone(), c.value);
+            out.scalar(format!("{key}_holds"), holds as u8 as f64);
+            let published = if r.uncertainty > 0.0 {
+                format!("{} +/- {} ({})", r.value, r.uncertainty, r.uncertainty_kind)
+            } else {
+                format!("{} (exact)", r.value)
+            };
+            let doi = if r.doi.is_empty() {
+                String::new()
+            } else {
+                format!(", doi:{}", r.doi)
+            };
+            md.push_str(&format!(
+                "| {} | {} | {published} | {} | {:.6} | {:+.2e} | {:.1e} | {} | {} | {}{doi}, {} |\n",
+                r.id,
+                r.quantity,
+                c.method,
+                c.value,
+                dev / r.value,
+                allowed / r.value.abs(),
+                if holds { "holds" } else { "does not hold" },
+                c.why,
+                r.citation,
+                r.location,
+            ));
+            if !holds {
+                out.failures.push(format!(
+                    "{} by {}: {} against the published {published}, outside the allowed {allowed:.2e} ({})",
+                    r.id, c.method, c.value, c.why
+                ));
+            }
+        }
+        out.files.push(("references.md".into(), md.into_bytes()));
+        out.tables.push(t);
+    }
+}
+
+/// A sphere of radius `r` (a paraboloid), the references' body.
+fn sphere(r: f64) -> Result<Profile> {
+    Profile::new(vec![Shape::paraboloid(r).ctx("sphere")?], None).ctx("sphere")
+}
+
+/// The first contact's duration: between the crossings of x = 0 (interpolated).
+fn contact_time(s: &[Sample]) -> Option<f64> {
+    let cross = |i: usize| {
+        let (a, b) = (s[i], s[i + 1]);
+        a.t + a.x / (a.x - b.x) * (b.t - a.t)
+    };
+    let start = s.windows(2).position(|w| w[0].x <= 0.0 && w[1].x > 0.0)?;
+    let end = start
+        + s[start..]
+            .windows(2)
+            .position(|w| w[0].x > 0.0 && w[1].x <= 0.0)?;
+    Some(cross(end) - cross(start))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The embedded file parses, lists every computed reference and nothing else.
+    #[test]
+    fn every_reference_is_complete_and_computed() {
+        let refs = published().unwrap();
+        let ids: Vec<&str> = refs.iter().map(|r| r.id.as_str()).collect();
+        assert_eq!(ids, COMPUTED);
+    }
+
+    /// An entry without a citation, units, an uncertainty or with an empty text is
+    /// refused, naming the reference and the key.
+    #[test]
+    fn an_incomplete_reference_is_refused() {
+        let one = DATA.split("\n[[reference]]\n").nth(1).unwrap();
+        let whole = format!("[[reference]]\n{one}");
+        assert!(parse(&whole).is_ok());
+        for key in [
+            "citation",
+            "units",
+            "uncertainty",
+            "uncertainty_kind",
+            "problem",
+            "doi",
+        ] {
+            let without: String = whole
+                .lines()
+                .filter(|l| !l.starts_with(&format!("{key} =")))
+                .map(|l| format!("{l}\n"))
+                .collect();
+            let e = parse(&without).unwrap_err();
+            assert!(e.contains(key), "{key}: {e}");
+        }
+        let blank = whole.replace(
+            &whole
+                .lines()
+                .find(|l| l.starts_with("citation ="))
+                .unwrap()
+                .to_string(),
+            "citation = \"\"",
+        );
+        assert!(parse(&blank).unwrap_err().contains("citation is empty"));
+        let twice = format!("{whole}\n{whole}");
+        assert!(parse(&twice).unwrap_err().contains("listed twice"));
+        let loose = whole.replace(
+            "uncertainty_kind = \"bound\"",
+            "uncertainty_kind = \"exact\"",
+        );
+        assert!(parse(&loose).unwrap_err().contains("uncertainty"));
+    }
+}
