@@ -10,12 +10,13 @@
 //! of Eq. (82) ([`elastomer`]) and their MRD ensemble of sliding lines
 //! ([`sliding_line`]), a measured topography's detrended square and isotropic PSD
 //! ([`measured`]), checkpointed task sets ([`tasks`]), the progress bar of long stages
-//! ([`progress`]) and the options of a study's 3D normal solves ([`solve_options`]).
+//! ([`progress`]), a rigid body's impact on a contact law in time ([`impact`]) and the options of a study's 3D normal solves ([`solve_options`]).
 
 pub mod axisym_3d;
 pub mod elastomer;
 pub mod fit;
 pub mod hess;
+pub mod impact;
 pub mod lambda;
 pub mod lambda_meaning;
 pub mod measured;

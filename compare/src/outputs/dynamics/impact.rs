@@ -17,11 +17,12 @@ use crate::checks::{bad, default_tolerance};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::axisym_3d::AxisymGrid;
+use crate::experiment::impact::{first_contact, FirstContact, Strike};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Style, Table};
 use bem3d::NonPeriodicHalfSpace;
-use dynamics::integrate::{Axis, Counts, Oscillator, Sample, Stop};
+use dynamics::integrate::{Counts, Sample};
 use dynamics::{Bem3d, ContactLaw, Springs};
 use mrd::reference::{for_profile, hertz, hertz_impact};
 use serde::Deserialize;
@@ -79,36 +80,10 @@ struct Run {
     seconds: f64,
 }
 
-/// What an impact gives: contact duration, largest force and approach, restitution.
-struct Outcome {
-    duration: f64,
-    peak_force: f64,
-    peak_approach: f64,
-    restitution: f64,
-}
-
 impl Run {
-    /// The first contact's duration (crossings of x = 0, interpolated), its largest force
-    /// and approach, and the speed ratio out / in.
-    fn outcome(&self) -> Option<Outcome> {
-        let s = &self.samples;
-        let cross = |i: usize| {
-            let (a, b) = (s[i], s[i + 1]);
-            let w = a.x / (a.x - b.x);
-            (a.t + w * (b.t - a.t), a.v + w * (b.v - a.v))
-        };
-        let start = s.windows(2).position(|w| w[0].x <= 0.0 && w[1].x > 0.0)?;
-        let end = start
-            + s[start..]
-                .windows(2)
-                .position(|w| w[0].x > 0.0 && w[1].x <= 0.0)?;
-        let ((t0, v_in), (t1, v_out)) = (cross(start), cross(end));
-        Some(Outcome {
-            duration: t1 - t0,
-            peak_force: s[start..=end].iter().map(|s| s.force).fold(0.0, f64::max),
-            peak_approach: s[start..=end].iter().map(|s| s.x).fold(0.0, f64::max),
-            restitution: -v_out / v_in,
-        })
+    /// The first contact: duration, largest force and approach, restitution.
+    fn outcome(&self) -> Option<FirstContact> {
+        first_contact(&self.samples)
     }
 }
 
@@ -222,22 +197,18 @@ impl Impact {
         dmax: f64,
         steps: usize,
     ) -> dynamics::Result<Run> {
-        let drive = |_t: f64| 0.0;
-        let osc = Oscillator {
+        let strike = Strike {
             mass: self.mass,
-            damping: 0.0,
-            drive: &drive,
-            axis: Axis::Normal { tangential: 0.0 },
-            dt: tc / steps as f64,
-            dt_min: tc / (1000.0 * steps as f64),
-            max_jump: 0.05,
-            force_scale: fmax,
+            speed: self.speed,
+            tc,
+            fmax,
+            dmax,
         };
         let t0 = Instant::now();
-        let (samples, counts) = osc.run(law, (-1e-3 * dmax, self.speed), Stop::At(1.3 * tc), 1)?;
+        let (samples, counts, dt) = strike.run(law, steps)?;
         Ok(Run {
             label: law.describe(),
-            dt: osc.dt,
+            dt,
             samples,
             counts,
             seconds: t0.elapsed().as_secs_f64(),
@@ -303,7 +274,7 @@ impl Impact {
             outcomes.push((i, o));
         }
         out.tables.push(t);
-        let err = |o: &Outcome| {
+        let err = |o: &FirstContact| {
             [
                 (o.duration / tc - 1.0).abs(),
                 (o.peak_force / fmax - 1.0).abs(),

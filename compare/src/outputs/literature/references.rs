@@ -17,13 +17,13 @@ use crate::checks::{bad, count_in};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::axisym_3d::{equivalent_body, AxisymGrid};
+use crate::experiment::impact::{first_contact, Strike};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Section, Table};
 use bem3d::adhesion::AdhesiveContact;
 use bem3d::tangential::{CerrutiFree, PartialSlip};
 use bem3d::{Load, NonPeriodicHalfSpace, SolverOptions};
-use dynamics::integrate::{Axis, Oscillator, Sample, Stop};
 use dynamics::{Bem3d, ContactLaw, Springs};
 use mrd::adhesion::Control;
 use mrd::normal::AxisymmetricContact;
@@ -230,20 +230,16 @@ impl References {
         let a = hertz::radius(r, dmax);
         // t_c / (m^2 / (R E*^2 v))^(1/5): the published coefficient.
         let scale = (m * m / (r * e * e * v)).powf(0.2);
+        let strike = Strike {
+            mass: m,
+            speed: v,
+            tc,
+            fmax,
+            dmax,
+        };
         let run = |law: &mut dyn ContactLaw, steps: usize| -> dynamics::Result<f64> {
-            let drive = |_t: f64| 0.0;
-            let osc = Oscillator {
-                mass: m,
-                damping: 0.0,
-                drive: &drive,
-                axis: Axis::Normal { tangential: 0.0 },
-                dt: tc / steps as f64,
-                dt_min: tc / (1000.0 * steps as f64),
-                max_jump: 0.05,
-                force_scale: fmax,
-            };
-            let (samples, _) = osc.run(law, (-1e-3 * dmax, v), Stop::At(1.3 * tc), 1)?;
-            Ok(contact_time(&samples).unwrap_or(f64::NAN) / scale)
+            let (samples, _, _) = strike.run(law, steps)?;
+            Ok(first_contact(&samples).map_or(f64::NAN, |c| c.duration) / scale)
         };
         let mrd = out
             .stage(Stage::Dynamics, || {
@@ -489,20 +485,6 @@ impl References {
 /// A sphere of radius `r` (a paraboloid), the references' body.
 fn sphere(r: f64) -> Result<Profile> {
     Profile::new(vec![Shape::paraboloid(r).ctx("sphere")?], None).ctx("sphere")
-}
-
-/// The first contact's duration: between the crossings of x = 0 (interpolated).
-fn contact_time(s: &[Sample]) -> Option<f64> {
-    let cross = |i: usize| {
-        let (a, b) = (s[i], s[i + 1]);
-        a.t + a.x / (a.x - b.x) * (b.t - a.t)
-    };
-    let start = s.windows(2).position(|w| w[0].x <= 0.0 && w[1].x > 0.0)?;
-    let end = start
-        + s[start..]
-            .windows(2)
-            .position(|w| w[0].x > 0.0 && w[1].x <= 0.0)?;
-    Some(cross(end) - cross(start))
 }
 
 #[cfg(test)]
