@@ -466,6 +466,44 @@ fn static_friction_3d_and_rough_sphere_refuse_bad_values() {
     each_refused(head, &cases);
 }
 
+/// The references kind solves the published problems in their own units and bodies: a
+/// scene that sets another modulus, a G*, a profile or a resolution out of range is
+/// refused by name, never silently ignored.
+#[test]
+fn references_refuse_what_they_would_not_read() {
+    let head = "name = \"b\"\n[material]\n";
+    let kind = "[[outputs]]\nkind = \"references\"\n";
+    let cases = [
+        (
+            format!("e_star = 2.0\n{kind}"),
+            "set e_star = 1 (the scene gives 2)",
+        ),
+        (
+            format!("e_star = 1.0\ng_star = 0.8\n{kind}"),
+            "remove g_star",
+        ),
+        (
+            format!(
+                "e_star = 1.0\n[profile]\nshapes = [{{ kind = \"sphere\", radius = 1.0 }}]\n{kind}"
+            ),
+            "remove [profile]",
+        ),
+        (
+            format!("e_star = 1.0\n{kind}cells = 8\n"),
+            "cells = 8 must lie in 32..=512",
+        ),
+        (
+            format!("e_star = 1.0\n{kind}springs = 10\n"),
+            "springs = 10 must lie in 200..=1000000",
+        ),
+        (
+            format!("e_star = 1.0\n{kind}steps = 10\n"),
+            "steps = 10 must lie in 500..=1000000",
+        ),
+    ];
+    each_refused(head, &cases);
+}
+
 /// The lambda study's checks name a bad value before anything runs.
 #[test]
 fn lambda_study_refuses_bad_checks() {

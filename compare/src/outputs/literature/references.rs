@@ -11,7 +11,8 @@
 //! (exit status 4), reported with its numbers.
 //!
 //! The problems are the references' own, dimensionless (E* = R = 1): the kind reads no
-//! profile, and the scene's material must be `e_star = 1`.
+//! profile, and the scene's material must be `e_star = 1` alone (no G*: the tangential
+//! reference takes nu = 0.3).
 
 use crate::checks::{bad, count_in};
 use crate::context::Context;
@@ -165,6 +166,9 @@ impl Output for References {
             return bad(
                 "references solve the published problems on their own bodies: remove [profile]",
             );
+        }
+        if ctx.material.g_star.is_some() {
+            return bad("references solve the published problems with their own materials (Cattaneo-Mindlin's at nu = 0.3): remove g_star or the bodies from [material], keep e_star = 1");
         }
         if ctx.material.e_star != 1.0 {
             return bad(format!(
