@@ -28,7 +28,7 @@
 //! | kind interface | `output` | the [`output::Output`] trait, [`output::Env`], [`output::RunControl`], checkpointed work |
 //! | shared checks | `checks` | scene errors, count ranges, memory per spring and per cell, defaults |
 //! | experiment layer | `experiment` | what studies share: lambda as scenes give it and its table, its one meaning, fits and intervals of ensemble curves |
-//! | kinds | `outputs::{axisym, rough, friction, viscoelastic, reference3d}` | one file per kind, one folder per study, grouped by the paper's sections |
+//! | kinds | `outputs::{axisym, rough, friction, viscoelastic, dynamics, reference3d, literature}` | one file per kind, one folder per study, grouped by the paper's sections (and the published references, `literature`) |
 //! | registry | `registry` | the one list of kinds ([`registry::KINDS`]) |
 //! | driver | `scene`, `run`, `shards` | parse, plan, execute, write; split sweeps |
 //!
