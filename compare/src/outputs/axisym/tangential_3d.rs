@@ -509,8 +509,9 @@ impl Tangential3d {
             "loops",
             "Hysteresis loops: 3D, MRD and Mindlin-Deresiewicz",
             &format!(
-                "shift minus its elastic part, u_x - F_x / k_t0 [{length}] (k_t0 = {:.4e}: MRD's initial stiffness)",
-                1.0 / compliance
+                "shift minus its elastic part, u_x - F_x / k_t0 [{length}] (k_t0 = {:.4e} [{}]: MRD's initial stiffness)",
+                1.0 / compliance,
+                env.ctx.units.stiffness()
             ),
             "tangential force F_x / (mu F_N) [1]",
         );
