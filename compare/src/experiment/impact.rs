@@ -2,8 +2,31 @@
 //! at every step (Section 12): the run the `impact` kind and the `references` kind's
 //! Hertz impact share, and what a run's first contact gives.
 
+use super::axisym_3d::AxisymGrid;
+use bem3d::NonPeriodicHalfSpace;
 use dynamics::integrate::{Axis, Counts, Oscillator, Sample, Stop};
-use dynamics::ContactLaw;
+use dynamics::{Bem3d, ContactLaw};
+use mrd::Profile;
+
+/// The 3D contact law of a body of revolution in the loop: `cells` per side over `side`
+/// on the free half-space of modulus `e_star`, solved to `tolerance` (warm-started from
+/// the last step).
+pub fn bem3d_law(
+    profile: &Profile,
+    e_star: f64,
+    cells: usize,
+    side: f64,
+    tolerance: f64,
+) -> dynamics::Result<Bem3d<NonPeriodicHalfSpace>> {
+    let grid = AxisymGrid {
+        cells,
+        side,
+        periodic: false,
+    };
+    let (z, _) = grid.heights(profile);
+    let op = NonPeriodicHalfSpace::try_new(cells, cells, side, side, e_star)?;
+    Bem3d::new(op, &z, None, tolerance, 10_000)
+}
 
 /// The impact: a free mass `mass` arriving at `speed` on the contact `law`, whose
 /// closed-form contact time `tc`, largest force `fmax` and approach `dmax` scale the run:

@@ -16,14 +16,12 @@
 use crate::checks::{bad, default_tolerance};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
-use crate::experiment::axisym_3d::AxisymGrid;
-use crate::experiment::impact::{first_contact, FirstContact, Strike};
+use crate::experiment::impact::{bem3d_law, first_contact, FirstContact, Strike};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Style, Table};
-use bem3d::NonPeriodicHalfSpace;
 use dynamics::integrate::{Counts, Sample};
-use dynamics::{Bem3d, ContactLaw, Springs};
+use dynamics::{ContactLaw, Springs};
 use mrd::reference::{for_profile, hertz, hertz_impact};
 use serde::Deserialize;
 use std::time::Instant;
@@ -171,14 +169,7 @@ impl Output for Impact {
                     .iter()
                     .map(|&n| {
                         let side = 2.0 * self.extent * a;
-                        let grid = AxisymGrid {
-                            cells: n,
-                            side,
-                            periodic: false,
-                        };
-                        let (z, _) = grid.heights(&profile);
-                        let op = NonPeriodicHalfSpace::try_new(n, n, side, side, e)?;
-                        let mut law = Bem3d::new(op, &z, None, self.tolerance, 10_000)?;
+                        let mut law = bem3d_law(&profile, e, n, side, self.tolerance)?;
                         self.integrate(&mut law, tc, fmax, dmax, self.steps_3d)
                     })
                     .collect()

@@ -18,14 +18,14 @@ use crate::checks::{bad, count_in};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::axisym_3d::{equivalent_body, AxisymGrid};
-use crate::experiment::impact::{first_contact, Strike};
+use crate::experiment::impact::{bem3d_law, first_contact, Strike};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Section, Table};
 use bem3d::adhesion::AdhesiveContact;
 use bem3d::tangential::{CerrutiFree, PartialSlip};
 use bem3d::{Load, NonPeriodicHalfSpace, SolverOptions};
-use dynamics::{Bem3d, ContactLaw, Springs};
+use dynamics::{ContactLaw, Springs};
 use mrd::adhesion::Control;
 use mrd::normal::AxisymmetricContact;
 use mrd::reference::{hertz, hertz_impact};
@@ -254,15 +254,7 @@ impl References {
         let n = self.cells;
         let three = out
             .stage(Stage::Dynamics3d, || -> dynamics::Result<f64> {
-                let side = 2.0 * 1.5 * a;
-                let grid = AxisymGrid {
-                    cells: n,
-                    side,
-                    periodic: false,
-                };
-                let (z, _) = grid.heights(&profile);
-                let op = NonPeriodicHalfSpace::try_new(n, n, side, side, e)?;
-                let mut law = Bem3d::new(op, &z, None, 1e-8, 10_000)?;
+                let mut law = bem3d_law(&profile, e, n, 2.0 * 1.5 * a, 1e-8)?;
                 run(&mut law, (self.steps / 10).max(100))
             })
             .ctx("3D in the loop")?;
