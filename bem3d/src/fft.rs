@@ -28,11 +28,10 @@
 //! or computed as the column pass reads it ([`crate::symbol`]); the other rows are read
 //! from their mirror, so the products and the results are the same bit for bit.
 
+use fftplans::{ComplexToReal, Fft, Planned, RealToComplex};
 use rayon::prelude::*;
-use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::num_complex::Complex;
 use rustfft::num_traits::NumAssign;
-use rustfft::{Fft, FftNum, FftPlanner};
 use std::ops::MulAssign;
 use std::sync::Arc;
 
@@ -40,7 +39,7 @@ use crate::symbol::{ColumnBuf, SymbolColumns, SymbolValue, Symbolic};
 
 /// The precision a transform computes in (f64 or f32); rows arrive and leave as f64
 /// (converted by [`SymbolValue::of_f64`] and [`Self::to_f64`]).
-pub trait FftFloat: FftNum + Default + NumAssign + bytemuck::Pod + SymbolValue {
+pub trait FftFloat: Planned + Default + NumAssign + bytemuck::Pod + SymbolValue {
     fn to_f64(self) -> f64;
     /// `src` as a row of this type: `src` itself for f64, converted into `buf` else.
     fn row<'a>(src: &'a mut [f64], buf: &'a mut [Self]) -> &'a mut [Self];
@@ -285,17 +284,15 @@ impl<T: FftFloat> Fft2<T> {
 
     /// A transform with a zeroed row buffer of `buffer` f64 pairs.
     fn new_sized(nx: usize, ny: usize, buffer: usize) -> Self {
-        let mut rp = RealFftPlanner::<T>::new();
-        let mut cp = FftPlanner::<T>::new();
         let nc = nx / 2 + 1;
         Self {
             nx,
             ny,
             nc,
-            r2c: rp.plan_fft_forward(nx),
-            c2r: rp.plan_fft_inverse(nx),
-            fwd_y: cp.plan_fft_forward(ny),
-            inv_y: cp.plan_fft_inverse(ny),
+            r2c: T::real_forward(nx),
+            c2r: T::real_inverse(nx),
+            fwd_y: fftplans::forward(ny),
+            inv_y: fftplans::inverse(ny),
             rows: zeroed(buffer),
             zero_rows: vec![false; ny],
             zero_row: vec![Complex::default(); nc],

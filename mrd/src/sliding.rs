@@ -42,7 +42,7 @@
 
 use crate::error::{positive, MrdError, Result};
 use crate::rheology::Prony;
-use realfft::RealFftPlanner;
+use fftplans::Planned;
 
 /// A rigid periodic line z(x) of N points over length L, with its slope.
 #[derive(Debug, Clone)]
@@ -101,9 +101,8 @@ impl Line {
 /// Nyquist mode, whose derivative is not real, is dropped).
 fn spectral_slope(z: &[f64], length: f64) -> Result<Vec<f64>> {
     let n = z.len();
-    let mut planner = RealFftPlanner::<f64>::new();
-    let r2c = planner.plan_fft_forward(n);
-    let c2r = planner.plan_fft_inverse(n);
+    let r2c = f64::real_forward(n);
+    let c2r = f64::real_inverse(n);
     let mut input = z.to_vec();
     let mut spec = r2c.make_output_vec();
     r2c.process(&mut input, &mut spec)

@@ -12,9 +12,8 @@
 
 use super::synthesis::Grid;
 use crate::error::{MrdError, Result};
-use realfft::RealFftPlanner;
+use fftplans::Planned;
 use rustfft::num_complex::Complex64;
-use rustfft::FftPlanner;
 use std::f64::consts::{PI, TAU};
 
 /// SplitMix64's finaliser.
@@ -84,10 +83,7 @@ pub fn surface(
             }
         }
     }
-    let mut planner = FftPlanner::<f64>::new();
-    planner
-        .plan_fft_inverse(n)
-        .process(&mut s[..(b as usize + 1) * n]);
+    fftplans::inverse::<f64>(n).process(&mut s[..(b as usize + 1) * n]);
     super::synthesis::rows_to_real(&s, n, n, &what)
 }
 
@@ -112,8 +108,7 @@ pub fn line(
         *sk = Complex64::from_polar(b, phase(seed ^ 0x4C49_4E45, realisation, k as i64, 0));
     }
     let mut out = sysmem::try_vec(n, 0.0, &what)?;
-    RealFftPlanner::<f64>::new()
-        .plan_fft_inverse(n)
+    f64::real_inverse(n)
         .process(&mut s, &mut out)
         .map_err(|e| MrdError::InvalidData(format!("inverse FFT: {e}")))?;
     Ok(out)

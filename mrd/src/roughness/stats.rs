@@ -4,7 +4,6 @@
 //! data); the mean is removed.
 
 use rustfft::num_complex::Complex64;
-use rustfft::FftPlanner;
 use std::f64::consts::PI;
 
 /// rms height, slope and curvature.
@@ -27,9 +26,7 @@ fn signed(k: usize, n: usize) -> f64 {
 fn line_coefficients(h: &[f64]) -> Vec<Complex64> {
     let n = h.len();
     let mut buf: Vec<Complex64> = h.iter().map(|&v| Complex64::new(v, 0.0)).collect();
-    FftPlanner::<f64>::new()
-        .plan_fft_forward(n)
-        .process(&mut buf);
+    fftplans::forward::<f64>(n).process(&mut buf);
     buf.iter_mut().for_each(|c| *c /= n as f64);
     buf
 }
@@ -63,10 +60,9 @@ pub fn line_psd(h: &[f64], l: f64) -> Vec<(f64, f64)> {
 
 fn surface_coefficients(h: &[f64], nx: usize, ny: usize) -> Vec<Complex64> {
     let mut buf: Vec<Complex64> = h.iter().map(|&v| Complex64::new(v, 0.0)).collect();
-    let mut planner = FftPlanner::<f64>::new();
-    let fx = planner.plan_fft_forward(nx);
+    let fx = fftplans::forward::<f64>(nx);
     fx.process(&mut buf); // rows
-    let fy = planner.plan_fft_forward(ny);
+    let fy = fftplans::forward::<f64>(ny);
     let mut col = vec![Complex64::default(); ny];
     for i in 0..nx {
         for j in 0..ny {

@@ -9,11 +9,10 @@
 
 use super::spectrum::{LineSpectrum, SelfAffine};
 use crate::error::{MrdError, Result};
+use fftplans::Planned;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use realfft::RealFftPlanner;
 use rustfft::num_complex::Complex64;
-use rustfft::FftPlanner;
 use std::f64::consts::PI;
 
 /// Amplitude statistics of the Fourier modes.
@@ -157,8 +156,7 @@ pub fn surface_from(
             s[i * ny + j] = mode(&mut rng, norm * c2d(q).sqrt(), amps);
         }
     }
-    let mut planner = FftPlanner::<f64>::new();
-    let ifft_y = planner.plan_fft_inverse(ny);
+    let ifft_y = fftplans::inverse::<f64>(ny);
     ifft_y.process(&mut s); // all nc columns, each of length ny
     rows_to_real(&s, nx, ny, &what)
 }
@@ -169,7 +167,7 @@ pub fn surface_from(
 /// `nx`, the Nyquist column) dropped. `what` names the field in an out-of-memory error.
 pub(crate) fn rows_to_real(s: &[Complex64], nx: usize, ny: usize, what: &str) -> Result<Vec<f64>> {
     let nc = nx / 2 + 1;
-    let c2r = RealFftPlanner::<f64>::new().plan_fft_inverse(nx);
+    let c2r = f64::real_inverse(nx);
     let mut row = vec![Complex64::default(); nc];
     let mut out = sysmem::try_vec(nx * ny, 0.0, what)?;
     for j in 0..ny {
@@ -210,8 +208,7 @@ pub fn line_from(
         let q = 2.0 * PI * k as f64 / l;
         *sk = mode(&mut rng, (2.0 * PI * c1d(q) / l).sqrt(), amps); // Eq. (72)
     }
-    let mut rp = RealFftPlanner::<f64>::new();
-    let c2r = rp.plan_fft_inverse(n);
+    let c2r = f64::real_inverse(n);
     let mut out = sysmem::try_vec(n, 0.0, &what)?;
     c2r.process(&mut s, &mut out)
         .map_err(|e| MrdError::InvalidData(format!("inverse FFT: {e}")))?;
@@ -242,16 +239,11 @@ pub fn upsample(h: &[f64], from: &Grid, to: &Grid) -> Result<Vec<f64>> {
             h.len()
         )));
     }
-    let mut planner = FftPlanner::<f64>::new();
-    let transform_2d = |data: &mut [Complex64],
-                        nx: usize,
-                        ny: usize,
-                        inverse: bool,
-                        planner: &mut FftPlanner<f64>| {
+    let transform_2d = |data: &mut [Complex64], nx: usize, ny: usize, inverse: bool| {
         let (fx, fy) = if inverse {
-            (planner.plan_fft_inverse(nx), planner.plan_fft_inverse(ny))
+            (fftplans::inverse::<f64>(nx), fftplans::inverse::<f64>(ny))
         } else {
-            (planner.plan_fft_forward(nx), planner.plan_fft_forward(ny))
+            (fftplans::forward::<f64>(nx), fftplans::forward::<f64>(ny))
         };
         fx.process(data); // rows
         let mut col = vec![Complex64::default(); ny];
@@ -266,7 +258,7 @@ pub fn upsample(h: &[f64], from: &Grid, to: &Grid) -> Result<Vec<f64>> {
         }
     };
     let mut a: Vec<Complex64> = h.iter().map(|&v| Complex64::new(v, 0.0)).collect();
-    transform_2d(&mut a, nx0, ny0, false, &mut planner);
+    transform_2d(&mut a, nx0, ny0, false);
     let signed = |m: usize, n: usize| m as i64 - if m > n / 2 { n as i64 } else { 0 };
     let nyquist = |m: usize, n: usize| n.is_multiple_of(2) && m == n / 2;
     let mut b = vec![Complex64::default(); nx * ny];
@@ -284,7 +276,7 @@ pub fn upsample(h: &[f64], from: &Grid, to: &Grid) -> Result<Vec<f64>> {
             b[tj * nx + ti] = a[j * nx0 + i] * scale;
         }
     }
-    transform_2d(&mut b, nx, ny, true, &mut planner);
+    transform_2d(&mut b, nx, ny, true);
     Ok(b.iter().map(|c| c.re).collect())
 }
 
