@@ -425,7 +425,9 @@ fn no_import_cycle_between_files() {
     // None, the solver's files included: its state's types live in `solver/state.rs`,
     // which names no file that acts on them.
     let mut found = Vec::new();
-    for krate in ["", "sysmem", "fftplans", "mrd", "bem3d", "compare", "python"] {
+    for krate in [
+        "", "sysmem", "fftplans", "mrd", "bem3d", "compare", "python",
+    ] {
         let g = file_graph(&src(krate));
         for c in cycles(&g) {
             found.push(format!("{krate}/src: {}", c.join(" <-> ")));
@@ -466,7 +468,9 @@ fn the_file_graph_sees_imports() {
 #[test]
 fn no_function_longer_than_150_lines() {
     let mut long = Vec::new();
-    for krate in ["", "sysmem", "fftplans", "mrd", "bem3d", "compare", "python"] {
+    for krate in [
+        "", "sysmem", "fftplans", "mrd", "bem3d", "compare", "python",
+    ] {
         for f in files(&src(krate)) {
             let text = std::fs::read_to_string(&f).unwrap();
             let lines: Vec<&str> = text.lines().collect();

@@ -384,6 +384,10 @@ const RESULT_BOUNDS: &[(&str, Bound, &[&str])] = &[
     ("references.jkr_pull_off_3d_holds", NearOne(1e-9), &["references", "references-fine"]),
     ("references.cattaneo_stick_radius_mrd_holds", NearOne(1e-9), &["references", "references-fine"]),
     ("references.cattaneo_stick_radius_3d_holds", NearOne(1e-9), &["references", "references-fine"]),
+    // Johnson's sinusoid does not hold in 3D, diagnosed (the one-cell JKR criterion on a
+    // straight front: alpha x 1.36): pinned, so a criterion that converges is noticed.
+    ("references.johnson_sinusoid_pull_off_3d_holds", Below(0.5), &["references", "references-fine"]),
+    ("references.johnson_sinusoid_pull_off_3d", Within(0.13, 0.16), &["references", "references-fine"]),
     ("impact.mrd_observed_order_in_dt", Within(1.8, 2.2), &["impact"]),
     ("impact.bem3d_rel_error_vs_hertz", Below(2e-3), &["impact"]),
     ("impact.cost_per_step_3d_over_mrd", Above(1.0), &["impact"]),
