@@ -388,6 +388,9 @@ const RESULT_BOUNDS: &[(&str, Bound, &[&str])] = &[
     // straight front: alpha x 1.36): pinned, so a criterion that converges is noticed.
     ("references.johnson_sinusoid_pull_off_3d_holds", Below(0.5), &["references", "references-fine"]),
     ("references.johnson_sinusoid_pull_off_3d", Within(0.13, 0.16), &["references", "references-fine"]),
+    // The cohesive solver on the same strip converges onto Johnson's value (+9.8 % at 12
+    // cells per Dugdale length in `references`, +2.9 % at 48 in `references-fine`).
+    ("references.johnson_sinusoid_pull_off_3d_cohesive_holds", NearOne(1e-9), &["references", "references-fine"]),
     ("impact.mrd_observed_order_in_dt", Within(1.8, 2.2), &["impact"]),
     ("impact.bem3d_rel_error_vs_hertz", Below(2e-3), &["impact"]),
     ("impact.cost_per_step_3d_over_mrd", Above(1.0), &["impact"]),
