@@ -452,16 +452,18 @@ impl References {
         let (nx, ny) = (8 * self.cells, 4);
         let h = lambda / nx as f64;
         let per_half_width = a_pull / h;
+        // The strip: the sinusoid's row, repeated over the rows, and its half-space.
+        let z = (0..nx)
+            .map(|i| -delta * (1.0 - (2.0 * PI * i as f64 / nx as f64).cos()))
+            .collect::<Vec<f64>>()
+            .repeat(ny);
+        let area = lambda * ny as f64 * h;
+        let strip = || PeriodicHalfSpace::try_new(nx, ny, lambda, ny as f64 * h, e);
         let (three, branch) = out
             .stage(
                 Stage::Adhesion3d,
                 || -> bem3d::Result<(f64, Vec<(f64, f64)>)> {
-                    let row: Vec<f64> = (0..nx)
-                        .map(|i| -delta * (1.0 - (2.0 * PI * i as f64 / nx as f64).cos()))
-                        .collect();
-                    let z = row.repeat(ny);
-                    let op = PeriodicHalfSpace::try_new(nx, ny, lambda, ny as f64 * h, e)?;
-                    let mut c = AdhesiveContact::new(op, &z, None, w)?;
+                    let mut c = AdhesiveContact::new(strip()?, &z, None, w)?;
                     for k in 1..=20 {
                         c.step(Load::MeanPressure(0.01 * k as f64 * p_star), 1e-10)?;
                     }
@@ -488,12 +490,7 @@ impl References {
             .stage(
                 Stage::Adhesion3d,
                 || -> bem3d::Result<(f64, Vec<(f64, f64)>)> {
-                    let row: Vec<f64> = (0..nx)
-                        .map(|i| -delta * (1.0 - (2.0 * PI * i as f64 / nx as f64).cos()))
-                        .collect();
-                    let op = PeriodicHalfSpace::try_new(nx, ny, lambda, ny as f64 * h, e)?;
-                    let area = lambda * ny as f64 * h;
-                    let mut c = CohesiveContact::new(op, &row.repeat(ny), None, w, sigma0)?;
+                    let mut c = CohesiveContact::new(strip()?, &z, None, w, sigma0)?;
                     let dd = delta / 400.0;
                     let mut d = 0.0;
                     for _ in 0..400 {
