@@ -568,7 +568,7 @@ impl References {
                 "{nx} x {ny} cells per wavelength (y-invariant), {per_half_width:.1} cells per contact half-width at pull-off, pull-off to 0.001 p*"
             ),
             diagnosis: Some(
-                "the one-cell criterion (Pohrt & Popov) gives a straight front a toughness set by the cells' orientation: Johnson's curve is followed with alpha x 1.36 (aligned front), x 1.15 (diagonal), at every grid; it converges on curved fronts only",
+                "the one-cell criterion (Pohrt & Popov) gives a straight front a toughness set by the cells' orientation: Johnson's curve is followed with alpha x 1.36 (aligned front), x 1.15 (diagonal), at 256 to 2048 cells per wavelength alike; it converges on curved fronts only",
             ),
         },
         Computed {
