@@ -430,9 +430,10 @@ impl References {
     /// It does not hold, and the cause is measured: along the whole receding branch the
     /// 3D mean pressure follows Johnson's curve with alpha multiplied by 1.36 (grid-aligned
     /// front) or 1.15 (a wave along the grid's diagonal), at 256 and 512 cells per
-    /// wavelength alike. Pohrt and Popov's one-cell criterion sets the toughness of a
-    /// straight front by the orientation of the cells along it and does not converge to
-    /// JKR's; the sphere's staircase rim of all orientations does (the `jkr-pull-off`
+    /// wavelength alike. Pohrt and Popov's one-cell criterion reads the compliance of one
+    /// cell, which against the sampling along a straight front's normal sets its
+    /// toughness (a diagonal wave is sampled h / sqrt(2) apart: 1.36 / 2^(1/4)), and does
+    /// not converge to JKR's there; the sphere's staircase rim does (the `jkr-pull-off`
     /// row). docs/verification.md states what this means for rough surfaces.
     ///
     /// The cohesive solver (Maugis-Dugdale law, finite range) on the same strip does
@@ -550,7 +551,7 @@ impl References {
                 Style::Markers,
             )
             .plot(
-                format!("3D, cohesive (Maugis-Dugdale, range 0.4 a), {nx} cells per wavelength"),
+                format!("3D, cohesive (Maugis-Dugdale, Dugdale length 0.4 a), {nx} cells per wavelength"),
                 cohesive_branch,
                 Style::Crosses,
             )
