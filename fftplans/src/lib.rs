@@ -17,7 +17,6 @@
 use std::sync::Arc;
 
 pub use realfft::{ComplexToReal, RealToComplex};
-pub use rustfft::num_complex::{Complex, Complex32, Complex64};
 pub use rustfft::{Fft, FftDirection, FftNum};
 
 /// A float type with plans compiled in this crate (f64 and f32).
