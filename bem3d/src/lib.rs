@@ -21,9 +21,9 @@
 //! heights in place instead of keeping a second copy of the map.
 //!
 //! Each solver's constructor and solve or step is compiled here, once per operator
-//! ([`SolverOperator`], [`SlipOperator`]: their hidden methods are the entry points), so
-//! that a crate calling a solver links to that copy instead of compiling the generic
-//! solver again.
+//! ([`SolverOperator`], [`HalfSpaceOperator`], [`SlipOperator`]: their hidden methods
+//! are the entry points), so that a crate calling a solver links to that copy instead
+//! of compiling the generic solver again.
 
 // Numerical kernels index several parallel arrays with one index.
 #![allow(clippy::needless_range_loop)]
@@ -41,7 +41,7 @@ pub mod plastic;
 mod pool;
 mod set_solve;
 
-pub use compiled::{SlipOperator, SolverOperator};
+pub use compiled::{HalfSpaceOperator, SlipOperator, SolverOperator};
 pub use error::{BemError, Result};
 pub mod sliding;
 pub mod solution;

@@ -58,7 +58,7 @@ def test_the_pull_off_is_jkrs_and_the_clis(tmp_path):
     path.write_text(SCENE)
     res = mrdw.run_scene(str(path))
     table = res["tables"]["cycle"]
-    cells = table["cells [1]"]
+    cells = table["cells [cells]"]
     # The scene's grid: 1.25 loaded contact diameters, MRD's radius at depth_max.
     a_top = table["contact_radius [1]"][cells == 0].max()
     assert a_top == pytest.approx(math.sqrt(0.155), rel=1e-9)

@@ -661,7 +661,7 @@ fn public_items(file: &Path, public: bool) -> usize {
     count
 }
 
-/// bem3d's public API has a budget per public module (206 items: declarations, the
+/// bem3d's public API has a budget per public module (207 items: declarations, the
 /// names of `pub use` re-exports, and the methods in a public module's private files):
 /// a change that adds public items raises the budget here, and the commit says who
 /// needs them (the crate doc names the users of `fft`, `wide` and `mask`). The crate
@@ -670,11 +670,12 @@ fn public_items(file: &Path, public: bool) -> usize {
 #[test]
 fn bem3d_public_api_stays_within_its_budget() {
     const BUDGET: &[(&str, usize)] = &[
-        // SolverOperator and SlipOperator, the bounds of the solvers' entry points, and
-        // the 17 entry points (compiled.rs: constructors, solves and steps of ContactSolver,
-        // AdhesiveContact, CohesiveContact, PlasticContact, TransientContact, PartialSlip and
-        // ViscoelasticSlip; their other methods count in their modules).
-        ("(crate root)", 43),
+        // SolverOperator, HalfSpaceOperator and SlipOperator, the bounds of the solvers'
+        // entry points, and the 17 entry points (compiled.rs: constructors, solves and
+        // steps of ContactSolver, AdhesiveContact, CohesiveContact, PlasticContact,
+        // TransientContact, PartialSlip and ViscoelasticSlip; their other methods count in
+        // their modules).
+        ("(crate root)", 44),
         // interrupt_on here, in cohesive and twice in tangential (PartialSlip,
         // ViscoelasticSlip), and CerrutiPeriodic::stick_stiffness_until: Python stops a
         // step on Ctrl-C through them.
@@ -800,78 +801,6 @@ fn the_compiled_entry_points_only_forward() {
     assert!(
         entries >= 30,
         "{entries} entry points found: is the file's layout the same?"
-    );
-}
-
-/// The keys of the scene struct `name` (its fields, serde's names: the field names; no
-/// struct of an output kind renames or flattens them), from its source under
-/// `compare/src`.
-fn struct_keys(name: &str) -> Option<Vec<String>> {
-    for f in files(&src("compare")) {
-        let text = std::fs::read_to_string(&f).unwrap();
-        let head = format!("pub struct {name} {{");
-        let Some(start) = text.find(&head) else {
-            continue;
-        };
-        let body = &text[start + head.len()..];
-        let body = &body[..body.find("\n}").unwrap_or(body.len())];
-        let keys = body
-            .lines()
-            .map(str::trim)
-            .filter(|l| !l.starts_with("//") && !l.starts_with('#') && l.contains(':'))
-            .map(|l| {
-                l.trim_start_matches("pub ")
-                    .trim_start_matches("pub(crate) ")
-                    .trim_start_matches("pub(super) ")
-                    .split(':')
-                    .next()
-                    .unwrap()
-                    .trim()
-                    .to_string()
-            })
-            .collect();
-        return Some(keys);
-    }
-    None
-}
-
-/// Every output kind has its section in cases/README.md (`mrdw kinds` sends users
-/// there), and every key its struct accepts appears in that section.
-#[test]
-fn every_kind_and_key_is_documented() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let readme = std::fs::read_to_string(root.join("cases/README.md")).unwrap();
-    let registry = std::fs::read_to_string(src("compare").join("registry.rs")).unwrap();
-    // `points` is every axisymmetric output's, documented once above the kinds.
-    let common = ["points"];
-    let mut missing = Vec::new();
-    for kind in compare::registry::KINDS {
-        let marker = format!("### `{}`", kind.name);
-        let Some(at) = readme.find(&marker) else {
-            missing.push(format!("{}: no section `{marker}`", kind.name));
-            continue;
-        };
-        let section = &readme[at..];
-        let section = &section[..section[4..].find("\n##").map_or(section.len(), |e| e + 4)];
-        // The struct of the kind: `Kind::of::<path::Type>(\n "name"`.
-        let entry = registry
-            .find(&format!("\"{}\",", kind.name))
-            .map(|e| &registry[..e])
-            .and_then(|before| before.rfind("Kind::of::<").map(|s| &before[s + 11..]))
-            .and_then(|t| t.split(">(").next())
-            .map(|t| t.rsplit("::").next().unwrap().to_string())
-            .unwrap_or_else(|| panic!("{}: no registry entry", kind.name));
-        let keys = struct_keys(&entry).unwrap_or_else(|| panic!("no struct {entry}"));
-        for k in keys.into_iter().filter(|k| !common.contains(&k.as_str())) {
-            if !section.contains(&format!("{k} =")) && !section.contains(&format!("`{k}`")) {
-                missing.push(format!("{}: key `{k}`", kind.name));
-            }
-        }
-    }
-    assert!(
-        missing.is_empty(),
-        "undocumented in cases/README.md:\n{}",
-        missing.join("\n")
     );
 }
 

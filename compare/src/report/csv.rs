@@ -66,12 +66,16 @@ pub(crate) fn csv_text(table: &Table, prov: &Provenance) -> Result<String> {
     Ok(s)
 }
 
-/// Columns of counts and flags (units `[count]`, `[cells]`, `[0/1]`) hold integers and
-/// are written as such.
+/// Columns of counts, flags, indices and codes hold integers and are written as such:
+/// units `[count]`, `[cells]`, `[cells a side]`, `[0/1]`, `[index]`, and codes listed in
+/// their unit (`[0 MRD, 1 3D]`, `[0 periodic; 1 disc]`).
 fn is_integer(header: &str) -> bool {
-    ["[count]", "[cells]", "[0/1]"]
+    ["[count]", "[cells]", "[cells a side]", "[0/1]", "[index]"]
         .iter()
         .any(|u| header.ends_with(u))
+        || header
+            .rsplit_once('[')
+            .is_some_and(|(_, unit)| unit.starts_with("0 ") && unit.ends_with(']'))
 }
 
 fn csv_err(name: &str, e: csv::Error) -> CompareError {

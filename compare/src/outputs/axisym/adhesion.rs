@@ -18,11 +18,17 @@ use serde::Deserialize;
 pub struct Adhesion {
     /// Work of adhesion.
     gamma: f64,
+    /// Depth of the loading before the unloading [length].
     depth_max: f64,
+    /// Unloading under "force" (default) or "displacement" control.
     #[serde(default)]
     control: ControlSpec,
+    /// Optional: springs of an event-driven discrete cycle on the half-line, beside the
+    /// continuous solution.
     springs: Option<usize>,
+    /// Optional: half-length of the discrete cycle's line [length].
     half_length: Option<f64>,
+    /// Points of the output's curves (its sampling).
     #[serde(default = "default_points")]
     points: usize,
 }

@@ -46,6 +46,7 @@ pub struct Adhesion3d {
     /// the body separates.
     #[serde(default = "default_adhesive_steps")]
     steps: usize,
+    /// Relative convergence criterion of the 3D solves.
     #[serde(default = "default_tolerance")]
     tolerance: f64,
 }
@@ -291,7 +292,7 @@ impl Adhesion3d {
         let mut t = Table::new(
             "cycle",
             &[
-                "cells [1]".to_string(),
+                "cells [cells]".to_string(),
                 format!("depth [{len}]"),
                 format!("force [{force}]"),
                 format!("contact_radius [{len}]"),
@@ -404,7 +405,7 @@ impl Adhesion3d {
         let mut t = Table::new(
             "pull_off",
             &[
-                "cells [1]".to_string(),
+                "cells [cells]".to_string(),
                 "cells_per_pull_off_radius [1]".to_string(),
                 format!("pull_off_force_3d [{force}]"),
                 format!("pull_off_force_mrd [{force}]"),
@@ -414,8 +415,8 @@ impl Adhesion3d {
                 format!("jump_out_depth_3d [{len}]"),
                 format!("jump_out_depth_mrd [{len}]"),
                 "jump_out_depth_rel_error_3d [1]".to_string(),
-                "rounds [1]".to_string(),
-                "iterations [1]".to_string(),
+                "rounds [count]".to_string(),
+                "iterations [count]".to_string(),
             ],
         );
         t.notes.push(format!(

@@ -17,16 +17,23 @@ use serde::Deserialize;
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Damping {
+    /// Coulomb friction coefficient.
     mu: f64,
+    /// Normal indentation depth held during the oscillation [length].
     depth: f64,
     /// Largest amplitude as a multiple of A_c0 = mu E*/G* d.
     #[serde(default = "default_amplitude_ratio")]
     max_amplitude_ratio: f64,
+    /// Points of the output's curves (its sampling).
     #[serde(default = "default_points")]
     points: usize,
+    /// MRD springs on the half-line.
     #[serde(default = "default_springs")]
     springs: usize,
+    /// Half-length L of the springs' line [-L, L] [length]; default 1.05 times the contact
+    /// radius.
     half_length: Option<f64>,
+    /// Steps per oscillation cycle, a multiple of 4 (the turning points are hit exactly).
     #[serde(default = "crate::checks::default_count::<8>")]
     steps_per_cycle: usize,
 }

@@ -18,12 +18,16 @@ use serde::Deserialize;
 pub struct ForceDepth {
     /// Largest depth (drive = "depth") or force (drive = "force").
     max: f64,
+    /// What drives the curve: "depth" (default) or "force".
     #[serde(default)]
     drive: Drive,
+    /// Points of the output's curves (its sampling).
     #[serde(default = "default_points")]
     points: usize,
     /// Springs of the discrete foundation on [-half_length, half_length] (optional).
     springs: Option<usize>,
+    /// Half-length L of the MRD springs' line [-L, L] [length]; default 1.5 times the final
+    /// contact radius.
     half_length: Option<f64>,
     /// rho1 + rho2, the two bodies' electrical resistivities summed: adds the column
     /// electrical_conductance, 2 k / (E* (rho1 + rho2)) (end of Section 8).

@@ -53,6 +53,7 @@ pub struct Plastic3d {
     /// depends on it); the pressure-cap model has none.
     #[serde(default = "default_poisson")]
     poisson: f64,
+    /// Relative convergence criterion of the 3D solves.
     #[serde(default = "default_tolerance")]
     tolerance: f64,
 }

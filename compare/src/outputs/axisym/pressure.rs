@@ -15,7 +15,9 @@ use serde::Deserialize;
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Pressure {
+    /// Indentation depth at which the pressure is computed [length].
     depth: f64,
+    /// Points of the output's curves (its sampling).
     #[serde(default = "default_points")]
     points: usize,
 }

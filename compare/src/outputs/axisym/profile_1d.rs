@@ -15,6 +15,7 @@ use serde::Deserialize;
 pub struct Profile1d {
     /// Largest radius drawn.
     r_max: f64,
+    /// Points of the output's curves (its sampling).
     #[serde(default = "default_points")]
     points: usize,
 }

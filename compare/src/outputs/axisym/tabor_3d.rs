@@ -48,9 +48,11 @@ pub struct Tabor3d {
     /// Approach steps of the loading (the unloading goes by the same step).
     #[serde(default = "default_adhesive_steps")]
     steps: usize,
+    /// Relative convergence criterion of the 3D solves.
     #[serde(default = "default_tolerance")]
     tolerance: f64,
-    /// The traction-gap law of the 3D runs.
+    /// The traction-gap law of the 3D runs: "dugdale" (Maugis-Dugdale, default) or
+    /// "exponential".
     #[serde(default)]
     law: Law,
 }
@@ -226,7 +228,7 @@ impl Tabor3d {
             "tabor",
             &[
                 "lambda [1]".to_string(),
-                "cells [1]".to_string(),
+                "cells [cells]".to_string(),
                 "cells_per_dugdale_length [1]".to_string(),
                 "resolved [0/1]".to_string(),
                 "pull_off_3d_over_pi_w_r [1]".to_string(),

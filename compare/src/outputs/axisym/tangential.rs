@@ -16,8 +16,11 @@ use serde::Deserialize;
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Tangential {
+    /// Coulomb friction coefficient.
     mu: f64,
+    /// Normal force F_N [force].
     normal_force: f64,
+    /// Points of the output's curves (its sampling).
     #[serde(default = "default_points")]
     points: usize,
     /// Fractions of mu F_N at which the traction is drawn.

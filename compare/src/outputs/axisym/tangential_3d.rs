@@ -32,7 +32,9 @@ use std::f64::consts::PI;
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Tangential3d {
+    /// Coulomb friction coefficient.
     mu: f64,
+    /// Normal force F_N, held while the tangential load acts [force].
     normal_force: f64,
     /// Cells per side of the 3D grid.
     #[serde(default = "crate::checks::default_count::<128>")]
@@ -46,7 +48,8 @@ pub struct Tangential3d {
     /// the shift absolute).
     #[serde(default = "crate::checks::default_true")]
     periodic: bool,
-    /// Tangential forces of the stick-radius table, as fractions of mu F_N.
+    /// Tangential forces of the stick-radius table, as fractions of mu F_N, increasing;
+    /// default 0.1, 0.2, ..., 0.9.
     #[serde(default = "default_fractions")]
     fractions: Vec<f64>,
     /// Force amplitudes of the oscillation, as fractions of mu F_N.
@@ -55,6 +58,7 @@ pub struct Tangential3d {
     /// Force steps per half cycle of the 3D oscillation.
     #[serde(default = "crate::checks::default_count::<20>")]
     steps: usize,
+    /// Relative convergence criterion of the 3D solves.
     #[serde(default = "default_tolerance")]
     tolerance: f64,
 }
@@ -483,7 +487,7 @@ impl Tangential3d {
             };
         let mut cols = vec![
             "force_amplitude_over_mu_fn [1]".to_string(),
-            "reloading [1]".to_string(),
+            "reloading [0/1]".to_string(),
             "tangential_force_over_mu_fn [1]".to_string(),
         ];
         if sphere.is_some() {

@@ -49,6 +49,7 @@ pub struct Impact {
     /// Side of the 3D grid over the largest Hertz contact diameter.
     #[serde(default = "default_extent")]
     extent: f64,
+    /// Relative convergence criterion of the 3D solves.
     #[serde(default = "default_tolerance")]
     tolerance: f64,
 }

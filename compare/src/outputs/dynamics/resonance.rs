@@ -41,6 +41,7 @@ use std::time::Instant;
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactResonance {
+    /// Hurst exponent H of the self-affine spectrum, in [0, 1].
     hurst: f64,
     /// Bandwidth B = L / lambda_min of the face (the grid has 8 B cells a side).
     #[serde(default = "default_bandwidth")]
@@ -57,22 +58,28 @@ pub struct ContactResonance {
     /// 3D punch faces, each in its own loop (mean and 95 % interval; one: no interval).
     #[serde(default = "default_realisations_3d")]
     realisations_3d: usize,
-    /// lambda of Eq. (76) for the lines.
+    /// lambda of Eq. (76) for the lines (a number, "pi", "cut", "calibrated" or a
+    /// table's path); default "calibrated".
     #[serde(default = "calibrated")]
     lambda: LambdaSpec,
     /// Periods integrated per amplitude, and time steps per period.
     #[serde(default = "default_periods")]
     periods: usize,
+    /// Time steps per small-amplitude period.
     #[serde(default = "default_steps")]
     steps: usize,
     /// Bandwidths of the cost ladder (one face each, 8 cells per shortest wavelength),
     /// time steps timed per grid.
     #[serde(default = "default_cost_bandwidths")]
     cost_bandwidths: Vec<usize>,
+    /// Time steps timed per grid of the cost ladder.
     #[serde(default = "default_cost_steps")]
     cost_steps: usize,
+    /// Seed of the random surfaces and lines: the same seed gives the same realisations
+    /// whatever the thread count.
     #[serde(default)]
     seed: u64,
+    /// Relative convergence criterion of the 3D solves.
     #[serde(default = "default_tolerance")]
     tolerance: f64,
 }

@@ -30,8 +30,11 @@ use std::f64::consts::PI;
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RingDown {
+    /// Normal force F_N holding the contact [force].
     normal_force: f64,
+    /// Coulomb friction coefficient.
     mu: f64,
+    /// Mass of the body oscillating tangentially [mass].
     mass: f64,
     /// The starting tangential force over mu F_N, in (0, 1).
     amplitude: f64,

@@ -27,10 +27,15 @@ use serde::Deserialize;
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SlidingFriction {
+    /// The elastomer's modulus, e.g. { kind = "eq84", g0, g1, tau1, tau2, s, terms } (Eq.
+    /// 84).
     pub(super) material: Material,
+    /// The rigid rough line, e.g. { kind = "band", waves, band }: a flat C2D from k / band
+    /// to k band.
     pub(super) line: LineSpec,
     /// Line length L and rms height h (length units).
     pub(super) length: f64,
+    /// Rms height h of the line [length].
     pub(super) rms_height: f64,
     /// Springs along L.
     pub(super) springs: usize,
@@ -46,15 +51,21 @@ pub struct SlidingFriction {
     /// Sliding velocities: `velocities` values log-spaced from `velocity_min` to
     /// `velocity_max` (length units per second).
     pub(super) velocity_min: f64,
+    /// Largest sliding velocity [length / time].
     pub(super) velocity_max: f64,
+    /// Velocities, log-spaced from velocity_min to velocity_max.
     pub(super) velocities: usize,
+    /// Rough lines averaged.
     pub(super) realisations: u64,
+    /// Seed of the random surfaces and lines: the same seed gives the same realisations
+    /// whatever the thread count.
     #[serde(default)]
     pub(super) seed: u64,
     /// Steady state: mu and the mean approach change by less than this between passes
     /// (relative to mu and to the rms height).
     #[serde(default = "crate::experiment::sliding_line::default_line_tolerance")]
     pub(super) tolerance: f64,
+    /// Most passes of the steady-state sliding iteration per velocity.
     #[serde(default = "crate::experiment::sliding_line::default_max_passes")]
     pub(super) max_passes: usize,
     /// A velocity is resolved where the two routes to mu (the friction force and the

@@ -35,11 +35,14 @@ use serde::Deserialize;
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SlidingFriction3d {
+    /// The elastomer's modulus, e.g. { kind = "eq84", g0, g1, tau1, tau2, s, terms } (Eq.
+    /// 84).
     material: Material,
     /// The surface's spectrum: `band` or `self_affine` (as `sliding_friction`'s `line`).
     surface: LineSpec,
     /// Side L of the periodic square and rms height h (length units).
     length: f64,
+    /// Rms height h of the surface [length].
     rms_height: f64,
     /// Cells per side.
     grid: usize,
@@ -52,9 +55,14 @@ pub struct SlidingFriction3d {
     /// Sliding velocities: `velocities` values log-spaced from `velocity_min` to
     /// `velocity_max` (length units per second).
     velocity_min: f64,
+    /// Largest sliding velocity [length / time].
     velocity_max: f64,
+    /// Velocities, log-spaced from velocity_min to velocity_max.
     velocities: usize,
+    /// Rough surfaces averaged.
     realisations: u64,
+    /// Seed of the random surfaces and lines: the same seed gives the same realisations
+    /// whatever the thread count.
     #[serde(default)]
     seed: u64,
     /// Convergence criterion of the 3D solver (see `bem3d::solver`).

@@ -14,22 +14,34 @@ use serde::Deserialize;
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StaticFriction {
+    /// Hurst exponent H of the self-affine spectrum, in [0, 1].
     hurst: f64,
+    /// Points N of each rough line.
     points: usize,
+    /// Length L of each rough line [length].
     length: f64,
     /// rms height h; or give `contacts_at_max_force` to calibrate h.
     rms_height: Option<f64>,
+    /// Sets the rms height h so that about this many points touch at force_max (give this
+    /// or rms_height, not both).
     contacts_at_max_force: Option<f64>,
+    /// Rough lines averaged.
     #[serde(default = "default_realisations")]
     realisations: u64,
+    /// Seed of the random surfaces and lines: the same seed gives the same realisations
+    /// whatever the thread count.
     #[serde(default)]
     seed: u64,
+    /// Smallest force [force per length x length].
     force_min: f64,
+    /// Largest force [force per length x length].
     force_max: f64,
+    /// Forces, log-spaced from force_min to force_max.
     #[serde(default = "default_force_points")]
     force_points: usize,
     /// A published fit xi = a + b ln f to draw and report alongside (optional).
     paper_a: Option<f64>,
+    /// Optional: b of a published fit xi = a + b ln f drawn beside (with paper_a).
     paper_b: Option<f64>,
 }
 

@@ -28,6 +28,7 @@ pub struct BemContact {
     heights: String,
     /// Physical size [lx, ly] of the map (length units).
     size: [f64; 2],
+    /// true: the periodic half-space; false: the free (zero-padded) half-space.
     #[serde(default = "crate::checks::default_true")]
     periodic: bool,
     /// Radius of a centred circular punch (mask); none: the whole map may touch.
@@ -38,8 +39,10 @@ pub struct BemContact {
     /// ... or rigid-body approaches from first contact.
     #[serde(default)]
     approaches: Vec<f64>,
+    /// Relative convergence criterion of the 3D solves.
     #[serde(default = "tolerance")]
     tolerance: f64,
+    /// Most iterations of one 3D solve.
     #[serde(default = "max_iterations")]
     max_iterations: usize,
     /// Also compute the tangent stiffness dF/dd (contact set fixed) at each load.

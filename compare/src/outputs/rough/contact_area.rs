@@ -44,7 +44,10 @@ pub struct ContactArea {
     /// Upper cut-off as a fraction of the 3D grid's Nyquist wavenumber pi/dx.
     #[serde(default = "quarter")]
     upper_cutoff_ratio: f64,
+    /// Rough surfaces solved in 3D (independent realisations of the spectrum).
     realisations_3d: u64,
+    /// MRD rough lines (independent realisations, C1D = lambda q C2D) behind each MRD
+    /// curve.
     realisations_1d: u64,
     /// 1D points per 3D cell across.
     #[serde(default = "crate::checks::default_count::<16>")]
@@ -52,11 +55,14 @@ pub struct ContactArea {
     /// Approaches per 3D realisation.
     #[serde(default = "crate::checks::default_count::<20>")]
     loads: usize,
+    /// Seed of the random surfaces and lines: the same seed gives the same realisations
+    /// whatever the thread count.
     #[serde(default)]
     seed: u64,
     /// lambda of Eq. (76) for the MRD lines (default pi, Eq. 73).
     #[serde(default)]
     lambda: LambdaSpec,
+    /// Relative convergence criterion of the 3D solves.
     #[serde(default = "tolerance")]
     tolerance: f64,
 }

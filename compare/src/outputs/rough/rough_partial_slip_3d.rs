@@ -60,9 +60,13 @@ pub struct RoughPartialSlip3d {
     /// Force steps per half cycle.
     #[serde(default = "crate::checks::default_count::<10>")]
     steps: usize,
+    /// Rough surfaces per Hurst exponent.
     realisations: u64,
+    /// Relative convergence criterion of the 3D solves.
     #[serde(default = "crate::checks::default_tolerance")]
     tolerance: f64,
+    /// Seed of the random surfaces and lines: the same seed gives the same realisations
+    /// whatever the thread count.
     #[serde(default)]
     seed: u64,
 }
@@ -243,7 +247,7 @@ impl RoughPartialSlip3d {
             &[
                 "hurst [1]".to_string(),
                 "poisson [1]".to_string(),
-                "grid [1]".to_string(),
+                "grid [cells]".to_string(),
                 "force_over_mu_fn [1]".to_string(),
                 format!("shift_3d_mean [{length}]"),
                 format!("shift_mrd_mean [{length}]"),
@@ -258,7 +262,7 @@ impl RoughPartialSlip3d {
             &[
                 "hurst [1]".to_string(),
                 "poisson [1]".to_string(),
-                "grid [1]".to_string(),
+                "grid [cells]".to_string(),
                 "amplitude_over_mu_fn [1]".to_string(),
                 format!("dissipation_3d_mean [{energy}]"),
                 format!("dissipation_mrd_mean [{energy}]"),

@@ -30,23 +30,34 @@ pub struct MeasuredSurface {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RoughStiffness {
+    /// Hurst exponent H of the self-affine spectrum, in [0, 1].
     hurst: f64,
     /// A measured topography whose radially averaged PSD replaces the self-affine
     /// spectrum: C1D = lambda q C2D_measured (Eq. 76).
     measured: Option<MeasuredSurface>,
+    /// Points of each rough line.
     points: usize,
+    /// Length L of each rough line [length].
     length: f64,
     /// Upper cut-off as a fraction of the Nyquist wavenumber pi N / L.
     #[serde(default = "default_cutoff_ratio")]
     upper_cutoff_ratio: f64,
+    /// lambda of Eq. 76 as written, C1D = lambda q C2D of the same C2D: a number, "pi",
+    /// "cut", "calibrated" or a table's path; default "pi".
     #[serde(default)]
     lambda: LambdaSpec,
+    /// Rough lines averaged.
     #[serde(default = "default_realisations")]
     realisations: u64,
+    /// Seed of the random surfaces and lines: the same seed gives the same realisations
+    /// whatever the thread count.
     #[serde(default)]
     seed: u64,
+    /// Smallest dimensionless force F/(E* h L).
     f_min: f64,
+    /// Largest dimensionless force F/(E* h L).
     f_max: f64,
+    /// Forces, log-spaced from f_min to f_max.
     #[serde(default = "default_force_points")]
     f_points: usize,
 }

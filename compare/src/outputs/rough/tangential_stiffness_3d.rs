@@ -48,9 +48,13 @@ pub struct TangentialStiffness3d {
     cells: Vec<usize>,
     /// Mean pressures over E* h' (h' the rms slope), increasing.
     pressures: Vec<f64>,
+    /// Rough surfaces per Hurst exponent.
     realisations: u64,
+    /// Relative convergence criterion of the 3D solves.
     #[serde(default = "crate::checks::default_tolerance")]
     tolerance: f64,
+    /// Seed of the random surfaces and lines: the same seed gives the same realisations
+    /// whatever the thread count.
     #[serde(default)]
     seed: u64,
 }
@@ -176,7 +180,7 @@ impl TangentialStiffness3d {
             "hurst [1]",
             "poisson [1]",
             "cells_per_shortest_wavelength [1]",
-            "grid [1]",
+            "grid [cells]",
             "pressure_over_e_star_rms_slope [1]",
             "area_fraction_mean [1]",
             "kn_mean [force/length]",

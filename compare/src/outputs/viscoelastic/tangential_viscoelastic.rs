@@ -36,7 +36,9 @@ use serde::Deserialize;
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TangentialViscoelastic {
+    /// Coulomb friction coefficient.
     mu: f64,
+    /// Normal force F_N [force].
     normal_force: f64,
     /// Relaxed tangential modulus G*_inf.
     g_inf: f64,
@@ -44,11 +46,14 @@ pub struct TangentialViscoelastic {
     prony: Vec<[f64; 2]>,
     /// Tangential amplitude as a fraction of the full-slip displacement at G*_inf.
     amplitude: f64,
+    /// Duration of the tangential ramp [time].
     ramp_time: f64,
+    /// Duration of the hold after the ramp [time].
     hold_time: f64,
     /// Steps per ramp_time.
     #[serde(default = "crate::checks::default_count::<100>")]
     steps: usize,
+    /// MRD springs on the half-line.
     #[serde(default = "default_springs")]
     springs: usize,
     /// Cells per side of the 3D side on the free half-space (absent: MRD only).

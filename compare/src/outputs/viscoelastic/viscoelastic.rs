@@ -19,12 +19,19 @@ pub struct Viscoelastic {
     e_inf: f64,
     /// Prony terms [[E_i, tau_i], ...] of E*(t) = E_inf + sum E_i exp(-t/tau_i).
     prony: Vec<[f64; 2]>,
+    /// Depth reached by the constant-rate ramp [length].
     depth_max: f64,
+    /// Duration of the ramp [time].
     ramp_time: f64,
+    /// End of the hold after the ramp [time].
     end_time: f64,
+    /// MRD springs on the half-line.
     #[serde(default = "default_springs")]
     springs: usize,
+    /// Half-length L of the springs' line [-L, L] [length]; default 1.2 times the largest
+    /// contact radius.
     half_length: Option<f64>,
+    /// Time steps over [0, end_time].
     #[serde(default = "crate::checks::default_count::<400>")]
     steps: usize,
 }

@@ -88,28 +88,40 @@ pub struct StaticFriction3d {
     /// Cells per shortest wavelength; 20 is Eq. (85)'s cut-off at 1/10 of Nyquist.
     #[serde(default = "crate::checks::default_count::<20>")]
     cells: usize,
+    /// The 3D geometries, "periodic" and/or "disc" (default both).
     #[serde(default = "both")]
     geometry: Vec<Geometry>,
+    /// Rough surfaces solved in 3D (independent realisations of the spectrum).
     realisations_3d: u64,
+    /// MRD rough lines (independent realisations, C1D = lambda q C2D) behind each MRD
+    /// curve.
     realisations_1d: u64,
     /// Reduced forces f = sqrt(pi) F / (2 E* h sqrt(A)) (Eq. 93), log-spaced.
     f_min: f64,
+    /// Largest dimensionless force f.
     f_max: f64,
+    /// Forces, log-spaced from f_min to f_max.
     #[serde(default = "crate::checks::default_count::<12>")]
     f_points: usize,
     /// The fits of Eq. (91) use the f points whose 3D contact fraction is below this
     /// (the paper's law is one of sparse contact; xi -> 1 at complete contact).
     #[serde(default = "tenth")]
     fit_max_area: f64,
-    /// lambda of Eq. (76) for the MRD lines: one curve per entry.
+    /// lambda of Eq. (76) for the MRD lines: one curve per entry (a number, "pi", "cut",
+    /// "calibrated" or a table's path); default ["pi"].
     #[serde(default = "crate::experiment::lambda::default_lambdas")]
     lambda: Vec<LambdaSpec>,
+    /// Relative convergence criterion of the 3D solves.
     #[serde(default = "crate::checks::default_tolerance")]
     tolerance: f64,
+    /// Seed of the random surfaces and lines: the same seed gives the same realisations
+    /// whatever the thread count.
     #[serde(default)]
     seed: u64,
     /// The paper's fit xi = a + b ln f to draw at `paper_hurst` (Eq. 92: 2.9, 0.14, 0.7).
     paper: Option<[f64; 3]>,
+    /// Optional: one point solved again on twice the cells, e.g. { hurst = 0.7, geometry =
+    /// "periodic", f = 0.01 }.
     refine: Option<Refinement>,
 }
 

@@ -143,7 +143,7 @@ fn columns(spec: &StaticFriction3d) -> Vec<String> {
         "xi_3d_ci95 [1]",
         "area_3d [A_real/A]",
         "contact_cells_3d [1]",
-        "realisations_3d [1]",
+        "realisations_3d [count]",
     ]
     .map(String::from)
     .to_vec();

@@ -59,6 +59,8 @@ pub struct Calibrate {
     /// Cells per shortest wavelength of the 3D punches.
     #[serde(default = "crate::checks::default_count::<8>")]
     pub cells: usize,
+    /// Realisations of the MRD punches: { min, max, batch } (default { min = 16, max = 400,
+    /// batch = 16 }): batches while the interval is wider than its target.
     #[serde(default = "realisations")]
     pub realisations: Realisations,
     /// Relative half-width of lambda's 95 % interval at which realisations stop.
@@ -81,6 +83,8 @@ pub struct Calibrate {
     pub points_1d_per_cell: usize,
     /// Solve the measured map itself in 3D (a topography only; default true).
     pub solve_map: Option<bool>,
+    /// Seed of the random surfaces and lines: the same seed gives the same realisations
+    /// whatever the thread count.
     #[serde(default)]
     pub seed: u64,
 }

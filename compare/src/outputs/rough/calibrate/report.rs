@@ -154,7 +154,7 @@ fn summary_table(spec: &Calibrate, case: &Case, cal: &Calibration) -> Table {
     let cols = [
         "bandwidth L/lambda_min [1]",
         "grid [cells]",
-        "realisations [1]",
+        "realisations [count]",
         "lambda [1]",
         "lambda_lo95 [1]",
         "lambda_hi95 [1]",

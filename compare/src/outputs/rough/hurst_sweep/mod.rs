@@ -55,7 +55,10 @@ pub struct HurstSweep {
     /// both give 0.62).
     #[serde(default = "quarter")]
     pub upper_cutoff_ratio: f64,
+    /// Rough surfaces solved in 3D (independent realisations of the spectrum).
     pub realisations_3d: u64,
+    /// MRD rough lines (independent realisations, C1D = lambda q C2D) behind each MRD
+    /// curve.
     pub realisations_1d: u64,
     /// 1D points per 3D cell across (N1 = factor x grid).
     #[serde(default = "crate::checks::default_count::<16>")]
@@ -63,6 +66,8 @@ pub struct HurstSweep {
     /// Number of approaches per 3D realisation.
     #[serde(default = "crate::checks::default_count::<20>")]
     pub loads: usize,
+    /// Seed of the random surfaces and lines: the same seed gives the same realisations
+    /// whatever the thread count.
     #[serde(default)]
     pub seed: u64,
     /// 3D solver tolerance (see bem3d::solver).

@@ -173,10 +173,10 @@ pub fn report(sc: &[ForceScatter], label: &str, out: &mut Section) {
             &[
                 "hurst [1]",
                 "bandwidth [1]",
-                "realisations_3d [1]",
-                "lines_mrd [1]",
+                "realisations_3d [count]",
+                "lines_mrd [count]",
                 "u = approach past mean height / h [1]",
-                "in_window [1]",
+                "in_window [0/1]",
                 "mean_f_3d = F/(E* h L) [1]",
                 "mean_f_mrd [1]",
             ],

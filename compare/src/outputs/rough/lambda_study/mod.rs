@@ -84,6 +84,8 @@ pub struct LambdaStudy {
     /// The largest grid's accuracy check: at one H and bandwidth, a few realisations at
     /// twice `cells` and at a second tolerance, paired with that bandwidth's case.
     pub top_check: Option<TopCheck>,
+    /// Realisations of the MRD lines: { min, max, batch }: batches while the interval is
+    /// wider than its target.
     pub realisations: Realisations,
     /// [H_max, relative half-width] pairs, H_max ascending: the target of lambda's 95 %
     /// interval for H <= H_max.
@@ -94,9 +96,10 @@ pub struct LambdaStudy {
     /// Surfaces per case grid (no solve) for the expectations of the control variates.
     #[serde(default = "crate::checks::default_count_u64::<2000>")]
     pub control_realisations: u64,
-    /// Fewer control surfaces on large grids, where one costs about a second: `[side,
-    /// m]` gives grids of at least `side` cells a side `m` surfaces (their expectations
-    /// then carry an error still far below the one of the solved realisations' mean).
+    /// Fewer control surfaces on large grids, where each costs a synthesis of the whole
+    /// grid: `[side, m]` gives grids of at least `side` cells a side `m` surfaces (their
+    /// expectations then carry an error still far below the one of the solved
+    /// realisations' mean).
     pub control_realisations_large: Option<[u64; 2]>,
     /// The calibration and fit range in k/(E* L).
     #[serde(default = "window")]
@@ -110,6 +113,8 @@ pub struct LambdaStudy {
     /// MRD points per 3D cell across.
     #[serde(default = "crate::checks::default_count::<16>")]
     pub points_1d_per_cell: usize,
+    /// Seed of the random surfaces and lines: the same seed gives the same realisations
+    /// whatever the thread count.
     #[serde(default)]
     pub seed: u64,
 }

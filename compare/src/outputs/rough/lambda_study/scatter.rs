@@ -161,10 +161,10 @@ pub fn report(sc: &[Scatter], fs: &[f64], label: &str, out: &mut Section) {
             &[
                 "hurst [1]",
                 "bandwidth [1]",
-                "realisations_3d [1]",
-                "lines_mrd [1]",
+                "realisations_3d [count]",
+                "lines_mrd [count]",
                 "f = F/(E* h L) [1]",
-                "in_window [1]",
+                "in_window [0/1]",
             ],
             CV_COLUMNS,
         ]

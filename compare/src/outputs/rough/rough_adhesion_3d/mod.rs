@@ -61,7 +61,10 @@ pub struct RoughAdhesion3d {
     bandwidth: usize,
     /// Cells per side of the 3D grids, coarse to fine (a refinement ladder).
     cells: Vec<usize>,
+    /// Rough surfaces solved in 3D (independent realisations of the spectrum).
     realisations_3d: u64,
+    /// MRD rough lines (independent realisations, C1D = lambda q C2D) behind each MRD
+    /// curve.
     realisations_1d: u64,
     /// MRD springs per cell of the finest 3D grid.
     #[serde(default = "crate::experiment::rough_sphere::default_points_1d_factor")]
@@ -71,13 +74,18 @@ pub struct RoughAdhesion3d {
     /// step until the body separates.
     #[serde(default = "crate::checks::default_count::<60>")]
     steps: usize,
+    /// lambda of Eq. 76, one MRD curve per entry: a number, "pi" (Eq. 73), "cut",
+    /// "calibrated" (the shipped lambda(H) table) or a CSV table's path; default ["pi"].
     #[serde(default = "crate::experiment::lambda::default_lambdas")]
     lambda: Vec<LambdaSpec>,
     /// The radii of Eq. 33 that MRD is run with: "outer", "cluster" (both by default).
     #[serde(default = "both_rules")]
     mrd_rule: Vec<String>,
+    /// Relative convergence criterion of the 3D solves.
     #[serde(default = "crate::checks::default_tolerance")]
     tolerance: f64,
+    /// Seed of the random surfaces and lines: the same seed gives the same realisations
+    /// whatever the thread count.
     #[serde(default)]
     seed: u64,
 }

@@ -62,7 +62,10 @@ pub struct RoughSlip3d {
     bandwidth: usize,
     /// Cells per side of the 3D grids, coarse to fine (a refinement ladder).
     cells: Vec<usize>,
+    /// Rough surfaces solved in 3D (independent realisations of the spectrum).
     realisations_3d: u64,
+    /// MRD rough lines (independent realisations, C1D = lambda q C2D) behind each MRD
+    /// curve.
     realisations_1d: u64,
     /// MRD springs per cell of the finest 3D grid.
     #[serde(default = "crate::experiment::rough_sphere::default_points_1d_factor")]
@@ -74,10 +77,15 @@ pub struct RoughSlip3d {
     /// Force steps per half cycle.
     #[serde(default = "crate::checks::default_count::<8>")]
     steps: usize,
+    /// lambda of Eq. 76, one MRD curve per entry: a number, "pi" (Eq. 73), "cut",
+    /// "calibrated" (the shipped lambda(H) table) or a CSV table's path; default ["pi"].
     #[serde(default = "crate::experiment::lambda::default_lambdas")]
     lambda: Vec<LambdaSpec>,
+    /// Relative convergence criterion of the 3D solves.
     #[serde(default = "crate::checks::default_tolerance")]
     tolerance: f64,
+    /// Seed of the random surfaces and lines: the same seed gives the same realisations
+    /// whatever the thread count.
     #[serde(default)]
     seed: u64,
 }

@@ -36,26 +36,37 @@ pub struct RoughSphere {
     radius: f64,
     /// Smooth-sphere approach at the largest load; a_H = sqrt(R d_H).
     hertz_depth: f64,
+    /// Hurst exponent H of the self-affine spectrum, in [0, 1].
     hurst: f64,
     /// Greenwood-Tripp alpha = h R / a_H^2 per case; 0 is the smooth sphere.
     alpha: Vec<f64>,
     /// Side of the square (3D map and MRD row) in units of a_H.
     #[serde(default = "six")]
     side: f64,
+    /// Cells per side of the 3D grid.
     grid: usize,
     /// Roughness modes |k| <= bandwidth (units of 2 pi / side).
     bandwidth: usize,
+    /// Rough surfaces solved in 3D (independent realisations of the spectrum).
     realisations_3d: u64,
+    /// MRD rough lines (independent realisations, C1D = lambda q C2D) behind each MRD
+    /// curve.
     realisations_1d: u64,
     /// MRD springs per 3D cell along x.
     #[serde(default = "crate::experiment::rough_sphere::default_points_1d_factor")]
     points_1d_factor: usize,
+    /// Forces, from 1e-2 F_H to F_H.
     #[serde(default = "crate::checks::default_count::<10>")]
     loads: usize,
+    /// lambda of Eq. 76, one MRD curve per entry: a number, "pi" (Eq. 73), "cut",
+    /// "calibrated" (the shipped lambda(H) table) or a CSV table's path; default ["pi"].
     #[serde(default = "crate::experiment::lambda::default_lambdas")]
     lambda: Vec<LambdaSpec>,
+    /// Relative convergence criterion of the 3D solves.
     #[serde(default = "crate::checks::default_tolerance")]
     tolerance: f64,
+    /// Seed of the random surfaces and lines: the same seed gives the same realisations
+    /// whatever the thread count.
     #[serde(default)]
     seed: u64,
 }

@@ -69,7 +69,7 @@ fn columns(lambdas: &[f64]) -> Vec<String> {
         "a_3d [length]",
         "a_3d_ci95 [length]",
         "outermost_3d [length]",
-        "realisations_3d [1]",
+        "realisations_3d [count]",
     ]
     .map(String::from)
     .to_vec();

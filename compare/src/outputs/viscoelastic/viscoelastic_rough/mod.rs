@@ -48,18 +48,27 @@ pub struct ModulusSpec {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ViscoelasticRough {
+    /// Hurst exponent H of the self-affine spectrum, in [0, 1].
     hurst: f64,
+    /// Roughness modes |k| <= bandwidth (units of 2 pi / L).
     bandwidth: usize,
     /// Cells per shortest wavelength: the 3D grid is bandwidth x cells a side.
     #[serde(default = "crate::checks::default_count::<8>")]
     cells: usize,
+    /// Rough surfaces solved in 3D (independent realisations of the spectrum).
     realisations_3d: u64,
+    /// MRD rough lines (independent realisations, C1D = lambda q C2D) behind each MRD
+    /// curve.
     realisations_1d: u64,
     /// MRD springs per 3D cell across.
     #[serde(default = "crate::checks::default_count::<16>")]
     points_1d_per_cell: usize,
+    /// lambda of Eq. 76, one MRD curve per entry: a number, "pi" (Eq. 73), "cut",
+    /// "calibrated" (the shipped lambda(H) table) or a CSV table's path; default ["pi"].
     #[serde(default = "crate::experiment::lambda::default_lambdas")]
     lambda: Vec<LambdaSpec>,
+    /// The contact modulus E_inf + sum_k E_k exp(-t / tau_k): { relaxed = E_inf, terms =
+    /// [[E_k, tau_k], ...] }.
     modulus: ModulusSpec,
     /// f = F / (E_inf h L) at the end of the ramp (force control).
     force: Option<f64>,
@@ -73,8 +82,11 @@ pub struct ViscoelasticRough {
     unload: f64,
     /// Time steps per ramp.
     steps: usize,
+    /// Relative convergence criterion of the 3D solves.
     #[serde(default = "crate::checks::default_tolerance")]
     tolerance: f64,
+    /// Seed of the random surfaces and lines: the same seed gives the same realisations
+    /// whatever the thread count.
     #[serde(default)]
     seed: u64,
 }
