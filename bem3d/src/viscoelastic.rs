@@ -125,6 +125,15 @@ pub struct Step {
     pub effective_modulus: f64,
 }
 
+/// The state of a [`TransientContact`] between steps ([`TransientContact::snapshot`]).
+#[derive(Debug, Clone)]
+pub struct Snapshot {
+    u: Vec<f64>,
+    history: Vec<Vec<f64>>,
+    time: f64,
+    last: Option<Solution>,
+}
+
 /// A rough rigid surface on a viscoelastic half-space, stepped in time.
 pub struct TransientContact<K: GridOperator> {
     solver: ContactSolver<K>,
@@ -179,6 +188,33 @@ impl<K: GridOperator> TransientContact<K> {
     /// The surface displacement u (`ny x nx`, into the half-space).
     pub fn displacement(&self) -> &[f64] {
         &self.u
+    }
+
+    /// The state a step changes (time, displacement, hereditary integrals and the last
+    /// solve that warm-starts the next), for [`Self::restore`]: a time integrator tries
+    /// a step and takes it back when it rejects it.
+    pub fn snapshot(&self) -> Snapshot {
+        Snapshot {
+            u: self.u.clone(),
+            history: self.history.clone(),
+            time: self.time,
+            last: self.last.clone(),
+        }
+    }
+
+    /// Returns to a state taken by [`Self::snapshot`] of this contact: the next step is
+    /// the one that would have followed it, bit for bit.
+    pub fn restore(&mut self, s: Snapshot) -> Result<()> {
+        if s.u.len() != self.u.len() || s.history.len() != self.history.len() {
+            return Err(BemError::InvalidInput(
+                "restore: the snapshot is of another contact (its grid or modulus differs)".into(),
+            ));
+        }
+        self.u = s.u;
+        self.history = s.history;
+        self.time = s.time;
+        self.last = s.last;
+        Ok(())
     }
 
     /// [`Self::step`] for any operator (its compiled entry, in `compiled.rs`, calls this).

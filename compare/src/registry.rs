@@ -71,6 +71,10 @@ pub const KINDS: &[Kind] = &[
         "impact",
         "a sphere's impact integrated in time with the contact at every step, MRD's springs and the 3D solve in the loop, against Hertz's impact (Section 12)",
     ),
+    Kind::of::<dynamics::viscoelastic_impact::ViscoelasticImpact>(
+        "viscoelastic_impact",
+        "a sphere striking a viscoelastic half-space at a range of speeds, MRD's viscoelastic springs and the 3D transient solve in the loop: restitution and contact time against speed (Sections 8 and 12)",
+    ),
     Kind::of::<dynamics::resonance::ContactResonance>(
         "contact_resonance",
         "free normal vibration on a rough contact with the contact at every step, MRD's rough lines and the 3D punch in the loop: frequency against k(F0), backbone and contact loss; the cost of a step against the grid (Section 12)",

@@ -62,7 +62,7 @@ pub trait ContactLaw: Send {
     fn describe(&self) -> String;
 }
 
-fn check_motion(m: Motion) -> Result<()> {
+pub(crate) fn check_motion(m: Motion) -> Result<()> {
     if !(m.normal.is_finite() && m.tangential.is_finite()) {
         return bad(format!(
             "motion: normal = {} and tangential = {} must be finite",

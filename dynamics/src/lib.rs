@@ -14,6 +14,9 @@
 //!   with its own history (Sections 6-7).
 //! - 3D ([`law::Bem3d`]): the boundary-element normal solve of `bem3d`, under the step's
 //!   approach, warm-started from the last accepted state.
+//! - Viscoelastic, both ways ([`viscoelastic`]): MRD's springs with the hereditary
+//!   integral of a relaxing modulus (Eq. 63) and the 3D transient solve on the same
+//!   modulus, whose force depends on the history of the motion.
 //!
 //! The integrator ([`integrate`]) advances one degree of freedom: a mass under an
 //! external force and the contact force, by velocity Verlet, with step rejection on a
@@ -22,8 +25,10 @@
 
 pub mod integrate;
 pub mod law;
+pub mod viscoelastic;
 
 pub use law::{Bem3d, ContactLaw, Forces, Motion, Springs};
+pub use viscoelastic::{ViscoelasticBem3d, ViscoelasticSprings};
 
 /// What can go wrong in a contact law or an integration.
 #[derive(Debug, thiserror::Error)]

@@ -661,7 +661,7 @@ fn public_items(file: &Path, public: bool) -> usize {
     count
 }
 
-/// bem3d's public API has a budget per public module (207 items: declarations, the
+/// bem3d's public API has a budget per public module (210 items: declarations, the
 /// names of `pub use` re-exports, and the methods in a public module's private files):
 /// a change that adds public items raises the budget here, and the commit says who
 /// needs them (the crate doc names the users of `fft`, `wide` and `mask`). The crate
@@ -701,7 +701,9 @@ fn bem3d_public_api_stays_within_its_budget() {
         // PartialSlip(periodic=False)), the TangentialCompliance trait both operators
         // implement, ViscoelasticSlip and its step (tangential_viscoelastic's 3D side).
         ("tangential", 19),
-        ("viscoelastic", 9),
+        // TransientContact::snapshot and ::restore with their Snapshot: the viscoelastic
+        // contact law of `dynamics` takes a rejected time step back.
+        ("viscoelastic", 12),
         ("wide", 5),
     ];
     let root = src("bem3d");

@@ -200,8 +200,13 @@ pub(crate) fn keys_of(name: &str) -> Result<Vec<Key>, Vec<String>> {
         } else if serde.iter().any(|a| a.contains("default")) {
             type_default(ty)
         } else if ty.starts_with("Option<") {
-            // serde reads a missing Option as None.
-            Some("none".into())
+            // serde reads a missing Option as None; where None stands for a value the
+            // output computes, the documentation states it.
+            if doc.join(" ").contains("efault") {
+                None
+            } else {
+                Some("none".into())
+            }
         } else {
             Some("required".into())
         };

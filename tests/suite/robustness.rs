@@ -1088,6 +1088,21 @@ fn dynamics_bad_input_names_the_key() {
         ],
     );
     refuses_each_edit(
+        "viscoelastic-impact",
+        &[
+            ("mass = 1e-3", "mass = 0.0", "mass = 0"),
+            ("speeds = [", "speeds = [0.5, ", "speeds = "),
+            ("prony = [[3.0, 0.5]]", "prony = []", "prony"),
+            (
+                "prony = [[3.0, 0.5]]",
+                "prony = [[3.0, -0.5]]",
+                "relaxation time",
+            ),
+            ("e_inf = 1.0", "e_inf = 0.0", "e_inf = 0"),
+            ("cells = [32, 64]", "cells = [64, 32]", "cells = [64, 32]"),
+        ],
+    );
+    refuses_each_edit(
         "ring-down",
         &[
             ("amplitude = 0.9", "amplitude = 1.0", "amplitude = 1"),

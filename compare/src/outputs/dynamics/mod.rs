@@ -5,3 +5,4 @@
 pub mod impact;
 pub mod resonance;
 pub mod ring_down;
+pub mod viscoelastic_impact;
