@@ -62,8 +62,9 @@ impl LawForces {
 /// is tried at a motion (`trial`), then accepted (`commit`) or discarded (`rollback`), so
 /// implicit and adaptive integrators can try a step several times. Build with the static
 /// methods: `body` (MRD's springs for a body of revolution, exact by the rule of Hess,
-/// optionally with Coulomb friction), `rough_line` (MRD's rough line) or `bem3d` (the 3D
-/// boundary-element solve, warm-started from the last accepted step; frictionless).
+/// optionally with Coulomb friction), `rough_line` (MRD's rough line), `bem3d` (the 3D
+/// boundary-element solve, warm-started from the last accepted step; frictionless), or
+/// their viscoelastic counterparts `viscoelastic_body` and `viscoelastic_bem3d`.
 ///
 /// Coordinates: the normal approach from first contact (positive pressing) and the
 /// tangential displacement; forces are those the contact exerts against the motion.
@@ -216,6 +217,108 @@ impl ContactLaw {
                 Box::new(
                     dynamics::Bem3d::new(op, &h, mask, tolerance, defaults.max_iterations)
                         .map_err(wrap)?,
+                )
+            })
+        })?;
+        Ok(Self::new(law, Some(frame)))
+    }
+
+    /// viscoelastic_body(profile, relaxed, terms, springs=2000, half_length=None)
+    ///
+    /// MRD's viscoelastic springs for a body of revolution: the contact modulus relaxes
+    /// as E*(t) = relaxed + sum_k E_k exp(-t / tau_k), `terms` a list of (E_k, tau_k)
+    /// [stress, time]; each spring carries the hereditary integral of its elongation
+    /// (Eq. 63), separates at zero force and recovers freely while apart. Springs and
+    /// half_length as for body(). Frictionless; the force depends on each trial's `dt`.
+    #[staticmethod]
+    #[pyo3(signature = (profile, relaxed, terms, springs = 2000, half_length = None))]
+    fn viscoelastic_body(
+        py: Python<'_>,
+        profile: &Profile,
+        relaxed: f64,
+        terms: Vec<(f64, f64)>,
+        springs: usize,
+        half_length: Option<f64>,
+    ) -> PyResult<Self> {
+        let half = match (half_length, profile.inner.rim()) {
+            (Some(l), _) => l,
+            (None, Some(rim)) => rim,
+            (None, None) => {
+                return Err(value_error(
+                    "half_length: a profile without a rim needs the springs' extent (beyond the largest contact radius)",
+                ))
+            }
+        };
+        let modulus = mrd::rheology::Prony::new(relaxed, terms).map_err(|e| mrd_err(py, e))?;
+        let law = dynamics::ViscoelasticSprings::body(&profile.inner, &modulus, springs, half)
+            .map_err(|e| law_err(py, None, e))?;
+        Ok(Self::new(Box::new(law), None))
+    }
+
+    /// viscoelastic_bem3d(heights, relaxed, terms, size=None, mask=None, periodic=False, tolerance=None)
+    ///
+    /// The 3D transient viscoelastic contact of the height map (as TransientContact, the
+    /// same modulus arguments) as a contact law: each trial one time step of `dt` under
+    /// the step's approach, linear in time over the step; a rollback restores the state
+    /// before it. Frictionless. tolerance: the solver's (None: its default, 1e-10).
+    #[staticmethod]
+    #[pyo3(signature = (heights, relaxed, terms, size = None, mask = None, periodic = false, tolerance = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn viscoelastic_bem3d(
+        py: Python<'_>,
+        heights: &Bound<'_, PyAny>,
+        relaxed: f64,
+        terms: Vec<(f64, f64)>,
+        size: Option<(f64, f64)>,
+        mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
+        periodic: bool,
+        tolerance: Option<f64>,
+    ) -> PyResult<Self> {
+        let modulus = bem3d::viscoelastic::Relaxation::new(relaxed, terms)
+            .map_err(|e| value_error(e.to_string()))?;
+        let grid = Grid::new(
+            py,
+            heights,
+            (size, Some(periodic)),
+            mask,
+            modulus.glassy(),
+            false,
+        )?;
+        let (h, mask, frame) = (grid.heights, grid.mask, grid.frame);
+        let defaults = bem3d::SolverOptions::default();
+        let tolerance = tolerance.unwrap_or(defaults.tolerance);
+        let law: Box<dyn Law> = frame.solve(py, || -> bem3d::Result<Box<dyn Law>> {
+            let ((ny, nx), (lx, ly)) = (frame.shape, frame.size);
+            let wrap = |e: DynamicsError| match e {
+                DynamicsError::Bem(e) => e,
+                other => bem3d::BemError::InvalidInput(other.to_string()),
+            };
+            let e_ref = modulus.glassy();
+            Ok(if frame.periodic {
+                let op = bem3d::PeriodicHalfSpace::try_new(nx, ny, lx, ly, e_ref)?;
+                Box::new(
+                    dynamics::ViscoelasticBem3d::new(
+                        op,
+                        &h,
+                        mask,
+                        modulus.clone(),
+                        tolerance,
+                        defaults.max_iterations,
+                    )
+                    .map_err(wrap)?,
+                )
+            } else {
+                let op = bem3d::NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_ref)?;
+                Box::new(
+                    dynamics::ViscoelasticBem3d::new(
+                        op,
+                        &h,
+                        mask,
+                        modulus.clone(),
+                        tolerance,
+                        defaults.max_iterations,
+                    )
+                    .map_err(wrap)?,
                 )
             })
         })?;

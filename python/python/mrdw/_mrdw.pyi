@@ -383,6 +383,29 @@ class ContactLaw:
         tolerance: Optional[float] = None,
     ) -> "ContactLaw":
         """The 3D normal contact of a height map, warm-started from the last step."""
+    @staticmethod
+    def viscoelastic_body(
+        profile: Profile,
+        relaxed: float,
+        terms: Sequence[Tuple[float, float]],
+        springs: int = 2000,
+        half_length: Optional[float] = None,
+    ) -> "ContactLaw":
+        """MRD's viscoelastic springs for a body of revolution: E*(t) = relaxed +
+        sum_k E_k exp(-t / tau_k), terms (E_k [stress], tau_k [time]); Eq. 63 per spring,
+        separating at zero force. Frictionless; the force depends on each trial's dt."""
+    @staticmethod
+    def viscoelastic_bem3d(
+        heights: Union[ArrayLike, Any],
+        relaxed: float,
+        terms: Sequence[Tuple[float, float]],
+        size: Optional[Tuple[float, float]] = None,
+        mask: Optional[ArrayLike] = None,
+        periodic: bool = False,
+        tolerance: Optional[float] = None,
+    ) -> "ContactLaw":
+        """The 3D transient viscoelastic contact of the height map as a contact law: each
+        trial one time step of dt; a rollback restores the state before it."""
     def trial(self, normal: float, tangential: float = 0.0, dt: float = 1.0) -> LawForces:
         """The forces at the step's end motion from the last accepted state."""
     def commit(self) -> None:
