@@ -88,3 +88,8 @@ def test_bad_input_names_the_parameter(tmp_path, source, kwargs, needle):
     assert not (tmp_path / "x").exists() and not (tmp_path / "x.work").exists()
     # the message speaks of what the caller gave, not of a temporary scene file
     assert "mrdw-calibrate-" not in str(e.value)
+
+
+def test_amplitudes_is_checked_before_computing(tmp_path):
+    with pytest.raises(ValueError, match="amplitudes"):
+        mrdw.calibrate({"hurst": 0.5}, out=tmp_path / "o", amplitudes="normal")

@@ -127,6 +127,7 @@ def calibrate(
     lines=None,
     solve_map=True,
     seed=None,
+    amplitudes=None,
     progress=True,
     name=None,
 ):
@@ -153,8 +154,10 @@ def calibrate(
         interval is wider than +/- `target`.
     window: the calibration range (lo, hi) in k/(E* L); loads: approaches per punch;
         lines: MRD lines; solve_map: also solve the measured map itself in 3D; seed: the
-        random phases; name: the map's name in titles (default: the file's name, else
-        "map").
+        random phases; amplitudes: the 3D punches' faces, "fixed" (|H(q)| as Eq. 71 writes
+        it, the shipped lambda table's) or "gaussian" (a Gaussian random field of the
+        same mean spectrum); the MRD lines keep Eq. 72's fixed amplitudes; name: the map's name in titles
+        (default: the file's name, else "map").
 
     Parameters left at None take the `calibrate` scene kind's defaults (the same as the
     CLI's; `mrdw show calibrate-ci` and cases/README.md list them). Whole-number
@@ -181,6 +184,10 @@ def calibrate(
         keys_given.append(f"realisations = {{ min = {lo}, max = {hi}, batch = {batch} }}")
     if target is not None:
         keys_given.append(f"target = {_number('target', target)!r}")
+    if amplitudes is not None:
+        if amplitudes not in ("fixed", "gaussian"):
+            raise ValueError(f'amplitudes = {amplitudes!r}: give "fixed" or "gaussian"')
+        keys_given.append(f'amplitudes = "{amplitudes}"')
     if window is not None:
         lo, hi = _pair("window", window)
         keys_given.append(f"window = [{lo!r}, {hi!r}]")

@@ -87,6 +87,41 @@ pub struct Calibrate {
     /// whatever the thread count.
     #[serde(default)]
     pub seed: u64,
+    /// Amplitude statistics of the 3D punches' faces, the surface being calibrated for:
+    /// "fixed" (default: each mode's |H(q)| as Eq. 71 writes it, random phase: the
+    /// shipped lambda table's) or "gaussian" (a Gaussian random field of the same mean
+    /// spectrum: Rayleigh-distributed amplitudes). The MRD lines keep the method's own
+    /// recipe (Eq. 72, fixed amplitudes) either way; lambda depends on the faces' choice,
+    /// so a surface is calibrated with the statistics it has.
+    #[serde(default)]
+    pub amplitudes: AmplitudeStatistics,
+}
+
+/// The amplitude statistics of synthesised faces and lines (key `amplitudes`).
+#[derive(Debug, Clone, Copy, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum AmplitudeStatistics {
+    #[default]
+    Fixed,
+    Gaussian,
+}
+
+impl AmplitudeStatistics {
+    /// The synthesis' choice.
+    pub fn synthesis(self) -> mrd::roughness::synthesis::Amplitudes {
+        match self {
+            Self::Fixed => mrd::roughness::synthesis::Amplitudes::Deterministic,
+            Self::Gaussian => mrd::roughness::synthesis::Amplitudes::Gaussian,
+        }
+    }
+
+    /// How the report names it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Fixed => "fixed (|H(q)| as Eq. 71 writes it, random phases)",
+            Self::Gaussian => "Gaussian (Rayleigh amplitudes, random phases)",
+        }
+    }
 }
 
 #[derive(Debug, Clone, Copy, Deserialize, PartialEq)]

@@ -80,6 +80,13 @@ pub fn report(
     ] {
         out.scalar(k, v);
     }
+    out.value(
+        "amplitudes",
+        serde_json::json!(match spec.amplitudes {
+            super::AmplitudeStatistics::Fixed => "fixed",
+            super::AmplitudeStatistics::Gaussian => "gaussian",
+        }),
+    );
     let check = map.map(|m| map_check(spec, cal, m));
     if let Some(c) = check.as_ref().filter(|c| !c.misfit.0.is_finite()) {
         let inside = c.k3.iter().flatten().count();
@@ -169,13 +176,14 @@ fn summary_table(spec: &Calibrate, case: &Case, cal: &Calibration) -> Table {
     ];
     let mut t = Table::new("calibration", &cols);
     t.notes.push(format!(
-        "lambda of Eq. (76) (C1D = lambda q C2D of the same C2D, the line not rescaled) for this surface: {} rigid circular punches of diameter L (the source's side) with faces of its spectrum up to {} x 2 pi / L, {} cells a side, against {} MRD lines; fitted over k/(E* L) in [{}, {}] of the 3D mean (f = F/(E* h L), each curve over its own rms height); 95 % bootstrap intervals over the punches ({} resamples); misfit: |ln k3D - ln kMRD| at the calibrated lambda over that range; alpha: slope of ln k against ln f there (Eq. 77); halves: lambda fitted on the lower / upper half of the range's forces",
+        "lambda of Eq. (76) (C1D = lambda q C2D of the same C2D, the line not rescaled) for this surface: {} rigid circular punches of diameter L (the source's side) with faces of its spectrum up to {} x 2 pi / L, {} cells a side, against {} MRD lines; fitted over k/(E* L) in [{}, {}] of the 3D mean (f = F/(E* h L), each curve over its own rms height); amplitude statistics of the faces: {} (the lines: fixed, Eq. 72); 95 % bootstrap intervals over the punches ({} resamples); misfit: |ln k3D - ln kMRD| at the calibrated lambda over that range; alpha: slope of ln k against ln f there (Eq. 77); halves: lambda fitted on the lower / upper half of the range's forces",
         cal.realisations,
         case.band,
         case.grid,
         spec.lines,
         spec.window[0],
         spec.window[1],
+        spec.amplitudes.name(),
         analysis::RESAMPLES
     ));
     t.push(vec![

@@ -293,7 +293,14 @@ fn run_bem(spec: &Calibrate, case: &Case, r: u64) -> Result<BemCurve> {
     let g = case.grid;
     let c2d = |q: f64| case.spectrum.c2d(q);
     let h = clock::time(Stage::RoughSynthesis, || {
-        nested::surface(&c2d, case.band, &Grid::square(g, 1.0), spec.seed, r)
+        nested::surface_with(
+            &c2d,
+            case.band,
+            &Grid::square(g, 1.0),
+            spec.seed,
+            r,
+            spec.amplitudes.synthesis(),
+        )
     })
     .ctx("3D punch face")?;
     punch_curve(&h, g, spec.loads, spec.tolerance)

@@ -223,7 +223,7 @@ fn curves_table(r: &Results, label: &str) -> Table {
 /// The shipped table: one row per H at `calibrate_at`, header and provenance.
 fn calibrated_csv(s: &LambdaStudy, r: &Results) -> String {
     let mut text = format!(
-        "# {} -- lambda(H) of Eq. (76), C1D = lambda q C2D at the line's wavenumbers 2 pi k / L, the line synthesised from the same C2D as the surface (no rescaling: mrdw.line(lam=...), line_spectrum, every scene's lambda), calibrated by lambda_study on 3D circular rough punches:\n# bandwidth L/lambda_min = {}, {} cells per shortest wavelength, solver tolerance {:e}, seed {}, {} MRD lines per H,\n# fit range k/(E* L) in [{}, {}] (the whole common range of the curves); 95 % bootstrap intervals over 3D realisations;\n# misfit_max, misfit_rms: |ln k3D - ln kMRD| after calibration over that range.\n",
+        "# {} -- lambda(H) of Eq. (76), C1D = lambda q C2D at the line's wavenumbers 2 pi k / L, the line synthesised from the same C2D as the surface (no rescaling: mrdw.line(lam=...), line_spectrum, every scene's lambda), calibrated by lambda_study on 3D circular rough punches, faces and lines with fixed amplitudes (|H(q)| as Eqs. 71-72 write them, random phases; calibrate's amplitudes = \"gaussian\" gives the other choice):\n# bandwidth L/lambda_min = {}, {} cells per shortest wavelength, solver tolerance {:e}, seed {}, {} MRD lines per H,\n# fit range k/(E* L) in [{}, {}] (the whole common range of the curves); 95 % bootstrap intervals over 3D realisations;\n# misfit_max, misfit_rms: |ln k3D - ln kMRD| after calibration over that range.\n",
         crate::report::tool_version(), s.calibrate_at, s.cells, s.tolerance, s.seed, s.realisations_1d, s.window[0], s.window[1]
     );
     text.push_str(&format!(
