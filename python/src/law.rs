@@ -111,6 +111,17 @@ impl ContactLaw {
     }
 }
 
+/// The springs' half line: `half_length`, else the profile's rim.
+fn half_line(profile: &Profile, half_length: Option<f64>) -> PyResult<f64> {
+    match (half_length, profile.inner.rim()) {
+        (Some(l), _) => Ok(l),
+        (None, Some(rim)) => Ok(rim),
+        (None, None) => Err(value_error(
+            "half_length: a profile without a rim needs the springs' extent (beyond the largest contact radius)",
+        )),
+    }
+}
+
 fn law_err(py: Python<'_>, frame: Option<&Frame>, e: DynamicsError) -> PyErr {
     match e {
         DynamicsError::InvalidInput(m) => value_error(m),
@@ -141,15 +152,7 @@ impl ContactLaw {
         g_star: Option<f64>,
         mu: Option<f64>,
     ) -> PyResult<Self> {
-        let half = match (half_length, profile.inner.rim()) {
-            (Some(l), _) => l,
-            (None, Some(rim)) => rim,
-            (None, None) => {
-                return Err(value_error(
-                    "half_length: a profile without a rim needs the springs' extent (beyond the largest contact radius)",
-                ))
-            }
-        };
+        let half = half_line(profile, half_length)?;
         let law = dynamics::Springs::body(&profile.inner, e_star, springs, half)
             .map_err(|e| law_err(py, None, e))?;
         Self::springs(py, law, g_star, mu)
@@ -240,15 +243,7 @@ impl ContactLaw {
         springs: usize,
         half_length: Option<f64>,
     ) -> PyResult<Self> {
-        let half = match (half_length, profile.inner.rim()) {
-            (Some(l), _) => l,
-            (None, Some(rim)) => rim,
-            (None, None) => {
-                return Err(value_error(
-                    "half_length: a profile without a rim needs the springs' extent (beyond the largest contact radius)",
-                ))
-            }
-        };
+        let half = half_line(profile, half_length)?;
         let modulus = mrd::rheology::Prony::new(relaxed, terms).map_err(|e| mrd_err(py, e))?;
         let law = dynamics::ViscoelasticSprings::body(&profile.inner, &modulus, springs, half)
             .map_err(|e| law_err(py, None, e))?;

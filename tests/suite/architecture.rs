@@ -14,20 +14,7 @@ fn src(krate: &str) -> PathBuf {
         .join("src")
 }
 
-/// Every .rs file under `dir`, recursively, sorted.
-fn files(dir: &Path) -> Vec<PathBuf> {
-    let mut out = Vec::new();
-    for e in std::fs::read_dir(dir).unwrap() {
-        let p = e.unwrap().path();
-        if p.is_dir() {
-            out.extend(files(&p));
-        } else if p.extension().is_some_and(|x| x == "rs") {
-            out.push(p);
-        }
-    }
-    out.sort();
-    out
-}
+use crate::common::rust_files as files;
 
 /// Code without comments (line and doc comments) and without its unit tests (a test
 /// module, always last in a file, may use any module).

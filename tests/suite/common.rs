@@ -182,3 +182,18 @@ pub fn failed_with(o: &Output, code: i32, needle: &str) {
     assert_eq!(o.status.code(), Some(code), "{needle}: {e}");
     assert!(e.contains(needle), "`{needle}` not in: {e}");
 }
+
+/// Every .rs file under `dir`, recursively, sorted.
+pub fn rust_files(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            out.extend(rust_files(&p));
+        } else if p.extension().is_some_and(|x| x == "rs") {
+            out.push(p);
+        }
+    }
+    out.sort();
+    out
+}

@@ -11,20 +11,7 @@ fn compare_src() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("compare/src")
 }
 
-/// Every .rs file under `dir`, recursively, sorted.
-fn files(dir: &Path) -> Vec<PathBuf> {
-    let mut out = Vec::new();
-    for e in std::fs::read_dir(dir).unwrap() {
-        let p = e.unwrap().path();
-        if p.is_dir() {
-            out.extend(files(&p));
-        } else if p.extension().is_some_and(|x| x == "rs") {
-            out.push(p);
-        }
-    }
-    out.sort();
-    out
-}
+use crate::common::rust_files as files;
 
 /// One key of a kind: its name, its default as a scene would write it ("required" when
 /// it has none) and its documentation.

@@ -48,6 +48,16 @@ impl Strike {
         law: &mut dyn ContactLaw,
         steps: usize,
     ) -> dynamics::Result<(Vec<Sample>, Counts, f64)> {
+        self.run_until(law, steps, Stop::At(1.3 * self.tc))
+    }
+
+    /// [`Self::run`] to the stop `stop` instead of 1.3 `tc`.
+    pub fn run_until(
+        &self,
+        law: &mut dyn ContactLaw,
+        steps: usize,
+        stop: Stop<'_>,
+    ) -> dynamics::Result<(Vec<Sample>, Counts, f64)> {
         let drive = |_t: f64| 0.0;
         let osc = Oscillator {
             mass: self.mass,
@@ -60,9 +70,43 @@ impl Strike {
             force_scale: self.fmax,
         };
         let init = (-1e-3 * self.dmax, self.speed);
-        let (samples, counts) = osc.run(law, init, Stop::At(1.3 * self.tc), 1)?;
+        let (samples, counts) = osc.run(law, init, stop, 1)?;
         Ok((samples, counts, osc.dt))
     }
+}
+
+/// The resolution keys of the impact kinds, each checked by name: `springs` in
+/// 100..=1000000, `steps` in 100..=1000000 and `steps_3d` in 50..=100000 per contact
+/// time, `cells` increasing grid sides in 16..=`largest_grid`, `extent` in [1.1, 10] and
+/// the 3D `tolerance`.
+pub fn check_resolution(
+    springs: usize,
+    (steps, steps_3d): (usize, usize),
+    cells: &[usize],
+    largest_grid: usize,
+    extent: f64,
+    tolerance: f64,
+) -> crate::error::Result<()> {
+    use crate::checks::bad;
+    if !(100..=1_000_000).contains(&springs) {
+        return bad(format!("springs = {springs} must lie in 100..=1000000"));
+    }
+    if !(100..=1_000_000).contains(&steps) || !(50..=100_000).contains(&steps_3d) {
+        return bad(format!(
+            "steps = {steps} must lie in 100..=1000000 and steps_3d = {steps_3d} in 50..=100000 (time steps per contact time)"
+        ));
+    }
+    if cells.iter().any(|n| !(16..=largest_grid).contains(n))
+        || cells.windows(2).any(|w| w[1] <= w[0])
+    {
+        return bad(format!(
+            "cells = {cells:?}: give increasing grid sides in 16..={largest_grid}"
+        ));
+    }
+    if !(extent.is_finite() && (1.1..=10.0).contains(&extent)) {
+        return bad(format!("extent = {extent} must lie in [1.1, 10]"));
+    }
+    crate::checks::check_tolerance(tolerance)
 }
 
 /// What a run's first contact gives: its duration, largest force and approach, and the

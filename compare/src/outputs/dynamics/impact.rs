@@ -16,7 +16,7 @@
 use crate::checks::{bad, default_tolerance};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
-use crate::experiment::impact::{bem3d_law, first_contact, FirstContact, Strike};
+use crate::experiment::impact::{bem3d_law, check_resolution, first_contact, FirstContact, Strike};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Style, Table};
@@ -96,30 +96,14 @@ impl Output for Impact {
                 return bad(format!("{key} = {v} must be finite and > 0"));
             }
         }
-        if !(100..=1_000_000).contains(&self.springs) {
-            return bad(format!(
-                "springs = {} must lie in 100..=1000000",
-                self.springs
-            ));
-        }
-        if !(100..=1_000_000).contains(&self.steps) || !(50..=100_000).contains(&self.steps_3d) {
-            return bad(format!(
-                "steps = {} must lie in 100..=1000000 and steps_3d = {} in 50..=100000 (time steps per contact time)",
-                self.steps, self.steps_3d
-            ));
-        }
-        if self.cells.iter().any(|n| !(16..=1024).contains(n))
-            || self.cells.windows(2).any(|w| w[1] <= w[0])
-        {
-            return bad(format!(
-                "cells = {:?}: give increasing grid sides in 16..=1024",
-                self.cells
-            ));
-        }
-        if !(self.extent.is_finite() && (1.1..=10.0).contains(&self.extent)) {
-            return bad(format!("extent = {} must lie in [1.1, 10]", self.extent));
-        }
-        crate::checks::check_tolerance(self.tolerance)?;
+        check_resolution(
+            self.springs,
+            (self.steps, self.steps_3d),
+            &self.cells,
+            1024,
+            self.extent,
+            self.tolerance,
+        )?;
         let r = for_profile::sphere_radius(ctx.profile()?).unwrap_or(1.0);
         let dmax = hertz_impact::max_approach(ctx.material.e_star, r, self.mass, self.speed);
         if dmax > 0.1 * r {

@@ -26,13 +26,13 @@ use crate::checks::{bad, default_tolerance};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::axisym_3d::AxisymGrid;
-use crate::experiment::impact::{first_contact, FirstContact};
+use crate::experiment::impact::{check_resolution, first_contact, FirstContact, Strike};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Style, Table};
 use bem3d::viscoelastic::Relaxation;
 use bem3d::NonPeriodicHalfSpace;
-use dynamics::integrate::{Axis, Oscillator, Sample, Stop};
+use dynamics::integrate::{Sample, Stop};
 use dynamics::{ContactLaw, ViscoelasticBem3d, ViscoelasticSprings};
 use mrd::reference::{for_profile, hertz, hertz_impact};
 use mrd::rheology::Prony;
@@ -146,32 +146,23 @@ impl ViscoelasticImpact {
         s: &Scale,
         steps: usize,
     ) -> dynamics::Result<Run> {
-        let drive = |_t: f64| 0.0;
-        let osc = Oscillator {
+        let strike = Strike {
             mass: self.mass,
-            damping: 0.0,
-            drive: &drive,
-            axis: Axis::Normal { tangential: 0.0 },
-            dt: s.tc / steps as f64,
-            dt_min: s.tc / (1000.0 * steps as f64),
-            max_jump: 0.05,
-            force_scale: s.fmax,
+            speed,
+            tc: s.tc,
+            fmax: s.fmax,
+            dmax: s.dmax,
         };
-        // Stop once the mass has been in contact and is apart again, moving away.
+        // Until the mass has been in contact and is apart again, moving away.
         let left = |x: &Sample| x.x < 0.0 && x.v < 0.0;
-        let init = (-1e-3 * s.dmax, speed);
-        let (samples, counts) = osc.run(
-            law,
-            init,
-            Stop::When {
-                until: &left,
-                t_max: 3.0 * s.tc,
-            },
-            1,
-        )?;
+        let stop = Stop::When {
+            until: &left,
+            t_max: 3.0 * s.tc,
+        };
+        let (samples, counts, dt) = strike.run_until(law, steps, stop)?;
         Ok(Run {
             grid,
-            dt: osc.dt,
+            dt,
             outcome: first_contact(&samples),
             samples,
             accepted: counts.accepted,
@@ -205,30 +196,14 @@ impl Output for ViscoelasticImpact {
             ));
         }
         Prony::new(self.e_inf, self.terms()).ctx("e_inf, prony")?;
-        if !(100..=1_000_000).contains(&self.springs) {
-            return bad(format!(
-                "springs = {} must lie in 100..=1000000",
-                self.springs
-            ));
-        }
-        if !(100..=1_000_000).contains(&self.steps) || !(50..=100_000).contains(&self.steps_3d) {
-            return bad(format!(
-                "steps = {} must lie in 100..=1000000 and steps_3d = {} in 50..=100000 (time steps per relaxed contact time)",
-                self.steps, self.steps_3d
-            ));
-        }
-        if self.cells.iter().any(|n| !(16..=512).contains(n))
-            || self.cells.windows(2).any(|w| w[1] <= w[0])
-        {
-            return bad(format!(
-                "cells = {:?}: give increasing grid sides in 16..=512",
-                self.cells
-            ));
-        }
-        if !(self.extent.is_finite() && (1.1..=10.0).contains(&self.extent)) {
-            return bad(format!("extent = {} must lie in [1.1, 10]", self.extent));
-        }
-        crate::checks::check_tolerance(self.tolerance)?;
+        check_resolution(
+            self.springs,
+            (self.steps, self.steps_3d),
+            &self.cells,
+            512,
+            self.extent,
+            self.tolerance,
+        )?;
         let fastest = self.speeds[self.speeds.len() - 1];
         let dmax = self.scale(r, fastest).dmax;
         if dmax > 0.1 * r {
