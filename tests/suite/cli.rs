@@ -167,6 +167,7 @@ embedded_scene_tests! {
     embedded_references_fine => "references-fine",
     embedded_contact_resonance_ci => "contact-resonance-ci",
     embedded_ring_down => "ring-down",
+    embedded_viscoelastic_impact => "viscoelastic-impact",
     embedded_viscoelastic_impact_ci => "viscoelastic-impact-ci",
     #[ignore = "slow: the full tier, `cargo test --workspace --release -- --ignored` (.ci/run)"]
     embedded_plastic_sphere => "plastic-sphere",
@@ -415,7 +416,7 @@ const RESULT_BOUNDS: &[(&str, Bound, &[&str])] = &[
 ];
 
 const PLASTIC: &[&str] = &["plastic-sphere", "plastic-sphere-ci", "plastic-cone"];
-const VISCOELASTIC_IMPACT: &[&str] = &["viscoelastic-impact-ci"];
+const VISCOELASTIC_IMPACT: &[&str] = &["viscoelastic-impact", "viscoelastic-impact-ci"];
 const RESONANCE: &[&str] = &["contact-resonance-ci"];
 
 /// Key endings of semi-analytic paths: 1e-9 relative against the closed forms.
