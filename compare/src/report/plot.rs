@@ -71,9 +71,9 @@ fn bounds(fig: &Figure) -> ((f64, f64), (f64, f64)) {
     (pad(x0, x1, fig.log_x), pad(y0, y1, fig.log_y))
 }
 
-/// The corner for the legend that covers the fewest data: points and lines (sampled
-/// along each segment) are counted inside an estimate of the legend box, in axis
-/// coordinates scaled to [0, 1]; ties keep the upper left.
+/// The corner for the legend that covers the fewest data: points, lines and error bars
+/// (sampled along each segment) are counted inside an estimate of the legend box, in
+/// axis coordinates scaled to [0, 1]; ties keep the upper left.
 type Bounds = ((f64, f64), (f64, f64));
 
 /// The least fraction of the plot's height the data keep when headroom is made for the
@@ -203,6 +203,20 @@ fn legend_corner(fig: &Figure, b: Bounds) -> (usize, SeriesLabelPosition, f64) {
                     let t = t as f64 / 16.0;
                     pts.push((a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)));
                 }
+            }
+        }
+        // Error bars are data too: each sampled along its length.
+        for &(x, lo, hi) in &s.bars {
+            if !(x.is_finite() && lo.is_finite() && hi.is_finite())
+                || (fig.log_x && x <= 0.0)
+                || (fig.log_y && lo <= 0.0)
+            {
+                continue;
+            }
+            let u = scale(x, x0, x1, fig.log_x);
+            let (v0, v1) = (scale(lo, y0, y1, fig.log_y), scale(hi, y0, y1, fig.log_y));
+            for t in 0..=16 {
+                pts.push((u, v0 + t as f64 / 16.0 * (v1 - v0)));
             }
         }
     }
@@ -538,6 +552,27 @@ mod tests {
         let png = std::fs::read(&file).unwrap();
         let width = u32::from_be_bytes([png[16], png[17], png[18], png[19]]);
         assert!(width > 1000, "{width}");
+    }
+
+    /// Error bars count as data for the legend's place: markers along the bottom with
+    /// one bar up into the upper left corner keep the legend out of that corner.
+    #[test]
+    fn the_legend_does_not_cover_error_bars() {
+        use super::{legend_corner, SeriesLabelPosition};
+        let markers: Vec<(f64, f64)> = (0..=10).map(|i| (i as f64, 0.0)).collect();
+        let plain = Figure::new("f", "t", "x", "y").plot("m", markers.clone(), Style::Markers);
+        let b = ((0.0, 10.0), (0.0, 10.0));
+        assert!(matches!(
+            legend_corner(&plain, b).1,
+            SeriesLabelPosition::UpperLeft
+        ));
+        let barred = Figure::new("f", "t", "x", "y").with(
+            crate::report::figure::Series::new("m", markers, Style::Markers)
+                .with_bars(vec![(0.2, 0.0, 9.9)]),
+        );
+        let (covered, corner, _) = legend_corner(&barred, b);
+        assert_eq!(covered, 0);
+        assert!(!matches!(corner, SeriesLabelPosition::UpperLeft));
     }
 
     #[test]
