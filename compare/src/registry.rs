@@ -67,6 +67,10 @@ pub const KINDS: &[Kind] = &[
         "plastic_3d",
         "elastic-perfectly plastic contact of a body of revolution (pressure cap H) along a force history, in 3D beside MRD in incremental form: loops, imprint, grid convergence; a sphere against Kogut-Etsion's finite elements (Section 11)",
     ),
+    Kind::of::<rough::rough_plastic_3d::RoughPlastic3d>(
+        "rough_plastic_3d",
+        "a rough punch loaded, unloaded and reloaded on an elastic-perfectly plastic half-space (pressure cap H) in 3D beside MRD's rough lines with patch-capped springs, across the plasticity index: stiffness ratios, recovered approach, lambda refitted (Section 11 on rough surfaces)",
+    ),
     Kind::of::<dynamics::impact::Impact>(
         "impact",
         "a sphere's impact integrated in time with the contact at every step, MRD's springs and the 3D solve in the loop, against Hertz's impact (Section 12)",

@@ -29,6 +29,7 @@ pub mod foundation;
 pub mod friction;
 pub mod normal;
 pub mod oscillation;
+pub mod plastic_line;
 pub mod plasticity;
 pub mod pressure;
 pub mod rough_contact;

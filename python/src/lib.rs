@@ -63,6 +63,7 @@ fn _mrdw(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(rough::_topography_parts, m)?)?;
     m.add_function(wrap_pyfunction!(rough::fit_line, m)?)?;
     m.add_class::<rough::RoughLine>()?;
+    m.add_class::<rough::PlasticLine>()?;
     // MRD, axisymmetric
     m.add_class::<axisym::Profile>()?;
     m.add_function(wrap_pyfunction!(axisym::hess_inverse, m)?)?;

@@ -500,6 +500,105 @@ impl RoughLine {
     }
 }
 
+/// A rough line on an elastic-perfectly plastic MRD foundation: springs E* dx whose line
+/// loads are capped patch by patch at a fully plastic microcontact's, 2 H sqrt(a^2 -
+/// (x - c)^2) for a run of springs in contact of half-length a centred at c (Section 11
+/// in incremental form; the rule and its limits: docs/results.md, "Rough surfaces with
+/// yielding"). A spring pressed beyond its cap takes a permanent set; unloading is
+/// elastic and reloading retraces it up to the largest earlier load.
+///
+/// PlasticLine(heights, length, e_star, hardness)
+///
+/// heights: 1D array at the springs' centres, peaks up [length]; length L [length] (the
+/// line is open: its ends are a punch's edge); e_star and hardness H [stress] (H = inf:
+/// the elastic RoughLine). Forces in [stress x length^2], as in 3D. Starts apart.
+#[pyclass(module = "mrdw._mrdw")]
+pub struct PlasticLine {
+    line: mrd::plastic_line::PlasticLine,
+}
+
+fn line_step_dict<'py>(
+    py: Python<'py>,
+    s: &mrd::plastic_line::LineStep,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("approach", s.approach)?;
+    d.set_item("force", s.force)?;
+    d.set_item("contacts", s.contacts)?;
+    d.set_item("capped", s.capped)?;
+    d.set_item("patches", s.patches)?;
+    d.set_item("stiffness", s.stiffness)?;
+    d.set_item("largest_set", s.largest_set)?;
+    Ok(d)
+}
+
+#[pymethods]
+impl PlasticLine {
+    #[new]
+    fn new(
+        py: Python<'_>,
+        heights: PyArrayLike1<'_, f64, AllowTypeChange>,
+        length: f64,
+        e_star: f64,
+        hardness: f64,
+    ) -> PyResult<Self> {
+        let h = heights.as_array().to_vec();
+        mrd::plastic_line::PlasticLine::new(&h, length, e_star, hardness)
+            .map(|line| Self { line })
+            .map_err(|e| mrd_err(py, e))
+    }
+
+    /// step(approach) -> dict(approach, force, contacts, capped, patches, stiffness,
+    /// largest_set): loads to the approach from the first contact of the undeformed line
+    /// [length] and keeps the state; stiffness is the unloading one, E* dx contacts.
+    fn step<'py>(&mut self, py: Python<'py>, approach: f64) -> PyResult<Bound<'py, PyDict>> {
+        let s = self.line.step(approach).map_err(|e| mrd_err(py, e))?;
+        line_step_dict(py, &s)
+    }
+
+    /// step_to_force(force, tolerance=None) -> dict: loads to the force [stress x
+    /// length^2] in [0, force_limit), to `tolerance` relative (default
+    /// mrd's STEP_TOLERANCE, 1e-10), and keeps the state.
+    #[pyo3(signature = (force, tolerance = None))]
+    fn step_to_force<'py>(
+        &mut self,
+        py: Python<'py>,
+        force: f64,
+        tolerance: Option<f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let tol = tolerance.unwrap_or(mrd::plastic_line::STEP_TOLERANCE);
+        let s = self
+            .line
+            .step_to_force(force, tol)
+            .map_err(|e| mrd_err(py, e))?;
+        line_step_dict(py, &s)
+    }
+
+    /// Each spring's permanent set so far [length]: the residual line after unloading
+    /// lies this far below the undeformed one.
+    #[getter]
+    fn set<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, self.line.set())
+    }
+
+    /// Line loads of the last step [stress x length].
+    #[getter]
+    fn load<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, self.line.load())
+    }
+
+    /// The largest force a step can carry: the whole line one fully plastic patch
+    /// (about H pi L^2 / 4) [stress x length^2].
+    #[getter]
+    fn force_limit(&self) -> f64 {
+        self.line.force_limit()
+    }
+
+    fn __len__(&self) -> usize {
+        self.line.set().len()
+    }
+}
+
 /// fit_line(x, y) -> dict(a, b, se_a, se_b)
 ///
 /// Least-squares line y = a + b x with the standard errors of a and b (used for

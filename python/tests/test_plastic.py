@@ -50,3 +50,52 @@ def test_bad_input_names_the_parameter():
         c.step(force=0.001, approach=0.01)
     with pytest.raises(ValueError, match="tolerance"):
         c.step(force=0.001, tolerance=0.5)
+
+
+def rough_line(n=1024, scale=1e-2):
+    x = np.arange(n) / n * 2 * np.pi
+    return scale * (np.sin(3 * x) + 0.5 * np.cos(7 * x + 1) + 0.2 * np.sin(23 * x + 2))
+
+
+def test_plastic_line_without_hardness_is_the_rough_line():
+    h = rough_line()
+    elastic = mrdw.RoughLine(h, 1.0, 1.0)
+    line = mrdw.PlasticLine(h, 1.0, 1.0, float("inf"))
+    for f in [1e-5, 1e-4, 1e-3, 3e-4]:
+        s = line.step_to_force(f)
+        e = elastic.at_force(f)
+        assert abs(s["approach"] - e["depth"]) <= 1e-9 * e["depth"]
+        assert s["contacts"] == e["contacts"] and s["largest_set"] == 0.0
+
+
+def test_plastic_line_unloads_elastically_and_saturates_at_the_punch_limit():
+    line = mrdw.PlasticLine(rough_line(), 1.0, 1.0, 2e-3)
+    peak = line.step_to_force(5e-4)
+    assert peak["capped"] > 0 and peak["largest_set"] > 0
+    set_at_peak = line.set.copy()
+    line.step_to_force(1e-4)
+    again = line.step_to_force(5e-4)
+    assert abs(again["approach"] - peak["approach"]) <= 1e-9 * peak["approach"]
+    assert np.abs(line.set - set_at_peak).max() <= 1e-10 * peak["largest_set"]
+    # A flat line pressed far is one fully plastic patch: H pi L^2 / 4 as springs refine.
+    flat = mrdw.PlasticLine(np.zeros(1600), 2.0, 1.0, 0.3)
+    assert abs(flat.step(10.0)["force"] / (0.3 * np.pi) - 1) < 2e-3
+    assert flat.force_limit == pytest.approx(flat.step(20.0)["force"], rel=1e-12)
+
+
+@pytest.mark.parametrize(
+    "args, needle",
+    [
+        ((np.zeros(8), 1.0, 1.0, 0.0), "hardness"),
+        ((np.zeros(8), -1.0, 1.0, 1.0), "length"),
+        ((np.array([0.0, np.nan]), 1.0, 1.0, 1.0), "index 1"),
+    ],
+)
+def test_plastic_line_bad_input_names_the_parameter(args, needle):
+    with pytest.raises(ValueError, match=needle):
+        mrdw.PlasticLine(*args)
+    line = mrdw.PlasticLine(np.zeros(8), 1.0, 1.0, 1.0)
+    with pytest.raises(ValueError, match="force"):
+        line.step_to_force(-1.0)
+    with pytest.raises(ValueError, match="must stay below"):
+        line.step_to_force(10.0)

@@ -129,6 +129,7 @@ fn runs_elsewhere(name: &str) -> bool {
                 | "calibrate-rolloff"
                 | "adhesion-tabor-exponential"
                 | "contact-resonance"
+                | "rough-plastic-3d"
         )
 }
 
@@ -173,6 +174,7 @@ embedded_scene_tests! {
     embedded_plastic_sphere => "plastic-sphere",
     embedded_plastic_sphere_ci => "plastic-sphere-ci",
     embedded_plastic_cone => "plastic-cone",
+    embedded_rough_plastic_3d_ci => "rough-plastic-3d-ci",
     embedded_rough_adhesion_3d_ci => "rough-adhesion-3d-ci",
     embedded_rough_partial_slip_3d_ci => "rough-partial-slip-3d-ci",
     embedded_tangential_stiffness_3d_ci => "tangential-stiffness-3d-ci",
@@ -397,6 +399,18 @@ const RESULT_BOUNDS: &[(&str, Bound, &[&str])] = &[
     ("impact.bem3d_rel_error_vs_hertz", Below(2e-3), &["impact"]),
     ("impact.cost_per_step_3d_over_mrd", Above(1.0), &["impact"]),
     ("ring_down.loss_per_cycle_max_rel_dev_vs_mindlin_deresiewicz", Below(0.02), &["ring-down"]),
+    // A rough punch on an elastic-perfectly plastic half-space (`rough-plastic-3d*`):
+    // MRD's lines at the calibrated lambda give the elastic loading stiffness within 25 %
+    // (measured 1.02 at CI scale, 1.04 in the report scene); reloading retraces
+    // the unloading (the pressure cap and the patch-capped springs unload elastically);
+    // at psi = 10 nearly every 3D contact cell sits at H, so H A / F is 1 to within the
+    // elastic rim (measured 1.012, 1.010); MRD's lines need more approach than the faces
+    // to reach the peak (measured 1.27 at CI scale), the failure the report states.
+    ("rough_plastic_3d.loading_ratio_elastic", Within(0.8, 1.25), ROUGH_PLASTIC),
+    ("rough_plastic_3d.reload_retrace_max", Below(1e-6), ROUGH_PLASTIC),
+    ("rough_plastic_3d.area_hardness_over_force_most_plastic", Within(1.0, 1.05), ROUGH_PLASTIC),
+    ("rough_plastic_3d.plastic_share_3d_most_plastic", Above(0.9), ROUGH_PLASTIC),
+    ("rough_plastic_3d.peak_approach_ratio_most_plastic", Above(1.1), ROUGH_PLASTIC),
     // A sphere on a viscoelastic half-space (`viscoelastic-impact*`): MRD's viscoelastic
     // springs give the 3D transient solve's restitution to 1e-3 (measured 8.3e-5 on
     // 32^2 at t_c / 100; 2.1e-5 on 64^2 at t_c / 200 in `viscoelastic-impact`: the rule
@@ -416,6 +430,7 @@ const RESULT_BOUNDS: &[(&str, Bound, &[&str])] = &[
 ];
 
 const PLASTIC: &[&str] = &["plastic-sphere", "plastic-sphere-ci", "plastic-cone"];
+const ROUGH_PLASTIC: &[&str] = &["rough-plastic-3d-ci"];
 const VISCOELASTIC_IMPACT: &[&str] = &["viscoelastic-impact", "viscoelastic-impact-ci"];
 const RESONANCE: &[&str] = &["contact-resonance-ci"];
 

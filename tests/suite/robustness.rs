@@ -1070,6 +1070,59 @@ fn plastic_3d_bad_input_names_the_key() {
     );
 }
 
+/// `rough_plastic_3d` refuses what it cannot run, naming the key: a plasticity index of
+/// zero, NaN or not increasing, a peak force the most plastic face could not carry, a
+/// force ladder upside down, a grid that does not resolve the band, too few springs, a
+/// tolerance the plastic step does not take.
+#[test]
+fn rough_plastic_3d_bad_input_names_the_key() {
+    refuses_each_edit(
+        "rough-plastic-3d-ci",
+        &[
+            (
+                "plasticity = [1.0, 10.0]",
+                "plasticity = [0.0, 10.0]",
+                "plasticity",
+            ),
+            (
+                "plasticity = [1.0, 10.0]",
+                "plasticity = [nan]",
+                "plasticity",
+            ),
+            (
+                "plasticity = [1.0, 10.0]",
+                "plasticity = [10.0, 1.0]",
+                "plasticity",
+            ),
+            (
+                "plasticity = [1.0, 10.0]",
+                "plasticity = [1.0, 300.0]",
+                "f_max = 0.3",
+            ),
+            (
+                "seed = 1",
+                "seed = 1
+f_min = 0.5",
+                "f_min = 0.5",
+            ),
+            ("cells = [8]", "cells = [1]", "cells"),
+            ("springs = 1024", "springs = 16", "springs"),
+            (
+                "seed = 1",
+                "seed = 1
+tolerance = 0.1",
+                "tolerance",
+            ),
+            (
+                "seed = 1",
+                "seed = 1
+lambda = -1.0",
+                "lambda = -1",
+            ),
+        ],
+    );
+}
+
 /// The time-integrated scenes refuse what they cannot run, naming the key: no mass, a
 /// speed of zero, a time step count out of range, an amplitude at which the body slides.
 #[test]

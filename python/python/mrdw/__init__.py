@@ -34,7 +34,7 @@ table with its provenance: calibrated_lambda_table), surface, line, psd, moments
 read_topography (a Topography: heights, physical size, undefined cells).
 MRD: Profile (sphere, cone, power_law, flattened_sphere, flat_punch, tabulated),
 normal, pressure, adhesion, pull_off, cattaneo_mindlin, damping, hess_inverse,
-RoughLine, fit_line. Scenes: scenes(), run_scene(name_or_path).
+RoughLine, PlasticLine, fit_line. Scenes: scenes(), run_scene(name_or_path).
 
 Units are whatever consistent set the inputs use (length and stress); docstrings give
 the dimension of each quantity. Bad input raises ValueError (the CLI's message); an
@@ -72,6 +72,7 @@ from ._mrdw import (
     moments,
     fit_line,
     RoughLine,
+    PlasticLine,
     Profile,
     hess_inverse,
     normal,
@@ -119,6 +120,7 @@ __all__ = [
     "Topography",
     "fit_line",
     "RoughLine",
+    "PlasticLine",
     "Profile",
     "hess_inverse",
     "normal",

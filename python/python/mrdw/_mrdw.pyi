@@ -766,6 +766,31 @@ class RoughLine:
     def reduced_stiffness(self, stiffness: float) -> float: ...
     def __len__(self) -> int: ...
 
+class LineStep(TypedDict):
+    approach: float
+    force: float
+    contacts: int
+    capped: int
+    patches: int
+    stiffness: float
+    largest_set: float
+
+class PlasticLine:
+    """A rough line on an elastic-perfectly plastic MRD foundation (patch-capped springs)."""
+
+    def __init__(
+        self, heights: ArrayLike, length: float, e_star: float, hardness: float
+    ) -> None: ...
+    def step(self, approach: float) -> LineStep: ...
+    def step_to_force(self, force: float, tolerance: Optional[float] = None) -> LineStep: ...
+    @property
+    def set(self) -> F64: ...
+    @property
+    def load(self) -> F64: ...
+    @property
+    def force_limit(self) -> float: ...
+    def __len__(self) -> int: ...
+
 class Profile:
     """An axisymmetric rigid indenter z(r)."""
 

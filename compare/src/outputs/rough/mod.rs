@@ -8,6 +8,7 @@ pub mod hurst_sweep;
 pub mod lambda_study;
 pub mod rough_adhesion_3d;
 pub mod rough_partial_slip_3d;
+pub mod rough_plastic_3d;
 pub mod rough_slip_3d;
 pub mod rough_sphere;
 pub mod rough_stiffness;
