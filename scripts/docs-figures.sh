@@ -25,7 +25,7 @@ all=(
   rough-partial-slip-3d rough-slip-3d rough-slip-3d-punch
   calibrate-rolloff:curves.png,curves_4.png
   plastic-sphere plastic-cone rough-plastic-3d impact ring-down contact-resonance
-  viscoelastic-impact
+  viscoelastic-impact adhesive-impact
 )
 wanted=("$@")
 for entry in "${all[@]}"; do

@@ -103,6 +103,15 @@ pub struct AdhesiveStep {
     pub separated: bool,
 }
 
+/// The state of an [`AdhesiveContact`] after a step ([`AdhesiveContact::snapshot`]).
+#[derive(Debug, Clone)]
+pub struct AdhesiveSnapshot {
+    contact: Vec<bool>,
+    p: Vec<f64>,
+    u: Vec<f64>,
+    approach: f64,
+}
+
 /// A rigid surface in adhesive contact with an elastic half-space, loaded along a
 /// history (module docs). Shares the normal solver's operators.
 pub struct AdhesiveContact<C: Preconditioner + GridForms> {
@@ -209,6 +218,35 @@ impl<C: Preconditioner + GridForms> AdhesiveContact<C> {
         (0..self.z.len())
             .map(|i| self.u[i] + self.z[i] - self.approach)
             .collect()
+    }
+
+    /// The state after the last step (contact set, pressures, displacements, approach),
+    /// to come back to with [`Self::restore`]: a time integrator's trial step.
+    pub fn snapshot(&self) -> AdhesiveSnapshot {
+        AdhesiveSnapshot {
+            contact: self.contact.clone(),
+            p: self.p.clone(),
+            u: self.u.clone(),
+            approach: self.approach,
+        }
+    }
+
+    /// Returns to a state taken by [`Self::snapshot`] of this contact. The solve window
+    /// (a cache of the box around the contact set) is dropped: the next step starts from
+    /// the same state and reaches the same equilibrium to its tolerance, and the same
+    /// sequence of steps and restores gives the same numbers bit for bit.
+    pub fn restore(&mut self, s: AdhesiveSnapshot) -> Result<()> {
+        if s.p.len() != self.p.len() {
+            return Err(BemError::InvalidInput(
+                "restore: the snapshot is of another contact (its grid differs)".into(),
+            ));
+        }
+        self.contact = s.contact;
+        self.p = s.p;
+        self.u = s.u;
+        self.approach = s.approach;
+        self.window = None;
+        Ok(())
     }
 
     /// [`Self::step`] for any operator (its compiled entry, in `compiled.rs`, calls this).

@@ -79,6 +79,10 @@ pub const KINDS: &[Kind] = &[
         "viscoelastic_impact",
         "a sphere striking a viscoelastic half-space at a range of speeds, MRD's viscoelastic springs and the 3D transient solve in the loop: restitution and contact time against speed (Sections 8 and 12)",
     ),
+    Kind::of::<dynamics::adhesive_impact::AdhesiveImpact>(
+        "adhesive_impact",
+        "a sphere striking a half-space with zero-range adhesion (JKR limit) at a range of speeds, MRD's adhesive springs (Eq. 33) and the 3D adhesive solve in the loop: capture and restitution against the closed form of the adhesive hysteresis (Sections 5 and 12)",
+    ),
     Kind::of::<dynamics::resonance::ContactResonance>(
         "contact_resonance",
         "free normal vibration on a rough contact with the contact at every step, MRD's rough lines and the 3D punch in the loop: frequency against k(F0), backbone and contact loss; the cost of a step against the grid (Section 12)",

@@ -5,7 +5,8 @@
 //! (positive pressing; below 0 the bodies are apart), the tangential one the relative
 //! displacement `u` of the body along x. Forces are those the contact exerts on the
 //! body against the motion: the normal force `F >= 0` (compressive; no adhesion in
-//! these laws), the tangential force `Q` resisting `u`. A step is tried at a motion
+//! these laws, the adhesive ones of [`crate::adhesive`] pull with `F < 0`), the
+//! tangential force `Q` resisting `u`. A step is tried at a motion
 //! ([`ContactLaw::trial`]), then accepted ([`ContactLaw::commit`]) or discarded
 //! ([`ContactLaw::rollback`]); a trial always starts from the last accepted state, so
 //! an integrator can try several motions for one step.

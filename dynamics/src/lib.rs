@@ -17,16 +17,20 @@
 //! - Viscoelastic, both ways ([`viscoelastic`]): MRD's springs with the hereditary
 //!   integral of a relaxing modulus (Eq. 63) and the 3D transient solve on the same
 //!   modulus, whose force depends on the history of the motion.
+//! - Adhesive, both ways ([`adhesive`]): MRD's springs with Eq. 33's detachment and the
+//!   3D adhesive solve, in the JKR limit (tensile forces negative).
 //!
 //! The integrator ([`integrate`]) advances one degree of freedom: a mass under an
 //! external force and the contact force, by velocity Verlet, with step rejection on a
 //! force jump (the rollback in use). `mrd` and `bem3d` know nothing of time stepping;
 //! the scenes that use this crate live in `compare`.
 
+pub mod adhesive;
 pub mod integrate;
 pub mod law;
 pub mod viscoelastic;
 
+pub use adhesive::{AdhesiveBem3d, AdhesiveSprings};
 pub use law::{Bem3d, ContactLaw, Forces, Motion, Springs};
 pub use viscoelastic::{ViscoelasticBem3d, ViscoelasticSprings};
 

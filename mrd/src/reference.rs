@@ -60,6 +60,94 @@ pub mod hertz_impact {
     }
 }
 
+/// A rigid sphere (radius R, mass m) striking an elastic half-space at speed v with
+/// zero-range adhesion of work w (the JKR limit; Johnson, Kendall & Roberts, Proc. R.
+/// Soc. A 324 (1971) 301, and Johnson, Contact Mechanics, 1985, Section 5.5), the
+/// contact quasi-static and the only loss the adhesive hysteresis:
+///
+/// - loading is Hertz's (surfaces adhere only where they touch, the model of the
+///   review's Eq. 33 and of the 3D solver), so the largest approach is
+///   [`hertz_impact::max_approach`] and the contact radius there `a_m = sqrt(R d_max)`;
+/// - unloading first holds the radius `a_m` (the flat punch's line
+///   `F = F_H(d_max) - 2 a_m E* (d_max - d)`) until it meets JKR's curve at `a_m`, then
+///   follows JKR's curve `d(a) = a^2 / R - sqrt(2 pi w a / E*)`,
+///   `F(a) = 4 E* a^3 / (3 R) - sqrt(8 pi w E* a^3)` down to the radius where `dd/da = 0`,
+///   `a_c = (pi w R^2 / (8 E*))^(1/3)` (separation under the approach a mass imposes),
+///   or, if `a_m <= a_c`, separates where it meets the curve.
+///
+/// The work the contact gives back on unloading, `W_out`, is the kinetic energy left at
+/// separation: the restitution is `sqrt(W_out / (m v^2 / 2))`, and the sphere is
+/// captured where `W_out <= 0`.
+pub mod adhesive_impact {
+    use super::{hertz, hertz_impact, jkr};
+    use std::f64::consts::PI;
+
+    /// A force scale of the adhesive cycle: JKR's pull-off under force control,
+    /// `3 pi w R / 2` [force].
+    pub fn pull_off_scale(r: f64, w: f64) -> f64 {
+        jkr::pull_off_force_control(r, w)
+    }
+
+    /// The radius of JKR's curve where the approach is least,
+    /// `(pi w R^2 / (8 E*))^(1/3)` [length].
+    pub fn separation_radius(e_star: f64, r: f64, w: f64) -> f64 {
+        (PI * w * r * r / (8.0 * e_star)).cbrt()
+    }
+
+    /// The work given back from the largest approach to separation [force x length].
+    pub fn work_returned(e_star: f64, r: f64, w: f64, m: f64, v: f64) -> f64 {
+        let d_max = hertz_impact::max_approach(e_star, r, m, v);
+        let a_m = hertz::radius(r, d_max);
+        // The flat punch's line from d_max down to JKR's curve at a_m.
+        let drop = (2.0 * PI * w * a_m / e_star).sqrt();
+        let f_max = hertz::force(e_star, r, d_max);
+        let punch = f_max * drop - a_m * e_star * drop * drop;
+        let a_c = separation_radius(e_star, r, w);
+        if a_m <= a_c {
+            return punch;
+        }
+        // Along JKR's curve: the integral of F dd from a_c to a_m.
+        let slope = |a: f64| 2.0 * a / r - 0.5 * (2.0 * PI * w / (e_star * a)).sqrt();
+        let curve = crate::numerics::quad::tanh_sinh(
+            |a| jkr::force(e_star, r, w, a) * slope(a),
+            a_c,
+            a_m,
+            1e-12,
+        )
+        .unwrap_or(f64::NAN);
+        punch + curve
+    }
+
+    /// The coefficient of restitution (0: captured).
+    pub fn restitution(e_star: f64, r: f64, w: f64, m: f64, v: f64) -> f64 {
+        let back = work_returned(e_star, r, w, m, v);
+        if back <= 0.0 {
+            0.0
+        } else {
+            (back / (0.5 * m * v * v)).sqrt()
+        }
+    }
+
+    /// The largest speed at which the sphere is captured (`W_out = 0`), by bisection in
+    /// ln v [length / time].
+    pub fn capture_speed(e_star: f64, r: f64, w: f64, m: f64) -> f64 {
+        // A scale: the speed whose Hertz approach reaches JKR's separation depth's size.
+        let a_c = separation_radius(e_star, r, w);
+        let d = a_c * a_c / r;
+        let scale = (16.0 / 15.0 * e_star * r.sqrt() * d.powf(2.5) / m).sqrt();
+        let (mut lo, mut hi) = (1e-6 * scale, 1e6 * scale);
+        for _ in 0..200 {
+            let mid = (lo * hi).sqrt();
+            if work_returned(e_star, r, w, m, mid) > 0.0 {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        (lo * hi).sqrt()
+    }
+}
+
 /// Cone of slope tan(theta) (Love 1939; Eqs. 31-32).
 pub mod cone {
     use std::f64::consts::PI;

@@ -64,7 +64,8 @@ impl LawForces {
 /// methods: `body` (MRD's springs for a body of revolution, exact by the rule of Hess,
 /// optionally with Coulomb friction), `rough_line` (MRD's rough line), `bem3d` (the 3D
 /// boundary-element solve, warm-started from the last accepted step; frictionless), or
-/// their viscoelastic counterparts `viscoelastic_body` and `viscoelastic_bem3d`.
+/// their viscoelastic counterparts `viscoelastic_body` and `viscoelastic_bem3d`, or their
+/// adhesive ones (JKR limit) `adhesive_body` and `adhesive_bem3d`.
 ///
 /// Coordinates: the normal approach from first contact (positive pressing) and the
 /// tangential displacement; forces are those the contact exerts against the motion.
@@ -314,6 +315,72 @@ impl ContactLaw {
                         defaults.max_iterations,
                     )
                     .map_err(wrap)?,
+                )
+            })
+        })?;
+        Ok(Self::new(law, Some(frame)))
+    }
+
+    /// adhesive_body(profile, e_star, work, springs=2000, half_length=None)
+    ///
+    /// MRD's adhesive springs for a body of revolution in the JKR limit (zero-range
+    /// adhesion of work w [energy / length^2]): springs by the rule of Hess on both halves
+    /// of the line, each attached once touched and detached by Eq. 33; tensile forces are
+    /// negative. Springs and half_length as for body(). Frictionless. approach_at() is
+    /// refused: the force depends on which springs are attached.
+    #[staticmethod]
+    #[pyo3(signature = (profile, e_star, work, springs = 2000, half_length = None))]
+    fn adhesive_body(
+        py: Python<'_>,
+        profile: &Profile,
+        e_star: f64,
+        work: f64,
+        springs: usize,
+        half_length: Option<f64>,
+    ) -> PyResult<Self> {
+        let half = half_line(profile, half_length)?;
+        let law = dynamics::AdhesiveSprings::body(&profile.inner, e_star, work, springs, half)
+            .map_err(|e| law_err(py, None, e))?;
+        Ok(Self::new(Box::new(law), None))
+    }
+
+    /// adhesive_bem3d(heights, e_star, work, size=None, mask=None, periodic=False, tolerance=1e-8)
+    ///
+    /// The 3D adhesive contact of the height map (as AdhesiveContact: Pohrt & Popov's
+    /// detachment criterion, the JKR limit) as a contact law: each trial one step to the
+    /// trial's approach; a rollback restores the state before it. Frictionless.
+    #[staticmethod]
+    #[pyo3(signature = (heights, e_star, work, size = None, mask = None, periodic = false, tolerance = 1e-8))]
+    #[allow(clippy::too_many_arguments)]
+    fn adhesive_bem3d(
+        py: Python<'_>,
+        heights: &Bound<'_, PyAny>,
+        e_star: f64,
+        work: f64,
+        size: Option<(f64, f64)>,
+        mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
+        periodic: bool,
+        tolerance: f64,
+    ) -> PyResult<Self> {
+        let grid = Grid::new(py, heights, (size, Some(periodic)), mask, e_star, false)?;
+        let (h, mask, frame) = (grid.heights, grid.mask, grid.frame);
+        let law: Box<dyn Law> = frame.solve(py, || -> bem3d::Result<Box<dyn Law>> {
+            let ((ny, nx), (lx, ly)) = (frame.shape, frame.size);
+            let wrap = |e: DynamicsError| match e {
+                DynamicsError::Bem(e) => e,
+                other => bem3d::BemError::InvalidInput(other.to_string()),
+            };
+            Ok(if frame.periodic {
+                let op = bem3d::PeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
+                Box::new(
+                    dynamics::AdhesiveBem3d::new(op, &h, mask.as_deref(), work, tolerance)
+                        .map_err(wrap)?,
+                )
+            } else {
+                let op = bem3d::NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
+                Box::new(
+                    dynamics::AdhesiveBem3d::new(op, &h, mask.as_deref(), work, tolerance)
+                        .map_err(wrap)?,
                 )
             })
         })?;

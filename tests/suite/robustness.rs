@@ -1070,6 +1070,31 @@ fn plastic_3d_bad_input_names_the_key() {
     );
 }
 
+/// `adhesive_impact` refuses what it cannot run, naming the key: no work of adhesion, a
+/// mass of zero, speeds not increasing, a speed whose contact leaves small strains.
+#[test]
+fn adhesive_impact_bad_input_names_the_key() {
+    refuses_each_edit(
+        "adhesive-impact-ci",
+        &[
+            ("work = 1e-4", "work = 0.0", "work = 0"),
+            ("work = 1e-4", "work = nan", "work = NaN"),
+            ("mass = 1e-3", "mass = 0.0", "mass = 0"),
+            (
+                "speeds = [0.035, 0.105, 0.28]",
+                "speeds = [0.1, 0.05]",
+                "speeds",
+            ),
+            (
+                "speeds = [0.035, 0.105, 0.28]",
+                "speeds = [0.035, 30.0]",
+                "small-strain",
+            ),
+            ("steps_3d = 100", "steps_3d = 3", "steps_3d = 3"),
+        ],
+    );
+}
+
 /// `rough_plastic_3d` refuses what it cannot run, naming the key: a plasticity index of
 /// zero, NaN or not increasing, a peak force the most plastic face could not carry, a
 /// force ladder upside down, a grid that does not resolve the band, too few springs, a

@@ -406,6 +406,28 @@ class ContactLaw:
     ) -> "ContactLaw":
         """The 3D transient viscoelastic contact of the height map as a contact law: each
         trial one time step of dt; a rollback restores the state before it."""
+    @staticmethod
+    def adhesive_body(
+        profile: Profile,
+        e_star: float,
+        work: float,
+        springs: int = 2000,
+        half_length: Optional[float] = None,
+    ) -> "ContactLaw":
+        """MRD's adhesive springs for a body of revolution (JKR limit, work w): attached
+        once touched, detached by Eq. 33; tensile forces negative. Frictionless."""
+    @staticmethod
+    def adhesive_bem3d(
+        heights: Union[ArrayLike, Any],
+        e_star: float,
+        work: float,
+        size: Optional[Tuple[float, float]] = None,
+        mask: Optional[ArrayLike] = None,
+        periodic: bool = False,
+        tolerance: float = 1e-8,
+    ) -> "ContactLaw":
+        """The 3D adhesive contact of the height map as a contact law: each trial one step
+        to the approach; a rollback restores the state before it."""
     def trial(self, normal: float, tangential: float = 0.0, dt: float = 1.0) -> LawForces:
         """The forces at the step's end motion from the last accepted state."""
     def commit(self) -> None:

@@ -2,6 +2,7 @@
 //! is evaluated at every time step, by MRD and by the 3D reference (`dynamics`), each
 //! against a closed form.
 
+pub mod adhesive_impact;
 pub mod impact;
 pub mod resonance;
 pub mod ring_down;
