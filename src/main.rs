@@ -173,6 +173,10 @@ enum BenchTarget {
     /// a ramp and a cycle) against a normal solve of the same grid, periodic and free,
     /// 128^2 .. (--max-n)^2 (default up to 512).
     Tangential,
+    /// Elastic-perfectly plastic contact: seconds per load step of the pressure cap
+    /// (bem3d::plastic) on the periodic rough reference surface against the elastic solve
+    /// at the same forces, 128^2 .. (--max-n)^2 (default up to 512).
+    Plastic,
     /// Run time against error as a report folder (CSV + PNG): axisymmetric cases with
     /// closed forms (MRD semi-analytic, springs, 3D), rough contacts (alpha against a
     /// reference, 3D and MRD), scaling with fitted exponents.
@@ -195,7 +199,8 @@ impl BenchTarget {
             BenchTarget::Sliding3d
             | BenchTarget::Viscoelastic
             | BenchTarget::Adhesion
-            | BenchTarget::Tangential => 512,
+            | BenchTarget::Tangential
+            | BenchTarget::Plastic => 512,
             BenchTarget::Large => 16384,
             _ => 1024,
         };
@@ -228,9 +233,9 @@ fn bench_options_apply(
             max_n.is_some()
                 && !matches!(
                     target,
-                    Bem | Sliding3d | Viscoelastic | Adhesion | Tangential | Large
+                    Bem | Sliding3d | Viscoelastic | Adhesion | Tangential | Plastic | Large
                 ),
-            "bem, sliding3d, viscoelastic, adhesion, tangential and large",
+            "bem, sliding3d, viscoelastic, adhesion, tangential, plastic and large",
         ),
         (
             "--write-surfaces",
@@ -437,6 +442,7 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
                 BenchTarget::Viscoelastic => bench::run_viscoelastic(&mut out.0, side)?,
                 BenchTarget::Adhesion => bench::run_adhesion(&mut out.0, side)?,
                 BenchTarget::Tangential => bench::run_tangential(&mut out.0, side)?,
+                BenchTarget::Plastic => bench::run_plastic(&mut out.0, side)?,
                 BenchTarget::Large => bench::run_large(&mut out.0, side)?,
                 BenchTarget::Bem => bench::run_bem(&mut out.0, side, write_surfaces.as_deref())?,
                 BenchTarget::Report => {

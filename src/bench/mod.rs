@@ -4,12 +4,14 @@
 mod adhesion;
 pub mod common;
 mod large;
+mod plastic;
 pub mod report;
 mod rough_ladder;
 mod tangential;
 mod viscoelastic;
 pub use adhesion::run_adhesion;
 pub use large::{run_large, run_large_case};
+pub use plastic::run_plastic;
 pub use tangential::run_tangential;
 pub use viscoelastic::run_viscoelastic;
 

@@ -400,6 +400,20 @@ impl AdhesiveImpact {
                 }
             }
         }
+        self.figures(out, r, e, vc, mrd, three);
+    }
+
+    /// Restitution against speed (closed form, MRD, each 3D grid), and the loop of the
+    /// slowest rebound.
+    fn figures(
+        &self,
+        out: &mut Section,
+        r: f64,
+        e: f64,
+        vc: f64,
+        mrd: &[[Run; 2]],
+        three: &[Vec<Run>],
+    ) {
         let (lo, hi) = (self.speeds[0] / vc, self.speeds[self.speeds.len() - 1] / vc);
         let dense: Vec<(f64, f64)> = mrd::friction::log_space(lo, hi, 200)
             .into_iter()

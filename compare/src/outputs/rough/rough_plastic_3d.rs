@@ -281,26 +281,19 @@ impl Output for RoughPlastic3d {
                 })
                 .collect::<Result<Vec<Reading>>>()
         })?;
-        let per_case_3d = |c: usize, g: usize| -> &[Reading] {
-            let n = self.realisations_3d as usize;
-            let start = (c * self.cells.len() + g) * n;
-            &three[start..start + n]
-        };
-        let per_case_mrd = |c: usize, k: usize| -> &[Reading] {
-            let n = self.lines as usize;
-            let start = (c * REFIT.len() + k) * n;
-            &mrd[start..start + n]
-        };
-        self.report(
-            out,
-            &cases,
-            &per_case_3d,
-            &per_case_mrd,
+        let data = Data {
+            cases,
+            three,
+            mrd,
+            grids: self.cells.len(),
+            faces: self.realisations_3d as usize,
+            lines: self.lines as usize,
             lambda,
             h,
             slope,
-            &forces,
-        );
+            forces,
+        };
+        self.report(out, &data);
         Ok(())
     }
 }
@@ -409,31 +402,30 @@ impl RoughPlastic3d {
         mean_ci(&per)
     }
 
-    #[allow(clippy::too_many_arguments)]
-    fn report<'a>(
-        &self,
-        out: &mut Section,
-        cases: &[f64],
-        three: &dyn Fn(usize, usize) -> &'a [Reading],
-        mrd: &dyn Fn(usize, usize) -> &'a [Reading],
-        lambda: f64,
-        h: f64,
-        slope: f64,
-        forces: &[f64],
-    ) {
-        let unit = REFIT.iter().position(|&f| f == 1.0).unwrap_or(2);
-        let finest = self.cells.len() - 1;
-        let psi_label = |psi: f64| {
-            if psi == 0.0 {
-                "elastic".to_string()
-            } else {
-                format!("psi = {psi}")
-            }
-        };
-        let setting = format!(
+    fn report(&self, out: &mut Section, d: &Data) {
+        let setting = self.setting(d);
+        self.stiffness_report(out, d, &setting);
+        let (s, refits, retrace) = self.by_plasticity(d, setting);
+        let fine = self.scalars(out, &s, &refits, retrace);
+        Self::plasticity_figures(out, &fine, &refits, d.lambda);
+        out.tables.push(s);
+        self.history_report(out, d);
+    }
+
+    /// The setting every table states.
+    fn setting(&self, d: &Data) -> String {
+        let (h, slope, lambda) = (d.h, d.slope, d.lambda);
+        format!(
             "rough punch of diameter L = 1 on E* = 1: self-affine face H = {}, wave vectors 1..{} (units 2 pi / L), fixed amplitudes, spectral rms height h = {h:.4e} and slope h' = {slope:.4e} over the square; hardness H = h' / psi; 3D on free grids of {:?} cells per shortest wavelength, {} faces per case; MRD lines of {} springs, C1D = lambda q C2D with lambda = {lambda:.4} (the refit scans 0.5-2 times it), {} lines per case, each spring's line load capped patch by patch at 2 H sqrt(a^2 - (x - c)^2) (mrd::plastic_line); f = F / (E* h L); intervals: 95 % of the mean over faces (3D) and lines (MRD)",
             self.hurst, self.bandwidth, self.cells, self.realisations_3d, self.springs, self.lines
-        );
+        )
+    }
+
+    /// The loading stiffness against the force, per case and grid: table and figure
+    /// (finest grid).
+    fn stiffness_report(&self, out: &mut Section, d: &Data, setting: &str) {
+        let (cases, forces) = (&d.cases[..], &d.forces[..]);
+        let finest = self.cells.len() - 1;
         // The loading stiffness against the force, per case, finest grid.
         let mut t = Table::new(
             "loading_stiffness",
@@ -449,7 +441,7 @@ impl RoughPlastic3d {
                 "k_MRD high [1]",
             ],
         );
-        t.notes.push(setting.clone());
+        t.notes.push(setting.to_string());
         t.notes.push(
             "k: the secant dF/dd between successive steps of the first loading, at their geometric mean force; geometric means over the runs with their 95 % intervals; MRD at the scene's lambda".into(),
         );
@@ -461,8 +453,8 @@ impl RoughPlastic3d {
         for (c, &psi) in cases.iter().enumerate() {
             for g in 0..self.cells.len() {
                 for i in 0..self.loads - 1 {
-                    let (m3, e3) = at(three(c, g), i);
-                    let (m1, e1) = at(mrd(c, unit), i);
+                    let (m3, e3) = at(d.three(c, g), i);
+                    let (m1, e1) = at(d.mrd(c, UNIT), i);
                     t.push(vec![
                         psi,
                         self.cells[g] as f64,
@@ -511,7 +503,13 @@ impl RoughPlastic3d {
         }
         out.tables.push(t);
         out.figures.push(fig);
+    }
 
+    /// Per case and grid: the ratios, the fractions, the refit (the table, the refits of
+    /// the finest grid, the largest reload retrace).
+    fn by_plasticity(&self, d: &Data, setting: String) -> (Table, Vec<Refit>, f64) {
+        let (cases, slope, lambda) = (&d.cases[..], d.slope, d.lambda);
+        let finest = self.cells.len() - 1;
         // Per case and grid: the ratios, the fractions, the refit.
         let mut s = Table::new(
             "by_plasticity",
@@ -554,9 +552,9 @@ impl RoughPlastic3d {
             } else {
                 slope / psi
             };
-            let mrd1 = mrd(c, unit);
+            let mrd1 = d.mrd(c, UNIT);
             for g in 0..self.cells.len() {
-                let bem = three(c, g);
+                let bem = d.three(c, g);
                 for r in bem.iter().chain(mrd1) {
                     retrace = retrace.max(r.retrace);
                 }
@@ -592,7 +590,7 @@ impl RoughPlastic3d {
                 // The refit: the lines' mean log loading stiffness against ln(factor).
                 let target = Self::loading(bem);
                 let curve: Vec<(f64, f64)> = (0..REFIT.len())
-                    .map(|k| (REFIT[k].ln(), Self::loading(mrd(c, k)).0))
+                    .map(|k| (REFIT[k].ln(), Self::loading(d.mrd(c, k)).0))
                     .collect();
                 let fit = |y: f64| crossing(&curve, y).map(|x| lambda * x.exp());
                 let (best, lo, hi) = (
@@ -629,6 +627,18 @@ impl RoughPlastic3d {
                 ]);
             }
         }
+        (s, refits, retrace)
+    }
+
+    /// The finest grid's scalars; returns its rows.
+    fn scalars(
+        &self,
+        out: &mut Section,
+        s: &Table,
+        refits: &[Refit],
+        retrace: f64,
+    ) -> Vec<Vec<f64>> {
+        let finest = self.cells.len() - 1;
         // Scalars: the finest grid's.
         let rows_at = |g: usize| -> Vec<Vec<f64>> {
             s.rows
@@ -664,6 +674,12 @@ impl RoughPlastic3d {
                 .fold(0.0, f64::max);
             out.scalar("loading_ratio_grid_change_max", change);
         }
+        fine
+    }
+
+    /// The ratios and the refit against psi.
+    fn plasticity_figures(out: &mut Section, fine: &[Vec<f64>], refits: &[Refit], lambda: f64) {
+        let first = &fine[0];
         // Ratios against psi, each quantity a few per cent apart in psi so that the bars
         // stay apart, with the elastic case's value dashed in its colour.
         let plastic_rows: Vec<&Vec<f64>> = fine.iter().filter(|r| r[0] > 0.0).collect();
@@ -752,8 +768,13 @@ impl RoughPlastic3d {
         }
         lambda_fig.log_x = true;
         out.figures.push(lambda_fig);
-        out.tables.push(s);
+    }
 
+    /// The mean history of the elastic and the most plastic case, both methods, finest
+    /// grid: table and loop figure.
+    fn history_report(&self, out: &mut Section, d: &Data) {
+        let (cases, forces) = (&d.cases[..], &d.forces[..]);
+        let finest = self.cells.len() - 1;
         // The mean history of the most plastic case, both methods, finest grid.
         let c = cases.len() - 1;
         let mut hist = Table::new(
@@ -776,7 +797,7 @@ impl RoughPlastic3d {
             "means over the runs at each step of the history (first loading, unloading to {UNLOAD:?} and reloading to {RELOAD:?} of the peak); 3D on the finest grid; approaches from each run's first contact"
         ));
         for c in [0, c] {
-            let (bem, lines) = (three(c, finest), mrd(c, unit));
+            let (bem, lines) = (d.three(c, finest), d.mrd(c, UNIT));
             for (k, &f) in forces.iter().enumerate() {
                 let m = |runs: &[Reading], q: &dyn Fn(&Point) -> f64| {
                     mean_ci(&runs.iter().map(|r| q(&r.points[k])).collect::<Vec<_>>())
@@ -831,6 +852,47 @@ impl RoughPlastic3d {
         }
         out.figures.push(loop_fig);
         out.tables.push(hist);
+    }
+}
+
+/// The psi of a case as a label.
+fn psi_label(psi: f64) -> String {
+    if psi == 0.0 {
+        "elastic".to_string()
+    } else {
+        format!("psi = {psi}")
+    }
+}
+
+/// The scene's lambda in the refit's scan (factor 1).
+const UNIT: usize = 2;
+
+/// What the report reads: the cases (psi, 0 the elastic one), every run of each, and the
+/// scales.
+struct Data {
+    cases: Vec<f64>,
+    /// 3D runs by (case, grid, realisation), MRD runs by (case, lambda factor, line).
+    three: Vec<Reading>,
+    mrd: Vec<Reading>,
+    grids: usize,
+    faces: usize,
+    lines: usize,
+    lambda: f64,
+    h: f64,
+    slope: f64,
+    forces: Vec<f64>,
+}
+
+impl Data {
+    /// The 3D runs of case `c` on grid `g`.
+    fn three(&self, c: usize, g: usize) -> &[Reading] {
+        let start = (c * self.grids + g) * self.faces;
+        &self.three[start..start + self.faces]
+    }
+    /// The MRD runs of case `c` at lambda factor `k`.
+    fn mrd(&self, c: usize, k: usize) -> &[Reading] {
+        let start = (c * REFIT.len() + k) * self.lines;
+        &self.mrd[start..start + self.lines]
     }
 }
 
