@@ -344,13 +344,14 @@ impl ContactLaw {
         Ok(Self::new(Box::new(law), None))
     }
 
-    /// adhesive_bem3d(heights, e_star, work, size=None, mask=None, periodic=False, tolerance=1e-8)
+    /// adhesive_bem3d(heights, e_star, work, size=None, mask=None, periodic=False, tolerance=None)
     ///
     /// The 3D adhesive contact of the height map (as AdhesiveContact: Pohrt & Popov's
     /// detachment criterion, the JKR limit) as a contact law: each trial one step to the
     /// trial's approach; a rollback restores the state before it. Frictionless.
+    /// tolerance: the solver's (None: its default, 1e-10).
     #[staticmethod]
-    #[pyo3(signature = (heights, e_star, work, size = None, mask = None, periodic = false, tolerance = 1e-8))]
+    #[pyo3(signature = (heights, e_star, work, size = None, mask = None, periodic = false, tolerance = None))]
     #[allow(clippy::too_many_arguments)]
     fn adhesive_bem3d(
         py: Python<'_>,
@@ -360,10 +361,11 @@ impl ContactLaw {
         size: Option<(f64, f64)>,
         mask: Option<PyArrayLike2<'_, bool, AllowTypeChange>>,
         periodic: bool,
-        tolerance: f64,
+        tolerance: Option<f64>,
     ) -> PyResult<Self> {
         let grid = Grid::new(py, heights, (size, Some(periodic)), mask, e_star, false)?;
         let (h, mask, frame) = (grid.heights, grid.mask, grid.frame);
+        let tolerance = tolerance.unwrap_or(bem3d::SolverOptions::default().tolerance);
         let law: Box<dyn Law> = frame.solve(py, || -> bem3d::Result<Box<dyn Law>> {
             let ((ny, nx), (lx, ly)) = (frame.shape, frame.size);
             let wrap = |e: DynamicsError| match e {

@@ -424,7 +424,7 @@ class ContactLaw:
         size: Optional[Tuple[float, float]] = None,
         mask: Optional[ArrayLike] = None,
         periodic: bool = False,
-        tolerance: float = 1e-8,
+        tolerance: Optional[float] = None,
     ) -> "ContactLaw":
         """The 3D adhesive contact of the height map as a contact law: each trial one step
         to the approach; a rollback restores the state before it."""
