@@ -98,6 +98,23 @@ fn killed_run_resumes_and_shards_merge_to_identical_csvs() {
         &[],
     ));
     assert_eq!(csvs(&full), csvs(&part));
+    // A rerun over a kept work folder says that it resumes, and from what.
+    let work = tmp.path().join("kept.work");
+    let again = |out: &str| {
+        let o = mrdw(
+            &["run", &s, "--out", out, "--work", work.to_str().unwrap()],
+            &[],
+        );
+        ok(&o);
+        stderr(&o)
+    };
+    let first = again(tmp.path().join("kept1").to_str().unwrap());
+    assert!(!first.contains("resuming"), "{first}");
+    let second = again(tmp.path().join("kept2").to_str().unwrap());
+    assert!(
+        second.contains("calibrate: resuming: all ") && second.contains("nothing to compute"),
+        "{second}"
+    );
     let shards = run_shards(&s, tmp.path(), &["2", "2"]);
     let merged = tmp.path().join("merged");
     ok(&merge(&[&shards[0], &shards[1]], &merged));

@@ -39,7 +39,7 @@ impl Realisations {
 /// one task per thread, handed out in the list's order: `run(i)` computes task `i` and
 /// returns its checkpoint's text ([`json`]). `label` names the work on the progress bar
 /// and, when `announce` is set and checkpoints are found, in a message saying how many
-/// were taken from them.
+/// were taken from them (all of them, too: a rerun over a finished work folder says so).
 pub fn compute(
     work: &Path,
     label: &'static str,
@@ -65,6 +65,13 @@ pub fn compute(
             mine.len(),
             work.display(),
             todo.len()
+        );
+    }
+    if announce && control.progress && todo.is_empty() && !mine.is_empty() {
+        eprintln!(
+            "{label}: resuming: all {} tasks taken from checkpoints in {}, nothing to compute",
+            mine.len(),
+            work.display()
         );
     }
     let bar = super::progress::Progress::new(
