@@ -15,25 +15,12 @@
 //! extended to tension). A trial steps a copy of the row (MRD) or a snapshot taken
 //! before it (3D); a rollback returns to it.
 
-use crate::law::{check_motion, ContactLaw, Forces, Motion};
+use crate::law::{normal_only, ContactLaw, Forces, Motion};
 use crate::{bad, Result};
 use bem3d::adhesion::{AdhesiveContact, AdhesiveSnapshot};
 use bem3d::{HalfSpaceOperator, Load};
 use mrd::adhesive_row::{AdhesiveRow, EdgeRadius};
 use std::f64::consts::PI;
-
-/// The normal motion of a trial (these laws are frictionless: a tangential motion is
-/// refused, not ignored).
-fn normal_only(motion: Motion, who: &str) -> Result<()> {
-    check_motion(motion)?;
-    if motion.tangential != 0.0 {
-        return bad(format!(
-            "tangential = {}: the {who} law is frictionless (normal motion only)",
-            motion.tangential
-        ));
-    }
-    Ok(())
-}
 
 /// MRD's adhesive springs for a body of revolution (module docs).
 #[derive(Debug, Clone)]

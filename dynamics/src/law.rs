@@ -76,6 +76,19 @@ pub(crate) fn check_motion(m: Motion) -> Result<()> {
     Ok(())
 }
 
+/// The normal motion of a trial of a frictionless law (`who` names it): a tangential
+/// motion is refused, not ignored.
+pub(crate) fn normal_only(motion: Motion, who: &str) -> Result<()> {
+    check_motion(motion)?;
+    if motion.tangential != 0.0 {
+        return bad(format!(
+            "tangential = {}: the {who} law is frictionless (normal motion only)",
+            motion.tangential
+        ));
+    }
+    Ok(())
+}
+
 /// Coulomb friction on tangential springs: `G* dx` per spring, friction coefficient mu.
 #[derive(Debug, Clone)]
 struct Friction {

@@ -13,26 +13,13 @@
 //! so the integrator's time step is the only discretisation in time. A trial steps a copy
 //! of the state (MRD) or a snapshot taken before it (3D); a rollback returns to it.
 
-use crate::law::{check_motion, ContactLaw, Forces, Motion};
+use crate::law::{normal_only, ContactLaw, Forces, Motion};
 use crate::{bad, Result};
 use bem3d::viscoelastic::{Relaxation, Snapshot, TransientContact};
 use bem3d::{HalfSpaceOperator, Load, SolverOptions};
 use mrd::rheology::Prony;
 use mrd::viscoelastic::{RowLoad, SpringRow};
 use std::f64::consts::PI;
-
-/// The normal motion of a trial: a tangential one is refused (these laws are
-/// frictionless), not ignored.
-fn normal_only(motion: Motion, who: &str) -> Result<()> {
-    check_motion(motion)?;
-    if motion.tangential != 0.0 {
-        return bad(format!(
-            "tangential = {}: the {who} law is frictionless (normal motion only)",
-            motion.tangential
-        ));
-    }
-    Ok(())
-}
 
 /// MRD's viscoelastic springs for a body of revolution (module docs).
 #[derive(Debug, Clone)]

@@ -794,7 +794,7 @@ impl RoughPlastic3d {
             ],
         );
         hist.notes.push(format!(
-            "means over the runs at each step of the history (first loading, unloading to {UNLOAD:?} and reloading to {RELOAD:?} of the peak); 3D on the finest grid; approaches from each run's first contact"
+            "means over the runs at each step of the history (first loading, unloading to {UNLOAD:?} and reloading to {RELOAD:?} of the peak); 3D on the finest grid; approaches from each run's first contact; 3D contact fraction: contact area over the face's disc; MRD contact fraction: the share of springs in contact (a length fraction of the line, not an area)"
         ));
         for c in [0, c] {
             let (bem, lines) = (d.three(c, finest), d.mrd(c, UNIT));
