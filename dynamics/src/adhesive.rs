@@ -22,6 +22,14 @@ use bem3d::{HalfSpaceOperator, Load};
 use mrd::adhesive_row::{AdhesiveRow, EdgeRadius};
 use std::f64::consts::PI;
 
+/// The refusal of `approach_at` by both adhesive laws: the approach that carries a force
+/// depends on which springs or cells are attached.
+fn history_dependent(force: f64) -> Result<f64> {
+    bad(format!(
+        "approach_at(force = {force}): an adhesive contact's approach depends on its history; step it instead"
+    ))
+}
+
 /// MRD's adhesive springs for a body of revolution (module docs).
 #[derive(Debug, Clone)]
 pub struct AdhesiveSprings {
@@ -97,9 +105,7 @@ impl ContactLaw for AdhesiveSprings {
     /// (it depends on which springs are attached), and a force may be carried at two
     /// approaches.
     fn approach_at(&mut self, force: f64) -> Result<f64> {
-        bad(format!(
-            "approach_at(force = {force}): an adhesive contact's approach depends on its history; step it instead"
-        ))
+        history_dependent(force)
     }
 
     fn describe(&self) -> String {
@@ -198,9 +204,7 @@ impl<O: HalfSpaceOperator> ContactLaw for AdhesiveBem3d<O> {
 
     /// Not defined (see [`AdhesiveSprings`]'s).
     fn approach_at(&mut self, force: f64) -> Result<f64> {
-        bad(format!(
-            "approach_at(force = {force}): an adhesive contact's approach depends on its history; step it instead"
-        ))
+        history_dependent(force)
     }
 
     fn describe(&self) -> String {

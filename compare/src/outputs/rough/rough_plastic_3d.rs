@@ -272,11 +272,18 @@ impl Output for RoughPlastic3d {
             .collect();
         let c1d = |q: f64| lambda * q * spectrum.c2d(q);
         let mrd = out.stage(Stage::PlasticMrd, || {
+            // Each line once: every case and lambda factor loads the same lines, scaled.
+            let lines = (0..self.lines)
+                .into_par_iter()
+                .map(|r| nested::line(&c1d, self.bandwidth, self.springs, 1.0, self.seed, r))
+                .collect::<mrd::Result<Vec<Vec<f64>>>>()
+                .ctx("MRD line")?;
             runs.par_iter()
                 .map(|&(c, k, r)| {
-                    let z = nested::line(&c1d, self.bandwidth, self.springs, 1.0, self.seed, r)
-                        .ctx("MRD line")?;
-                    let z: Vec<f64> = z.iter().map(|v| v * REFIT[k].sqrt()).collect();
+                    let z: Vec<f64> = lines[r as usize]
+                        .iter()
+                        .map(|v| v * REFIT[k].sqrt())
+                        .collect();
                     self.run_mrd(&z, hardness(cases[c]), h, &forces)
                 })
                 .collect::<Result<Vec<Reading>>>()
