@@ -4,7 +4,9 @@
 
 Usage (from the repository root, with the mrdw Python module built):
     pip install tamaas==2.9.0
-    OMP_NUM_THREADS=1 python3 bench/tamaas_plastic.py --csv plastic.csv    # about a minute
+    OMP_NUM_THREADS=1 RAYON_NUM_THREADS=1 python3 bench/tamaas_plastic.py --csv plastic.csv
+
+(about a minute; one thread each: the timings are comparable.)
 
 Both codes solve one problem: a rigid surface pressed by a mean pressure onto an elastic
 half-space (E* = 1, periodic cell L = 1) whose contact pressure may not exceed the

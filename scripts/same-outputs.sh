@@ -59,14 +59,17 @@ worst = 0.0
 for c, name in enumerate(a[0]):
     if any(w in name.lower() + " " for w in stat):
         continue
+    # Cells equal as text (empty ones too) pass; the others must both be numbers.
+    pairs = [(r[c], s[c]) for r, s in zip(a[1:], b[1:]) if r[c] != s[c]]
     try:
-        x = [float(r[c]) for r in a[1:]]; y = [float(r[c]) for r in b[1:]]
-    except (ValueError, IndexError):
-        if [r[c] for r in a[1:]] != [r[c] for r in b[1:]]:
-            print(f"text column {name} differs"); sys.exit(1)
+        pairs = [(float(u), float(v)) for u, v in pairs]
+    except ValueError:
+        print(f"text column {name} differs"); sys.exit(1)
+    if not pairs:
         continue
-    scale = max([abs(v) for v in x + y] + [1e-300])
-    worst = max([worst] + [abs(u - v) / scale for u, v in zip(x, y)])
+    numbers = [abs(float(r[c])) for r in a[1:] + b[1:] if r[c] not in ("", "nan")]
+    scale = max(numbers + [1e-300])
+    worst = max([worst] + [abs(u - v) / scale for u, v in pairs])
 print(f"{worst:.1e}")
 sys.exit(0 if worst <= rtol else 1)
 ' "$1" "$2" "${RTOL}"

@@ -53,7 +53,7 @@
 //! [`CohesiveContact::resolved`] asks for 10 cells, and a caller warns below.
 
 use crate::error::{BemError, Result};
-use crate::kit::box_cg::{self, Bound, BoxProblem, Scratch};
+use crate::kit::box_cg::{self, Bound, BoxProblem, Hold, Scratch};
 use crate::kit::surface::{rigid_surface, RigidSurface};
 use crate::operator::Preconditioner;
 use crate::solver::{Interrupt, Load};
@@ -359,7 +359,7 @@ impl<C: Preconditioner> CohesiveContact<C> {
             lo: Bound::Cells(&self.bound),
             hi: Bound::Uniform(f64::INFINITY),
             z: &self.z,
-            d,
+            hold: Hold::Approach(d),
             scale: self.criterion_scale(d, tolerance),
             tolerance,
             max_iterations: MAX_ITERATIONS,

@@ -20,13 +20,12 @@
 //! `p = 0, g >= 0`, an elastic contact cell `0 < p < H, g = 0`, a plastic one `p = H,
 //! g <= 0`. Then each plastic cell's penetration becomes plastic displacement,
 //! `u_p += max(0, -g)`, which leaves its gap at 0 and every pressure unchanged, so the
-//! state is the model's solution on the new surface. Under a prescribed force, the
-//! approach is the root of the non-decreasing `F(d) = A sum p(d)` (A the cell area),
-//! found by bracketing and the Illinois form of regula falsi on warm-started solves
-//! until `|F - F_target| <= tolerance F_target` (each solve is stopped within a tenth
-//! of that: its force error stays well below it). The plastic displacement grows only
-//! once the step's approach is found: the trial solves of the search leave the
-//! surface as it was.
+//! state is the model's solution on the new surface. Under a prescribed force, the same
+//! solve holds `A sum p = F` (A the cell area) instead of the approach: the approach is
+//! the constraint's multiplier (`kit::box_cg`'s `Hold::Sum`), one warm-started solve per
+//! step, the force met to rounding and the gaps to the tolerance. (A search of the
+//! approach by regula falsi over solves at fixed approach took about ten solves per
+//! step: bench/HISTORY.md.)
 //!
 //! **Limits.** Without a cell at `H` the step is the elastic contact (the normal
 //! solver's, to its tolerance: the two iterations differ, the optimum does not); at a
@@ -34,7 +33,7 @@
 //! area, the largest a step can carry: a larger force is refused.
 
 use crate::error::{BemError, Result};
-use crate::kit::box_cg::{self, Bound, BoxProblem, Scratch};
+use crate::kit::box_cg::{self, Bound, BoxProblem, Hold, Scratch};
 use crate::kit::surface::{rigid_surface, RigidSurface};
 use crate::operator::Preconditioner;
 use crate::solver::{check_load_magnitude, Interrupt, Load};
@@ -46,24 +45,6 @@ pub const AT_CAP: f64 = 1.0 - 1e-6;
 pub const STEP_TOLERANCE: f64 = 1e-8;
 /// Conjugate-gradient iterations of one solve.
 const MAX_ITERATIONS: usize = 20_000;
-/// Solves of the force search of one step.
-const MAX_SEARCH: usize = 200;
-
-/// What a force search spent.
-#[derive(Debug, Default)]
-struct Count {
-    iterations: usize,
-    solves: usize,
-    residual: f64,
-}
-
-impl Count {
-    /// (iterations, solves, the last solve's criterion).
-    fn of(&self) -> (usize, usize, f64) {
-        (self.iterations, self.solves, self.residual)
-    }
-}
-
 /// The state reached by one load step.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PlasticStep {
@@ -81,10 +62,9 @@ pub struct PlasticStep {
     pub plastic_depth: f64,
     /// Cells whose plastic displacement grew in this step.
     pub flowed: usize,
-    /// Conjugate-gradient iterations summed over the step's solves, and the solves.
+    /// Conjugate-gradient iterations of the step's solve.
     pub iterations: usize,
-    pub solves: usize,
-    /// The last solve's criterion (`kit::box_cg`).
+    /// The solve's criterion at its stop (`kit::box_cg`).
     pub residual: f64,
 }
 
@@ -203,129 +183,69 @@ impl<C: Preconditioner> PlasticContact<C> {
             }
         }
         crate::pool::on_pool(|| {
-            let (iterations, solves, residual) = match (load, force) {
-                (Load::Approach(d), _) => {
-                    let r = self.solve_at(d, tolerance)?;
-                    (r.iterations, 1, r.residual)
-                }
-                (_, Some(f)) => self.search(f, tolerance)?,
+            let r = match (load, force) {
+                (Load::Approach(d), _) => self.solve_holding(Hold::Approach(d), tolerance)?,
+                (_, Some(f)) => self.solve_force(f, tolerance)?,
                 _ => unreachable!("a force or an approach"),
             };
             let flowed = self.flow(tolerance * self.scale.max(self.approach.abs()));
-            Ok(self.report(flowed, iterations, solves, residual))
+            Ok(self.report(flowed, r.iterations, r.residual))
         })
     }
 
-    /// One solve at approach `d` from the last pressures.
-    fn solve_at(&mut self, d: f64, tolerance: f64) -> Result<box_cg::Reached> {
-        self.approach = d;
+    /// One solve holding `hold` from the last pressures; the approach is the one held or
+    /// the multiplier of the force.
+    fn solve_holding(&mut self, hold: Hold, tolerance: f64) -> Result<box_cg::Reached> {
+        let d = match hold {
+            Hold::Approach(d) => d,
+            Hold::Sum { start, .. } => start,
+        };
         let problem = BoxProblem {
             set: &self.domain,
             lo: Bound::Uniform(0.0),
             hi: Bound::Uniform(self.hardness),
             z: &self.surface,
-            d,
+            hold,
             scale: self.scale.max(d.abs()),
             tolerance,
             max_iterations: MAX_ITERATIONS,
             what: "elastic-plastic contact",
             interrupt: self.interrupt.as_ref(),
         };
-        box_cg::solve(
+        let reached = box_cg::solve(
             &mut self.op,
             &problem,
             &mut self.p,
             &mut self.u,
             &mut self.scratch,
-        )
+        )?;
+        self.approach = reached.approach;
+        Ok(reached)
     }
 
     fn force(&self) -> f64 {
         self.p.iter().sum::<f64>() * self.op.cell_area()
     }
 
-    /// The approach that carries `target` (module docs): a bracket grown from the last
-    /// approach, then regula falsi (Illinois). Returns the iterations, solves and last
-    /// criterion.
-    fn search(&mut self, target: f64, tolerance: f64) -> Result<(usize, usize, f64)> {
-        let mut count = Count::default();
+    /// The step under a prescribed force (module docs): one solve holding the sum of the
+    /// pressures, the approach its multiplier.
+    fn solve_force(&mut self, target: f64, tolerance: f64) -> Result<box_cg::Reached> {
         if target == 0.0 {
             // Apart: the body just touching the surface as it stands.
             self.p.iter_mut().for_each(|p| *p = 0.0);
             self.u.iter_mut().for_each(|u| *u = 0.0);
             self.approach = self.lowest_surface();
-            return Ok((0, 0, 0.0));
+            return Ok(box_cg::Reached {
+                iterations: 0,
+                residual: 0.0,
+                approach: self.approach,
+            });
         }
-        let done = |miss: f64| miss.abs() <= tolerance * target;
-        // A bracket [a, b] with F(a) < target <= F(b), grown from the last approach by
-        // steps that double.
-        let mut a = self.approach;
-        let mut fa = self.miss(a, target, tolerance, &mut count)?;
-        if done(fa) {
-            return Ok(count.of());
-        }
-        let mut width = 0.1 * self.scale.max(a.abs());
-        let (mut b, mut fb);
-        loop {
-            b = if fa < 0.0 { a + width } else { a - width };
-            fb = self.miss(b, target, tolerance, &mut count)?;
-            if done(fb) {
-                return Ok(count.of());
-            }
-            if (fa < 0.0) != (fb < 0.0) {
-                break;
-            }
-            (a, fa) = (b, fb);
-            width *= 2.0;
-            if count.solves > MAX_SEARCH {
-                return Err(self.lost(count.iterations, target));
-            }
-        }
-        if fa > 0.0 {
-            std::mem::swap(&mut a, &mut b);
-            std::mem::swap(&mut fa, &mut fb);
-        }
-        // Illinois: halve the weight of an end that stays twice.
-        let mut side = 0i8;
-        while count.solves <= MAX_SEARCH {
-            let d = b - fb * (b - a) / (fb - fa);
-            let f = self.miss(d, target, tolerance, &mut count)?;
-            if done(f) || (b - a).abs() <= f64::EPSILON * d.abs().max(self.scale) {
-                return Ok(count.of());
-            }
-            if f < 0.0 {
-                (a, fa) = (d, f);
-                if side == -1 {
-                    fb *= 0.5;
-                }
-                side = -1;
-            } else {
-                (b, fb) = (d, f);
-                if side == 1 {
-                    fa *= 0.5;
-                }
-                side = 1;
-            }
-        }
-        Err(self.lost(count.iterations, target))
-    }
-
-    /// `F(d) - target` from a solve at `d` within a tenth of the force tolerance.
-    fn miss(&mut self, d: f64, target: f64, tolerance: f64, count: &mut Count) -> Result<f64> {
-        let r = self.solve_at(d, 0.1 * tolerance)?;
-        count.iterations += r.iterations;
-        count.solves += 1;
-        count.residual = r.residual;
-        Ok(self.force() - target)
-    }
-
-    fn lost(&self, iterations: usize, target: f64) -> BemError {
-        BemError::Breakdown {
-            what: "elastic-plastic contact",
-            iterations,
-            residual: (self.force() - target).abs() / target,
-            reason: "the approach carrying the force was not found within the search's solves",
-        }
+        let hold = Hold::Sum {
+            sum: target / self.op.cell_area(),
+            start: self.approach,
+        };
+        self.solve_holding(hold, tolerance)
     }
 
     /// The lowest point of the surface as it stands (`z + u_p` over the domain): the
@@ -360,7 +280,6 @@ impl<C: Preconditioner> PlasticContact<C> {
         &self,
         flowed: usize,
         iterations: usize,
-        solves: usize,
         residual: f64,
     ) -> PlasticStep {
         let cell = self.op.cell_area();
@@ -380,7 +299,6 @@ impl<C: Preconditioner> PlasticContact<C> {
             plastic_depth: self.plastic.iter().cloned().fold(0.0, f64::max),
             flowed,
             iterations,
-            solves,
             residual,
         }
     }

@@ -27,10 +27,8 @@ step_class! {
         plastic_depth: f64,
         /// Cells whose plastic displacement grew in this step.
         flowed: usize,
-        /// Conjugate-gradient iterations and solves of the step (a force takes several
-        /// solves: the approach is searched).
+        /// Conjugate-gradient iterations of the step's solve.
         iterations: usize,
-        solves: usize,
         /// The last solve's criterion (bem3d/src/kit/box_cg.rs).
         residual: f64,
     }
@@ -86,7 +84,7 @@ impl Solver {
 /// `hardness` [stress] > 0 (inf: the elastic contact). heights, size, e_star and mask as
 /// for Contact. Each step() loads from the last state: an unloading leaves the plastic
 /// displacement (the imprint, `plastic_displacement`), a reloading is elastic up to the
-/// largest earlier load. Under a force the approach is searched (several solves).
+/// largest earlier load. Under a force the approach is the force's multiplier (one solve).
 #[pyclass(module = "mrdw._mrdw")]
 pub struct PlasticContact {
     contact: Solver,

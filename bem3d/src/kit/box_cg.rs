@@ -25,6 +25,15 @@
 //! a flat periodic face under a uniform tension) is followed to the first bound it
 //! meets, and is an error where it meets none (the energy falls without bound).
 //!
+//! **Holding the force.** Where the sum of the pressures over the set is held instead of
+//! the approach (a prescribed force), the approach is the multiplier of that constraint:
+//! at the solution every cell strictly inside its box has the same `u + z`, which is
+//! `d`. Each iteration reads `d` as the mean of `u + z` over those cells, the residual
+//! with it, and takes the direction less its mean over the free cells, so that a step
+//! keeps the sum; where a bound cut the step, the cells the step moved are shifted by one
+//! amount, each clamped into its box, until the sum is met again (the force's analogue
+//! of Polonsky & Keer's rescaling, which a box's upper bound does not allow).
+//!
 //! **Criterion** (stated exactly): the largest violation of the conditions above over the
 //! set, `|g|` on a free cell, `max(-g, 0)` at the lower bound, `max(g, 0)` at the upper,
 //! over the caller's length scale, at most `tolerance`, evaluated on `u = K p` itself.
@@ -62,8 +71,19 @@ impl Bound<'_> {
     }
 }
 
-/// The problem of one solve: the set, its boxes, the surface and approach, and how to
-/// stop.
+/// What a solve holds fixed: the approach, or the sum of the pressures over the set (a
+/// force over the cell area), whose multiplier is then the approach.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Hold {
+    /// The approach `d` [length].
+    Approach(f64),
+    /// `sum p` over the set [stress]; `start` is the approach to read the gaps at while
+    /// no cell lies inside its box [length].
+    Sum { sum: f64, start: f64 },
+}
+
+/// The problem of one solve: the set, its boxes, the surface and what is held, and how
+/// to stop.
 pub(crate) struct BoxProblem<'a> {
     /// The cells that take part (the others keep `p = 0`).
     pub set: &'a [bool],
@@ -71,8 +91,7 @@ pub(crate) struct BoxProblem<'a> {
     pub hi: Bound<'a>,
     /// `max(h) - h` [length].
     pub z: &'a [f64],
-    /// The approach [length].
-    pub d: f64,
+    pub hold: Hold,
     /// The criterion's length scale [length].
     pub scale: f64,
     pub tolerance: f64,
@@ -88,6 +107,8 @@ pub(crate) struct Reached {
     pub iterations: usize,
     /// The criterion at the stop (at most the tolerance).
     pub residual: f64,
+    /// The approach: the one held, or the multiplier of the held sum [length].
+    pub approach: f64,
 }
 
 /// The conjugate gradient's vectors, asked for once per family and reused.
@@ -114,8 +135,9 @@ impl Scratch {
 }
 
 /// Solves the problem from the pressures `p` (inside their boxes on the set, 0 off it);
-/// `u` is set to `K p` and kept so. Returns the iterations and the criterion reached, or
-/// [`BemError::Breakdown`] with what it reached.
+/// `u` is set to `K p` and kept so. Under [`Hold::Sum`] the pressures are first brought
+/// to the sum (module docs). Returns the iterations, the criterion and the approach
+/// reached, or [`BemError::Breakdown`] with what it reached.
 pub(crate) fn solve<O: Preconditioner>(
     op: &mut O,
     pb: &BoxProblem,
@@ -126,18 +148,29 @@ pub(crate) fn solve<O: Preconditioner>(
     let n = pb.z.len();
     w.fit(n);
     let mut rho_old = 0.0;
+    let mut d = match pb.hold {
+        Hold::Approach(d) => d,
+        Hold::Sum { sum, start } => {
+            meet_sum(pb, p, sum, None)?;
+            start
+        }
+    };
     op.apply(p, u);
     // Iterations since `u` was last computed as `K p` (0: it is `K p` itself).
     let mut followed = 0;
     let mut residual = f64::NAN;
     for it in 0..pb.max_iterations {
-        let (worst, same) = free_set(pb, p, u, &w.free_old, &mut w.free, &mut w.y);
+        if let Hold::Sum { .. } = pb.hold {
+            d = multiplier(pb, p, u).unwrap_or(d);
+        }
+        let (worst, same) = free_set(pb, d, p, u, &w.free_old, &mut w.free, &mut w.y);
         residual = worst / pb.scale;
         if residual <= pb.tolerance {
             if followed == 0 {
                 return Ok(Reached {
                     iterations: it,
                     residual,
+                    approach: d,
                 });
             }
             // Stop only on `u = K p` itself, not on its running update.
@@ -152,7 +185,10 @@ pub(crate) fn solve<O: Preconditioner>(
             });
         }
         op.precondition(&mut w.y);
-        let rho = restrict(pb, u, &w.free, &mut w.y);
+        let mut rho = restrict(pb, d, u, &w.free, &mut w.y);
+        if let Hold::Sum { .. } = pb.hold {
+            rho = centre(pb, d, u, &w.free, &mut w.y);
+        }
         let beta = if same && rho_old > 0.0 {
             rho / rho_old
         } else {
@@ -178,7 +214,15 @@ pub(crate) fn solve<O: Preconditioner>(
                 }
             }
         };
-        let cut = project(pb, &w.free_old, &w.t, tau, p);
+        let mut cut = project(pb, &w.free_old, &w.t, tau, p);
+        // A step along a direction of zero sum keeps the sum but where a bound cut it,
+        // and to rounding: the sum is met again then and with every fresh `K p`.
+        if let Hold::Sum { sum, .. } = pb.hold {
+            if cut || followed + 1 >= REFRESH {
+                meet_sum(pb, p, sum, Some(&w.free_old))?;
+                cut = true;
+            }
+        }
         // A step no bound cut moves K p by -tau K t: no transform (afresh every
         // `REFRESH` iterations against rounding).
         if cut || followed + 1 >= REFRESH {
@@ -197,10 +241,209 @@ pub(crate) fn solve<O: Preconditioner>(
     })
 }
 
+/// The approach as the multiplier of the held sum: the mean of `u + z` over the cells of
+/// the set strictly inside their boxes (their gaps vanish at the solution); without
+/// such a cell, the largest `u + z` of the cells at the upper bound (so that none of
+/// them is pushed further). `None` where neither exists.
+fn multiplier(pb: &BoxProblem, p: &[f64], u: &[f64]) -> Option<f64> {
+    let parts: Vec<(f64, usize, f64)> = p
+        .par_chunks(CHUNK)
+        .enumerate()
+        .map(|(k, p)| {
+            let first = k * CHUNK;
+            let (mut sum, mut count, mut top) = (0.0, 0, f64::NEG_INFINITY);
+            for (j, &pj) in p.iter().enumerate() {
+                let i = first + j;
+                if !pb.set[i] {
+                    continue;
+                }
+                let level = u[i] + pb.z[i];
+                if pj > pb.lo.at(i) && pj < pb.hi.at(i) {
+                    sum += level;
+                    count += 1;
+                } else if pj >= pb.hi.at(i) {
+                    top = max(top, level);
+                }
+            }
+            (sum, count, top)
+        })
+        .collect();
+    let (sum, count, top) = parts.into_iter().fold(
+        (0.0, 0, f64::NEG_INFINITY),
+        |(s, c, t), (ps, pc, pt)| (s + ps, c + pc, max(t, pt)),
+    );
+    if count > 0 {
+        Some(sum / count as f64)
+    } else {
+        top.is_finite().then_some(top)
+    }
+}
+
+/// `y` less its mean over the free cells (a direction that keeps the sum); returns
+/// `sum g y` after.
+fn centre(pb: &BoxProblem, d: f64, u: &[f64], free: &[bool], y: &mut [f64]) -> f64 {
+    let parts: Vec<(f64, usize)> = y
+        .par_chunks(CHUNK)
+        .zip(free.par_chunks(CHUNK))
+        .map(|(y, f)| {
+            y.iter()
+                .zip(f)
+                .filter(|(_, f)| **f)
+                .fold((0.0, 0), |(s, c), (y, _)| (s + y, c + 1))
+        })
+        .collect();
+    let (sum, count) = parts
+        .into_iter()
+        .fold((0.0, 0), |(s, c), (ps, pc)| (s + ps, c + pc));
+    if count == 0 {
+        return 0.0;
+    }
+    let mean = sum / count as f64;
+    let parts: Vec<f64> = y
+        .par_chunks_mut(CHUNK)
+        .enumerate()
+        .map(|(k, y)| {
+            let first = k * CHUNK;
+            let mut s = 0.0;
+            for (j, y) in y.iter_mut().enumerate() {
+                let i = first + j;
+                if free[i] {
+                    *y -= mean;
+                    s += (u[i] + pb.z[i] - d) * *y;
+                }
+            }
+            s
+        })
+        .collect();
+    parts.into_iter().sum()
+}
+
+/// Which cells a shift moves.
+type Eligible<'a> = &'a (dyn Fn(usize) -> bool + Sync);
+
+/// The set's pressures brought to `sum` by one shift `mu` of the cells that `moved`
+/// (the free cells of the step just taken: the shift completes the step's projection
+/// onto the boxes and the sum) or, without a step, of the cells strictly inside their
+/// boxes, each clamped into its box: the sum is continuous and non-decreasing in `mu`,
+/// and its root is found by Newton's steps on its slope (the number of cells the shift
+/// leaves inside) kept in a bracket, bisection where a step leaves it. Where those cells
+/// cannot carry the sum (all would meet a bound first), every cell of the set is
+/// shifted. The bracket is the widest box of the set (every box finite: the family that
+/// holds a sum, the plastic one, has `[0, H]`) or else the sum's and the pressures' size.
+fn meet_sum(pb: &BoxProblem, p: &mut [f64], sum: f64, moved: Option<&[bool]>) -> Result<()> {
+    let computed: Vec<bool>;
+    let inside: &[bool] = match moved {
+        Some(m) => m,
+        None => {
+            computed = (0..p.len())
+                .map(|i| pb.set[i] && p[i] > pb.lo.at(i) && p[i] < pb.hi.at(i))
+                .collect();
+            &computed
+        }
+    };
+    let by_inside = |i: usize| inside[i];
+    let by_set = |_: usize| true;
+    let widest = match (pb.lo, pb.hi) {
+        (Bound::Uniform(lo), Bound::Uniform(hi)) => hi - lo,
+        _ => (0..p.len())
+            .filter(|&i| pb.set[i])
+            .map(|i| pb.hi.at(i) - pb.lo.at(i))
+            .fold(0.0, f64::max),
+    };
+    let span = if widest.is_finite() {
+        widest
+    } else {
+        sum.abs() + p.iter().map(|v| v.abs()).sum::<f64>()
+    };
+    let carries = |eligible: Eligible| {
+        shifted_sum(pb, p, eligible, -span).0 <= sum && sum <= shifted_sum(pb, p, eligible, span).0
+    };
+    let eligible: Eligible = if carries(&by_inside) {
+        &by_inside
+    } else {
+        &by_set
+    };
+    // Far above the rounding of a sum of cells (about 1e-16 of it per square root of
+    // their number), far below the held force's use.
+    let tol = 1e-13 * sum.abs().max(f64::MIN_POSITIVE);
+    let (mut a, mut b) = (-span, span);
+    let mut mu = 0.0;
+    for _ in 0..200 {
+        let (s, slope) = shifted_sum(pb, p, eligible, mu);
+        let miss = s - sum;
+        if miss.abs() <= tol || b - a <= f64::EPSILON * span {
+            break;
+        }
+        if miss < 0.0 {
+            a = mu;
+        } else {
+            b = mu;
+        }
+        let newton = mu - miss / slope as f64;
+        mu = if slope > 0 && newton > a && newton < b {
+            newton
+        } else {
+            0.5 * (a + b)
+        };
+    }
+    p.par_chunks_mut(CHUNK).enumerate().for_each(|(k, p)| {
+        let first = k * CHUNK;
+        for (j, pj) in p.iter_mut().enumerate() {
+            let i = first + j;
+            if pb.set[i] && eligible(i) {
+                *pj = (*pj + mu).max(pb.lo.at(i)).min(pb.hi.at(i));
+            }
+        }
+    });
+    let (s, _) = shifted_sum(pb, p, &|_| false, 0.0);
+    let miss = (s - sum).abs() / sum.abs().max(f64::MIN_POSITIVE);
+    if miss > 1e-12 {
+        return Err(BemError::Breakdown {
+            what: pb.what,
+            iterations: 0,
+            residual: miss,
+            reason: "the pressures could not be brought to the held force inside their boxes",
+        });
+    }
+    Ok(())
+}
+
+/// The set's sum of pressures with the eligible cells shifted by `mu` and clamped into
+/// their boxes, and how many of them the shift leaves strictly inside.
+fn shifted_sum(pb: &BoxProblem, p: &[f64], eligible: Eligible, mu: f64) -> (f64, usize) {
+    let parts: Vec<(f64, usize)> = p
+        .par_chunks(CHUNK)
+        .enumerate()
+        .map(|(k, p)| {
+            let first = k * CHUNK;
+            let (mut s, mut slope) = (0.0, 0);
+            for (j, &pj) in p.iter().enumerate() {
+                let i = first + j;
+                if !pb.set[i] {
+                    continue;
+                }
+                if eligible(i) {
+                    let (lo, hi) = (pb.lo.at(i), pb.hi.at(i));
+                    let v = pj + mu;
+                    slope += usize::from(v > lo && v < hi);
+                    s += v.max(lo).min(hi);
+                } else {
+                    s += pj;
+                }
+            }
+            (s, slope)
+        })
+        .collect();
+    parts
+        .into_iter()
+        .fold((0.0, 0), |(s, c), (ps, pc)| (s + ps, c + pc))
+}
+
 /// The free cells into `free`, `y = g` on them (0 elsewhere). Returns the criterion's
 /// largest term and whether `free` equals `old`.
 fn free_set(
     pb: &BoxProblem,
+    d: f64,
     p: &[f64],
     u: &[f64],
     old: &[bool],
@@ -216,7 +459,7 @@ fn free_set(
             let (mut worst, mut same) = (0.0f64, true);
             for (j, (f, y)) in free.iter_mut().zip(y.iter_mut()).enumerate() {
                 let i = first + j;
-                let g = u[i] + pb.z[i] - pb.d;
+                let g = u[i] + pb.z[i] - d;
                 let (lo, hi) = (pb.lo.at(i), pb.hi.at(i));
                 *f = pb.set[i] && (p[i] > lo || g < 0.0) && (p[i] < hi || g > 0.0);
                 if *f {
@@ -241,7 +484,7 @@ fn free_set(
 }
 
 /// `y` zeroed off the free cells; returns `sum g y`.
-fn restrict(pb: &BoxProblem, u: &[f64], free: &[bool], y: &mut [f64]) -> f64 {
+fn restrict(pb: &BoxProblem, d: f64, u: &[f64], free: &[bool], y: &mut [f64]) -> f64 {
     let parts: Vec<f64> = y
         .par_chunks_mut(CHUNK)
         .enumerate()
@@ -253,7 +496,7 @@ fn restrict(pb: &BoxProblem, u: &[f64], free: &[bool], y: &mut [f64]) -> f64 {
                 if !free[i] {
                     *y = 0.0;
                 }
-                s += (u[i] + pb.z[i] - pb.d) * *y;
+                s += (u[i] + pb.z[i] - d) * *y;
             }
             s
         })
