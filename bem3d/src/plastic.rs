@@ -23,9 +23,13 @@
 //! state is the model's solution on the new surface. Under a prescribed force, the same
 //! solve holds `A sum p = F` (A the cell area) instead of the approach: the approach is
 //! the constraint's multiplier (`kit::box_cg`'s `Hold::Sum`), one warm-started solve per
-//! step, the force met to rounding and the gaps to the tolerance. (A search of the
-//! approach by regula falsi over solves at fixed approach took about ten solves per
-//! step: bench/HISTORY.md.)
+//! step, the force met to rounding and the gaps to the tolerance. Where that solve
+//! stalls (`box_cg::STALLED`: near saturation on rough faces), the approach is searched
+//! from the state it reached: the root of the non-decreasing `F(d) = A sum p(d)`, by
+//! bracketing and the Illinois form of regula falsi on warm-started solves holding the
+//! approach, until `|F - F_target| <= tolerance F_target` (each solve to a tenth of
+//! that), about ten solves (bench/HISTORY.md). The plastic displacement grows only once
+//! the step's state is found: the trial solves leave the surface as it was.
 //!
 //! **Limits.** Without a cell at `H` the step is the elastic contact (the normal
 //! solver's, to its tolerance: the two iterations differ, the optimum does not); at a
@@ -45,6 +49,24 @@ pub const AT_CAP: f64 = 1.0 - 1e-6;
 pub const STEP_TOLERANCE: f64 = 1e-8;
 /// Conjugate-gradient iterations of one solve.
 const MAX_ITERATIONS: usize = 20_000;
+/// Solves of the force search of one step.
+const MAX_SEARCH: usize = 200;
+
+/// What a force search spent.
+#[derive(Debug, Default)]
+struct Count {
+    iterations: usize,
+    solves: usize,
+    residual: f64,
+}
+
+impl Count {
+    /// (iterations, solves, the last solve's criterion).
+    fn of(&self) -> (usize, usize, f64) {
+        (self.iterations, self.solves, self.residual)
+    }
+}
+
 /// The state reached by one load step.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PlasticStep {
@@ -62,9 +84,11 @@ pub struct PlasticStep {
     pub plastic_depth: f64,
     /// Cells whose plastic displacement grew in this step.
     pub flowed: usize,
-    /// Conjugate-gradient iterations of the step's solve.
+    /// Conjugate-gradient iterations summed over the step's solves, and the solves (one,
+    /// but where a solve holding the force stalled and the approach was searched).
     pub iterations: usize,
-    /// The solve's criterion at its stop (`kit::box_cg`).
+    pub solves: usize,
+    /// The last solve's criterion at its stop (`kit::box_cg`).
     pub residual: f64,
 }
 
@@ -183,13 +207,16 @@ impl<C: Preconditioner> PlasticContact<C> {
             }
         }
         crate::pool::on_pool(|| {
-            let r = match (load, force) {
-                (Load::Approach(d), _) => self.solve_holding(Hold::Approach(d), tolerance)?,
+            let (iterations, solves, residual) = match (load, force) {
+                (Load::Approach(d), _) => {
+                    let r = self.solve_holding(Hold::Approach(d), tolerance)?;
+                    (r.iterations, 1, r.residual)
+                }
                 (_, Some(f)) => self.solve_force(f, tolerance)?,
                 _ => unreachable!("a force or an approach"),
             };
             let flowed = self.flow(tolerance * self.scale.max(self.approach.abs()));
-            Ok(self.report(flowed, r.iterations, r.residual))
+            Ok(self.report(flowed, iterations, solves, residual))
         })
     }
 
@@ -228,24 +255,109 @@ impl<C: Preconditioner> PlasticContact<C> {
     }
 
     /// The step under a prescribed force (module docs): one solve holding the sum of the
-    /// pressures, the approach its multiplier.
-    fn solve_force(&mut self, target: f64, tolerance: f64) -> Result<box_cg::Reached> {
+    /// pressures, the approach its multiplier; where that solve stalls, a search of the
+    /// approach from the state it reached. Returns the iterations, solves and last
+    /// criterion.
+    fn solve_force(&mut self, target: f64, tolerance: f64) -> Result<(usize, usize, f64)> {
         if target == 0.0 {
             // Apart: the body just touching the surface as it stands.
             self.p.iter_mut().for_each(|p| *p = 0.0);
             self.u.iter_mut().for_each(|u| *u = 0.0);
             self.approach = self.lowest_surface();
-            return Ok(box_cg::Reached {
-                iterations: 0,
-                residual: 0.0,
-                approach: self.approach,
-            });
+            return Ok((0, 0, 0.0));
         }
         let hold = Hold::Sum {
             sum: target / self.op.cell_area(),
             start: self.approach,
         };
-        self.solve_holding(hold, tolerance)
+        match self.solve_holding(hold, tolerance) {
+            Ok(r) => Ok((r.iterations, 1, r.residual)),
+            Err(BemError::Breakdown {
+                reason, iterations, ..
+            }) if reason == box_cg::STALLED => {
+                let (more, solves, residual) = self.search(target, tolerance)?;
+                Ok((iterations + more, 1 + solves, residual))
+            }
+            Err(e) => Err(e),
+        }
+    }
+
+    /// The approach that carries `target` where the solve holding the force stalled
+    /// (module docs): a bracket grown from the last approach, then regula falsi
+    /// (Illinois) on solves holding the approach. Returns the iterations, solves and
+    /// last criterion.
+    fn search(&mut self, target: f64, tolerance: f64) -> Result<(usize, usize, f64)> {
+        let mut count = Count::default();
+        let done = |miss: f64| miss.abs() <= tolerance * target;
+        // A bracket [a, b] with F(a) < target <= F(b), grown from the last approach by
+        // steps that double.
+        let mut a = self.approach;
+        let mut fa = self.miss(a, target, tolerance, &mut count)?;
+        if done(fa) {
+            return Ok(count.of());
+        }
+        let mut width = 0.1 * self.scale.max(a.abs());
+        let (mut b, mut fb);
+        loop {
+            b = if fa < 0.0 { a + width } else { a - width };
+            fb = self.miss(b, target, tolerance, &mut count)?;
+            if done(fb) {
+                return Ok(count.of());
+            }
+            if (fa < 0.0) != (fb < 0.0) {
+                break;
+            }
+            (a, fa) = (b, fb);
+            width *= 2.0;
+            if count.solves > MAX_SEARCH {
+                return Err(self.lost(count.iterations, target));
+            }
+        }
+        if fa > 0.0 {
+            std::mem::swap(&mut a, &mut b);
+            std::mem::swap(&mut fa, &mut fb);
+        }
+        // Illinois: halve the weight of an end that stays twice.
+        let mut side = 0i8;
+        while count.solves <= MAX_SEARCH {
+            let d = b - fb * (b - a) / (fb - fa);
+            let f = self.miss(d, target, tolerance, &mut count)?;
+            if done(f) || (b - a).abs() <= f64::EPSILON * d.abs().max(self.scale) {
+                return Ok(count.of());
+            }
+            if f < 0.0 {
+                (a, fa) = (d, f);
+                if side == -1 {
+                    fb *= 0.5;
+                }
+                side = -1;
+            } else {
+                (b, fb) = (d, f);
+                if side == 1 {
+                    fa *= 0.5;
+                }
+                side = 1;
+            }
+        }
+        Err(self.lost(count.iterations, target))
+    }
+
+    /// `F(d) - target` from a solve at `d` within a tenth of the force tolerance.
+    fn miss(&mut self, d: f64, target: f64, tolerance: f64, count: &mut Count) -> Result<f64> {
+        let r = self.solve_holding(Hold::Approach(d), 0.1 * tolerance)?;
+        count.iterations += r.iterations;
+        count.solves += 1;
+        count.residual = r.residual;
+        Ok(self.force() - target)
+    }
+
+    fn lost(&self, iterations: usize, target: f64) -> BemError {
+        BemError::Breakdown {
+            what: "elastic-plastic contact",
+            iterations,
+            residual: (self.force() - target).abs() / target,
+            reason: "the approach carrying the force was not found within the search's solves",
+        }
     }
 
     /// The lowest point of the surface as it stands (`z + u_p` over the domain): the
@@ -280,6 +392,7 @@ impl<C: Preconditioner> PlasticContact<C> {
         &self,
         flowed: usize,
         iterations: usize,
+        solves: usize,
         residual: f64,
     ) -> PlasticStep {
         let cell = self.op.cell_area();
@@ -299,6 +412,7 @@ impl<C: Preconditioner> PlasticContact<C> {
             plastic_depth: self.plastic.iter().cloned().fold(0.0, f64::max),
             flowed,
             iterations,
+            solves,
             residual,
         }
     }
@@ -404,6 +518,36 @@ mod tests {
             assert!(c.pressure().iter().all(|&p| (0.0..=hardness).contains(&p)));
         }
         assert!(last < 0.08, "{last}");
+    }
+
+    /// The two ways of a step under a force reach one state: the solve holding the force
+    /// (one solve) and the search of the approach it falls back on where that solve
+    /// stalls (several solves holding the approach), from the same start, on a plastic
+    /// sphere: approaches within 1e-7 of each other, pressures within 1e-5 of H, forces
+    /// within the search's tolerance.
+    #[test]
+    fn holding_the_force_and_searching_the_approach_agree() {
+        let (n, l) = (48, 1.0);
+        let h = sphere(n, l);
+        let mut held = PlasticContact::new(free(n, l), &h, None, 0.05).unwrap();
+        let mut searched = PlasticContact::new(free(n, l), &h, None, 0.05).unwrap();
+        for f in [0.001, 0.003] {
+            let s = held.step(Load::Force(f), 1e-9).unwrap();
+            assert_eq!(s.solves, 1);
+            let (_, solves, _) = crate::pool::on_pool(|| searched.search(f, 1e-9)).unwrap();
+            assert!(solves > 1);
+            searched.flow(1e-9 * searched.scale.max(searched.approach.abs()));
+            assert!((held.approach - searched.approach).abs() < 1e-7, "{} {}", held.approach, searched.approach);
+            assert!((searched.force() / f - 1.0).abs() < 1e-9);
+            let worst = held
+                .pressure()
+                .iter()
+                .zip(searched.pressure())
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            assert!(worst < 1e-5 * 0.05, "{worst}");
+            assert!(s.plastic_cells > 0);
+        }
     }
 
     /// Unloading leaves an imprint; a reloading is elastic up to the largest earlier

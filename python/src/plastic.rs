@@ -27,8 +27,10 @@ step_class! {
         plastic_depth: f64,
         /// Cells whose plastic displacement grew in this step.
         flowed: usize,
-        /// Conjugate-gradient iterations of the step's solve.
+        /// Conjugate-gradient iterations and solves of the step (one solve; more where
+        /// the solve holding a force stalled and the approach was searched).
         iterations: usize,
+        solves: usize,
         /// The last solve's criterion (bem3d/src/kit/box_cg.rs).
         residual: f64,
     }
@@ -84,7 +86,8 @@ impl Solver {
 /// `hardness` [stress] > 0 (inf: the elastic contact). heights, size, e_star and mask as
 /// for Contact. Each step() loads from the last state: an unloading leaves the plastic
 /// displacement (the imprint, `plastic_displacement`), a reloading is elastic up to the
-/// largest earlier load. Under a force the approach is the force's multiplier (one solve).
+/// largest earlier load. Under a force the approach is the force's multiplier (one solve;
+/// a search of the approach where that solve stalls).
 #[pyclass(module = "mrdw._mrdw")]
 pub struct PlasticContact {
     contact: Solver,

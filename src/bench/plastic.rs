@@ -15,9 +15,10 @@ const PRESSURES: [f64; 4] = [0.001, 0.002, 0.004, 0.008];
 /// The periodic reference surface (self-affine H = 0.8, rms slope 0.1, as `bench bem`
 /// and the Tamaas comparison) on grids 128^2 .. `max_n`^2, E* = 1, hardness H = 0.1 E*
 /// (plasticity index E* h' / H = 1): the force ladder of [`PRESSURES`] loaded step by
-/// step by the plastic solve (each step one solve holding the force, warm-started), and
-/// the elastic solve at each force (warm-started from the last); seconds per step, their
-/// ratio, the iterations per step of each, and the saturated share of the contact at the
+/// step by the plastic solve (each step one solve holding the force, warm-started, or a
+/// search of the approach where it stalls), and the elastic solve at each force
+/// (warm-started from the last); seconds per step, their ratio, the solves per plastic
+/// step, the iterations per step of each, and the saturated share of the contact at the
 /// last force.
 pub fn run_plastic(w: &mut dyn Write, max_n: usize) -> std::io::Result<()> {
     let hardness = 0.1;
@@ -29,16 +30,17 @@ pub fn run_plastic(w: &mut dyn Write, max_n: usize) -> std::io::Result<()> {
     )?;
     writeln!(
         w,
-        "{:>6} | {:>13} | {:>13} | {:>7} | {:>14} | {:>14} | {:>15}",
+        "{:>6} | {:>13} | {:>13} | {:>7} | {:>7} | {:>14} | {:>14} | {:>15}",
         "grid",
         "plastic [s]",
         "elastic [s]",
         "ratio",
+        "solves",
         "plastic iter.",
         "elastic iter.",
         "saturated share"
     )?;
-    writeln!(w, "{}", "-".repeat(100))?;
+    writeln!(w, "{}", "-".repeat(110))?;
     for n in [128usize, 256, 512, 1024, 2048] {
         if n > max_n.max(128) {
             break;
@@ -56,9 +58,10 @@ fn row(w: &mut dyn Write, n: usize, hardness: f64) -> Result<(), Box<dyn std::er
     let op = PeriodicHalfSpace::try_new(n, n, 1.0, 1.0, 1.0)?;
     let mut plastic = PlasticContact::new(op, &heights, None, hardness)?;
     let t0 = Instant::now();
-    let (mut iterations, mut share) = (0usize, 0.0);
+    let (mut solves, mut iterations, mut share) = (0usize, 0usize, 0.0);
     for p in PRESSURES {
         let s = plastic.step(Load::MeanPressure(p), 1e-8)?;
+        solves += s.solves;
         iterations += s.iterations;
         share = s.plastic_cells as f64 / s.contact_cells.max(1) as f64;
     }
@@ -78,11 +81,12 @@ fn row(w: &mut dyn Write, n: usize, hardness: f64) -> Result<(), Box<dyn std::er
     let steps = PRESSURES.len() as f64;
     writeln!(
         w,
-        "{:>6} | {:>13.4e} | {:>13.4e} | {:>7.2} | {:>14.1} | {:>14.1} | {:>15.3}",
+        "{:>6} | {:>13.4e} | {:>13.4e} | {:>7.2} | {:>7.2} | {:>14.1} | {:>14.1} | {:>15.3}",
         format!("{n}^2"),
         t_plastic,
         t_elastic,
         t_plastic / t_elastic,
+        solves as f64 / steps,
         iterations as f64 / steps,
         elastic_iterations as f64 / steps,
         share

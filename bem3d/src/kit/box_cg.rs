@@ -28,9 +28,12 @@
 //! **Holding the force.** Where the sum of the pressures over the set is held instead of
 //! the approach (a prescribed force), the approach is the multiplier of that constraint:
 //! at the solution every cell strictly inside its box has the same `u + z`, which is
-//! `d`. Each iteration reads `d` as the mean of `u + z` over those cells, the residual
-//! with it, and takes the direction less its mean over the free cells, so that a step
-//! keeps the sum; where a bound cut the step, the cells the step moved are shifted by one
+//! `d`. Each iteration reads `d` as the mean of `u + z` over those cells (for the free
+//! set and the criterion); the residual is the gap less its mean over the free cells
+//! (the gradient within the sum's hyperplane, so that the preconditioned direction
+//! descends: without it, cells at a bound whose preconditioned step pointed out of their
+//! box stalled the iteration), and the direction is taken less its mean over the free
+//! cells, so that a step keeps the sum; where a bound cut the step, the cells the step moved are shifted by one
 //! amount, each clamped into its box, until the sum is met again (the force's analogue
 //! of Polonsky & Keer's rescaling, which a box's upper bound does not allow).
 //!
@@ -49,6 +52,15 @@ use rayon::prelude::*;
 
 /// Iterations between computations of `K p` afresh while its running update is used.
 pub(crate) const REFRESH: usize = 50;
+
+/// Iterations under a held sum without halving the criterion after which a solve stops as
+/// [`STALLED`]: near saturation, cells at a bound whose preconditioned step points out
+/// of their box can hold the iteration in a cycle (seen on rough faces at a plasticity
+/// index of 3); the caller then holds the approach instead.
+pub(crate) const STALL: usize = 400;
+
+/// The reason of a held sum's stalled solve.
+pub(crate) const STALLED: &str = "the iteration holding the force stalled";
 
 /// A direction counts as without curvature where `<t, K t>` lies below this fraction of
 /// `<r, M r>` (the two are of one size when M approximates K's inverse).
@@ -159,6 +171,8 @@ pub(crate) fn solve<O: Preconditioner>(
     // Iterations since `u` was last computed as `K p` (0: it is `K p` itself).
     let mut followed = 0;
     let mut residual = f64::NAN;
+    // Under a held sum: the best criterion so far and when it was reached.
+    let mut best = (f64::INFINITY, 0);
     for it in 0..pb.max_iterations {
         if let Hold::Sum { .. } = pb.hold {
             d = multiplier(pb, p, u).unwrap_or(d);
@@ -183,6 +197,24 @@ pub(crate) fn solve<O: Preconditioner>(
                 what: pb.what,
                 iterations: it,
             });
+        }
+        if let Hold::Sum { .. } = pb.hold {
+            if residual < 0.5 * best.0 {
+                best = (residual, it);
+            } else if it - best.1 > STALL {
+                return Err(BemError::Breakdown {
+                    what: pb.what,
+                    iterations: it,
+                    residual,
+                    reason: STALLED,
+                });
+            }
+        }
+        // Under a held sum the residual is the gap less its mean over the free cells (the
+        // gradient within the sum's hyperplane): then `sum g t = r.M r > 0` and the
+        // direction descends whatever the multiplier's value.
+        if let Hold::Sum { .. } = pb.hold {
+            centre(pb, d, u, &w.free, &mut w.y);
         }
         op.precondition(&mut w.y);
         let mut rho = restrict(pb, d, u, &w.free, &mut w.y);

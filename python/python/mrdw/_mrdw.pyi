@@ -466,6 +466,9 @@ class PlasticStep:
     @property
     def iterations(self) -> int: ...
     @property
+    def solves(self) -> int:
+        """Solves of the step: 1, more where the solve holding a force stalled."""
+    @property
     def residual(self) -> float: ...
     @property
     def pressure(self) -> F64:
