@@ -25,6 +25,7 @@ all=(
   rough-partial-slip-3d rough-slip-3d rough-slip-3d-punch
   calibrate-rolloff:curves.png,curves_4.png
   plastic-sphere plastic-cone rough-plastic-3d impact ring-down contact-resonance
+  forced-resonance
   viscoelastic-impact adhesive-impact
 )
 wanted=("$@")

@@ -537,7 +537,12 @@ mod tests {
             let (_, solves, _) = crate::pool::on_pool(|| searched.search(f, 1e-9)).unwrap();
             assert!(solves > 1);
             searched.flow(1e-9 * searched.scale.max(searched.approach.abs()));
-            assert!((held.approach - searched.approach).abs() < 1e-7, "{} {}", held.approach, searched.approach);
+            assert!(
+                (held.approach - searched.approach).abs() < 1e-7,
+                "{} {}",
+                held.approach,
+                searched.approach
+            );
             assert!((searched.force() / f - 1.0).abs() < 1e-9);
             let worst = held
                 .pressure()

@@ -87,6 +87,10 @@ pub const KINDS: &[Kind] = &[
         "contact_resonance",
         "free normal vibration on a rough contact with the contact at every step, MRD's rough lines and the 3D punch in the loop: frequency against k(F0), backbone and contact loss; the cost of a step against the grid (Section 12)",
     ),
+    Kind::of::<dynamics::forced::ForcedResonance>(
+        "forced_resonance",
+        "a rough contact driven through its resonance by a harmonic normal force, MRD's rough lines and the 3D punch in the loop: steady amplitude against frequency up and down, the linear oscillator at small forcing, softening and the jump at large forcing (Section 12)",
+    ),
     Kind::of::<dynamics::ring_down::RingDown>(
         "ring_down",
         "a mass ringing down on a sphere's frictional contact, MRD's Coulomb springs at every step, against Mindlin-Deresiewicz's loss per cycle (Sections 7 and 12)",

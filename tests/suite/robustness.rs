@@ -1213,3 +1213,28 @@ fn dynamics_bad_input_names_the_key() {
         ],
     );
 }
+
+/// `forced_resonance` refuses keys out of range by name before computing.
+#[test]
+fn forced_resonance_bad_input_names_the_key() {
+    refuses_each_edit(
+        "forced-resonance-ci",
+        &[
+            ("forcing = [0.005, 0.15]", "forcing = []", "forcing"),
+            ("forcing = [0.005, 0.15]", "forcing = [0.005, nan]", "forcing"),
+            ("forcing = [0.005, 0.15]", "forcing = [0.005, 2.0]", "forcing"),
+            ("steps = 60", "steps = 5", "steps"),
+            ("frequencies = 9", "frequencies = 1", "frequencies"),
+            ("lines = 4", "lines = 1", "lines"),
+            ("bandwidth = 2", "bandwidth = 1", "bandwidth"),
+            ("steps = 60", "steps = 60\ndamping = 0.0", "damping"),
+            ("steps = 60", "steps = 60\ndamping = 1.5", "damping"),
+            ("steps = 60", "steps = 60\nfrequency_band = [1.2, 0.6]", "frequency_band"),
+            ("steps = 60", "steps = 60\nfrequency_band = [0.0, 1.2]", "frequency_band"),
+            ("steps = 60", "steps = 60\nsettle_tolerance = 0.0", "settle_tolerance"),
+            ("steps = 60", "steps = 60\nmax_periods = 2", "max_periods"),
+            ("steps = 60", "steps = 60\npreload = -1.0", "preload"),
+            ("hurst = 0.8", "hurst = 1.5", "hurst"),
+        ],
+    );
+}

@@ -300,10 +300,11 @@ fn multiplier(pb: &BoxProblem, p: &[f64], u: &[f64]) -> Option<f64> {
             (sum, count, top)
         })
         .collect();
-    let (sum, count, top) = parts.into_iter().fold(
-        (0.0, 0, f64::NEG_INFINITY),
-        |(s, c, t), (ps, pc, pt)| (s + ps, c + pc, max(t, pt)),
-    );
+    let (sum, count, top) = parts
+        .into_iter()
+        .fold((0.0, 0, f64::NEG_INFINITY), |(s, c, t), (ps, pc, pt)| {
+            (s + ps, c + pc, max(t, pt))
+        });
     if count > 0 {
         Some(sum / count as f64)
     } else {

@@ -3,6 +3,7 @@
 //! against a closed form.
 
 pub mod adhesive_impact;
+pub mod forced;
 pub mod impact;
 pub mod resonance;
 pub mod ring_down;

@@ -24,16 +24,15 @@ use crate::checks::{bad, count_in, default_tolerance};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::lambda::LambdaSpec;
-use crate::experiment::rough_punch::punch_face;
+use crate::experiment::punch_loop::{
+    face_law, line_law, rms_on, static_stiffness, synthesise, CELLS,
+};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Style, Table};
-use bem3d::NonPeriodicHalfSpace;
 use dynamics::integrate::{Axis, Oscillator, Sample, Stop};
-use dynamics::{Bem3d, ContactLaw, Springs};
+use dynamics::ContactLaw;
 use mrd::rough_contact::Stat;
-use mrd::roughness::synthesis::{line, surface, Amplitudes, Grid};
-use mrd::roughness::SelfAffine;
 use serde::Deserialize;
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -115,11 +114,6 @@ fn default_cost_steps() -> usize {
     40
 }
 
-/// Cells per shortest wavelength of the faces.
-const CELLS: usize = 8;
-/// MRD points per 3D cell across.
-const POINTS: usize = 16;
-
 /// One method in the loop at one amplitude.
 #[derive(Debug, Clone, Copy)]
 struct Vibration {
@@ -185,7 +179,13 @@ impl Output for ContactResonance {
             LambdaSpec::at_hurst(std::slice::from_ref(&self.lambda), env.ctx, self.hurst)?[0];
         let (faces, lines) = out
             .stage(Stage::RoughSynthesis, || {
-                self.synthesise(self.bandwidth, lambda, self.realisations_3d, self.lines)
+                synthesise(
+                    self.hurst,
+                    self.bandwidth,
+                    lambda,
+                    (self.realisations_3d, self.lines),
+                    self.seed,
+                )
             })
             .ctx("rough surfaces")?;
         let g = CELLS * self.bandwidth;
@@ -197,10 +197,7 @@ impl Output for ContactResonance {
             .stage(Stage::Dynamics, || -> dynamics::Result<Vec<Backbone>> {
                 lines
                     .iter()
-                    .map(|z| {
-                        let mut law = Springs::rough_line(z, 1.0, 1.0, PI / 4.0)?;
-                        self.backbone(&mut law, f0, full)
-                    })
+                    .map(|z| self.backbone(&mut line_law(z)?, f0, full))
                     .collect()
             })
             .ctx("MRD in the loop")?;
@@ -209,9 +206,7 @@ impl Output for ContactResonance {
                 faces
                     .iter()
                     .map(|(h, mask, full)| {
-                        let op = NonPeriodicHalfSpace::try_new(g, g, 1.0, 1.0, 1.0)?;
-                        let mut law =
-                            Bem3d::new(op, h, Some(mask.clone()), self.tolerance, 20 * g + 2000)?;
+                        let mut law = face_law((h, mask), g, self.tolerance)?;
                         self.backbone(&mut law, f0, *full)
                     })
                     .collect()
@@ -233,58 +228,7 @@ struct Backbone {
     runs: Vec<Vibration>,
 }
 
-/// The rms height over the cells of `mask`.
-fn rms_on(h: &[f64], mask: &[bool]) -> f64 {
-    let v: Vec<f64> = h.iter().zip(mask).filter(|p| *p.1).map(|p| *p.0).collect();
-    let mean = v.iter().sum::<f64>() / v.len() as f64;
-    (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / v.len() as f64).sqrt()
-}
-
-type Face = (Vec<f64>, Vec<bool>, f64);
-
 impl ContactResonance {
-    /// `faces` punch faces at bandwidth `band` (heights, disc mask, full-contact
-    /// approach) and `lines` MRD lines of their spectrum with C1D = lambda q C2D.
-    fn synthesise(
-        &self,
-        band: usize,
-        lambda: f64,
-        faces: usize,
-        lines: usize,
-    ) -> mrd::Result<(Vec<Face>, Vec<Vec<f64>>)> {
-        let g = CELLS * band;
-        let q0 = 2.0 * PI;
-        let sa = SelfAffine::new(self.hurst, q0, q0, q0 * band as f64)?;
-        let faces = (0..faces as u64)
-            .map(|r| {
-                let id = ((band as u64) << 20) ^ r;
-                let h = surface(
-                    &sa,
-                    &Grid::square(g, 1.0),
-                    self.seed,
-                    id,
-                    Amplitudes::Deterministic,
-                )?;
-                let (mask, full) = punch_face(&h, g);
-                Ok((h, mask, full))
-            })
-            .collect::<mrd::Result<Vec<_>>>()?;
-        let spec = sa.to_line(lambda);
-        let lines = (0..lines as u64)
-            .map(|r| {
-                line(
-                    &spec,
-                    POINTS * g,
-                    1.0,
-                    self.seed,
-                    (1u64 << 40) ^ r,
-                    Amplitudes::Deterministic,
-                )
-            })
-            .collect::<mrd::Result<Vec<_>>>()?;
-        Ok((faces, lines))
-    }
-
     /// The static approach carrying `f0`, the stiffness there (a centred difference of
     /// two static solves 1e-4 of the approach apart), and the vibration at each amplitude.
     fn backbone(&self, law: &mut dyn ContactLaw, f0: f64, full: f64) -> dynamics::Result<Backbone> {
@@ -430,12 +374,11 @@ impl ContactResonance {
             .iter()
             .map(|&band| {
                 let g = CELLS * band;
-                let (mut faces, lines) = self.synthesise(band, lambda, 1, 1)?;
+                let (mut faces, lines) = synthesise(self.hurst, band, lambda, (1, 1), self.seed)?;
                 let (h, mask, full) = faces.remove(0);
                 let f0 = self.preload * rms_on(&h, &mask);
-                let op = NonPeriodicHalfSpace::try_new(g, g, 1.0, 1.0, 1.0)?;
-                let mut law3 = Bem3d::new(op, &h, Some(mask), self.tolerance, 20 * g + 2000)?;
-                let mut law1 = Springs::rough_line(&lines[0], 1.0, 1.0, PI / 4.0)?;
+                let mut law3 = face_law((&h, &mask), g, self.tolerance)?;
+                let mut law1 = line_law(&lines[0])?;
                 let time = |law: &mut dyn ContactLaw| -> dynamics::Result<(f64, f64)> {
                     let d0 = law.approach_at(f0)?;
                     let drive = move |_t: f64| f0;
@@ -474,24 +417,6 @@ impl ContactResonance {
             })
             .collect()
     }
-}
-
-/// The normal stiffness at the approach `d0` with the history held: a centred difference
-/// of two trials 1e-4 of the approach apart (both rolled back).
-fn static_stiffness(law: &mut dyn ContactLaw, d0: f64) -> dynamics::Result<f64> {
-    let h = 1e-4 * d0;
-    let mut force_at = |d: f64| -> dynamics::Result<f64> {
-        let f = law
-            .trial(dynamics::Motion {
-                normal: d,
-                tangential: 0.0,
-                dt: 1.0,
-            })?
-            .normal;
-        law.rollback();
-        Ok(f)
-    };
-    Ok((force_at(d0 + h)? - force_at(d0 - h)?) / (2.0 * h))
 }
 
 /// The mean time between upper turning points (velocity from + to -) gives omega; NaN
