@@ -31,11 +31,14 @@
 //! `d`. Each iteration reads `d` as the mean of `u + z` over those cells (for the free
 //! set and the criterion); the residual is the gap less its mean over the free cells
 //! (the gradient within the sum's hyperplane, so that the preconditioned direction
-//! descends: without it, cells at a bound whose preconditioned step pointed out of their
-//! box stalled the iteration), and the direction is taken less its mean over the free
-//! cells, so that a step keeps the sum; where a bound cut the step, the cells the step moved are shifted by one
-//! amount, each clamped into its box, until the sum is met again (the force's analogue
-//! of Polonsky & Keer's rescaling, which a box's upper bound does not allow).
+//! descends), and the direction is taken less its mean over the free cells, so that a
+//! step keeps the sum; where a bound cut the step, the cells the step moved are shifted
+//! by one amount, each clamped into its box, until the sum is met again (the force's
+//! analogue of Polonsky & Keer's rescaling, which a box's upper bound does not allow).
+//! Cells at a bound whose preconditioned step points out of their box can still hold
+//! this iteration in a cycle near saturation: a solve that does not halve its criterion
+//! in [`STALL`] iterations stops as [`STALLED`], and its caller holds the approach
+//! instead.
 //!
 //! **Criterion** (stated exactly): the largest violation of the conditions above over the
 //! set, `|g|` on a free cell, `max(-g, 0)` at the lower bound, `max(g, 0)` at the upper,
