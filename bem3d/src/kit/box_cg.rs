@@ -220,7 +220,7 @@ pub(crate) fn solve<O: Preconditioner>(
             centre(pb, d, u, &w.free, &mut w.y);
         }
         op.precondition(&mut w.y);
-        let mut rho = restrict(pb, d, u, &w.free, &mut w.y);
+        let mut rho = restrict(pb, d, u, &w.free, &mut w.y, 0.0);
         if let Hold::Sum { .. } = pb.hold {
             rho = centre(pb, d, u, &w.free, &mut w.y);
         }
@@ -334,24 +334,7 @@ fn centre(pb: &BoxProblem, d: f64, u: &[f64], free: &[bool], y: &mut [f64]) -> f
     if count == 0 {
         return 0.0;
     }
-    let mean = sum / count as f64;
-    let parts: Vec<f64> = y
-        .par_chunks_mut(CHUNK)
-        .enumerate()
-        .map(|(k, y)| {
-            let first = k * CHUNK;
-            let mut s = 0.0;
-            for (j, y) in y.iter_mut().enumerate() {
-                let i = first + j;
-                if free[i] {
-                    *y -= mean;
-                    s += (u[i] + pb.z[i] - d) * *y;
-                }
-            }
-            s
-        })
-        .collect();
-    parts.into_iter().sum()
+    restrict(pb, d, u, free, y, sum / count as f64)
 }
 
 /// Which cells a shift moves.
@@ -519,8 +502,8 @@ fn free_set(
         .fold((0.0, true), |(w, s), (pw, ps)| (max(w, pw), s && ps))
 }
 
-/// `y` zeroed off the free cells; returns `sum g y`.
-fn restrict(pb: &BoxProblem, d: f64, u: &[f64], free: &[bool], y: &mut [f64]) -> f64 {
+/// `y` less `shift` on the free cells and zeroed off them; returns `sum g y`.
+fn restrict(pb: &BoxProblem, d: f64, u: &[f64], free: &[bool], y: &mut [f64], shift: f64) -> f64 {
     let parts: Vec<f64> = y
         .par_chunks_mut(CHUNK)
         .enumerate()
@@ -529,7 +512,9 @@ fn restrict(pb: &BoxProblem, d: f64, u: &[f64], free: &[bool], y: &mut [f64]) ->
             let mut s = 0.0;
             for (j, y) in y.iter_mut().enumerate() {
                 let i = first + j;
-                if !free[i] {
+                if free[i] {
+                    *y -= shift;
+                } else {
                     *y = 0.0;
                 }
                 s += (u[i] + pb.z[i] - d) * *y;

@@ -66,6 +66,16 @@ pub fn synthesise(
     Ok((faces, lines))
 }
 
+/// The preload's range, as a reduced force F0 / (E* h L): (1e-4, 10).
+pub fn check_preload(preload: f64) -> crate::error::Result<()> {
+    if !(preload.is_finite() && preload > 1e-4 && preload < 10.0) {
+        return crate::checks::bad(format!(
+            "preload = {preload} must lie in (1e-4, 10) (F0 / (E* h L))"
+        ));
+    }
+    Ok(())
+}
+
 /// The rms height over the cells of `mask`.
 pub fn rms_on(h: &[f64], mask: &[bool]) -> f64 {
     let v: Vec<f64> = h.iter().zip(mask).filter(|p| *p.1).map(|p| *p.0).collect();

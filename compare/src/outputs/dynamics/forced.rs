@@ -33,7 +33,7 @@ use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::lambda::LambdaSpec;
 use crate::experiment::punch_loop::{
-    face_law, line_law, rms_on, static_stiffness, synthesise, CELLS,
+    check_preload, face_law, line_law, rms_on, static_stiffness, synthesise, CELLS,
 };
 use crate::output::{Env, Output};
 use crate::plan::Stage;
@@ -181,12 +181,7 @@ impl Output for ForcedResonance {
             ));
         }
         count_in("steps", self.steps as u64, 20..=100_000)?;
-        if !(self.preload.is_finite() && self.preload > 1e-4 && self.preload < 10.0) {
-            return bad(format!(
-                "preload = {} must lie in (1e-4, 10) (F0 / (E* h L))",
-                self.preload
-            ));
-        }
+        check_preload(self.preload)?;
         if self.forcing.is_empty()
             || self
                 .forcing

@@ -25,7 +25,7 @@ use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::lambda::LambdaSpec;
 use crate::experiment::punch_loop::{
-    face_law, line_law, rms_on, static_stiffness, synthesise, CELLS,
+    check_preload, face_law, line_law, rms_on, static_stiffness, synthesise, CELLS,
 };
 use crate::output::{Env, Output};
 use crate::plan::Stage;
@@ -133,12 +133,7 @@ impl Output for ContactResonance {
         count_in("periods", self.periods as u64, 2..=1000)?;
         count_in("steps", self.steps as u64, 50..=100_000)?;
         count_in("cost_steps", self.cost_steps as u64, 5..=10_000)?;
-        if !(self.preload.is_finite() && self.preload > 1e-4 && self.preload < 10.0) {
-            return bad(format!(
-                "preload = {} must lie in (1e-4, 10) (F0 / (E* h L))",
-                self.preload
-            ));
-        }
+        check_preload(self.preload)?;
         if self.amplitudes.is_empty()
             || self
                 .amplitudes
