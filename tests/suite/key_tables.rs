@@ -53,8 +53,8 @@ fn struct_body(name: &str) -> Option<(PathBuf, String)> {
 }
 
 /// The body of the function `name` (one expression), from `file`, from the module `file`
-/// imports it from (`use crate::a::b::{name, ..}`), or from the one file under compare/src
-/// that defines it.
+/// imports it from (`use crate::a::b::{name, ..}`, on one line or several), or from the
+/// one file under compare/src that defines it.
 fn function_body(name: &str, file: &Path) -> Option<String> {
     let head = format!("fn {name}(");
     let find = |text: &str| -> Option<String> {
@@ -71,11 +71,12 @@ fn function_body(name: &str, file: &Path) -> Option<String> {
         l.split(|c: char| !(c.is_alphanumeric() || c == '_'))
             .any(|w| w == name)
     };
-    if let Some(line) = text
-        .lines()
-        .find(|l| l.starts_with("use crate::") && word(l))
-    {
-        let path = line.trim_start_matches("use crate::");
+    // Each `use crate::...;` statement whole, over however many lines it spans.
+    let statements = text
+        .split("\nuse crate::")
+        .skip(1)
+        .filter_map(|rest| rest.split_once(';').map(|(s, _)| format!("{s};")));
+    if let Some(path) = statements.into_iter().find(|s| word(s)) {
         let module = path.split("::{").next().unwrap();
         let module = module.strip_suffix(&format!("::{name};")).unwrap_or(module);
         let base = compare_src().join(module.replace("::", "/"));

@@ -8,6 +8,7 @@
 //! inscribed in it; MRD lines of [`POINTS`] points per 3D cell with C1D = lambda q C2D
 //! (Eq. 76), each in its own loop.
 
+use super::lambda::LambdaSpec;
 use super::rough_punch::punch_face;
 use bem3d::NonPeriodicHalfSpace;
 use dynamics::{Bem3d, ContactLaw, Springs};
@@ -19,6 +20,21 @@ use std::f64::consts::PI;
 pub const CELLS: usize = 8;
 /// MRD points per 3D cell across.
 pub const POINTS: usize = 16;
+
+/// The preload's default, over the force of full contact (key `preload` of both kinds).
+pub fn default_preload() -> f64 {
+    0.3
+}
+
+/// MRD lines per run's default (key `lines` of both kinds).
+pub fn default_lines() -> usize {
+    16
+}
+
+/// lambda's default: the shipped calibrated table (key `lambda` of both kinds).
+pub fn calibrated() -> LambdaSpec {
+    LambdaSpec::Named("calibrated".into())
+}
 
 /// A punch face: heights, the disc's mask, the approach of full contact.
 pub type Face = (Vec<f64>, Vec<bool>, f64);

@@ -33,7 +33,8 @@ use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::lambda::LambdaSpec;
 use crate::experiment::punch_loop::{
-    check_preload, face_law, line_law, rms_on, static_stiffness, synthesise, CELLS,
+    calibrated, check_preload, default_lines, default_preload, face_law, line_law, rms_on,
+    static_stiffness, synthesise, CELLS,
 };
 use crate::output::{Env, Output};
 use crate::plan::Stage;
@@ -104,9 +105,6 @@ pub struct ForcedResonance {
 fn default_bandwidth() -> usize {
     4
 }
-fn default_preload() -> f64 {
-    0.3
-}
 fn default_forcing() -> Vec<f64> {
     vec![0.005, 0.05, 0.15]
 }
@@ -119,14 +117,8 @@ fn default_band() -> [f64; 2] {
 fn default_frequencies() -> usize {
     25
 }
-fn default_lines() -> usize {
-    16
-}
 fn default_realisations_3d() -> usize {
     2
-}
-fn calibrated() -> LambdaSpec {
-    LambdaSpec::Named("calibrated".into())
 }
 fn default_settle_tolerance() -> f64 {
     1e-3

@@ -25,7 +25,8 @@ use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::lambda::LambdaSpec;
 use crate::experiment::punch_loop::{
-    check_preload, face_law, line_law, rms_on, static_stiffness, synthesise, CELLS,
+    calibrated, check_preload, default_lines, default_preload, face_law, line_law, rms_on,
+    static_stiffness, synthesise, CELLS,
 };
 use crate::output::{Env, Output};
 use crate::plan::Stage;
@@ -86,20 +87,11 @@ pub struct ContactResonance {
 fn default_bandwidth() -> usize {
     8
 }
-fn default_preload() -> f64 {
-    0.3
-}
 fn default_amplitudes() -> Vec<f64> {
     vec![0.02, 0.3, 0.6, 0.9, 1.2, 1.6]
 }
-fn default_lines() -> usize {
-    16
-}
 fn default_realisations_3d() -> usize {
     3
-}
-fn calibrated() -> LambdaSpec {
-    LambdaSpec::Named("calibrated".into())
 }
 fn default_periods() -> usize {
     4
