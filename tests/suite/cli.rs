@@ -410,6 +410,12 @@ const RESULT_BOUNDS: &[(&str, Bound, &[&str])] = &[
     ("references.lee_radok_sphere_3d_holds", NearOne(1e-9), &["references", "references-fine"]),
     ("references.ting_sphere_unloading_mrd_holds", NearOne(1e-9), &["references", "references-fine"]),
     ("references.ting_sphere_unloading_3d_holds", NearOne(1e-9), &["references", "references-fine"]),
+    // Maugis' Dugdale sphere at lambda = 0.3: the 3D cohesive solve holds (+1.2 % at 64^2,
+    // +0.27 % at 256^2); MRD's Eq. 33, the JKR limit, does not (1.5 against 1.8156),
+    // diagnosed: pinned, so the method's limit stays in the report.
+    ("references.maugis_dugdale_pull_off_3d_cohesive_holds", NearOne(1e-9), &["references", "references-fine"]),
+    ("references.maugis_dugdale_pull_off_mrd_holds", Below(0.5), &["references", "references-fine"]),
+    ("references.maugis_dugdale_pull_off_mrd", Within(1.4999, 1.5001), &["references", "references-fine"]),
     ("impact.mrd_observed_order_in_dt", Within(1.8, 2.2), &["impact"]),
     ("impact.bem3d_rel_error_vs_hertz", Below(2e-3), &["impact"]),
     ("impact.cost_per_step_3d_over_mrd", Above(1.0), &["impact"]),
