@@ -65,4 +65,4 @@ pub use cerruti_free::CerrutiFree;
 pub use compliance::TangentialCompliance;
 pub use partial_slip::{Cycle, PartialSlip, TangentialStep};
 pub use stick::StickStiffness;
-pub use viscoelastic::{ViscoelasticSlip, ViscoelasticStep};
+pub use viscoelastic::{SlipSnapshot, ViscoelasticSlip, ViscoelasticStep};

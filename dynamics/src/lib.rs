@@ -14,6 +14,9 @@
 //!   with its own history (Sections 6-7).
 //! - 3D ([`law::Bem3d`]): the boundary-element normal solve of `bem3d`, under the step's
 //!   approach, warm-started from the last accepted state.
+//! - Tangential, both ways: MRD's springs with Coulomb slip ([`law::Springs::with_friction`])
+//!   and the 3D partial slip at a held normal force ([`slip::SlipBem3d`]), each taking the
+//!   body's tangential displacement.
 //! - Viscoelastic, both ways ([`viscoelastic`]): MRD's springs with the hereditary
 //!   integral of a relaxing modulus (Eq. 63) and the 3D transient solve on the same
 //!   modulus, whose force depends on the history of the motion.
@@ -28,10 +31,12 @@
 pub mod adhesive;
 pub mod integrate;
 pub mod law;
+pub mod slip;
 pub mod viscoelastic;
 
 pub use adhesive::{AdhesiveBem3d, AdhesiveSprings};
 pub use law::{Bem3d, ContactLaw, Forces, Motion, Springs};
+pub use slip::SlipBem3d;
 pub use viscoelastic::{ViscoelasticBem3d, ViscoelasticSprings};
 
 /// What can go wrong in a contact law or an integration.

@@ -95,6 +95,20 @@ pub struct ViscoelasticSlip<C: TangentialCompliance> {
     last: f64,
 }
 
+/// The state of a [`ViscoelasticSlip`] between steps ([`ViscoelasticSlip::snapshot`]).
+#[derive(Debug, Clone)]
+pub struct SlipSnapshot {
+    slip: Vec<f64>,
+    q: Vec<f64>,
+    true_slip: Vec<f64>,
+    u: Vec<f64>,
+    h: Vec<Vec<f64>>,
+    time: f64,
+    reach: f64,
+    slope: Option<f64>,
+    last: f64,
+}
+
 /// Trials of the force per step before the step reports non-convergence.
 const MAX_TRIALS: usize = 80;
 
@@ -133,6 +147,43 @@ impl<C: TangentialCompliance> ViscoelasticSlip<C> {
     /// The largest tangential force without sliding, `mu P`.
     pub fn friction_limit(&self) -> f64 {
         self.slip.friction_limit()
+    }
+
+    /// The state a step changes (slip, traction, displacement, hereditary integrals,
+    /// time, the shift and the stop's scale), for [`Self::restore`]: a time integrator
+    /// tries a step and takes it back when it rejects it.
+    pub fn snapshot(&self) -> SlipSnapshot {
+        SlipSnapshot {
+            slip: self.slip.slip.clone(),
+            q: self.slip.q.clone(),
+            true_slip: self.true_slip.clone(),
+            u: self.u.clone(),
+            h: self.h.clone(),
+            time: self.time,
+            reach: self.reach,
+            slope: self.slope,
+            last: self.last,
+        }
+    }
+
+    /// Returns to a state taken by [`Self::snapshot`] of this contact: the next step is
+    /// the one that would have followed it, bit for bit.
+    pub fn restore(&mut self, s: SlipSnapshot) -> Result<()> {
+        if s.u.len() != self.u.len() || s.h.len() != self.h.len() {
+            return Err(BemError::InvalidInput(
+                "restore: the snapshot is of another contact (its grid or modulus differs)".into(),
+            ));
+        }
+        self.slip.slip = s.slip;
+        self.slip.q = s.q;
+        self.true_slip = s.true_slip;
+        self.u = s.u;
+        self.h = s.h;
+        self.time = s.time;
+        self.reach = s.reach;
+        self.slope = s.slope;
+        self.last = s.last;
+        Ok(())
     }
 
     /// Stops a step's partial-slip solves with [`BemError::Interrupted`] once `flag` is
@@ -415,6 +466,27 @@ mod tests {
             assert_eq!(s.stick_cells, e.stick_cells);
             assert!((s.dissipated - e.dissipated).abs() <= 1e-6 * e.dissipated.abs().max(1e-12));
         }
+    }
+
+    /// A step tried and taken back leaves no trace: after a restore the next step is the
+    /// one that would have followed the snapshot, bit for bit; a snapshot of another
+    /// contact is refused.
+    #[test]
+    fn a_restored_snapshot_replays_the_step() {
+        let n = 24;
+        let p = hertz(n);
+        let modulus = Relaxation::new(0.5, vec![(1.5, 0.3)]).unwrap();
+        let mut ve = ViscoelasticSlip::new(op(n), &p, 0.3, modulus.clone()).unwrap();
+        let unit = ve.step(0.1, 1e-4, 1e-10).unwrap().shift;
+        ve.step(0.1, 2.0 * unit, 1e-10).unwrap();
+        let before = ve.snapshot();
+        let first = ve.step(0.1, 2.5 * unit, 1e-10).unwrap();
+        ve.step(0.1, -3.0 * unit, 1e-10).unwrap();
+        ve.restore(before.clone()).unwrap();
+        assert_eq!(ve.step(0.1, 2.5 * unit, 1e-10).unwrap(), first);
+        let elastic = Relaxation::new(1.0, vec![]).unwrap();
+        let mut other = ViscoelasticSlip::new(op(n), &p, 0.3, elastic).unwrap();
+        assert!(other.restore(before).is_err());
     }
 
     /// A shift beyond what the contact carries is gross sliding at mu P, reported as
