@@ -420,6 +420,12 @@ const RESULT_BOUNDS: &[(&str, Bound, &[&str])] = &[
     ("impact.bem3d_rel_error_vs_hertz", Below(2e-3), &["impact"]),
     ("impact.cost_per_step_3d_over_mrd", Above(1.0), &["impact"]),
     ("ring_down.loss_per_cycle_max_rel_dev_vs_mindlin_deresiewicz", Below(0.02), &["ring-down"]),
+    // The 3D partial slip in the same loop (64^2 cells, three cycles): within 2 % of
+    // Mindlin-Deresiewicz (measured 1.2 %), and MRD's run cycle by cycle (measured
+    // amplitudes 3.6e-4, losses 6.4e-4).
+    ("ring_down.loss_per_cycle_max_rel_dev_3d_vs_mindlin_deresiewicz", Below(0.02), &["ring-down"]),
+    ("ring_down.amplitude_max_rel_dev_3d_vs_mrd", Below(2e-3), &["ring-down"]),
+    ("ring_down.loss_per_cycle_max_rel_dev_3d_vs_mrd", Below(5e-3), &["ring-down"]),
     // A rough punch on an elastic-perfectly plastic half-space (`rough-plastic-3d*`):
     // MRD's lines at the calibrated lambda give the elastic loading stiffness within 25 %
     // (measured 1.02 at CI scale, 1.04 in the report scene); reloading retraces
