@@ -1210,6 +1210,13 @@ fn dynamics_bad_input_names_the_key() {
             ("amplitude = 0.9", "amplitude = 1.0", "amplitude = 1"),
             ("mu = 0.3", "mu = -0.3", "mu = -0.3"),
             ("g_star = 1.0", "", "ring_down"),
+            ("mass = 1e-3", "mass = 1e-3\ncells_3d = 8", "cells_3d = 8"),
+            (
+                "mass = 1e-3",
+                "mass = 1e-3\nperiods_3d = 1",
+                "periods_3d = 1",
+            ),
+            ("mass = 1e-3", "mass = 1e-3\nsteps_3d = 10", "steps_3d = 10"),
         ],
     );
 }
