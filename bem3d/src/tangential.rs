@@ -53,6 +53,15 @@
 //! `|u + s - delta|`, slip cells the sign of their new slip. A step whose
 //! force reaches the total friction `mu sum p` is gross sliding, reported as such.
 
+/// Poisson's ratio and shear modulus of the one elastic body (under a rigid indenter)
+/// with these contact moduli: `E* = 2 G / (1 - nu)`, `G* = 4 G / (2 - nu)`; the Cerruti
+/// operators take `(G, nu)`, the scenes and MRD's springs `(E*, G*)`.
+pub fn equivalent_body(e_star: f64, g_star: f64) -> (f64, f64) {
+    let rho = g_star / e_star;
+    let nu = (2.0 - 2.0 * rho) / (2.0 - rho);
+    (nu, e_star * (1.0 - nu) / 2.0)
+}
+
 mod cerruti;
 mod cerruti_free;
 mod compliance;

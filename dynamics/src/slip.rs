@@ -20,7 +20,7 @@
 
 use crate::law::{check_motion, ContactLaw, Forces, Motion};
 use crate::{bad, Result};
-use bem3d::tangential::{CerrutiFree, SlipSnapshot, ViscoelasticSlip};
+use bem3d::tangential::{equivalent_body, CerrutiFree, SlipSnapshot, ViscoelasticSlip};
 use bem3d::viscoelastic::Relaxation;
 use bem3d::{ContactSolver, Load, NonPeriodicHalfSpace, SolverOptions};
 
@@ -40,18 +40,17 @@ pub struct SlipBem3d {
 }
 
 impl SlipBem3d {
-    /// A body of `heights` (`n x n` cells, peaks up) over a square of side `side` on the
-    /// free half-space of contact modulus `e_star`, pressed by `normal_force`; the
-    /// tangential problem of one elastic body of shear modulus `g` and Poisson's ratio
-    /// `nu` (a rigid body on it: `E* = 2 G / (1 - nu)`, `G* = 4 G / (2 - nu)`) with
-    /// Coulomb's `mu`; every solve to `tolerance`.
+    /// A body of `heights` (`ny x nx` cells, peaks up) over `lx x ly` on the free
+    /// half-space, pressed by `normal_force`, with contact moduli `e_star` and `g_star`
+    /// (one elastic body under a rigid one: its shear modulus and Poisson's ratio,
+    /// `bem3d::tangential::equivalent_body`, take the tangential problem) and Coulomb's
+    /// `mu`; every solve to `tolerance`.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         heights: &[f64],
-        n: usize,
-        side: f64,
-        e_star: f64,
-        (g, nu): (f64, f64),
+        (nx, ny): (usize, usize),
+        (lx, ly): (f64, f64),
+        (e_star, g_star): (f64, f64),
         mu: f64,
         normal_force: f64,
         tolerance: f64,
@@ -61,13 +60,21 @@ impl SlipBem3d {
                 "normal_force = {normal_force} must be finite and > 0 (the law holds a pressed contact)"
             ));
         }
-        let options = SolverOptions::new(tolerance, 20 * n + 2000);
+        // G* / E* = 2 (1 - nu) / (2 - nu) lies in [2/3, 1] for nu in [0, 0.5].
+        let ratio = g_star / e_star;
+        if !(e_star.is_finite() && e_star > 0.0 && (2.0 / 3.0..=1.0).contains(&ratio)) {
+            return bad(format!(
+                "e_star = {e_star}, g_star = {g_star}: give E* > 0 and G* / E* in [2/3, 1] (Poisson's ratio in [0, 0.5])"
+            ));
+        }
+        let (nu, g) = equivalent_body(e_star, g_star);
+        let options = SolverOptions::new(tolerance, 20 * nx.max(ny) + 2000);
         options.validate()?;
-        let op = NonPeriodicHalfSpace::try_new(n, n, side, side, e_star)?;
+        let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
         let mut normal = ContactSolver::new(op, heights, None)?;
         let sol = normal.solve(Load::Force(normal_force), &options, None)?;
-        let cell = side * side / (n * n) as f64;
-        let shear = CerrutiFree::new(n, n, side, side, 1.0, nu)?;
+        let cell = lx * ly / (nx * ny) as f64;
+        let shear = CerrutiFree::new(nx, ny, lx, ly, 1.0, nu)?;
         let slip = ViscoelasticSlip::new(shear, &sol.pressure, mu, Relaxation::new(g, vec![])?)?;
         Ok(Self {
             slip,
@@ -82,7 +89,7 @@ impl SlipBem3d {
                 contact_area: sol.contact_cells as f64 * cell,
                 ..Forces::default()
             },
-            label: format!("3D partial slip, {n} x {n} cells, Coulomb mu = {mu}"),
+            label: format!("3D partial slip, {nx} x {ny} cells, Coulomb mu = {mu}"),
         })
     }
 
@@ -187,7 +194,8 @@ mod tests {
                 -(x * x + y * y) / (2.0 * r)
             })
             .collect();
-        let three = SlipBem3d::new(&heights, n, side, e, (g, nu), mu, f, 1e-10).unwrap();
+        let three =
+            SlipBem3d::new(&heights, (n, n), (side, side), (e, g_star), mu, f, 1e-10).unwrap();
         let profile = Profile::single(Shape::paraboloid(r).unwrap());
         let springs = Springs::body(&profile, e, 4000, 1.5 * a)
             .unwrap()

@@ -1211,6 +1211,7 @@ fn dynamics_bad_input_names_the_key() {
             ("mu = 0.3", "mu = -0.3", "mu = -0.3"),
             ("g_star = 1.0", "", "ring_down"),
             ("mass = 1e-3", "mass = 1e-3\ncells_3d = 8", "cells_3d = 8"),
+            ("g_star = 1.0", "g_star = 0.5", "G* / E* = 0.5"),
             (
                 "mass = 1e-3",
                 "mass = 1e-3\nperiods_3d = 1",

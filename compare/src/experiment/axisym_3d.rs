@@ -10,13 +10,7 @@ use bem3d::{
 use mrd::reference::for_profile;
 use mrd::Profile;
 
-/// Poisson's ratio and shear modulus of the one body (under a rigid indenter) with
-/// these E* and G*: E* = 2G/(1 - nu), G* = 4G/(2 - nu).
-pub fn equivalent_body(e_star: f64, g_star: f64) -> (f64, f64) {
-    let rho = g_star / e_star;
-    let nu = (2.0 - 2.0 * rho) / (2.0 - rho);
-    (nu, e_star * (1.0 - nu) / 2.0)
-}
+pub use bem3d::tangential::equivalent_body;
 
 /// The grid of an axisymmetric 3D contact: `cells` per side over `side` (a length), on
 /// the periodic half-space (the side its period) or the free one.

@@ -23,7 +23,7 @@
 use crate::checks::bad;
 use crate::context::Context;
 use crate::error::{Context as _, Result};
-use crate::experiment::axisym_3d::{equivalent_body, AxisymGrid};
+use crate::experiment::axisym_3d::AxisymGrid;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Style, Table};
@@ -119,6 +119,13 @@ impl Output for RingDown {
                 self.periods, self.steps
             ));
         }
+        let ratio = ctx.material.g_star().ctx("ring_down")? / ctx.material.e_star;
+        if self.cells_3d != 0 && !(2.0 / 3.0..=1.0).contains(&ratio) {
+            return bad(format!(
+                "G* / E* = {ratio}: the 3D run (cells_3d = {}) takes one elastic body, G* / E* in [2/3, 1] (Poisson's ratio in [0, 0.5]); or set cells_3d = 0",
+                self.cells_3d
+            ));
+        }
         if self.cells_3d != 0 && !(16..=512).contains(&self.cells_3d) {
             return bad(format!(
                 "cells_3d = {} must be 0 (MRD alone) or lie in 16..=512",
@@ -180,10 +187,9 @@ impl Output for RingDown {
                 periodic: false,
             }
             .heights(&profile);
-            let body = equivalent_body(e, g);
             let s = out
                 .stage(Stage::Dynamics3d, || -> dynamics::Result<Vec<Sample>> {
-                    let mut law = SlipBem3d::new(&z, n, side, e, (body.1, body.0), mu, fn_, 1e-10)?;
+                    let mut law = SlipBem3d::new(&z, (n, n), (side, side), (e, g), mu, fn_, 1e-10)?;
                     let d = law.approach();
                     self.ring(&mut law, d, (k_t, period), (self.periods_3d, self.steps_3d))
                 })
