@@ -65,7 +65,8 @@ impl LawForces {
 /// optionally with Coulomb friction), `rough_line` (MRD's rough line), `bem3d` (the 3D
 /// boundary-element solve, warm-started from the last accepted step; frictionless), or
 /// their viscoelastic counterparts `viscoelastic_body` and `viscoelastic_bem3d`, or their
-/// adhesive ones (JKR limit) `adhesive_body` and `adhesive_bem3d`.
+/// adhesive ones (JKR limit) `adhesive_body` and `adhesive_bem3d`, or `slip_bem3d` (the 3D
+/// partial slip at a held normal force, the counterpart of `body` with friction).
 ///
 /// Coordinates: the normal approach from first contact (positive pressing) and the
 /// tangential displacement; forces are those the contact exerts against the motion.
@@ -387,6 +388,48 @@ impl ContactLaw {
             })
         })?;
         Ok(Self::new(law, Some(frame)))
+    }
+
+    /// slip_bem3d(heights, normal_force, g_star, mu, size=None, e_star=1.0, tolerance=None)
+    ///
+    /// The 3D partial slip of the height map on the free half-space as a tangential
+    /// contact law: the normal contact solved once at `normal_force` and held (its
+    /// approach: `approach_at(normal_force)`, the only normal motion a trial takes), each
+    /// trial the partial slip under the trial's tangential displacement (Coulomb's `mu`
+    /// cell by cell; the contact moduli E* and G* of one elastic body under a rigid one,
+    /// G* / E* in [2/3, 1]); a rollback restores the slip before it. tolerance: the
+    /// solves' (None: 1e-10).
+    #[staticmethod]
+    #[pyo3(signature = (heights, normal_force, g_star, mu, size = None, e_star = 1.0, tolerance = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn slip_bem3d(
+        py: Python<'_>,
+        heights: &Bound<'_, PyAny>,
+        normal_force: f64,
+        g_star: f64,
+        mu: f64,
+        size: Option<(f64, f64)>,
+        e_star: f64,
+        tolerance: Option<f64>,
+    ) -> PyResult<Self> {
+        let grid = Grid::new(py, heights, (size, Some(false)), None, e_star, false)?;
+        let (h, frame) = (grid.heights, grid.frame);
+        let tolerance = tolerance.unwrap_or(1e-10);
+        let ((ny, nx), (lx, ly)) = (frame.shape, frame.size);
+        let law = py
+            .detach(|| {
+                dynamics::SlipBem3d::new(
+                    &h,
+                    (nx, ny),
+                    (lx, ly),
+                    (e_star, g_star),
+                    mu,
+                    normal_force,
+                    tolerance,
+                )
+            })
+            .map_err(|e| law_err(py, Some(&frame), e))?;
+        Ok(Self::new(Box::new(law), Some(frame)))
     }
 
     /// trial(normal, tangential=0.0, dt=1.0) -> LawForces

@@ -170,3 +170,43 @@ def test_adhesive_impact_in_a_users_loop_with_mrd_and_3d():
         law.approach_at(1e-4)
     with pytest.raises(ValueError, match="work"):
         mrdw.ContactLaw.adhesive_body(mrdw.Profile.sphere(R), 1.0, 0.0, half_length=0.1)
+
+
+def test_slip_bem3d_follows_mrd_springs_and_names_bad_input():
+    """The 3D partial slip at a held normal force (a sphere, 48^2 cells over 2.5 contact
+    radii, nu = 0.3) against MRD's springs with Coulomb slip along a displacement
+    history: forces within 1e-3 of mu P (the Rust test measures 8.5e-5 at 64^2); a
+    rollback replays; another normal motion, a periodic map or G* / E* out of range are
+    refused by name."""
+    nu, mu, f = 0.3, 0.3, 1e-3
+    g_star = 2 * (1 - nu) / (2 - nu)  # E* = 1
+    a = (3 * f * R / (4 * E)) ** (1 / 3)
+    n, side = 48, 2.5 * a
+    x = (np.arange(n) + 0.5) * side / n - side / 2
+    h = -(x[:, None] ** 2 + x[None, :] ** 2) / (2 * R)
+    three = mrdw.ContactLaw.slip_bem3d(h, f, g_star, mu, size=(side, side))
+    springs = mrdw.ContactLaw.body(mrdw.Profile.sphere(R), springs=4000, half_length=1.5 * a,
+                                   g_star=g_star, mu=mu)
+    d3, dm = three.approach_at(f), springs.approach_at(f)
+    springs.trial(dm, 0.0)
+    springs.commit()
+    top = 3 * mu * f / (4 * g_star * a) * (1 - 0.4 ** (2 / 3))
+    path = [top * k / 10 for k in range(1, 11)] + [top * (1 - k / 10) for k in range(1, 21)]
+    worst = 0.0
+    for u in path:
+        f3 = three.trial(d3, u)
+        three.commit()
+        fm = springs.trial(dm, u)
+        springs.commit()
+        worst = max(worst, abs(f3.tangential - fm.tangential) / (mu * f))
+    assert worst < 1e-3, worst
+    first = three.trial(d3, 0.5 * top)
+    three.rollback()
+    three.trial(d3, -0.5 * top)
+    assert three.trial(d3, 0.5 * top).tangential == first.tangential
+    with pytest.raises(ValueError, match="normal = "):
+        three.trial(1.1 * d3, 0.0)
+    with pytest.raises(ValueError, match="g_star"):
+        mrdw.ContactLaw.slip_bem3d(h, f, 0.3, mu, size=(side, side))
+    with pytest.raises(ValueError, match="normal_force"):
+        mrdw.ContactLaw.slip_bem3d(h, 0.0, g_star, mu, size=(side, side))

@@ -428,6 +428,18 @@ class ContactLaw:
     ) -> "ContactLaw":
         """The 3D adhesive contact of the height map as a contact law: each trial one step
         to the approach; a rollback restores the state before it."""
+    @staticmethod
+    def slip_bem3d(
+        heights: Union[ArrayLike, Any],
+        normal_force: float,
+        g_star: float,
+        mu: float,
+        size: Optional[Tuple[float, float]] = None,
+        e_star: float = 1.0,
+        tolerance: Optional[float] = None,
+    ) -> "ContactLaw":
+        """The 3D partial slip of the height map on the free half-space at a held normal
+        force as a tangential contact law; a rollback restores the slip before a trial."""
     def trial(self, normal: float, tangential: float = 0.0, dt: float = 1.0) -> LawForces:
         """The forces at the step's end motion from the last accepted state."""
     def commit(self) -> None:
