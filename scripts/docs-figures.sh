@@ -26,7 +26,7 @@ all=(
   calibrate-rolloff:curves.png,curves_4.png
   plastic-sphere plastic-cone rough-plastic-3d impact ring-down contact-resonance
   forced-resonance
-  viscoelastic-impact adhesive-impact
+  viscoelastic-impact adhesive-impact references
 )
 wanted=("$@")
 for entry in "${all[@]}"; do
