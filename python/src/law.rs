@@ -398,7 +398,7 @@ impl ContactLaw {
     /// trial the partial slip under the trial's tangential displacement (Coulomb's `mu`
     /// cell by cell; the contact moduli E* and G* of one elastic body under a rigid one,
     /// G* / E* in [2/3, 1]); a rollback restores the slip before it. tolerance: the
-    /// solves' (None: 1e-10).
+    /// solves' (None: the solver's default, 1e-10).
     #[staticmethod]
     #[pyo3(signature = (heights, normal_force, g_star, mu, size = None, e_star = 1.0, tolerance = None))]
     #[allow(clippy::too_many_arguments)]
@@ -414,7 +414,7 @@ impl ContactLaw {
     ) -> PyResult<Self> {
         let grid = Grid::new(py, heights, (size, Some(false)), None, e_star, false)?;
         let (h, frame) = (grid.heights, grid.frame);
-        let tolerance = tolerance.unwrap_or(1e-10);
+        let tolerance = tolerance.unwrap_or(bem3d::SolverOptions::default().tolerance);
         let ((ny, nx), (lx, ly)) = (frame.shape, frame.size);
         let law = py
             .detach(|| {

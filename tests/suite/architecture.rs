@@ -688,8 +688,12 @@ fn bem3d_public_api_stays_within_its_budget() {
         ("solver", 25),
         // CerrutiFree (the free half-space: tangential_3d, tangential_viscoelastic, Python
         // PartialSlip(periodic=False)), the TangentialCompliance trait both operators
-        // implement, ViscoelasticSlip and its step (tangential_viscoelastic's 3D side).
-        ("tangential", 19),
+        // implement, ViscoelasticSlip and its step (tangential_viscoelastic's 3D side);
+        // ViscoelasticSlip::snapshot and ::restore with their SlipSnapshot: the 3D
+        // partial-slip law of `dynamics` (`SlipBem3d`) takes a rejected time step back;
+        // equivalent_body, the (E*, G*) -> (nu, G) the Cerruti operators take, for compare
+        // and `dynamics`.
+        ("tangential", 23),
         // TransientContact::snapshot and ::restore with their Snapshot: the viscoelastic
         // contact law of `dynamics` takes a rejected time step back.
         ("viscoelastic", 12),
