@@ -15,9 +15,10 @@
 //! extended to tension). A trial steps a copy of the row (MRD) or a snapshot taken
 //! before it (3D); a rollback returns to it.
 
+use crate::held::Held;
 use crate::law::{normal_only, ContactLaw, Forces, Motion};
 use crate::{bad, Result};
-use bem3d::adhesion::{AdhesiveContact, AdhesiveSnapshot};
+use bem3d::adhesion::AdhesiveContact;
 use bem3d::{HalfSpaceOperator, Load};
 use mrd::adhesive_row::{AdhesiveRow, EdgeRadius};
 use std::f64::consts::PI;
@@ -116,12 +117,8 @@ impl ContactLaw for AdhesiveSprings {
 /// The 3D adhesive contact as a contact law (module docs): each trial is one step of
 /// the adhesive solve to the step's approach (from first contact of the highest cell).
 pub struct AdhesiveBem3d<O: HalfSpaceOperator> {
-    contact: AdhesiveContact<O>,
+    contact: Held<AdhesiveContact<O>>,
     tolerance: f64,
-    /// The state before the held trial.
-    before: Option<AdhesiveSnapshot>,
-    trial: Option<Forces>,
-    committed: Forces,
     label: String,
 }
 
@@ -140,11 +137,11 @@ impl<O: HalfSpaceOperator> AdhesiveBem3d<O> {
         }
         let label = format!("3D adhesive (JKR limit), {} x {} cells", op.nx(), op.ny());
         Ok(Self {
-            contact: AdhesiveContact::new(op, heights, mask, work)?,
+            contact: Held::new(
+                AdhesiveContact::new(op, heights, mask, work)?,
+                Forces::default(),
+            ),
             tolerance,
-            before: None,
-            trial: None,
-            committed: Forces::default(),
             label,
         })
     }
@@ -153,53 +150,30 @@ impl<O: HalfSpaceOperator> AdhesiveBem3d<O> {
 impl<O: HalfSpaceOperator> ContactLaw for AdhesiveBem3d<O> {
     fn trial(&mut self, motion: Motion) -> Result<Forces> {
         normal_only(motion, "3D adhesive")?;
-        // A trial starts from the accepted state: take back a held one first.
-        if let Some(s) = self.before.take() {
-            self.contact.restore(s)?;
-        }
-        let before = self.contact.snapshot();
-        let step = match self
-            .contact
-            .step(Load::Approach(motion.normal), self.tolerance)
-        {
-            Ok(s) => s,
-            Err(e) => {
-                self.contact.restore(before)?;
-                return Err(e.into());
-            }
-        };
-        self.before = Some(before);
-        let forces = Forces {
-            normal: step.force,
-            tangential: 0.0,
-            contact_area: step.contact_area,
-            stiffness: f64::NAN,
-            dissipated: 0.0,
-            iterations: step.iterations,
-        };
-        self.trial = Some(forces);
-        Ok(forces)
+        let tolerance = self.tolerance;
+        self.contact.trial(|c| {
+            let step = c.step(Load::Approach(motion.normal), tolerance)?;
+            Ok(Forces {
+                normal: step.force,
+                tangential: 0.0,
+                contact_area: step.contact_area,
+                stiffness: f64::NAN,
+                dissipated: 0.0,
+                iterations: step.iterations,
+            })
+        })
     }
 
     fn commit(&mut self) -> Result<()> {
-        let Some(forces) = self.trial.take() else {
-            return bad("commit: no trial step to accept (call trial first)");
-        };
-        self.before = None;
-        self.committed = forces;
-        Ok(())
+        self.contact.commit()
     }
 
     fn rollback(&mut self) {
-        self.trial = None;
-        if let Some(s) = self.before.take() {
-            // A snapshot of this contact always fits it.
-            let _ = self.contact.restore(s);
-        }
+        self.contact.rollback()
     }
 
     fn committed(&self) -> Forces {
-        self.committed
+        self.contact.committed()
     }
 
     /// Not defined (see [`AdhesiveSprings`]'s).

@@ -29,6 +29,7 @@
 //! the scenes that use this crate live in `compare`.
 
 pub mod adhesive;
+mod held;
 pub mod integrate;
 pub mod law;
 pub mod slip;

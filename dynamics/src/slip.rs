@@ -14,28 +14,25 @@
 //!
 //! **Trial and commit.** A trial starts from the accepted state (the slip of every
 //! cell, the traction); a rejected trial is taken back by the solver's snapshot, bit for
-//! bit. The normal motion must stay at the held approach: the law refuses another
+//! bit (`crate::held`, as the other 3D laws). The normal motion must stay at the held approach: the law refuses another
 //! (a varying normal force would need the pressure solved again with the slip carried
 //! over, which this law does not do).
 
+use crate::held::Held;
 use crate::law::{check_motion, ContactLaw, Forces, Motion};
 use crate::{bad, Result};
-use bem3d::tangential::{equivalent_body, CerrutiFree, SlipSnapshot, ViscoelasticSlip};
+use bem3d::tangential::{equivalent_body, CerrutiFree, ViscoelasticSlip};
 use bem3d::viscoelastic::Relaxation;
 use bem3d::{ContactSolver, Load, NonPeriodicHalfSpace, SolverOptions};
 
 /// The 3D partial-slip law at a held normal force (module docs).
 pub struct SlipBem3d {
-    slip: ViscoelasticSlip<CerrutiFree>,
+    slip: Held<ViscoelasticSlip<CerrutiFree>>,
     /// The approach that carries the held normal force [length].
     approach: f64,
     normal: f64,
     contact_area: f64,
     tolerance: f64,
-    /// The state before the held trial.
-    before: Option<SlipSnapshot>,
-    trial: Option<Forces>,
-    committed: Forces,
     label: String,
 }
 
@@ -76,19 +73,18 @@ impl SlipBem3d {
         let cell = lx * ly / (nx * ny) as f64;
         let shear = CerrutiFree::new(nx, ny, lx, ly, 1.0, nu)?;
         let slip = ViscoelasticSlip::new(shear, &sol.pressure, mu, Relaxation::new(g, vec![])?)?;
+        let contact_area = sol.contact_cells as f64 * cell;
+        let accepted = Forces {
+            normal: sol.force,
+            contact_area,
+            ..Forces::default()
+        };
         Ok(Self {
-            slip,
+            slip: Held::new(slip, accepted),
             approach: sol.approach,
             normal: sol.force,
-            contact_area: sol.contact_cells as f64 * cell,
+            contact_area,
             tolerance,
-            before: None,
-            trial: None,
-            committed: Forces {
-                normal: sol.force,
-                contact_area: sol.contact_cells as f64 * cell,
-                ..Forces::default()
-            },
             label: format!("3D partial slip, {nx} x {ny} cells, Coulomb mu = {mu}"),
         })
     }
@@ -108,50 +104,30 @@ impl ContactLaw for SlipBem3d {
                 motion.normal, self.approach
             ));
         }
-        // A trial starts from the accepted state: take back a held one first.
-        if let Some(s) = self.before.take() {
-            self.slip.restore(s)?;
-        }
-        let before = self.slip.snapshot();
-        let step = match self.slip.step(motion.dt, motion.tangential, self.tolerance) {
-            Ok(s) => s,
-            Err(e) => {
-                self.slip.restore(before)?;
-                return Err(e.into());
-            }
-        };
-        self.before = Some(before);
-        let forces = Forces {
-            normal: self.normal,
-            tangential: step.force,
-            contact_area: self.contact_area,
-            stiffness: f64::NAN,
-            dissipated: step.dissipated,
-            iterations: step.solves,
-        };
-        self.trial = Some(forces);
-        Ok(forces)
+        let (normal, area, tolerance) = (self.normal, self.contact_area, self.tolerance);
+        self.slip.trial(|c| {
+            let step = c.step(motion.dt, motion.tangential, tolerance)?;
+            Ok(Forces {
+                normal,
+                tangential: step.force,
+                contact_area: area,
+                stiffness: f64::NAN,
+                dissipated: step.dissipated,
+                iterations: step.solves,
+            })
+        })
     }
 
     fn commit(&mut self) -> Result<()> {
-        let Some(forces) = self.trial.take() else {
-            return bad("commit: no trial step to accept (call trial first)");
-        };
-        self.before = None;
-        self.committed = forces;
-        Ok(())
+        self.slip.commit()
     }
 
     fn rollback(&mut self) {
-        self.trial = None;
-        if let Some(s) = self.before.take() {
-            // A snapshot of this contact always fits it.
-            let _ = self.slip.restore(s);
-        }
+        self.slip.rollback()
     }
 
     fn committed(&self) -> Forces {
-        self.committed
+        self.slip.committed()
     }
 
     /// The held approach, for the held normal force only.

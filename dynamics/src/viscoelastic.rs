@@ -13,9 +13,10 @@
 //! so the integrator's time step is the only discretisation in time. A trial steps a copy
 //! of the state (MRD) or a snapshot taken before it (3D); a rollback returns to it.
 
+use crate::held::Held;
 use crate::law::{normal_only, ContactLaw, Forces, Motion};
 use crate::{bad, Result};
-use bem3d::viscoelastic::{Relaxation, Snapshot, TransientContact};
+use bem3d::viscoelastic::{Relaxation, TransientContact};
 use bem3d::{HalfSpaceOperator, Load, SolverOptions};
 use mrd::rheology::Prony;
 use mrd::viscoelastic::{RowLoad, SpringRow};
@@ -119,15 +120,11 @@ impl ContactLaw for ViscoelasticSprings {
 /// one step of the transient solve under the step's approach (from first contact of the
 /// highest cell), linear in time over the step.
 pub struct ViscoelasticBem3d<O: HalfSpaceOperator> {
-    contact: TransientContact<O>,
+    contact: Held<TransientContact<O>>,
     options: SolverOptions,
-    /// The state before the held trial.
-    before: Option<Snapshot>,
     /// The shortest relaxation time, at most 1 (the scale of [`ContactLaw::approach_at`]'s
     /// step).
     tau_min: f64,
-    trial: Option<Forces>,
-    committed: Forces,
     label: String,
 }
 
@@ -148,12 +145,12 @@ impl<O: HalfSpaceOperator> ViscoelasticBem3d<O> {
         let options = SolverOptions::new(tolerance, max_iterations);
         options.validate()?;
         Ok(Self {
-            contact: TransientContact::new(op, heights, mask, modulus)?,
+            contact: Held::new(
+                TransientContact::new(op, heights, mask, modulus)?,
+                Forces::default(),
+            ),
             options,
-            before: None,
             tau_min,
-            trial: None,
-            committed: Forces::default(),
             label,
         })
     }
@@ -162,53 +159,30 @@ impl<O: HalfSpaceOperator> ViscoelasticBem3d<O> {
 impl<O: HalfSpaceOperator> ContactLaw for ViscoelasticBem3d<O> {
     fn trial(&mut self, motion: Motion) -> Result<Forces> {
         normal_only(motion, "3D viscoelastic")?;
-        // A trial starts from the accepted state: take back a held one first.
-        if let Some(s) = self.before.take() {
-            self.contact.restore(s)?;
-        }
-        let before = self.contact.snapshot();
-        let step = match self
-            .contact
-            .step(motion.dt, Load::Approach(motion.normal), &self.options)
-        {
-            Ok(s) => s,
-            Err(e) => {
-                self.contact.restore(before)?;
-                return Err(e.into());
-            }
-        };
-        self.before = Some(before);
-        let forces = Forces {
-            normal: step.force,
-            tangential: 0.0,
-            contact_area: step.contact_area,
-            stiffness: f64::NAN,
-            dissipated: 0.0,
-            iterations: step.solve.as_ref().map_or(0, |s| s.iterations),
-        };
-        self.trial = Some(forces);
-        Ok(forces)
+        let options = &self.options;
+        self.contact.trial(|c| {
+            let step = c.step(motion.dt, Load::Approach(motion.normal), options)?;
+            Ok(Forces {
+                normal: step.force,
+                tangential: 0.0,
+                contact_area: step.contact_area,
+                stiffness: f64::NAN,
+                dissipated: 0.0,
+                iterations: step.solve.as_ref().map_or(0, |s| s.iterations),
+            })
+        })
     }
 
     fn commit(&mut self) -> Result<()> {
-        let Some(forces) = self.trial.take() else {
-            return bad("commit: no trial step to accept (call trial first)");
-        };
-        self.before = None;
-        self.committed = forces;
-        Ok(())
+        self.contact.commit()
     }
 
     fn rollback(&mut self) {
-        self.trial = None;
-        if let Some(s) = self.before.take() {
-            // A snapshot of this contact always fits it.
-            let _ = self.contact.restore(s);
-        }
+        self.contact.rollback()
     }
 
     fn committed(&self) -> Forces {
-        self.committed
+        self.contact.committed()
     }
 
     /// The approach that carries `force` in an instant (a step of a millionth of the
@@ -220,16 +194,9 @@ impl<O: HalfSpaceOperator> ContactLaw for ViscoelasticBem3d<O> {
         if force == 0.0 {
             return bad("approach_at(force = 0): any approach short of contact carries it");
         }
-        if let Some(s) = self.before.take() {
-            self.contact.restore(s)?;
-            self.trial = None;
-        }
-        let before = self.contact.snapshot();
-        let step = self
-            .contact
-            .step(1e-6 * self.tau_min, Load::Force(force), &self.options);
-        self.contact.restore(before)?;
-        Ok(step?.approach)
+        let (dt, options) = (1e-6 * self.tau_min, &self.options);
+        self.contact
+            .query(|c| Ok(c.step(dt, Load::Force(force), options)?.approach))
     }
 
     fn describe(&self) -> String {
