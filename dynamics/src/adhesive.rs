@@ -73,14 +73,7 @@ impl ContactLaw for AdhesiveSprings {
         normal_only(motion, "adhesive MRD")?;
         let mut row = self.row.clone();
         let s = row.step(motion.normal)?;
-        let forces = Forces {
-            normal: s.force,
-            tangential: 0.0,
-            contact_area: PI * s.radius * s.radius,
-            stiffness: f64::NAN,
-            dissipated: 0.0,
-            iterations: 0,
-        };
+        let forces = Forces::frictionless(s.force, PI * s.radius * s.radius, 0);
         self.trial = Some((row, forces));
         Ok(forces)
     }
@@ -153,14 +146,11 @@ impl<O: HalfSpaceOperator> ContactLaw for AdhesiveBem3d<O> {
         let tolerance = self.tolerance;
         self.contact.trial(|c| {
             let step = c.step(Load::Approach(motion.normal), tolerance)?;
-            Ok(Forces {
-                normal: step.force,
-                tangential: 0.0,
-                contact_area: step.contact_area,
-                stiffness: f64::NAN,
-                dissipated: 0.0,
-                iterations: step.iterations,
-            })
+            Ok(Forces::frictionless(
+                step.force,
+                step.contact_area,
+                step.iterations,
+            ))
         })
     }
 

@@ -45,6 +45,21 @@ pub struct Forces {
     pub iterations: usize,
 }
 
+impl Forces {
+    /// The forces of a frictionless state: the normal force, the contact area and the
+    /// solver's work; no tangential force, no slip, the stiffness not computed (NaN).
+    pub fn frictionless(normal: f64, contact_area: f64, iterations: usize) -> Self {
+        Self {
+            normal,
+            tangential: 0.0,
+            contact_area,
+            stiffness: f64::NAN,
+            dissipated: 0.0,
+            iterations,
+        }
+    }
+}
+
 /// A contact law with history, called once or more per time step (module docs).
 pub trait ContactLaw: Send {
     /// The forces at `motion` from the last accepted state; the trial is held until
@@ -390,14 +405,8 @@ impl<O: SolverOperator> ContactLaw for Bem3d<O> {
             self.committed.as_ref(),
         )?;
         let cell = self.solver.operator().cell_area();
-        self.trial_forces = Forces {
-            normal: sol.force,
-            tangential: 0.0,
-            contact_area: sol.contact_cells as f64 * cell,
-            stiffness: f64::NAN,
-            dissipated: 0.0,
-            iterations: sol.iterations,
-        };
+        self.trial_forces =
+            Forces::frictionless(sol.force, sol.contact_cells as f64 * cell, sol.iterations);
         self.trial = Some(Some(sol));
         Ok(self.trial_forces)
     }

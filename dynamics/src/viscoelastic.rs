@@ -68,14 +68,7 @@ impl ContactLaw for ViscoelasticSprings {
         // The mirrored half line: each spring stands for two; its contact is the disc of
         // radius (springs in contact) x dx, the springs touching from the centre out.
         let a = s.contacts as f64 * self.dx;
-        let forces = Forces {
-            normal: 2.0 * s.force,
-            tangential: 0.0,
-            contact_area: PI * a * a,
-            stiffness: f64::NAN,
-            dissipated: 0.0,
-            iterations: 0,
-        };
+        let forces = Forces::frictionless(2.0 * s.force, PI * a * a, 0);
         self.trial = Some((row, forces));
         Ok(forces)
     }
@@ -162,14 +155,12 @@ impl<O: HalfSpaceOperator> ContactLaw for ViscoelasticBem3d<O> {
         let options = &self.options;
         self.contact.trial(|c| {
             let step = c.step(motion.dt, Load::Approach(motion.normal), options)?;
-            Ok(Forces {
-                normal: step.force,
-                tangential: 0.0,
-                contact_area: step.contact_area,
-                stiffness: f64::NAN,
-                dissipated: 0.0,
-                iterations: step.solve.as_ref().map_or(0, |s| s.iterations),
-            })
+            let iterations = step.solve.as_ref().map_or(0, |s| s.iterations);
+            Ok(Forces::frictionless(
+                step.force,
+                step.contact_area,
+                iterations,
+            ))
         })
     }
 
