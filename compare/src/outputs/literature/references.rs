@@ -345,22 +345,11 @@ impl References {
                 let apex = z.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
                 let op = NonPeriodicHalfSpace::try_new(n, n, side, side, e)?;
                 let mut c = AdhesiveContact::new(op, &z, None, w)?;
-                let steps = 100;
-                let dd = depth_max / steps as f64;
-                for k in 1..=steps {
-                    c.step(Load::Approach(dd * k as f64 + apex), 1e-8)?;
-                }
-                let mut smallest = f64::INFINITY;
-                for k in 0..100 * steps {
-                    let s = c.step(Load::Approach(depth_max - dd * k as f64 + apex), 1e-8)?;
-                    if s.separated {
-                        return Ok(-smallest / scale);
-                    }
-                    smallest = smallest.min(s.force);
-                }
-                Err(bem3d::BemError::Infeasible(
-                    "the sphere did not separate while unloading".into(),
-                ))
+                let pull = pull_off_cycle(depth_max, 100, |d| {
+                    let s = c.step(Load::Approach(d + apex), 1e-8)?;
+                    Ok((s.force, s.separated))
+                })?;
+                Ok(-pull / scale)
             })
             .ctx("3D adhesion (JKR limit)")?;
         Ok(vec![
@@ -450,21 +439,11 @@ impl References {
                 let apex = z.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
                 let op = NonPeriodicHalfSpace::try_new(n, n, side, side, e)?;
                 let mut c = CohesiveContact::new(op, &z, None, w, sigma0)?;
-                let dd = depth_max / steps as f64;
-                for k in 1..=steps {
-                    c.step(dd * k as f64 + apex, 1e-8)?;
-                }
-                let mut smallest = f64::INFINITY;
-                for k in 0..100 * steps {
-                    let s = c.step(depth_max - dd * k as f64 + apex, 1e-8)?;
-                    smallest = smallest.min(s.force);
-                    if s.contact_cells == 0 && s.cohesive_cells == 0 {
-                        return Ok(-smallest / scale);
-                    }
-                }
-                Err(bem3d::BemError::Infeasible(
-                    "the sphere did not come apart while unloading".into(),
-                ))
+                let pull = pull_off_cycle(depth_max, steps, |d| {
+                    let s = c.step(d + apex, 1e-8)?;
+                    Ok((s.force, s.contact_cells == 0 && s.cohesive_cells == 0))
+                })?;
+                Ok(-pull / scale)
             })
             .ctx("3D cohesive contact (Maugis-Dugdale)")?;
         let a_pull = 0.49663 * (3.0 * PI * w * radius * radius / (4.0 * e)).cbrt();
@@ -971,6 +950,32 @@ impl References {
         out.files.push(("references.md".into(), md.into_bytes()));
         out.tables.push(t);
     }
+}
+
+/// An adhesive sphere's approach cycle: `step(d)` to the approach `d` (from the apex)
+/// in `steps` equal steps to `depth_max`, then out in the same steps until `step` reports
+/// the body apart; returns the most tensile force on the way out before that (the
+/// force-controlled pull-off where the steps resolve it).
+fn pull_off_cycle(
+    depth_max: f64,
+    steps: usize,
+    mut step: impl FnMut(f64) -> bem3d::Result<(f64, bool)>,
+) -> bem3d::Result<f64> {
+    let dd = depth_max / steps as f64;
+    for k in 1..=steps {
+        step(dd * k as f64)?;
+    }
+    let mut smallest = f64::INFINITY;
+    for k in 0..100 * steps {
+        let (force, apart) = step(depth_max - dd * k as f64)?;
+        if apart {
+            return Ok(smallest);
+        }
+        smallest = smallest.min(force);
+    }
+    Err(bem3d::BemError::Infeasible(
+        "the sphere did not come apart while unloading".into(),
+    ))
 }
 
 /// MRD's pull-off of a sphere by the rule of Hess with Eq. 33 (E* = R = 1, w = 0.002,
