@@ -692,8 +692,9 @@ fn bem3d_public_api_stays_within_its_budget() {
         // ViscoelasticSlip::snapshot and ::restore with their SlipSnapshot: the 3D
         // partial-slip law of `dynamics` (`SlipBem3d`) takes a rejected time step back;
         // equivalent_body, the (E*, G*) -> (nu, G) the Cerruti operators take, for compare
-        // and `dynamics`.
-        ("tangential", 23),
+        // and `dynamics`; ViscoelasticSlip::press, the pressure of a varying normal force
+        // step by step (`dynamics::ObliqueBem3d`).
+        ("tangential", 24),
         // TransientContact::snapshot and ::restore with their Snapshot: the viscoelastic
         // contact law of `dynamics` takes a rejected time step back.
         ("viscoelastic", 12),

@@ -44,6 +44,8 @@ pub struct TangentialStep {
 /// Partial slip of a held normal contact under a tangential load history.
 pub struct PartialSlip<C = CerrutiPeriodic> {
     pub(super) op: C,
+    /// Coulomb's friction coefficient.
+    mu: f64,
     /// `mu p` per cell [pressure].
     pub(super) bound: Vec<f64>,
     /// Accumulated slip per cell [length].
@@ -51,9 +53,9 @@ pub struct PartialSlip<C = CerrutiPeriodic> {
     /// The traction of the last step [pressure].
     pub(super) q: Vec<f64>,
     /// The tractions' bound `mu sum p` times the cell area [force].
-    friction: f64,
+    pub(super) friction: f64,
     /// The cells in contact (`p > 0`), in grid order.
-    contact: Vec<usize>,
+    pub(super) contact: Vec<usize>,
     /// Set by the caller (from another thread) to stop the iteration.
     interrupt: Option<Interrupt>,
 }
@@ -83,11 +85,40 @@ const REFRESH: usize = 50;
 impl<C: TangentialCompliance> PartialSlip<C> {
     /// [`Self::new`] for any operator (its compiled entry, in `compiled.rs`, calls this).
     pub(crate) fn new_generic(op: C, pressure: &[f64], mu: f64) -> Result<Self> {
-        if pressure.len() != op.cells() {
+        // Above MAX_MU a load is a vanishing fraction of the friction limit, below what
+        // the force balance resolves (its tolerance scales with that limit).
+        if !(mu > 0.0 && mu <= MAX_MU) {
+            return Err(BemError::InvalidInput(format!(
+                "friction coefficient mu = {mu} must lie in (0, {MAX_MU:e}]"
+            )));
+        }
+        let n = op.cells();
+        let mut out = Self {
+            op,
+            mu,
+            bound: vec![0.0; n],
+            slip: vec![0.0; n],
+            q: vec![0.0; n],
+            friction: 0.0,
+            contact: Vec::new(),
+            interrupt: None,
+        };
+        out.press(pressure)?;
+        Ok(out)
+    }
+
+    /// Holds a new normal pressure from the next step on, the accumulated slip kept
+    /// (the caller sets the slip of the cells that enter contact): the bounds `mu p`,
+    /// the friction limit and the contact cells follow it; a cell out of contact carries
+    /// no traction and a traction beyond its new bound is put on it (the next step
+    /// slips it). Refused, the state unchanged, where the pressure is not a grid of
+    /// finite values >= 0 with a cell in contact.
+    pub(super) fn press(&mut self, pressure: &[f64]) -> Result<()> {
+        if pressure.len() != self.op.cells() {
             return Err(BemError::InvalidInput(format!(
                 "pressure has {} values for a grid of {} cells",
                 pressure.len(),
-                op.cells()
+                self.op.cells()
             )));
         }
         if let Some(i) = pressure.iter().position(|p| !p.is_finite() || *p < 0.0) {
@@ -96,31 +127,20 @@ impl<C: TangentialCompliance> PartialSlip<C> {
                 pressure[i]
             )));
         }
-        // Above MAX_MU a load is a vanishing fraction of the friction limit, below what
-        // the force balance resolves (its tolerance scales with that limit).
-        if !(mu > 0.0 && mu <= MAX_MU) {
-            return Err(BemError::InvalidInput(format!(
-                "friction coefficient mu = {mu} must lie in (0, {MAX_MU:e}]"
-            )));
-        }
-        let bound: Vec<f64> = pressure.iter().map(|p| mu * p).collect();
-        let friction = bound.iter().sum::<f64>() * op.cell_area();
+        let bound: Vec<f64> = pressure.iter().map(|p| self.mu * p).collect();
+        let friction = bound.iter().sum::<f64>() * self.op.cell_area();
         if friction <= 0.0 {
             return Err(BemError::InvalidInput(
                 "no cell is in contact (pressure is zero everywhere): nothing can carry a tangential force".into(),
             ));
         }
-        let n = op.cells();
-        let contact = (0..n).filter(|&i| bound[i] > 0.0).collect();
-        Ok(Self {
-            op,
-            bound,
-            slip: vec![0.0; n],
-            q: vec![0.0; n],
-            friction,
-            contact,
-            interrupt: None,
-        })
+        for (q, b) in self.q.iter_mut().zip(&bound) {
+            *q = q.clamp(-b, *b);
+        }
+        self.contact = (0..bound.len()).filter(|&i| bound[i] > 0.0).collect();
+        self.bound = bound;
+        self.friction = friction;
+        Ok(())
     }
 
     /// Stops the iteration of a step with [`BemError::Interrupted`] once `flag` is set

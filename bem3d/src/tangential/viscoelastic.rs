@@ -100,6 +100,10 @@ pub struct ViscoelasticSlip<C: TangentialCompliance> {
 pub struct SlipSnapshot {
     slip: Vec<f64>,
     q: Vec<f64>,
+    /// The held pressure's bounds, friction limit and contact cells ([`ViscoelasticSlip::press`]).
+    bound: Vec<f64>,
+    friction: f64,
+    contact: Vec<usize>,
     true_slip: Vec<f64>,
     u: Vec<f64>,
     h: Vec<Vec<f64>>,
@@ -149,13 +153,36 @@ impl<C: TangentialCompliance> ViscoelasticSlip<C> {
         self.slip.friction_limit()
     }
 
-    /// The state a step changes (slip, traction, displacement, hereditary integrals,
-    /// time, the shift and the stop's scale), for [`Self::restore`]: a time integrator
+    /// Holds a new normal pressure (`ny x nx`, finite, >= 0, some cell in contact) from
+    /// the next step on: a normal force that varies between steps, each step's pressure
+    /// from its own normal solve (the uncoupled model of the module docs, step by step).
+    /// The accumulated slip is carried over. A cell that enters contact sticks where it
+    /// is, with no traction yet: its slip is set so that `u + s` is the last step's
+    /// shift (the relative position of the two surfaces there is held from now on). A
+    /// cell that leaves contact carries no traction; a traction beyond its new bound
+    /// `mu p` is put on the bound, and the next step slips the cell. Refused, the state
+    /// unchanged, where the pressure is not such a grid.
+    pub fn press(&mut self, pressure: &[f64]) -> Result<()> {
+        let before: Vec<bool> = self.slip.bound.iter().map(|b| *b > 0.0).collect();
+        self.slip.press(pressure)?;
+        for (i, was) in before.into_iter().enumerate() {
+            if !was && self.slip.bound[i] > 0.0 {
+                self.true_slip[i] = self.last - self.u[i];
+            }
+        }
+        Ok(())
+    }
+
+    /// The state a step changes (slip, traction, held pressure, displacement, hereditary
+    /// integrals, time, the shift and the stop's scale), for [`Self::restore`]: a time integrator
     /// tries a step and takes it back when it rejects it.
     pub fn snapshot(&self) -> SlipSnapshot {
         SlipSnapshot {
             slip: self.slip.slip.clone(),
             q: self.slip.q.clone(),
+            bound: self.slip.bound.clone(),
+            friction: self.slip.friction,
+            contact: self.slip.contact.clone(),
             true_slip: self.true_slip.clone(),
             u: self.u.clone(),
             h: self.h.clone(),
@@ -176,6 +203,9 @@ impl<C: TangentialCompliance> ViscoelasticSlip<C> {
         }
         self.slip.slip = s.slip;
         self.slip.q = s.q;
+        self.slip.bound = s.bound;
+        self.slip.friction = s.friction;
+        self.slip.contact = s.contact;
         self.true_slip = s.true_slip;
         self.u = s.u;
         self.h = s.h;
@@ -313,8 +343,13 @@ impl<C: TangentialCompliance> ViscoelasticSlip<C> {
     ) -> Result<(f64, usize, bool, f64)> {
         let limit = self.slip.friction_limit();
         let (up, down) = self.sliding_shifts(&start.0);
-        if shift >= up || shift <= down {
-            return Ok(self.slide(shift, start));
+        // The direction is the bound crossed, not the shift's sign: under a pressure
+        // that falls in the step the contact can slide forward while the body moves back.
+        if shift >= up {
+            return Ok(self.slide(shift, 1.0, start));
+        }
+        if shift <= down {
+            return Ok(self.slide(shift, -1.0, start));
         }
         let goal = tolerance * self.reach;
         // A bracket of (force, shift): the sliding ends, then the trials.
@@ -365,11 +400,16 @@ impl<C: TangentialCompliance> ViscoelasticSlip<C> {
         })
     }
 
-    /// Gross sliding to `shift`: every contact cell at its bound, slipping so that its
-    /// displacement plus slip follows the body.
-    fn slide(&mut self, shift: f64, start: &(Vec<f64>, Vec<f64>)) -> (f64, usize, bool, f64) {
+    /// Gross sliding to `shift` in the direction `sign` (+1 forward, -1 back): every
+    /// contact cell at its bound, slipping so that its displacement plus slip follows
+    /// the body.
+    fn slide(
+        &mut self,
+        shift: f64,
+        sign: f64,
+        start: &(Vec<f64>, Vec<f64>),
+    ) -> (f64, usize, bool, f64) {
         let limit = self.slip.friction_limit();
-        let sign = if shift >= 0.0 { 1.0 } else { -1.0 };
         let n = self.slip.q.len();
         for i in 0..n {
             self.slip.q[i] = sign * self.slip.bound[i];
@@ -392,6 +432,7 @@ impl<C: TangentialCompliance> ViscoelasticSlip<C> {
 mod tests {
     use super::*;
     use crate::tangential::CerrutiFree;
+    use std::f64::consts::PI;
 
     /// A Hertz pressure of radius 0.4 at the centre of a unit `n x n` grid.
     fn hertz(n: usize) -> Vec<f64> {
@@ -537,5 +578,63 @@ mod tests {
             let m = Relaxation::new(g, vec![]).unwrap();
             assert!(ViscoelasticSlip::new(op(n), &p, 0.3, m).is_ok());
         }
+    }
+
+    /// Mindlin & Deresiewicz's oblique loading (J. Appl. Mech. 20, 1953): a sphere
+    /// pressed by a growing normal force while the tangential force grows in proportion,
+    /// `Q = rho P` with `rho < mu`, never slips; each ring that enters contact takes the
+    /// increment of a flat punch, so `q = rho p` and the shift is `rho (E* / G*) d` (the
+    /// integral of `dQ / (2 G* a)` with `dP = 2 E* a dd`). Driven by that shift, Hertz's
+    /// pressure (sampled at the cell centres of 64^2, nu = 0.3, rho = mu / 2) pressed
+    /// step by step, the radius grown from 0.02 to 0.3 of the side: from a radius of 0.1
+    /// on (6.4 cells) the force lies within 2 % of `rho P`, and both its error and the
+    /// share of cells that slip (edge cells entering with a finite pressure in one step)
+    /// fall as the steps refine (measured, steps of 10 % and 2.5 % in the radius: force
+    /// 2.9 % and 1.7 %, slipping cells 8.6 % and 4.7 % of the contact's at most).
+    #[test]
+    fn oblique_loading_below_mu_never_slips() {
+        let (n, nu, g, r, mu, rho) = (64, 0.3, 1.0, 1.0, 0.4, 0.2);
+        let (e_star, g_star) = (2.0 * g / (1.0 - nu), 4.0 * g / (2.0 - nu));
+        let h2 = 1.0 / (n * n) as f64;
+        let pressure = |a: f64| {
+            let p0 = 2.0 * e_star * a / (PI * r);
+            crate::mask::centred(n, 1.0, |x, y| {
+                p0 * (1.0 - (x * x + y * y) / (a * a)).max(0.0).sqrt()
+            })
+        };
+        let run = |growth: f64| {
+            let radii: Vec<f64> = (0..)
+                .map(|k| 0.02 * growth.powi(k))
+                .take_while(|a| *a <= 0.3)
+                .collect();
+            let op = CerrutiFree::new(n, n, 1.0, 1.0, g, nu).unwrap();
+            let modulus = Relaxation::new(g, vec![]).unwrap();
+            let mut c = ViscoelasticSlip::new(op, &pressure(radii[0]), mu, modulus).unwrap();
+            let (mut force, mut slipping) = (0.0f64, 0.0f64);
+            for (k, a) in radii.iter().enumerate() {
+                let p = pressure(*a);
+                if k > 0 {
+                    c.press(&p).unwrap();
+                }
+                let s = c
+                    .step(1.0, rho * e_star / g_star * a * a / r, 1e-10)
+                    .unwrap();
+                if *a < 0.1 {
+                    continue;
+                }
+                let total = p.iter().sum::<f64>() * h2;
+                force = force.max((s.force / (rho * total) - 1.0).abs());
+                let cells = (s.slip_cells + s.stick_cells) as f64;
+                slipping = slipping.max(s.slip_cells as f64 / cells);
+            }
+            (force, slipping)
+        };
+        let coarse = run(1.1);
+        let fine = run(1.025);
+        assert!(fine.0 < 2e-2 && fine.1 < 5e-2, "{fine:?}");
+        assert!(
+            fine.0 < coarse.0 && fine.1 < coarse.1,
+            "{coarse:?} {fine:?}"
+        );
     }
 }
