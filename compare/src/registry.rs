@@ -91,6 +91,10 @@ pub const KINDS: &[Kind] = &[
         "forced_resonance",
         "a rough contact driven through its resonance by a harmonic normal force, MRD's rough lines and the 3D punch in the loop: steady amplitude against frequency up and down, the linear oscillator at small forcing, softening and the jump at large forcing (Section 12)",
     ),
+    Kind::of::<dynamics::oblique_impact::ObliqueImpact>(
+        "oblique_impact",
+        "a translating sphere striking the half-space obliquely with friction, the normal and the tangential force at every step, MRD's Coulomb springs and the 3D contact (normal solve and partial slip under the step's pressure) in the loop: tangential rebound and slip energy against incidence, the sliding and no-slip closed forms (Sections 6-7 and 12)",
+    ),
     Kind::of::<dynamics::ring_down::RingDown>(
         "ring_down",
         "a mass ringing down on a sphere's frictional contact, MRD's Coulomb springs at every step, against Mindlin-Deresiewicz's loss per cycle (Sections 7 and 12)",

@@ -226,6 +226,115 @@ impl Oscillator<'_> {
     }
 }
 
+/// A free mass moving in the plane of the normal and the tangential direction (no
+/// rotation, no external force): `m x'' = -F_contact(x, history)` in both coordinates,
+/// `x = (approach, tangential displacement)`; the same scheme as [`Oscillator`], a step
+/// rejected where the contact force's magnitude changes by more than `max_jump` of
+/// `force_scale`.
+pub struct Planar {
+    pub mass: f64,
+    pub dt: f64,
+    pub dt_min: f64,
+    pub max_jump: f64,
+    pub force_scale: f64,
+}
+
+/// One accepted step's end of a [`Planar`] run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanarSample {
+    pub t: f64,
+    /// Approach and tangential displacement [length].
+    pub x: [f64; 2],
+    /// Their velocities [length / time].
+    pub v: [f64; 2],
+    /// The contact's forces at the step's end.
+    pub forces: crate::Forces,
+}
+
+impl Planar {
+    /// Integrates from `(x0, v0)` at t = 0 until `until` holds for an accepted sample
+    /// or at `t_max`; every accepted step is a sample.
+    pub fn run(
+        &self,
+        law: &mut dyn ContactLaw,
+        (x0, v0): ([f64; 2], [f64; 2]),
+        until: &dyn Fn(&PlanarSample) -> bool,
+        t_max: f64,
+    ) -> Result<(Vec<PlanarSample>, Counts)> {
+        Oscillator {
+            mass: self.mass,
+            damping: 0.0,
+            drive: &|_| 0.0,
+            axis: Axis::Normal { tangential: 0.0 },
+            dt: self.dt,
+            dt_min: self.dt_min,
+            max_jump: self.max_jump,
+            force_scale: self.force_scale,
+        }
+        .check()?;
+        if !(x0.iter().chain(&v0).all(|v| v.is_finite()) && t_max.is_finite() && t_max > 0.0) {
+            return bad(format!(
+                "x0 = {x0:?}, v0 = {v0:?} and t_max = {t_max} must be finite (t_max > 0)"
+            ));
+        }
+        let motion = |x: [f64; 2], dt: f64| Motion {
+            normal: x[0],
+            tangential: x[1],
+            dt,
+        };
+        let along = |f: &crate::Forces| [f.normal, f.tangential];
+        let mut counts = Counts::default();
+        let f0 = law.trial(motion(x0, self.dt))?;
+        counts.trials += 1;
+        law.commit()?;
+        let mut s = PlanarSample {
+            t: 0.0,
+            x: x0,
+            v: v0,
+            forces: f0,
+        };
+        let mut a = along(&f0).map(|f| -f / self.mass);
+        let mut out = vec![s];
+        let mut dt = self.dt;
+        while s.t < t_max {
+            if counts.accepted >= MAX_STEPS {
+                return bad(format!(
+                    "{MAX_STEPS} steps did not reach the end time {t_max}: raise dt"
+                ));
+            }
+            let h = dt.min(t_max - s.t);
+            let half = [0, 1].map(|k| s.v[k] + 0.5 * h * a[k]);
+            let x = [0, 1].map(|k| s.x[k] + h * half[k]);
+            let f = law.trial(motion(x, h))?;
+            counts.trials += 1;
+            let (new, old) = (along(&f), along(&s.forces));
+            let jump = (new[0] - old[0]).hypot(new[1] - old[1]) / self.force_scale;
+            if jump > self.max_jump && h > self.dt_min {
+                law.rollback();
+                counts.rejected += 1;
+                dt = (0.5 * h).max(self.dt_min);
+                continue;
+            }
+            law.commit()?;
+            counts.accepted += 1;
+            let a_new = new.map(|f| -f / self.mass);
+            s = PlanarSample {
+                t: s.t + h,
+                x,
+                v: [0, 1].map(|k| half[k] + 0.5 * h * a_new[k]),
+                forces: f,
+            };
+            a = a_new;
+            dt = (1.25 * dt).min(self.dt);
+            out.push(s);
+            if until(&s) {
+                break;
+            }
+        }
+        Ok((out, counts))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -16,7 +16,9 @@
 //!   approach, warm-started from the last accepted state.
 //! - Tangential, both ways: MRD's springs with Coulomb slip ([`law::Springs::with_friction`])
 //!   and the 3D partial slip at a held normal force ([`slip::SlipBem3d`]), each taking the
-//!   body's tangential displacement.
+//!   body's tangential displacement; the 3D contact with both motions free
+//!   ([`oblique::ObliqueBem3d`]: the pressure solved at each step, the slip carried over),
+//!   whose 1D counterpart is MRD's springs with friction.
 //! - Viscoelastic, both ways ([`viscoelastic`]): MRD's springs with the hereditary
 //!   integral of a relaxing modulus (Eq. 63) and the 3D transient solve on the same
 //!   modulus, whose force depends on the history of the motion.
@@ -32,11 +34,13 @@ pub mod adhesive;
 mod held;
 pub mod integrate;
 pub mod law;
+pub mod oblique;
 pub mod slip;
 pub mod viscoelastic;
 
 pub use adhesive::{AdhesiveBem3d, AdhesiveSprings};
 pub use law::{Bem3d, ContactLaw, Forces, Motion, Springs};
+pub use oblique::ObliqueBem3d;
 pub use slip::SlipBem3d;
 pub use viscoelastic::{ViscoelasticBem3d, ViscoelasticSprings};
 

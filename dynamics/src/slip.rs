@@ -14,9 +14,9 @@
 //!
 //! **Trial and commit.** A trial starts from the accepted state (the slip of every
 //! cell, the traction); a rejected trial is taken back by the solver's snapshot, bit for
-//! bit (`crate::held`, as the other 3D laws). The normal motion must stay at the held approach: the law refuses another
-//! (a varying normal force would need the pressure solved again with the slip carried
-//! over, which this law does not do).
+//! bit (`crate::held`, as the other 3D laws). The normal motion must stay at the held
+//! approach: the law refuses another (`crate::oblique::ObliqueBem3d` lets both motions
+//! vary).
 
 use crate::held::Held;
 use crate::law::{check_motion, ContactLaw, Forces, Motion};
@@ -24,6 +24,19 @@ use crate::{bad, Result};
 use bem3d::tangential::{equivalent_body, CerrutiFree, ViscoelasticSlip};
 use bem3d::viscoelastic::Relaxation;
 use bem3d::{ContactSolver, Load, NonPeriodicHalfSpace, SolverOptions};
+
+/// Poisson's ratio and shear modulus of the elastic body with contact moduli `e_star`
+/// and `g_star` (`bem3d::tangential::equivalent_body`), refused where no body has them.
+pub(crate) fn shear_body(e_star: f64, g_star: f64) -> Result<(f64, f64)> {
+    // G* / E* = 2 (1 - nu) / (2 - nu) lies in [2/3, 1] for nu in [0, 0.5].
+    let ratio = g_star / e_star;
+    if !(e_star.is_finite() && e_star > 0.0 && (2.0 / 3.0..=1.0).contains(&ratio)) {
+        return bad(format!(
+            "e_star = {e_star}, g_star = {g_star}: give E* > 0 and G* / E* in [2/3, 1] (Poisson's ratio in [0, 0.5])"
+        ));
+    }
+    Ok(equivalent_body(e_star, g_star))
+}
 
 /// The 3D partial-slip law at a held normal force (module docs).
 pub struct SlipBem3d {
@@ -57,14 +70,7 @@ impl SlipBem3d {
                 "normal_force = {normal_force} must be finite and > 0 (the law holds a pressed contact)"
             ));
         }
-        // G* / E* = 2 (1 - nu) / (2 - nu) lies in [2/3, 1] for nu in [0, 0.5].
-        let ratio = g_star / e_star;
-        if !(e_star.is_finite() && e_star > 0.0 && (2.0 / 3.0..=1.0).contains(&ratio)) {
-            return bad(format!(
-                "e_star = {e_star}, g_star = {g_star}: give E* > 0 and G* / E* in [2/3, 1] (Poisson's ratio in [0, 0.5])"
-            ));
-        }
-        let (nu, g) = equivalent_body(e_star, g_star);
+        let (nu, g) = shear_body(e_star, g_star)?;
         let options = SolverOptions::new(tolerance, 20 * nx.max(ny) + 2000);
         options.validate()?;
         let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;

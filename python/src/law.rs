@@ -432,6 +432,39 @@ impl ContactLaw {
         Ok(Self::new(Box::new(law), Some(frame)))
     }
 
+    /// oblique_bem3d(heights, g_star, mu, size=None, e_star=1.0, tolerance=None)
+    ///
+    /// The 3D contact of the height map on the free half-space with both motions free:
+    /// each trial solves the normal contact at its approach (from first contact of the
+    /// highest cell), then the partial slip under that pressure at its tangential
+    /// displacement (Coulomb's `mu` cell by cell, the slip carried from step to step, a
+    /// cell entering contact sticking where it is; E* and G* of one elastic body under a
+    /// rigid one, G* / E* in [2/3, 1]). It starts apart and models one contact: a
+    /// contact that forms again after separating is refused. tolerance: the solves'
+    /// (None: the solver's default, 1e-10).
+    #[staticmethod]
+    #[pyo3(signature = (heights, g_star, mu, size = None, e_star = 1.0, tolerance = None))]
+    fn oblique_bem3d(
+        py: Python<'_>,
+        heights: &Bound<'_, PyAny>,
+        g_star: f64,
+        mu: f64,
+        size: Option<(f64, f64)>,
+        e_star: f64,
+        tolerance: Option<f64>,
+    ) -> PyResult<Self> {
+        let grid = Grid::new(py, heights, (size, Some(false)), None, e_star, false)?;
+        let (h, frame) = (grid.heights, grid.frame);
+        let tolerance = tolerance.unwrap_or(bem3d::SolverOptions::default().tolerance);
+        let ((ny, nx), (lx, ly)) = (frame.shape, frame.size);
+        let law = py
+            .detach(|| {
+                dynamics::ObliqueBem3d::new(&h, (nx, ny), (lx, ly), (e_star, g_star), mu, tolerance)
+            })
+            .map_err(|e| law_err(py, Some(&frame), e))?;
+        Ok(Self::new(Box::new(law), Some(frame)))
+    }
+
     /// trial(normal, tangential=0.0, dt=1.0) -> LawForces
     ///
     /// The forces at the step's end motion (approach `normal`, displacement

@@ -1224,6 +1224,37 @@ fn dynamics_bad_input_names_the_key() {
 
 /// `forced_resonance` refuses keys out of range by name before computing.
 #[test]
+fn oblique_impact_bad_input_names_the_key() {
+    refuses_each_edit(
+        "oblique-impact-ci",
+        &[
+            ("mu = 0.3", "mu = 0.0", "mu"),
+            ("mu = 0.3", "mu = nan", "mu"),
+            ("mass = 1e-3", "mass = -1e-3", "mass"),
+            ("speed = 0.05", "speed = 5.0", "speed"),
+            (
+                "ratios = [0.5, 0.75, 1.5, 2.0, 4.0]",
+                "ratios = []",
+                "ratios",
+            ),
+            (
+                "ratios = [0.5, 0.75, 1.5, 2.0, 4.0]",
+                "ratios = [0.5, 0.4]",
+                "ratios",
+            ),
+            (
+                "ratios = [0.5, 0.75, 1.5, 2.0, 4.0]",
+                "ratios = [-1.0]",
+                "ratios",
+            ),
+            ("cells = [24]", "cells = [8]", "cells"),
+            ("steps_3d = 200", "steps_3d = 10", "steps_3d"),
+            ("g_star = 1.0", "g_star = 0.5", "cells"),
+        ],
+    );
+}
+
+#[test]
 fn forced_resonance_bad_input_names_the_key() {
     refuses_each_edit(
         "forced-resonance-ci",

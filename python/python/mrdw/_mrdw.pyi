@@ -440,6 +440,18 @@ class ContactLaw:
     ) -> "ContactLaw":
         """The 3D partial slip of the height map on the free half-space at a held normal
         force as a tangential contact law; a rollback restores the slip before a trial."""
+    @staticmethod
+    def oblique_bem3d(
+        heights: Union[ArrayLike, Any],
+        g_star: float,
+        mu: float,
+        size: Optional[Tuple[float, float]] = None,
+        e_star: float = 1.0,
+        tolerance: Optional[float] = None,
+    ) -> "ContactLaw":
+        """The 3D contact of the height map on the free half-space with both motions free
+        (the normal solve, then the partial slip under its pressure, the slip carried);
+        one contact: starting apart, a contact forming again after separating is refused."""
     def trial(self, normal: float, tangential: float = 0.0, dt: float = 1.0) -> LawForces:
         """The forces at the step's end motion from the last accepted state."""
     def commit(self) -> None:
