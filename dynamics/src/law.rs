@@ -345,6 +345,23 @@ impl ContactLaw for Springs {
     }
 }
 
+/// The approach at which the 3D normal contact `solver` carries `force` (>= 0; 0 at no
+/// force), its solve warm-started from `start`: the frictionless query of the 3D laws.
+pub(crate) fn approach_of<O: SolverOperator>(
+    solver: &mut ContactSolver<O>,
+    options: &SolverOptions,
+    start: Option<&Solution>,
+    force: f64,
+) -> Result<f64> {
+    if !(force.is_finite() && force >= 0.0) {
+        return bad(format!("force = {force} must be finite and >= 0"));
+    }
+    if force == 0.0 {
+        return Ok(0.0);
+    }
+    Ok(solver.solve(Load::Force(force), options, start)?.approach)
+}
+
 /// The 3D boundary-element normal contact (`bem3d`) as a contact law: each trial is a
 /// solve under the step's approach (from first contact of the highest cell of the
 /// heights), warm-started from the last accepted solution. Frictionless: a tangential
@@ -430,16 +447,12 @@ impl<O: SolverOperator> ContactLaw for Bem3d<O> {
     }
 
     fn approach_at(&mut self, force: f64) -> Result<f64> {
-        if !(force.is_finite() && force >= 0.0) {
-            return bad(format!("force = {force} must be finite and >= 0"));
-        }
-        if force == 0.0 {
-            return Ok(0.0);
-        }
-        Ok(self
-            .solver
-            .solve(Load::Force(force), &self.options, self.committed.as_ref())?
-            .approach)
+        approach_of(
+            &mut self.solver,
+            &self.options,
+            self.committed.as_ref(),
+            force,
+        )
     }
 
     fn describe(&self) -> String {

@@ -23,7 +23,7 @@
 //! on commit only.
 
 use crate::held::Held;
-use crate::law::{check_motion, ContactLaw, Forces, Motion};
+use crate::law::{approach_of, check_motion, ContactLaw, Forces, Motion};
 use crate::slip::shear_body;
 use crate::{bad, Result};
 use bem3d::tangential::{CerrutiFree, ViscoelasticSlip};
@@ -247,16 +247,7 @@ impl ContactLaw for ObliqueBem3d {
 
     /// The approach of a normal force (a frictionless query: the normal solve alone).
     fn approach_at(&mut self, force: f64) -> Result<f64> {
-        if !(force.is_finite() && force >= 0.0) {
-            return bad(format!("force = {force} must be finite and >= 0"));
-        }
-        if force == 0.0 {
-            return Ok(0.0);
-        }
-        Ok(self
-            .normal
-            .solve(Load::Force(force), &self.options, None)?
-            .approach)
+        approach_of(&mut self.normal, &self.options, None, force)
     }
 
     fn describe(&self) -> String {

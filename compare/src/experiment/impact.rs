@@ -75,6 +75,36 @@ impl Strike {
     }
 }
 
+/// The stages of an impact kind: the rule of Hess, the closed form, MRD in the loop,
+/// and the 3D solve in the loop where it has grids.
+pub fn stages(with_3d: bool) -> Vec<crate::plan::Stage> {
+    use crate::plan::Stage;
+    let mut s = vec![Stage::HessTransform, Stage::ClosedForm, Stage::Dynamics];
+    if with_3d {
+        s.push(Stage::Dynamics3d);
+    }
+    s
+}
+
+/// Refuses a sphere of radius `r` (modulus `e_star`) struck by `mass` at `speed` (each
+/// finite and > 0, checked by name) so hard that Hertz's largest approach passes a tenth
+/// of the radius, where the small-strain half-space no longer holds.
+pub fn check_strike(e_star: f64, r: f64, mass: f64, speed: f64) -> crate::error::Result<()> {
+    use crate::checks::bad;
+    for (key, v) in [("mass", mass), ("speed", speed)] {
+        if !(v.is_finite() && v > 0.0) {
+            return bad(format!("{key} = {v} must be finite and > 0"));
+        }
+    }
+    let dmax = mrd::reference::hertz_impact::max_approach(e_star, r, mass, speed);
+    if dmax > 0.1 * r {
+        return bad(format!(
+            "mass and speed press the sphere to {dmax:.3e}, beyond a tenth of its radius {r}: the small-strain half-space no longer holds"
+        ));
+    }
+    Ok(())
+}
+
 /// The resolution keys of the impact kinds, each checked by name: `springs` in
 /// 100..=1000000, `steps` in 100..=1000000 and `steps_3d` in 50..=100000 per contact
 /// time, `cells` increasing grid sides in 16..=`largest_grid`, `extent` in [1.1, 10] and

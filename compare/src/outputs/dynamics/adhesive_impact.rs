@@ -20,7 +20,7 @@ use crate::checks::{bad, default_tolerance};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::axisym_3d::AxisymGrid;
-use crate::experiment::impact::{check_resolution, Strike};
+use crate::experiment::impact::{check_resolution, stages as impact_stages, Strike};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Style, Table};
@@ -200,11 +200,7 @@ impl Output for AdhesiveImpact {
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
-        let mut s = vec![Stage::HessTransform, Stage::ClosedForm, Stage::Dynamics];
-        if !self.cells.is_empty() {
-            s.push(Stage::Dynamics3d);
-        }
-        s
+        impact_stages(!self.cells.is_empty())
     }
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {

@@ -25,7 +25,7 @@ use crate::checks::{bad, default_tolerance};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::axisym_3d::AxisymGrid;
-use crate::experiment::impact::check_resolution;
+use crate::experiment::impact::{check_resolution, check_strike, stages as impact_stages};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Style, Table};
@@ -114,11 +114,8 @@ impl Output for ObliqueImpact {
             return bad("oblique_impact needs a sphere (profile = paraboloid): Hertz's impact scales the run");
         }
         let g = ctx.material.g_star().ctx("oblique_impact")?;
-        for (key, v) in [("mass", self.mass), ("speed", self.speed)] {
-            if !(v.is_finite() && v > 0.0) {
-                return bad(format!("{key} = {v} must be finite and > 0"));
-            }
-        }
+        let r = for_profile::sphere_radius(ctx.profile()?).unwrap_or(1.0);
+        check_strike(ctx.material.e_star, r, self.mass, self.speed)?;
         if !(self.mu.is_finite() && self.mu > 0.0 && self.mu <= 10.0) {
             return bad(format!("mu = {} must lie in (0, 10]", self.mu));
         }
@@ -150,22 +147,11 @@ impl Output for ObliqueImpact {
             self.extent,
             self.tolerance,
         )?;
-        let r = for_profile::sphere_radius(ctx.profile()?).unwrap_or(1.0);
-        let dmax = hertz_impact::max_approach(ctx.material.e_star, r, self.mass, self.speed);
-        if dmax > 0.1 * r {
-            return bad(format!(
-                "mass and speed press the sphere to {dmax:.3e}, beyond a tenth of its radius {r}: the small-strain half-space no longer holds"
-            ));
-        }
         Ok(())
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
-        let mut s = vec![Stage::HessTransform, Stage::ClosedForm, Stage::Dynamics];
-        if !self.cells.is_empty() {
-            s.push(Stage::Dynamics3d);
-        }
-        s
+        impact_stages(!self.cells.is_empty())
     }
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {

@@ -26,7 +26,9 @@ use crate::checks::{bad, default_tolerance};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::axisym_3d::AxisymGrid;
-use crate::experiment::impact::{check_resolution, first_contact, FirstContact, Strike};
+use crate::experiment::impact::{
+    check_resolution, first_contact, stages as impact_stages, FirstContact, Strike,
+};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Style, Table};
@@ -215,11 +217,7 @@ impl Output for ViscoelasticImpact {
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
-        let mut s = vec![Stage::HessTransform, Stage::ClosedForm, Stage::Dynamics];
-        if !self.cells.is_empty() {
-            s.push(Stage::Dynamics3d);
-        }
-        s
+        impact_stages(!self.cells.is_empty())
     }
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
