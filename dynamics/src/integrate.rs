@@ -226,13 +226,17 @@ impl Oscillator<'_> {
     }
 }
 
-/// A free mass moving in the plane of the normal and the tangential direction (no
-/// rotation, no external force): `m x'' = -F_contact(x, history)` in both coordinates,
-/// `x = (approach, tangential displacement)`; the same scheme as [`Oscillator`], a step
+/// A free body moving in the plane of the normal and the tangential direction, no
+/// external force: `m_k x_k'' = -F_k(x, history)` for `x = (approach, tangential
+/// displacement)`, each with its own mass; the same scheme as [`Oscillator`], a step
 /// rejected where the contact force's magnitude changes by more than `max_jump` of
-/// `force_scale`.
+/// `force_scale`. A body that also turns freely about its centre (moment of inertia
+/// `I`, the contact at distance `R`) moves its contact point tangentially as a mass
+/// `m / (1 + m R^2 / I)` would: give that as the tangential mass, and the tangential
+/// coordinate is the contact point's displacement (translation and rolling).
 pub struct Planar {
-    pub mass: f64,
+    /// The normal and the tangential mass [mass].
+    pub mass: [f64; 2],
     pub dt: f64,
     pub dt_min: f64,
     pub max_jump: f64,
@@ -261,8 +265,14 @@ impl Planar {
         until: &dyn Fn(&PlanarSample) -> bool,
         t_max: f64,
     ) -> Result<(Vec<PlanarSample>, Counts)> {
+        if !(self.mass[1].is_finite() && self.mass[1] > 0.0) {
+            return bad(format!(
+                "tangential mass = {} must be finite and > 0",
+                self.mass[1]
+            ));
+        }
         Oscillator {
-            mass: self.mass,
+            mass: self.mass[0],
             damping: 0.0,
             drive: &|_| 0.0,
             axis: Axis::Normal { tangential: 0.0 },
@@ -293,7 +303,8 @@ impl Planar {
             v: v0,
             forces: f0,
         };
-        let mut a = along(&f0).map(|f| -f / self.mass);
+        let accel = |f: [f64; 2]| [-f[0] / self.mass[0], -f[1] / self.mass[1]];
+        let mut a = accel(along(&f0));
         let mut out = vec![s];
         let mut dt = self.dt;
         while s.t < t_max {
@@ -317,7 +328,7 @@ impl Planar {
             }
             law.commit()?;
             counts.accepted += 1;
-            let a_new = new.map(|f| -f / self.mass);
+            let a_new = accel(new);
             s = PlanarSample {
                 t: s.t + h,
                 x,

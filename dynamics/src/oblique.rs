@@ -257,6 +257,7 @@ impl ContactLaw for ObliqueBem3d {
 
 #[cfg(test)]
 mod tests {
+
     use super::*;
     use crate::integrate::{Planar, PlanarSample};
     use crate::law::Springs;
@@ -271,7 +272,7 @@ mod tests {
         let tc = hertz_impact::duration(e, r, m, v);
         let dmax = hertz_impact::max_approach(e, r, m, v);
         let planar = Planar {
-            mass: m,
+            mass: [m, m],
             dt: tc / steps,
             dt_min: tc / (1e3 * steps),
             max_jump: 0.05,
@@ -356,6 +357,55 @@ mod tests {
                 (wt / wm - 1.0).abs() < 0.1,
                 "ratio {ratio}: slip energy {wt} {wm}"
             );
+        }
+    }
+
+    /// Section 7 with the normal force oscillating too: a sphere pressed to `d0` (from
+    /// apart, in 20 steps), then moved along `d0 (1 + 0.2 sin)` and `u1 sin` in phase
+    /// (u1 twice and half the shift at which a stuck contact would carry `mu P`), 40
+    /// steps a cycle, three cycles, 48^2 cells over 2.5 contact radii: the 3D slip
+    /// energy of the last cycle within 5 % of MRD's (measured 4.0e-4 and 3.3 %: the
+    /// smaller loop dissipates 1/160 of the larger's), the tangential force within 5e-3
+    /// of `mu P` at every step (measured 3.1e-3 and 1.5e-3).
+    #[test]
+    fn oscillating_normal_and_tangential_motion_follow_mrd() {
+        let (mu, g_star) = (0.3, 1.4 / 1.7);
+        let d0 = 0.5 * hertz_impact::max_approach(1.0, 1.0, 1e-3, 0.05);
+        // Full stick from a pressed contact: Q = 2 G* a u, so mu P is reached at
+        // u = mu (4/3) a^3 / (2 G* a) = (2/3) mu d0 E* / G*.
+        let u_slip = 2.0 / 3.0 * mu * d0 / g_star;
+        for amplitude in [2.0 * u_slip, 0.5 * u_slip] {
+            let mut path = vec![];
+            for k in 1..=20 {
+                path.push((d0 * k as f64 / 20.0, 0.0));
+            }
+            for k in 1..=120 {
+                let phase = (2.0 * std::f64::consts::PI * k as f64 / 40.0).sin();
+                path.push((d0 * (1.0 + 0.2 * phase), amplitude * phase));
+            }
+            let (mut springs, mut three) = (springs(g_star, mu), three(48, g_star, mu));
+            let (mut wm, mut w3, mut worst) = (0.0, 0.0, 0.0f64);
+            for (k, (d, u)) in path.iter().enumerate() {
+                let m = Motion {
+                    normal: *d,
+                    tangential: *u,
+                    dt: 1.0,
+                };
+                let fm = springs.trial(m).unwrap();
+                springs.commit().unwrap();
+                let f3 = three.trial(m).unwrap();
+                three.commit().unwrap();
+                worst = worst.max((f3.tangential - fm.tangential).abs() / (mu * fm.normal));
+                if k >= 100 {
+                    wm += fm.dissipated;
+                    w3 += f3.dissipated;
+                }
+            }
+            assert!(
+                (w3 / wm - 1.0).abs() < 0.05,
+                "{amplitude}: slip energy {w3} {wm}"
+            );
+            assert!(worst < 5e-3, "{amplitude}: force off by {worst} of mu P");
         }
     }
 

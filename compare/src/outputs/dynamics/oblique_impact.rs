@@ -1,19 +1,21 @@
 //! `oblique_impact`: a sphere striking the half-space obliquely, with friction, the
 //! normal and the tangential force both evaluated at every time step (Sections 6-7 and
-//! 12: the varying normal force with a tangential one). The sphere translates (no
-//! rotation, as a body held against turning, or a particle whose spin is locked), so
-//! its exit velocities are the contact law's answer alone. By MRD's springs (the rule
+//! 12: the varying normal force with a tangential one). The sphere translates without
+//! turning, or (`gyration`, its moment of inertia over m R^2) turns freely: then its
+//! contact point moves tangentially as the mass `m / (1 + 1 / gyration)` would (the
+//! case of Maw, Barber & Fawcett, Wear 38 (1976) 101), and the tangential speeds are
+//! the contact point's. By MRD's springs (the rule
 //! of Hess, tangential springs `G* dx` with Coulomb slip: exact for the sphere) and by
 //! the 3D contact in the loop (`dynamics::ObliqueBem3d`: the normal solve and the
 //! partial slip under the step's pressure, the slip carried from step to step), at a
 //! range of incidences, the tangential speed over mu times the normal one.
 //!
 //! Closed forms: the normal restitution is 1 (Hertz); where the sphere slides
-//! throughout (from a tangential speed of 2 mu times the normal one on, measured by
-//! both methods), the tangential impulse is mu times the normal one, `v_t' = v_t -
-//! 2 mu v_n`; for nu = 0 (G* = E*) below mu the tangential motion is the normal one
-//! scaled, nothing slips and `v_t' = -v_t`. In between, stick and slip share the
-//! impact (the regime of Maw, Barber & Fawcett, Wear 38 (1976) 101): MRD against 3D.
+//! throughout (checked from a tangential speed of `2 mu m / m_t` times the normal one
+//! on, where the contact point just comes to rest), the tangential impulse is mu times
+//! the normal one, `v_t' = v_t - 2 mu v_n m / m_t`; without turning, for nu = 0
+//! (G* = E*) below mu the tangential motion is the normal one scaled, nothing slips
+//! and `v_t' = -v_t`. In between, stick and slip share the impact: MRD against 3D.
 //! The slip energy closes the kinetic energy's balance (the elastic energy is
 //! returned).
 //!
@@ -44,6 +46,11 @@ pub struct ObliqueImpact {
     speed: f64,
     /// Coulomb's friction coefficient.
     mu: f64,
+    /// The sphere's moment of inertia about its centre over m R^2 when it turns freely
+    /// (0.4: a solid sphere; the contact point then moves tangentially as the mass
+    /// m / (1 + 1 / gyration)); none: it does not turn.
+    #[serde(default)]
+    gyration: Option<f64>,
     /// The incidences: tangential speed at first contact over mu times the normal one,
     /// each > 0, increasing.
     #[serde(default = "default_ratios")]
@@ -116,6 +123,13 @@ impl Output for ObliqueImpact {
         let g = ctx.material.g_star().ctx("oblique_impact")?;
         let r = for_profile::sphere_radius(ctx.profile()?).unwrap_or(1.0);
         check_strike(ctx.material.e_star, r, self.mass, self.speed)?;
+        if let Some(k) = self.gyration {
+            if !(k.is_finite() && k > 0.0 && k <= 100.0) {
+                return bad(format!(
+                    "gyration = {k} must lie in (0, 100] (the moment of inertia over m R^2; 0.4 for a solid sphere)"
+                ));
+            }
+        }
         if !(self.mu.is_finite() && self.mu > 0.0 && self.mu <= 10.0) {
             return bad(format!("mu = {} must lie in (0, 10]", self.mu));
         }
@@ -232,6 +246,21 @@ impl Output for ObliqueImpact {
 }
 
 impl ObliqueImpact {
+    /// The contact point's tangential mass: the sphere's, or `m / (1 + 1 / gyration)`
+    /// when it turns freely.
+    fn tangential_mass(&self) -> f64 {
+        match self.gyration {
+            Some(k) => self.mass / (1.0 + 1.0 / k),
+            None => self.mass,
+        }
+    }
+
+    /// The tangential impulse's factor on the contact point's speed: `m / m_t`
+    /// (sliding throughout, `v_t' = v_t - 2 mu v_n m / m_t`).
+    fn impulse_factor(&self) -> f64 {
+        self.mass / self.tangential_mass()
+    }
+
     /// One impact at the incidence `ratio` on `law`, `steps` per Hertz contact time.
     fn strike(
         &self,
@@ -241,7 +270,7 @@ impl ObliqueImpact {
         (tc, fmax, dmax): (f64, f64, f64),
     ) -> dynamics::Result<Outcome> {
         let planar = Planar {
-            mass: self.mass,
+            mass: [self.mass, self.tangential_mass()],
             dt: tc / steps as f64,
             dt_min: tc / (1000.0 * steps as f64),
             max_jump: 0.05,
@@ -255,7 +284,10 @@ impl ObliqueImpact {
         let (samples, counts) = planar.run(law, ([x0, 0.0], [vn, vt]), &left, 3.0 * tc)?;
         let seconds = t0.elapsed().as_secs_f64();
         let last = samples.last().expect("a run keeps its start");
-        let kinetic = |v: [f64; 2]| 0.5 * self.mass * (v[0] * v[0] + v[1] * v[1]);
+        // Starting without spin, the kinetic energy the impulses change is the normal
+        // mass's and the contact point's tangential mass's.
+        let mt = self.tangential_mass();
+        let kinetic = |v: [f64; 2]| 0.5 * (self.mass * v[0] * v[0] + mt * v[1] * v[1]);
         let k_in = kinetic([vn, vt]);
         Ok(Outcome {
             normal: if left(last) {
@@ -280,13 +312,14 @@ impl ObliqueImpact {
         g_over_e: f64,
     ) -> Result<()> {
         let methods: Vec<&Method> = std::iter::once(mrd).chain(three).collect();
+        let f = self.impulse_factor();
         let mut t = Table::new(
             "oblique",
             &[
                 "method [0 MRD, else 3D cells a side]",
                 "incidence v_t / (mu v_n) [1]",
                 "tangential exit over entry v_t' / v_t [1]",
-                "sliding throughout 1 - 2 / incidence [1]",
+                "sliding throughout 1 - 2 m / (m_t incidence) [1]",
                 "normal restitution [1]",
                 "slip energy over entry kinetic energy [1]",
                 "kinetic energy lost over entry [1]",
@@ -296,7 +329,11 @@ impl ObliqueImpact {
             ],
         );
         t.notes.push(format!(
-            "a translating sphere (mass {}, normal speed {}, mu = {}, G*/E* = {g_over_e:.6}) from 1e-3 of Hertz's largest approach before contact until it leaves; velocity Verlet, steps rejected where the force jumps by 5 % of Hertz's largest; MRD at t_c/{}, 3D at t_c/{} (grids free, side {} Hertz contact diameters, solves to {:e}); iterations: the 3D normal solve's conjugate-gradient iterations and the partial-slip solves per step",
+            "a sphere {} (mass {}, normal speed {}, mu = {}, G*/E* = {g_over_e:.6}) from 1e-3 of Hertz's largest approach before contact until it leaves; velocity Verlet, steps rejected where the force jumps by 5 % of Hertz's largest; MRD at t_c/{}, 3D at t_c/{} (grids free, side {} Hertz contact diameters, solves to {:e}); iterations: the 3D normal solve's conjugate-gradient iterations and the partial-slip solves per step",
+            match self.gyration {
+                Some(k) => format!("turning freely, I = {k} m R^2 (the tangential speeds the contact point's, its mass m / (1 + 1 / {k}))"),
+                None => "translating without turning".into(),
+            },
             self.mass, self.speed, self.mu, self.steps, self.steps_3d, self.extent, self.tolerance
         ));
         for m in &methods {
@@ -312,7 +349,7 @@ impl ObliqueImpact {
                     m.cells as f64,
                     *k,
                     o.tangential,
-                    1.0 - 2.0 / k,
+                    1.0 - 2.0 * f / k,
                     o.normal,
                     o.slip_energy,
                     o.kinetic_loss,
@@ -330,25 +367,27 @@ impl ObliqueImpact {
                 .filter_map(|(k, o)| f(*k, o))
                 .fold(0.0f64, f64::max)
         };
-        let sliding =
-            |k: f64, o: &Outcome| (k >= 2.0).then(|| (o.tangential - (1.0 - 2.0 / k)).abs());
+        let sliding = |k: f64, o: &Outcome| {
+            (k >= 2.0 * f).then(|| (o.tangential - (1.0 - 2.0 * f / k)).abs())
+        };
         let balance = |_: f64, o: &Outcome| Some((o.kinetic_loss - o.slip_energy).abs());
         let normal = |_: f64, o: &Outcome| Some((o.normal - 1.0).abs());
         out.scalar("mrd_normal_restitution_max_dev", worst(mrd, &normal));
         out.scalar("mrd_energy_balance_max_dev", worst(mrd, &balance));
-        if self.ratios.iter().any(|k| *k >= 2.0) {
+        if self.ratios.iter().any(|k| *k >= 2.0 * f) {
             out.scalar("mrd_sliding_closed_form_max_dev", worst(mrd, &sliding));
         }
         // nu = 0: below mu nothing slips and the tangential speed reverses.
         let stick = |k: f64, o: &Outcome| (k < 1.0).then(|| (o.tangential + 1.0).abs());
-        let no_slip = g_over_e == 1.0 && self.ratios.iter().any(|k| *k < 1.0);
+        let no_slip =
+            g_over_e == 1.0 && self.gyration.is_none() && self.ratios.iter().any(|k| *k < 1.0);
         if no_slip {
             out.scalar("mrd_no_slip_closed_form_max_dev", worst(mrd, &stick));
         }
         if let Some(fine) = three.last() {
             out.scalar("bem3d_normal_restitution_max_dev", worst(fine, &normal));
             out.scalar("bem3d_energy_balance_max_dev", worst(fine, &balance));
-            if self.ratios.iter().any(|k| *k >= 2.0) {
+            if self.ratios.iter().any(|k| *k >= 2.0 * f) {
                 out.scalar("bem3d_sliding_closed_form_max_dev", worst(fine, &sliding));
             }
             if no_slip {
@@ -375,22 +414,30 @@ impl ObliqueImpact {
     /// The tangential rebound and the slip energy against the incidence, each method
     /// beside the closed forms.
     fn figures(&self, out: &mut Section, methods: &[&Method], no_slip: bool) {
+        let f = self.impulse_factor();
+        let title = match self.gyration {
+            Some(k) => format!(
+                "Oblique impact, the sphere turning freely (I = {k} m R^2): tangential rebound"
+            ),
+            None => "Oblique impact of a translating sphere: tangential rebound against incidence"
+                .into(),
+        };
         let mut fig = Figure::new(
             "oblique_rebound",
-            "Oblique impact of a translating sphere: tangential rebound against incidence",
+            &title,
             "incidence: tangential over mu times normal speed v_t / (mu v_n) [1]",
-            "tangential exit over entry speed v_t' / v_t [1]",
+            "tangential exit over entry speed v_t' / v_t (contact point) [1]",
         );
         let top = self.ratios.last().copied().unwrap_or(1.0);
-        let lo = self.ratios[0].max(1.0);
+        let lo = self.ratios[0].max(f);
         let line: Vec<(f64, f64)> = (0..=100)
             .map(|i| {
                 let k = lo * (top / lo).powf(i as f64 / 100.0);
-                (k, 1.0 - 2.0 / k)
+                (k, 1.0 - 2.0 * f / k)
             })
             .collect();
         fig = fig.plot(
-            "sliding throughout: 1 - 2 / incidence",
+            format!("sliding throughout: 1 - 2 m / (m_t incidence), m / m_t = {f:.4}"),
             line.clone(),
             Style::Dashed,
         );
@@ -412,11 +459,11 @@ impl ObliqueImpact {
         let mu2 = self.mu * self.mu;
         let slid: Vec<(f64, f64)> = line
             .iter()
-            .map(|(k, _)| (*k, 4.0 * mu2 * (k - 1.0) / (1.0 + k * k * mu2)))
+            .map(|(k, _)| (*k, 4.0 * mu2 * (k - f) / (1.0 + k * k * mu2 / f)))
             .filter(|p| p.1 > 0.0)
             .collect();
         energy = energy.plot(
-            "sliding throughout: 4 mu^2 (k - 1) / (1 + k^2 mu^2), k the incidence",
+            "sliding throughout: 4 mu^2 (k - m/m_t) / (1 + k^2 mu^2 m_t/m), k the incidence",
             slid,
             Style::Dashed,
         );
