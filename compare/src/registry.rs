@@ -95,6 +95,10 @@ pub const KINDS: &[Kind] = &[
         "oblique_impact",
         "a translating sphere striking the half-space obliquely with friction, the normal and the tangential force at every step, MRD's Coulomb springs and the 3D contact (normal solve and partial slip under the step's pressure) in the loop: tangential rebound and slip energy against incidence, the sliding and no-slip closed forms (Sections 6-7 and 12)",
     ),
+    Kind::of::<dynamics::oblique_cycle::ObliqueCycle>(
+        "oblique_cycle",
+        "a sphere's normal and tangential motion oscillating in phase, MRD's Coulomb springs and the 3D contact (normal solve and partial slip under each step's pressure): slip energy per cycle against the tangential amplitude beside the held normal's Mindlin-Deresiewicz, and the shakedown (Section 7 with the normal force oscillating too)",
+    ),
     Kind::of::<dynamics::ring_down::RingDown>(
         "ring_down",
         "a mass ringing down on a sphere's frictional contact, MRD's Coulomb springs at every step, against Mindlin-Deresiewicz's loss per cycle (Sections 7 and 12)",

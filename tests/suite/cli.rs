@@ -133,6 +133,7 @@ fn runs_elsewhere(name: &str) -> bool {
                 | "rough-plastic-3d"
                 | "adhesive-impact"
                 | "oblique-impact"
+                | "oblique-cycle"
         )
 }
 
@@ -173,6 +174,7 @@ embedded_scene_tests! {
     embedded_forced_resonance_ci => "forced-resonance-ci",
     embedded_ring_down => "ring-down",
     embedded_oblique_impact_ci => "oblique-impact-ci",
+    embedded_oblique_cycle_ci => "oblique-cycle-ci",
     #[ignore = "slow: the full tier, `cargo test --workspace --release -- --ignored` (.ci/run)"]
     embedded_oblique_impact_spin => "oblique-impact-spin",
     embedded_adhesive_impact_ci => "adhesive-impact-ci",
@@ -432,6 +434,16 @@ const RESULT_BOUNDS: &[(&str, Bound, &[&str])] = &[
     // on MRD's within 3e-3 of the incoming speed where stick and slip share the impact
     // (measured 3.4e-5 at nu = 0; 3.5e-4 at nu = 0.3, the 3D time step's share: 1.2e-3
     // at t_c / 400; 2.2e-3 for the freely turning sphere at t_c / 800 on 32^2).
+    // The normal and the tangential motion oscillating in phase (`oblique-cycle*`): at a
+    // held normal MRD's loop on Mindlin-Deresiewicz to 1e-3 (measured 2.2e-4), the 3D one
+    // to 15 % (measured 10 % on 24^2, 7.3 % on 48^2, 1.9 % on 96^2: the thin slip annulus
+    // of the smallest amplitude); with the normal at +/- 0.2 d0, the 3D loop on MRD's to
+    // 10 % (5.8 %, 1.9 %) and MRD's shakedown up to 0.3 A_s (no slip at 0.3, slip at 0.4
+    // and 0.5: near |dQ / dF| = mu in stick).
+    ("oblique_cycle.mrd_held_normal_max_rel_dev_vs_mindlin_deresiewicz", Below(1e-3), CYCLE),
+    ("oblique_cycle.bem3d_held_normal_max_rel_dev_vs_mindlin_deresiewicz", Below(0.15), CYCLE),
+    ("oblique_cycle.moving_normal_max_rel_dev_3d_vs_mrd", Below(0.1), CYCLE),
+    ("oblique_cycle.mrd_shakedown_largest_amplitude_over_a_s", Within(0.29, 0.31), CYCLE),
     ("oblique_impact.mrd_normal_restitution_max_dev", Below(1e-6), OBLIQUE),
     ("oblique_impact.bem3d_normal_restitution_max_dev", Below(1e-4), OBLIQUE),
     ("oblique_impact.mrd_sliding_closed_form_max_dev", Below(1e-5), OBLIQUE),
@@ -500,6 +512,7 @@ const RESULT_BOUNDS: &[(&str, Bound, &[&str])] = &[
 ];
 
 const PLASTIC: &[&str] = &["plastic-sphere", "plastic-sphere-ci", "plastic-cone"];
+const CYCLE: &[&str] = &["oblique-cycle", "oblique-cycle-ci"];
 const OBLIQUE: &[&str] = &["oblique-impact", "oblique-impact-ci", "oblique-impact-spin"];
 const ROUGH_PLASTIC: &[&str] = &["rough-plastic-3d-ci"];
 const VISCOELASTIC_IMPACT: &[&str] = &["viscoelastic-impact", "viscoelastic-impact-ci"];

@@ -1224,6 +1224,42 @@ fn dynamics_bad_input_names_the_key() {
 
 /// `forced_resonance` refuses keys out of range by name before computing.
 #[test]
+fn oblique_cycle_bad_input_names_the_key() {
+    refuses_each_edit(
+        "oblique-cycle-ci",
+        &[
+            (
+                "normal_amplitude = 0.2",
+                "normal_amplitude = 1.0",
+                "normal_amplitude",
+            ),
+            (
+                "normal_amplitude = 0.2",
+                "normal_amplitude = -0.1",
+                "normal_amplitude",
+            ),
+            ("normal_force = 1e-4", "normal_force = 0.0", "normal_force"),
+            ("mu = 0.3", "mu = inf", "mu"),
+            (
+                "amplitudes = [0.1, 0.3, 0.5, 1.0, 2.0]",
+                "amplitudes = []",
+                "amplitudes",
+            ),
+            (
+                "amplitudes = [0.1, 0.3, 0.5, 1.0, 2.0]",
+                "amplitudes = [0.3, 0.1]",
+                "amplitudes",
+            ),
+            ("cells = 24", "cells = 8", "cells"),
+            ("springs = 2000", "springs = 10", "springs"),
+            ("cells = 24", "cells = 24\ncycles = 1", "cycles"),
+            ("cells = 24", "cells = 24\nsteps = 4", "steps"),
+            ("g_star = 0.8235294117647058", "g_star = 0.5", "cells"),
+        ],
+    );
+}
+
+#[test]
 fn oblique_impact_bad_input_names_the_key() {
     refuses_each_edit(
         "oblique-impact-ci",

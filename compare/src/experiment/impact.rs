@@ -75,8 +75,9 @@ impl Strike {
     }
 }
 
-/// The stages of an impact kind: the rule of Hess, the closed form, MRD in the loop,
-/// and the 3D solve in the loop where it has grids.
+/// The stages of a kind that runs a sphere's contact through a motion (the impacts,
+/// `oblique_cycle`): the rule of Hess, the closed form, MRD in the loop, and the 3D
+/// solve in the loop where it has grids.
 pub fn stages(with_3d: bool) -> Vec<crate::plan::Stage> {
     use crate::plan::Stage;
     let mut s = vec![Stage::HessTransform, Stage::ClosedForm, Stage::Dynamics];

@@ -5,6 +5,7 @@
 pub mod adhesive_impact;
 pub mod forced;
 pub mod impact;
+pub mod oblique_cycle;
 pub mod oblique_impact;
 pub mod resonance;
 pub mod ring_down;
