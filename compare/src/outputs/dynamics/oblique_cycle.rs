@@ -156,36 +156,20 @@ impl Output for ObliqueCycle {
                 .map(|x| md::dissipation_exact(e, e / g, r, self.mu, d0, x * a_s))
                 .collect()
         });
-        let normals = [0.0, self.normal_amplitude];
+        let scale = (d0, a_s);
         let mrd = out
-            .stage(Stage::Dynamics, || -> dynamics::Result<Vec<Curve>> {
-                normals
-                    .iter()
-                    .map(|&b| {
-                        let energies = self
-                            .amplitudes
-                            .iter()
-                            .map(|x| {
-                                let mut law =
-                                    Springs::body(&profile, e, self.springs, 1.5 * reach)?
-                                        .with_friction(g, self.mu)?;
-                                self.cycle(&mut law, d0, b, x * a_s)
-                            })
-                            .collect::<dynamics::Result<_>>()?;
-                        Ok(Curve {
-                            label: format!("MRD, {} springs", self.springs),
-                            cells: 0,
-                            normal_amplitude: b,
-                            energies,
-                        })
-                    })
-                    .collect()
+            .stage(Stage::Dynamics, || {
+                let springs = || -> dynamics::Result<Box<dyn ContactLaw>> {
+                    let law = Springs::body(&profile, e, self.springs, 1.5 * reach)?;
+                    Ok(Box::new(law.with_friction(g, self.mu)?))
+                };
+                self.curves(format!("MRD, {} springs", self.springs), 0, scale, &springs)
             })
             .ctx("MRD cycles")?;
         let three = if self.cells == 0 {
             Vec::new()
         } else {
-            out.stage(Stage::Dynamics3d, || -> dynamics::Result<Vec<Curve>> {
+            out.stage(Stage::Dynamics3d, || {
                 let n = self.cells;
                 let side = 2.5 * reach;
                 let grid = AxisymGrid {
@@ -194,32 +178,17 @@ impl Output for ObliqueCycle {
                     periodic: false,
                 };
                 let (z, _) = grid.heights(&profile);
-                normals
-                    .iter()
-                    .map(|&b| {
-                        let energies = self
-                            .amplitudes
-                            .iter()
-                            .map(|x| {
-                                let mut law = ObliqueBem3d::new(
-                                    &z,
-                                    (n, n),
-                                    (side, side),
-                                    (e, g),
-                                    self.mu,
-                                    self.tolerance,
-                                )?;
-                                self.cycle(&mut law, d0, b, x * a_s)
-                            })
-                            .collect::<dynamics::Result<_>>()?;
-                        Ok(Curve {
-                            label: format!("3D, {n}^2 cells"),
-                            cells: n,
-                            normal_amplitude: b,
-                            energies,
-                        })
-                    })
-                    .collect()
+                let three = || -> dynamics::Result<Box<dyn ContactLaw>> {
+                    Ok(Box::new(ObliqueBem3d::new(
+                        &z,
+                        (n, n),
+                        (side, side),
+                        (e, g),
+                        self.mu,
+                        self.tolerance,
+                    )?))
+                };
+                self.curves(format!("3D, {n}^2 cells"), n, scale, &three)
             })
             .ctx("3D cycles")?
         };
@@ -229,6 +198,33 @@ impl Output for ObliqueCycle {
 }
 
 impl ObliqueCycle {
+    /// The last cycle's slip energy at every amplitude, the normal approach held and
+    /// oscillating, each run on a fresh law from `law`.
+    fn curves(
+        &self,
+        label: String,
+        cells: usize,
+        (d0, a_s): (f64, f64),
+        law: &dyn Fn() -> dynamics::Result<Box<dyn ContactLaw>>,
+    ) -> dynamics::Result<Vec<Curve>> {
+        [0.0, self.normal_amplitude]
+            .iter()
+            .map(|&b| {
+                let energies = self
+                    .amplitudes
+                    .iter()
+                    .map(|x| self.cycle(law()?.as_mut(), d0, b, x * a_s))
+                    .collect::<dynamics::Result<_>>()?;
+                Ok(Curve {
+                    label: label.clone(),
+                    cells,
+                    normal_amplitude: b,
+                    energies,
+                })
+            })
+            .collect()
+    }
+
     /// Presses `law` to `d0` (from apart, in a quarter of a cycle's steps), then runs the
     /// cycles of normal amplitude `b d0` and tangential amplitude `amp` in phase; the
     /// slip energy of the last cycle.
