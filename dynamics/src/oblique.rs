@@ -24,7 +24,7 @@
 
 use crate::held::Held;
 use crate::law::{approach_of, check_motion, ContactLaw, Forces, Motion};
-use crate::slip::shear_body;
+use crate::slip::{free_normal, shear_body};
 use crate::{bad, Result};
 use bem3d::tangential::{CerrutiFree, ViscoelasticSlip};
 use bem3d::viscoelastic::Relaxation;
@@ -95,13 +95,11 @@ impl ObliqueBem3d {
                 "friction coefficient mu = {mu} must lie in (0, 1e6]"
             ));
         }
-        let options = SolverOptions::new(tolerance, 20 * nx.max(ny) + 2000);
-        options.validate()?;
-        let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
+        let (normal, options) = free_normal(heights, (nx, ny), (lx, ly), e_star, tolerance)?;
         // The tangential operator's checks now, not at first contact.
         CerrutiFree::new(nx, ny, lx, ly, 1.0, nu)?;
         Ok(Self {
-            normal: ContactSolver::new(op, heights, None)?,
+            normal,
             options,
             grid: (nx, ny, lx, ly),
             nu,

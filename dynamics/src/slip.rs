@@ -38,6 +38,22 @@ pub(crate) fn shear_body(e_star: f64, g_star: f64) -> Result<(f64, f64)> {
     Ok(equivalent_body(e_star, g_star))
 }
 
+/// The normal contact of `heights` (`ny x nx` over `lx x ly`) on the free half-space of
+/// modulus `e_star`, and its solves' options (`tolerance`, an iteration cap growing with
+/// the grid): the normal side of the 3D tangential laws.
+pub(crate) fn free_normal(
+    heights: &[f64],
+    (nx, ny): (usize, usize),
+    (lx, ly): (f64, f64),
+    e_star: f64,
+    tolerance: f64,
+) -> Result<(ContactSolver<NonPeriodicHalfSpace>, SolverOptions)> {
+    let options = SolverOptions::new(tolerance, 20 * nx.max(ny) + 2000);
+    options.validate()?;
+    let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
+    Ok((ContactSolver::new(op, heights, None)?, options))
+}
+
 /// The 3D partial-slip law at a held normal force (module docs).
 pub struct SlipBem3d {
     slip: Held<ViscoelasticSlip<CerrutiFree>>,
@@ -71,10 +87,7 @@ impl SlipBem3d {
             ));
         }
         let (nu, g) = shear_body(e_star, g_star)?;
-        let options = SolverOptions::new(tolerance, 20 * nx.max(ny) + 2000);
-        options.validate()?;
-        let op = NonPeriodicHalfSpace::try_new(nx, ny, lx, ly, e_star)?;
-        let mut normal = ContactSolver::new(op, heights, None)?;
+        let (mut normal, options) = free_normal(heights, (nx, ny), (lx, ly), e_star, tolerance)?;
         let sol = normal.solve(Load::Force(normal_force), &options, None)?;
         let cell = lx * ly / (nx * ny) as f64;
         let shear = CerrutiFree::new(nx, ny, lx, ly, 1.0, nu)?;
