@@ -1,10 +1,13 @@
 """lambda of Eq. (76) calibrated end to end from measured topography files, read by
 SurfaceTopography (pip install SurfaceTopography): an AFM map (Digital Instruments
 `.di`, 512^2) and others from its file-format examples. Prints one line per file and
-bandwidth and leaves each report folder under --out.
+bandwidth and leaves each report folder, with its checkpoints (a rerun resumes from
+them), under --out; --spectrum R P sets the surrogate spectra of the interval's
+spectrum part (default: the kind's).
 
     python3 bench/calibrate_measured.py --examples <SurfaceTopography>/test/file_format_examples \
-        --out reports/calibrate-measured [--files di-1.di nid-1.nid] [--bandwidths 32 64]
+        --out reports/calibrate-measured [--files di-1.di nid-1.nid] [--bandwidths 32 64] \
+        [--spectrum 12 64]
 """
 
 import argparse
@@ -24,6 +27,7 @@ def main():
     p.add_argument("--files", nargs="+", default=["di-1.di", "nid-1.nid"])
     p.add_argument("--bandwidths", nargs="+", type=int, default=[32])
     p.add_argument("--cells", type=int, default=8)
+    p.add_argument("--spectrum", nargs=2, type=int, default=None, metavar=("RESAMPLES", "PUNCHES"))
     a = p.parse_args()
     os.makedirs(a.out, exist_ok=True)
     for name in a.files:
@@ -35,8 +39,12 @@ def main():
                 r = mrdw.calibrate(
                     t,
                     out=os.path.join(a.out, f"{name}-B{b}"),
+                    work=os.path.join(a.out, f"{name}-B{b}.work"),
                     bandwidth=b,
                     cells=a.cells,
+                    spectrum_uncertainty=a.spectrum,
+                    # the surrogates' punches are the main sample's first ones
+                    realisations=None if a.spectrum is None else (max(16, a.spectrum[1]), 400, 16),
                     progress=False,
                     name=name,
                 )
@@ -52,6 +60,11 @@ def main():
                         "cells": a.cells,
                         "lambda": round(r["lambda"], 3),
                         "interval": [round(v, 3) for v in r["interval"]],
+                        "interval_spectrum": [round(v, 3) for v in r["interval_spectrum"]],
+                        "interval_total": [round(v, 3) for v in r["interval_total"]],
+                        "spectrum_resolved": bool(res["spectrum_resolved"]),
+                        "spectrum_upper": round(res["spectrum_upper"], 3),
+                        "spectrum_bias": round(res["spectrum_bias"], 3),
                         "realisations": r["realisations"],
                         "misfit": [round(v, 3) for v in r["misfit"]],
                         "alpha_3d": round(r["alpha_3d"], 3),

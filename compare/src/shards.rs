@@ -104,7 +104,11 @@ pub fn merge(shards: &[PathBuf], out: Option<&Path>) -> Result<(Scene, Report, V
         )));
     }
     let text = text.ok_or_else(|| CompareError::Scene("no shard folders given".into()))?;
-    let scene = Scene::parse(&text, &origin, None)?;
+    // The scene's data files (maps, tables) are relative to the scene file the shards
+    // ran from, when it is still there.
+    let from = Path::new(&origin);
+    let base = from.is_file().then(|| from.parent()).flatten();
+    let scene = Scene::parse(&text, &origin, base)?;
     let out = out
         .map(Path::to_path_buf)
         .unwrap_or_else(|| PathBuf::from("reports").join(&scene.name));

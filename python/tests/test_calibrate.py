@@ -42,11 +42,17 @@ def test_a_map_and_its_psd_table_end_to_end(tmp_path):
         r = mrdw.calibrate(h, size=(4 / 3, 4 / 3), out=tmp_path / "map", **SMALL)
     assert 1.0 < r["lambda"] < 8.0
     assert r["results"]["map_pixels"] == 64 and np.isfinite(r["results"]["map_misfit_max"])
+    # the map's spectrum's own part of the interval, and both parts together
+    lo, hi = r["interval_spectrum"]
+    assert lo <= r["lambda"] <= hi
+    assert r["interval_total"][0] <= min(lo, r["interval"][0])
+    assert r["interval_total"][1] >= max(hi, r["interval"][1])
     q, c = mrdw.psd(h, (4 / 3, 4 / 3), bins=24)
     with pytest.raises(ValueError, match="size"):
         mrdw.calibrate((q, c), out=tmp_path / "psd0", **SMALL)
     t = mrdw.calibrate((q, c), size=4 / 3, out=tmp_path / "psd", **SMALL)
     assert 1.0 < t["lambda"] < 8.0
+    assert t["interval_spectrum"] is None and t["interval_total"] is None
 
 
 @pytest.mark.filterwarnings("ignore:units")
@@ -63,6 +69,13 @@ def test_a_map_and_its_psd_table_end_to_end(tmp_path):
         ({"hurst": 0.5}, {"realisations": (8, 4, 2)}, "realisations.max"),
         ({"hurst": 0.5}, {"size": 1.0}, "size"),
         ({"hurst": 0.5}, {"solve_map": False}, "solve_map"),
+        ({"hurst": 0.5}, {"spectrum_uncertainty": (8, 8)}, "spectrum_uncertainty applies"),
+        (np.random.default_rng(1).normal(size=(64, 64)), {"size": (1.0, 1.0),
+         "spectrum_uncertainty": (2, 8)}, "spectrum_uncertainty.resamples = 2"),
+        (np.random.default_rng(1).normal(size=(64, 64)), {"size": (1.0, 1.0),
+         "spectrum_uncertainty": (8,)}, "resamples, punches"),
+        (np.random.default_rng(1).normal(size=(64, 64)), {"size": (1.0, 1.0),
+         "spectrum_uncertainty": (8, 4.5)}, "spectrum_uncertainty.punches"),
         # a masked array's masked cells are undefined, as for Topography
         (np.ma.masked_array(np.random.default_rng(1).normal(size=(64, 64)),
                             mask=np.eye(64, dtype=bool)), {"size": (1.0, 1.0)}, "undefined"),

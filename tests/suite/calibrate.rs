@@ -45,6 +45,19 @@ fn a_measured_map_calibrates_with_its_own_3d_solve() {
     assert!((1.5..8.0).contains(&r("lambda")), "{}", r("lambda"));
     assert_eq!(r("map_pixels"), 64.0);
     assert!(r("map_misfit_max").is_finite() && r("map_lambda_alone") > 0.0);
+    // The spectrum's own part (12 surrogate maps, 16 punches each by default here:
+    // realisations.max = 16): an interval around lambda, and the total holds both parts.
+    assert_eq!(
+        (r("spectrum_resamples"), r("spectrum_punches")),
+        (12.0, 16.0)
+    );
+    assert_eq!(r("realisations"), 16.0);
+    assert!(r("lambda_spectrum_lo") <= r("lambda") && r("lambda") <= r("lambda_spectrum_hi"));
+    assert!(r("lambda_total_lo") <= r("lambda_lo").min(r("lambda_spectrum_lo")));
+    assert!(r("lambda_total_hi") >= r("lambda_hi").max(r("lambda_spectrum_hi")));
+    assert!(r("spectrum_var_ln_ratio") > 0.0 && r("spectrum_var_punches") > 0.0);
+    let rows = std::fs::read_to_string(out.join("spectrum_resamples.csv")).unwrap();
+    assert_eq!(rows.lines().filter(|l| !l.starts_with('#')).count(), 13);
     let warnings = s["warnings"].to_string();
     assert!(warnings.contains("central 64 x 64 square"), "{warnings}");
     assert!(warnings.contains("no roll-off"), "{warnings}");
@@ -146,6 +159,10 @@ fn keys_without_effect_are_refused() {
         (
             "self_affine = { hurst = 0.5 }\npsd = \"psd.csv\"",
             "exactly one of",
+        ),
+        (
+            "psd = \"psd.csv\"\nsize = [1.0, 1.0]\nspectrum_uncertainty = { resamples = 8, punches = 8 }",
+            "spectrum_uncertainty applies to a topography",
         ),
     ] {
         let (o, out) = run_scene_text(
@@ -263,4 +280,32 @@ fn amplitude_statistics_are_a_stated_choice() {
         stderr(&o)
     );
     assert_ne!(o.status.code(), Some(0));
+}
+
+/// A measured map's surrogate spectra (tasks of their own, each with its punches) are
+/// as deterministic as the main sample: a run killed among them resumes at one thread,
+/// and two shards merge, to the CSVs of the uninterrupted run.
+#[test]
+fn surrogate_spectra_resume_and_merge_to_identical_csvs() {
+    let tmp = tempfile::tempdir().unwrap();
+    write_map(&tmp.path().join("map.npy"), 4);
+    let (s, full) = run_full(
+        tmp.path(),
+        "c.toml",
+        &format!("name = \"c\"\n[units]\nlength = \"mm\"\n[material]\ne_star = 1.0\n[[outputs]]\nkind = \"calibrate\"\ntopography = \"map.npy\"\nsize = [2.25, 2.0]\nspectrum_uncertainty = {{ resamples = 4, punches = 8 }}\n{SMALL}"),
+    );
+    let sm = summary(&full);
+    assert_eq!(sm["results"]["calibrate.spectrum_resamples"], 4.0);
+    let part = tmp.path().join("part");
+    // The ensemble, the map's two tasks and two of the four surrogates.
+    stopped_run(&s, &part, "5");
+    ok(&mrdw(
+        &["run", &s, "--out", part.to_str().unwrap(), "--threads", "1"],
+        &[],
+    ));
+    assert_eq!(csvs(&full), csvs(&part));
+    let shards = run_shards(&s, tmp.path(), &["1", "2"]);
+    let merged = tmp.path().join("merged");
+    ok(&merge(&[&shards[0], &shards[1]], &merged));
+    assert_eq!(csvs(&full), csvs(&merged));
 }

@@ -128,6 +128,7 @@ def calibrate(
     solve_map=True,
     seed=None,
     amplitudes=None,
+    spectrum_uncertainty=None,
     progress=True,
     name=None,
 ):
@@ -156,14 +157,19 @@ def calibrate(
         lines: MRD lines; solve_map: also solve the measured map itself in 3D; seed: the
         random phases; amplitudes: the 3D punches' faces, "fixed" (|H(q)| as Eq. 71 writes
         it, the shipped lambda table's) or "gaussian" (a Gaussian random field of the
-        same mean spectrum); the MRD lines keep Eq. 72's fixed amplitudes; name: the map's name in titles
-        (default: the file's name, else "map").
+        same mean spectrum); the MRD lines keep Eq. 72's fixed amplitudes;
+        spectrum_uncertainty: (resamples, punches) for a measured map: surrogate spectra
+        of the map's estimated PSD, each calibrated on the first `punches` punches, give
+        the spectrum's own part of the interval ((0, 0) leaves it out); name: the map's
+        name in titles (default: the file's name, else "map").
 
     Parameters left at None take the `calibrate` scene kind's defaults (the same as the
     CLI's; `mrdw show calibrate-ci` and cases/README.md list them). Whole-number
     parameters refuse fractions; every bad value raises ValueError naming it.
 
-    Returns {"lambda", "interval" (95 %), "misfit" (max, rms |Delta ln k| over the
+    Returns {"lambda", "interval" (95 %, from the punches), "interval_spectrum" (95 %,
+    from a measured map's spectrum; None for other sources or without it),
+    "interval_total" (both; None likewise), "misfit" (max, rms |Delta ln k| over the
     range), "alpha_3d", "alpha_3d_interval", "alpha_mrd", "realisations", "bandwidth",
     "results" (every scalar of summary.json), "warnings", "files"}. Raises ValueError
     for bad input (the parameter named), MemoryError for grids that do not fit.
@@ -182,6 +188,22 @@ def calibrate(
             raise ValueError(f"realisations = {realisations!r}: give (min, max, batch)")
         lo, hi, batch = (_count(f"realisations.{k}", v) for k, v in zip(("min", "max", "batch"), r))
         keys_given.append(f"realisations = {{ min = {lo}, max = {hi}, batch = {batch} }}")
+    if spectrum_uncertainty is not None:
+        try:
+            u = list(spectrum_uncertainty)
+        except TypeError:
+            raise ValueError(
+                f"spectrum_uncertainty = {spectrum_uncertainty!r}: give (resamples, punches)"
+            ) from None
+        if len(u) != 2:
+            raise ValueError(
+                f"spectrum_uncertainty = {spectrum_uncertainty!r}: give (resamples, punches)"
+            )
+        resamples, punches = (_count(f"spectrum_uncertainty.{k}", v)
+                              for k, v in zip(("resamples", "punches"), u))
+        keys_given.append(
+            f"spectrum_uncertainty = {{ resamples = {resamples}, punches = {punches} }}"
+        )
     if target is not None:
         keys_given.append(f"target = {_number('target', target)!r}")
     if amplitudes is not None:
@@ -231,6 +253,13 @@ def calibrate(
     return {
         "lambda": res["lambda"],
         "interval": (res["lambda_lo"], res["lambda_hi"]),
+        "interval_spectrum": (
+            (res["lambda_spectrum_lo"], res["lambda_spectrum_hi"])
+            if "lambda_spectrum_lo" in res else None
+        ),
+        "interval_total": (
+            (res["lambda_total_lo"], res["lambda_total_hi"]) if "lambda_total_lo" in res else None
+        ),
         "misfit": (res["misfit_max"], res["misfit_rms"]),
         "alpha_3d": res["alpha_3d"],
         "alpha_3d_interval": (res["alpha_3d_lo"], res["alpha_3d_hi"]),

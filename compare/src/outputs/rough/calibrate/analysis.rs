@@ -1,7 +1,6 @@
 //! Curves on the common reduced-force grid, lambda fitted to the 3D ensemble mean, its
 //! bootstrap interval, the misfit left over and the exponents of Eq. (77).
 
-use super::tasks::Lines;
 use crate::experiment::fit::{
     calibrate_lambda_at, fit_points, interp_loglog, interval, mean_curve, resample, window_points,
     Estimate,
@@ -18,14 +17,6 @@ pub fn reduce(c: &BemCurve, fs: &[f64]) -> Vec<Option<f64>> {
     let f: Vec<f64> = c.force.iter().map(|v| v / c.rms_height).collect();
     fs.iter()
         .map(|&x| interp_loglog(&f, &c.stiffness, x))
-        .collect()
-}
-
-/// The MRD ensemble's mean k on the grid.
-pub fn mean_lines(l: &Lines) -> Vec<Option<f64>> {
-    let n = l.stiffness.len() as f64;
-    (0..l.stiffness.first().map_or(0, Vec::len))
-        .map(|j| Some(l.stiffness.iter().map(|v| v[j]).sum::<f64>() / n))
         .collect()
 }
 

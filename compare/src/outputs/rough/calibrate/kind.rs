@@ -2,6 +2,7 @@
 //! the analysis of what the checkpoints hold).
 
 use super::analysis::{self, Calibration};
+use super::spectrum::SpectrumPart;
 use super::tasks::{self, Case, Lines, Task};
 use super::{report, Calibrate};
 use crate::checks::{bad, count_in, MAX_LOADS, MAX_REALISATIONS};
@@ -25,6 +26,24 @@ impl Output for Calibrate {
         let [lo, hi] = self.window;
         if !(lo > 0.0 && lo < hi && hi <= 1.0) {
             return bad("window must satisfy 0 < window[0] < window[1] <= 1 (k/(E* L))");
+        }
+        if let Some(u) = self.spectrum_uncertainty {
+            if self.topography.is_none() {
+                return bad("spectrum_uncertainty applies to a topography (a measured map) only: a self-affine or tabulated spectrum is taken as exact");
+            }
+            // resamples = 0 leaves the spectrum's part out (punches then unused).
+            if u.resamples != 0 {
+                count_in("spectrum_uncertainty.resamples", u.resamples, 4..=256)?;
+                count_in("spectrum_uncertainty.punches", u.punches, 4..=256)?;
+            }
+        }
+        if let Some(u) = self.spectrum_resamples() {
+            if u.punches > self.realisations.max || u.punches < 4 {
+                return bad(format!(
+                    "spectrum_uncertainty.punches = {} must lie in 4..=realisations.max = {} (the surrogates' punches are the main sample's first ones); resamples = 0 leaves the spectrum's part out",
+                    u.punches, self.realisations.max
+                ));
+            }
         }
         if !(self.target > 0.0 && self.target < 1.0) {
             return bad(format!("target = {} must lie in (0, 1)", self.target));
@@ -67,7 +86,7 @@ impl Output for Calibrate {
             out.warn(w.clone());
         }
         let work = env.work_root.join(self.key());
-        let (plan, mut solves) =
+        let (plan, mut solves, part) =
             rough_punch::run_tasks(out, || self.realise(&case, &work, env.control))?;
         let (cal, map) = out.stage(Stage::SweepFit, || -> Result<_> {
             let map = match (&case.map, self.solves_map()) {
@@ -83,8 +102,17 @@ impl Output for Calibrate {
         if let Some(m) = &map {
             solves.push((None, m.bem.solves.clone()));
         }
-        report::report(self, &case, &cal, map.as_ref(), &env.ctx.units.length, out)?;
-        report::solves(self, &solves, out);
+        report::report(
+            self,
+            &case,
+            &cal,
+            part.as_ref(),
+            map.as_ref(),
+            &env.ctx.units.length,
+            out,
+        )?;
+        let surrogates = part.iter().flat_map(|p| p.curves.iter());
+        report::solves(self, &solves, surrogates, out);
         Ok(())
     }
 }
@@ -101,28 +129,28 @@ impl Calibrate {
     /// batches more while lambda's interval is wider than the target; a sharded run
     /// computes every realisation up to `max` and reports nothing. Each punch's curve is
     /// read and reduced once, when its batch is first calibrated; its solves' records
-    /// are returned beside the calibration.
+    /// are returned beside the calibration, and the spectrum's part of the interval
+    /// (a measured map's) after it.
     fn realise(
         &self,
         case: &Case,
         work: &Path,
         control: &RunControl,
-    ) -> Result<(Calibration, Vec<report::Solves>)> {
+    ) -> Result<(Calibration, Vec<report::Solves>, Option<SpectrumPart>)> {
         let r = self.realisations;
         let head = tasks::all(self).len() - r.max as usize;
         let fs = tasks::f_grid();
         let (mut k1, mut k3): (Option<Vec<Option<f64>>>, _) = (None, Vec::new());
         let mut solves = Vec::new();
-        let mut n = r.min;
+        // The surrogates' punches are the main sample's first ones: it has them all.
+        let first = r.min.max(self.spectrum_punches());
+        let mut n = first;
         loop {
             if !control.report_only {
-                tasks::compute(self, case, work, head + n as usize, n == r.min, control)?;
+                tasks::compute(self, case, work, head + n as usize, n == first, control)?;
             }
             if k1.is_none() {
-                k1 = Some(analysis::mean_lines(&tasks::load::<Lines>(
-                    work,
-                    Task::Mrd,
-                )?));
+                k1 = Some(tasks::load::<Lines>(work, Task::Mrd)?.mean());
             }
             for r in k3.len() as u64..n {
                 let curve = tasks::load::<BemCurve>(work, Task::Bem(r))?;
@@ -132,7 +160,17 @@ impl Calibrate {
             let c = self.calibrate(case, &fs, &k3, k1.as_deref().unwrap_or_default())?;
             let met = c.lambda.relative_half_width() <= self.target;
             if met || n >= r.max {
-                return Ok((c, solves));
+                let k1 = k1.as_deref().unwrap_or_default();
+                let part = super::spectrum::analyse(
+                    self,
+                    case,
+                    work,
+                    &k3,
+                    k1,
+                    case.rms_factor(case.band),
+                    &c.lambda,
+                )?;
+                return Ok((c, solves, part));
             }
             n = (n + r.batch).min(r.max);
         }

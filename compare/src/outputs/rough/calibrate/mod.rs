@@ -20,17 +20,26 @@
 //! to the 3D ensemble mean wherever that mean lies in `window` (k/(E* L)). Intervals:
 //! 95 % bootstrap over the 3D realisations (200 resamples, on the full sample's points).
 //!
+//! A measured map's spectrum is itself an estimate: its lowest annuli hold a few lattice
+//! points each and carry most of the variance. [`spectrum`] propagates that uncertainty
+//! by a parametric bootstrap (surrogate maps of the estimated spectrum, read by the same
+//! estimator, each calibrated on the main sample's first punches with the same phases)
+//! and reports it beside the punches' interval, and both combined; where the punches'
+//! noise hides it, at its upper bound.
+//!
 //! Realisations: `realisations.min`, then batches of `realisations.batch` (up to
 //! `realisations.max`) while lambda's interval is wider than +/- `target`; decisions use
 //! complete batches only, so the result does not depend on threads, shards or
 //! interruptions (a sharded run computes every realisation up to `max`).
 //!
 //! Files: [`tasks`] (the source's spectrum, the checkpointed solves), [`analysis`]
-//! (curves, lambda, intervals), [`report`] (tables and figures), [`kind`] (the output).
+//! (curves, lambda, intervals), [`spectrum`] (the spectrum's part of the interval),
+//! [`report`] (tables and figures), [`kind`] (the output).
 
 pub mod analysis;
 mod kind;
 mod report;
+pub mod spectrum;
 pub mod tasks;
 
 use crate::experiment::tasks::Realisations;
@@ -95,6 +104,24 @@ pub struct Calibrate {
     /// so a surface is calibrated with the statistics it has.
     #[serde(default)]
     pub amplitudes: AmplitudeStatistics,
+    /// The map's spectrum's own uncertainty in lambda's interval (a topography only):
+    /// { resamples, punches } surrogate spectra of the map's estimate, each calibrated on
+    /// the main sample's first `punches` punches (the main sample then has at least
+    /// that many); default { resamples = 12, punches = 32 } (at most realisations.max);
+    /// resamples = 0 leaves it out.
+    pub spectrum_uncertainty: Option<SpectrumUncertainty>,
+}
+
+/// How the spectrum's sampling uncertainty is propagated to lambda (key
+/// `spectrum_uncertainty`).
+#[derive(Debug, Clone, Copy, Deserialize, PartialEq, Eq)]
+#[serde(deny_unknown_fields)]
+pub struct SpectrumUncertainty {
+    /// Surrogate spectra, each estimated from its own surrogate map.
+    pub resamples: u64,
+    /// Punches per surrogate spectrum: the main sample's first ones, with the same
+    /// phases (at most `realisations.min`).
+    pub punches: u64,
 }
 
 /// The amplitude statistics of synthesised faces and lines (key `amplitudes`).
@@ -159,5 +186,23 @@ impl Calibrate {
     /// Whether the measured map itself is solved.
     pub fn solves_map(&self) -> bool {
         self.topography.is_some() && self.solve_map.unwrap_or(true)
+    }
+
+    /// The punches per surrogate spectrum (0 without them): the main sample's first
+    /// ones, which it therefore has.
+    pub fn spectrum_punches(&self) -> u64 {
+        self.spectrum_resamples().map_or(0, |u| u.punches)
+    }
+
+    /// The spectrum's resamples and punches per resample; None without a map or with
+    /// resamples = 0.
+    pub fn spectrum_resamples(&self) -> Option<SpectrumUncertainty> {
+        self.topography.as_ref()?;
+        // The default's punches stay within the plan's realisations.
+        let u = self.spectrum_uncertainty.unwrap_or(SpectrumUncertainty {
+            resamples: 12,
+            punches: 32.min(self.realisations.max),
+        });
+        (u.resamples > 0).then_some(u)
     }
 }

@@ -1,6 +1,7 @@
 //! The calibration's results, tables and figures.
 
 use super::analysis::{self, Calibration};
+use super::spectrum::SpectrumPart;
 use super::tasks::{f_grid, Case, Lines, Spectrum};
 use super::Calibrate;
 use crate::error::Result;
@@ -30,7 +31,7 @@ struct MapCheck {
 fn map_check(spec: &Calibrate, cal: &Calibration, m: &MapCurves) -> MapCheck {
     let fs = f_grid();
     let k3 = analysis::reduce(&m.bem, &fs);
-    let k1 = analysis::mean_lines(&m.lines);
+    let k1 = m.lines.mean();
     let mrd = analysis::mrd_at(&fs, &k1, cal.lambda.value * m.rms_factor);
     let points = window_points(&k3, spec.window[0], spec.window[1]);
     MapCheck {
@@ -47,6 +48,7 @@ pub fn report(
     spec: &Calibrate,
     case: &Case,
     cal: &Calibration,
+    part: Option<&SpectrumPart>,
     map: Option<&MapCurves>,
     unit: &str,
     out: &mut Section,
@@ -87,12 +89,27 @@ pub fn report(
             super::AmplitudeStatistics::Gaussian => "gaussian",
         }),
     );
+    if let Some(p) = part {
+        spectrum_part(p, cal, out);
+    }
     let check = map.map(|m| map_check(spec, cal, m));
     if let Some(c) = check.as_ref().filter(|c| !c.misfit.0.is_finite()) {
         let inside = c.k3.iter().flatten().count();
         out.warn(format!(
             "the measured map's own 3D curve reaches {inside} reduced forces, none of them with k/(E* L) in window = {:?}: the map is not checked against MRD (its columns stay empty)",
             spec.window
+        ));
+    }
+    if let Some(c) = check
+        .as_ref()
+        .filter(|c| c.misfit.0 > 2.0 * cal.misfit.0 + 0.05)
+    {
+        out.warn(format!(
+            "the measured map's own 3D curve departs from MRD at the calibrated lambda by up to {:.2} in ln k (the ensemble of its spectrum by {:.2}): lambda = {:.3} makes MRD reproduce surfaces of this spectrum (random phases, isotropic), not this one map, whose anisotropy, single realisation or phase order the spectrum does not carry; MRD lines of its spectrum reproduce the map's own curve best at lambda = {:.3} (map_lambda_alone, one realisation, no interval)",
+            c.misfit.0,
+            cal.misfit.0,
+            cal.lambda.value,
+            c.lambda_alone
         ));
     }
     if let (Some(c), Some(m)) = (&check, &case.map) {
@@ -103,7 +120,7 @@ pub fn report(
         out.scalar("map_pixels", m.n as f64);
         out.scalar("map_anisotropy", m.anisotropy);
     }
-    out.tables.push(summary_table(spec, case, cal));
+    out.tables.push(summary_table(spec, case, cal, part));
     let curves = curves_table(spec, case.grid, cal, check.as_ref());
     out.figures
         .push(curves_figure(spec, case, cal, &curves, check.is_some()));
@@ -114,12 +131,101 @@ pub fn report(
     Ok(())
 }
 
+/// The spectrum's part of the interval: its scalars, the combined interval, a note on
+/// which part to reduce, and the surrogates' table.
+fn spectrum_part(p: &SpectrumPart, cal: &Calibration, out: &mut Section) {
+    let width = |e: &crate::experiment::fit::Estimate| e.relative_half_width();
+    for (k, v) in [
+        ("lambda_spectrum_lo", p.lambda.lo),
+        ("lambda_spectrum_hi", p.lambda.hi),
+        ("lambda_total_lo", p.total.lo),
+        ("lambda_total_hi", p.total.hi),
+        ("spectrum_resamples", p.rows.len() as f64),
+        ("spectrum_punches", p.punches as f64),
+        ("spectrum_bias", p.bias),
+        ("spectrum_var_ln_ratio", p.variance.0),
+        ("spectrum_var_punches", p.variance.1),
+    ] {
+        out.scalar(k, v);
+    }
+    out.scalar("spectrum_resolved", p.resolved as u8 as f64);
+    out.scalar("spectrum_upper", p.upper.exp() - 1.0);
+    out.scalar("spectrum_estimate", p.estimate.exp() - 1.0);
+    let (punches, spectrum) = (width(&cal.lambda), width(&p.lambda));
+    if p.bias.ln_1p().abs() > 2.0 * p.bias_error {
+        out.warn(format!(
+            "the surrogate spectra give a lambda {:.0} % {} the map's on average (standard error {:.0} %): the PSD estimator (mean plane, Hann window, radial bins) shifts this spectrum's lowest annuli, and the map's own estimate may be shifted as much the other way; read lambda with that in mind (spectrum_resamples.csv)",
+            100.0 * p.bias.abs(),
+            if p.bias < 0.0 { "below" } else { "above" },
+            100.0 * p.bias_error
+        ));
+    }
+    if !p.resolved {
+        out.warn(format!(
+            "the spectrum's part of lambda's interval is not resolved from the punches' noise with {} surrogate spectra of {} punches each (variance of ln lambda {:.2e} over the surrogates, of which the punches explain {:.2e}; estimate +/- {:.1} %): taken at its upper bound, +/- {:.1} %, in lambda_spectrum and lambda_total; raise spectrum_uncertainty.punches to narrow it (the punches' noise falls as 1 / punches)",
+            p.rows.len(),
+            p.punches,
+            p.variance.0,
+            p.variance.1,
+            100.0 * (p.estimate.exp() - 1.0),
+            100.0 * (p.upper.exp() - 1.0)
+        ));
+    } else if spectrum > punches {
+        out.warn(format!(
+            "lambda's 95 % interval from the map's spectrum (+/- {:.1} %) is wider than the punches' (+/- {:.1} %): more realisations will not narrow the total [{:.3}, {:.3}]; a larger map, or several maps of the surface, would",
+            100.0 * spectrum,
+            100.0 * punches,
+            p.total.lo,
+            p.total.hi
+        ));
+    }
+    let mut t = Table::new(
+        "spectrum_resamples",
+        &[
+            "resample [index]",
+            "lambda with the surrogate spectrum [1]",
+            "lambda with the map's spectrum, same punches [1]",
+            "ratio [1]",
+            "split-half var ln ratio [1]",
+            "mean square height, surrogate / map [1]",
+            "unconverged 3D solves [count]",
+        ],
+    );
+    t.missing_ok = true;
+    t.notes.push(format!(
+        "the spectrum's own uncertainty by a parametric bootstrap: each surrogate is a Gaussian random field (Rayleigh amplitudes, random phases) with the map's estimated C2D, cut to the map's size from a periodic square 1.5 times larger and read by the same estimator (plane, Hann window, radial bins); lambda is calibrated with its spectrum (punch faces and MRD lines) on the main sample's first {} punches (same phases), against lambda of those punches with the map's spectrum; var(ln ratio) over the surrogates = {:.3e}, of which the punches' sampling explains {:.3e} (the mean of each row's (ln ratio on the first half of its punches - on the second half)^2 / 4); the spectrum's 95 % interval is lambda x exp(+/- 1.96 sqrt(the difference)) where the difference exceeds its standard error, else lambda x exp(+/- 1.96 sqrt(var ln ratio)) (its upper bound); combined with the punches' in quadrature in ln lambda; mean ratio - 1: {:.3}",
+        p.punches,
+        p.variance.0,
+        p.variance.1,
+        p.bias
+    ));
+    for (s, r) in p.rows.iter().enumerate() {
+        t.push(vec![
+            s as f64,
+            r.lambda,
+            r.reference,
+            r.lambda / r.reference,
+            r.noise,
+            r.mean_square,
+            r.unconverged as f64,
+        ]);
+    }
+    out.tables.push(t);
+}
+
 /// One punch's solves (`None`: the measured map's own).
 pub type Solves = (Option<u64>, Vec<SolveRecord>);
 
 /// Every 3D solve of the calibration as a table; unconverged ones fail the run visibly
 /// (they are left out of the curves, so lambda rests on fewer points than asked).
-pub fn solves(spec: &Calibrate, solves: &[Solves], out: &mut Section) {
+/// The surrogate spectra's punches (`surrogates`) join the tally, not the table: their
+/// own table (`spectrum_resamples`) counts their unconverged solves.
+pub fn solves<'a>(
+    spec: &Calibrate,
+    solves: &[Solves],
+    surrogates: impl Iterator<Item = &'a BemCurve>,
+    out: &mut Section,
+) {
     let mut t = Table::new(
         "solves",
         &[
@@ -153,11 +259,17 @@ pub fn solves(spec: &Calibrate, solves: &[Solves], out: &mut Section) {
             ]);
         }
     }
+    surrogates.for_each(|c| tally.add_curve(c));
     tally.report(spec.tolerance, out);
     out.tables.push(t);
 }
 
-fn summary_table(spec: &Calibrate, case: &Case, cal: &Calibration) -> Table {
+fn summary_table(
+    spec: &Calibrate,
+    case: &Case,
+    cal: &Calibration,
+    part: Option<&SpectrumPart>,
+) -> Table {
     let cols = [
         "bandwidth L/lambda_min [1]",
         "grid [cells]",
@@ -173,8 +285,13 @@ fn summary_table(spec: &Calibrate, case: &Case, cal: &Calibration) -> Table {
         "alpha_mrd [1]",
         "lambda_lower_half [1]",
         "lambda_upper_half [1]",
+        "lambda_spectrum_lo95 [1]",
+        "lambda_spectrum_hi95 [1]",
+        "lambda_total_lo95 [1]",
+        "lambda_total_hi95 [1]",
     ];
     let mut t = Table::new("calibration", &cols);
+    t.missing_ok = part.is_none();
     t.notes.push(format!(
         "lambda of Eq. (76) (C1D = lambda q C2D of the same C2D, the line not rescaled) for this surface: {} rigid circular punches of diameter L (the source's side) with faces of its spectrum up to {} x 2 pi / L, {} cells a side, against {} MRD lines; fitted over k/(E* L) in [{}, {}] of the 3D mean (f = F/(E* h L), each curve over its own rms height); amplitude statistics of the faces: {} (the lines: fixed, Eq. 72); 95 % bootstrap intervals over the punches ({} resamples); misfit: |ln k3D - ln kMRD| at the calibrated lambda over that range; alpha: slope of ln k against ln f there (Eq. 77); halves: lambda fitted on the lower / upper half of the range's forces",
         cal.realisations,
@@ -201,7 +318,19 @@ fn summary_table(spec: &Calibrate, case: &Case, cal: &Calibration) -> Table {
         cal.alpha_mrd,
         cal.halves.0,
         cal.halves.1,
+        part.map_or(f64::NAN, |p| p.lambda.lo),
+        part.map_or(f64::NAN, |p| p.lambda.hi),
+        part.map_or(f64::NAN, |p| p.total.lo),
+        part.map_or(f64::NAN, |p| p.total.hi),
     ]);
+    t.notes.push(match part {
+        Some(p) => format!(
+            "lambda_spectrum: the 95 % interval from the map's spectrum alone ({} surrogate spectra, each on the first {} punches: spectrum_resamples.csv); lambda_total: both intervals combined in quadrature in ln lambda",
+            p.rows.len(),
+            p.punches
+        ),
+        None => "lambda_spectrum, lambda_total: empty; the spectrum is taken as exact (a self-affine or tabulated source, or spectrum_uncertainty.resamples = 0)".into(),
+    });
     t
 }
 

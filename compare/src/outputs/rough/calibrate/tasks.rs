@@ -191,8 +191,15 @@ impl Case {
 
     /// pi h1^2 / h3^2 per unit lambda at bandwidth `band` (the punch face).
     pub fn rms_factor(&self, band: usize) -> f64 {
+        self.spectrum.rms_factor(band)
+    }
+}
+
+impl Spectrum {
+    /// pi h1^2 / h3^2 per unit lambda at bandwidth `band` (the punch face).
+    pub fn rms_factor(&self, band: usize) -> f64 {
         use crate::experiment::lambda_meaning::{rms_matched, Face};
-        rms_matched(1.0, &|q| self.spectrum.c2d(q), band as f64, 1.0, Face::Disc)
+        rms_matched(1.0, &|q| self.c2d(q), band as f64, 1.0, Face::Disc)
     }
 }
 
@@ -241,6 +248,57 @@ fn check_psd(q: &[f64], c: &[f64]) -> std::result::Result<(), String> {
     Ok(())
 }
 
+/// The surrogates' seed stream, apart from the punches' phases.
+const SURROGATE_STREAM: u64 = 0x7370_6563_7472_756d;
+
+/// One surrogate spectrum's checkpoint.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct Resample {
+    /// The surrogate map's estimated PSD (q [1/length], C2D [length^4]).
+    pub psd: Vec<(f64, f64)>,
+    /// pi h1^2 / h3^2 per unit lambda of this spectrum at the calibration's bandwidth.
+    pub rms_factor: f64,
+    /// The MRD ensemble's mean k/(E* L) (lambda = pi) on the reduced force grid.
+    pub k1: Vec<f64>,
+    /// The punches with this spectrum, the main sample's phases.
+    pub punches: Vec<BemCurve>,
+}
+
+/// Computes surrogate `s` of a measured map: its spectrum, its MRD ensemble and its
+/// punches (the spectrum's part of the interval: `super::spectrum`).
+pub fn run_surrogate(spec: &Calibrate, case: &Case, s: u64) -> Result<Resample> {
+    let m = case.map.as_ref().expect("a spectrum task has a map");
+    let psd = m.surrogate_psd(spec.seed ^ SURROGATE_STREAM, s)?;
+    let spectrum = surrogate_spectrum(&psd, case)?;
+    let lines = run_lines(
+        spec,
+        &spectrum,
+        case.band,
+        spec.points_1d_per_cell * case.grid,
+    )?;
+    let punches = (0..spec.spectrum_punches())
+        .into_par_iter()
+        .map(|r| run_bem(spec, case, &spectrum, r))
+        .collect::<Result<Vec<_>>>()?;
+    Ok(Resample {
+        rms_factor: spectrum.rms_factor(case.band),
+        k1: lines.mean().into_iter().flatten().collect(),
+        psd,
+        punches,
+    })
+}
+
+/// A surrogate's PSD as the calibration reads a map's: held flat down to 2 pi / L.
+pub fn surrogate_spectrum(psd: &[(f64, f64)], case: &Case) -> Result<Spectrum> {
+    let table = TabulatedSpectrum::new(psd)
+        .map_err(|e| CompareError::Scene(format!("surrogate PSD: {e}")))?
+        .with_lowest_wavenumber(TAU / case.side);
+    Ok(Spectrum::Table {
+        table,
+        side: case.side,
+    })
+}
+
 /// One unit of checkpointed work.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Task {
@@ -252,6 +310,9 @@ pub enum Task {
     MapBem,
     /// 3D punch `r`.
     Bem(u64),
+    /// Surrogate spectrum `s` of a measured map, its MRD ensemble and its first
+    /// `punches` punches.
+    Spectrum { s: u64, punches: u64 },
 }
 
 impl Task {
@@ -261,16 +322,21 @@ impl Task {
             Task::MapMrd => "map_mrd.json".into(),
             Task::MapBem => "map_bem.json".into(),
             Task::Bem(r) => format!("bem_r{r}.json"),
+            Task::Spectrum { s, punches } => format!("spectrum_s{s}_p{punches}.json"),
         }
     }
 }
 
-/// Every task in its global order: the ensembles and the map first, then the punches
-/// up to `realisations.max`.
+/// Every task in its global order: the ensembles, the map and the surrogate spectra
+/// first, then the punches up to `realisations.max`.
 pub fn all(spec: &Calibrate) -> Vec<Task> {
     let mut t = vec![Task::Mrd];
     if spec.solves_map() {
         t.extend([Task::MapMrd, Task::MapBem]);
+    }
+    if let Some(u) = spec.spectrum_resamples() {
+        let punches = spec.spectrum_punches();
+        t.extend((0..u.resamples).map(|s| Task::Spectrum { s, punches }));
     }
     t.extend((0..spec.realisations.max).map(Task::Bem));
     t
@@ -284,14 +350,25 @@ pub struct Lines {
     pub stiffness: Vec<Vec<f64>>,
 }
 
+impl Lines {
+    /// The ensemble's mean k on the grid.
+    pub fn mean(&self) -> Vec<Option<f64>> {
+        let n = self.stiffness.len() as f64;
+        (0..self.stiffness.first().map_or(0, Vec::len))
+            .map(|j| Some(self.stiffness.iter().map(|v| v[j]).sum::<f64>() / n))
+            .collect()
+    }
+}
+
 /// The reduced force grid f = F/(E* h L) of every curve.
 pub fn f_grid() -> Vec<f64> {
     mrd::friction::log_space(1e-7, 1e2, 181)
 }
 
-fn run_bem(spec: &Calibrate, case: &Case, r: u64) -> Result<BemCurve> {
+/// Punch `r` of the spectrum `spectrum` at the case's bandwidth and grid.
+pub fn run_bem(spec: &Calibrate, case: &Case, spectrum: &Spectrum, r: u64) -> Result<BemCurve> {
     let g = case.grid;
-    let c2d = |q: f64| case.spectrum.c2d(q);
+    let c2d = |q: f64| spectrum.c2d(q);
     let h = clock::time(Stage::RoughSynthesis, || {
         nested::surface_with(
             &c2d,
@@ -312,10 +389,16 @@ fn run_map_bem(spec: &Calibrate, case: &Case) -> Result<BemCurve> {
     punch_curve(&h, m.n, spec.loads, spec.tolerance)
 }
 
-/// `lines` MRD lines of bandwidth `band` on `points` points, each line's k on the grid.
-fn run_lines(spec: &Calibrate, case: &Case, band: usize, points: usize) -> Result<Lines> {
+/// `lines` MRD lines of the spectrum `spectrum`, bandwidth `band`, on `points` points,
+/// each line's k on the grid.
+pub fn run_lines(
+    spec: &Calibrate,
+    spectrum: &Spectrum,
+    band: usize,
+    points: usize,
+) -> Result<Lines> {
     let fs = f_grid();
-    let c1d = |q: f64| PI * q * case.spectrum.c2d(q);
+    let c1d = |q: f64| PI * q * spectrum.c2d(q);
     let stiffness = (0..spec.lines)
         .into_par_iter()
         .map(|r| -> Result<Vec<f64>> {
@@ -339,18 +422,19 @@ fn run(spec: &Calibrate, case: &Case, t: Task) -> Result<String> {
     match t {
         Task::Mrd => json(&run_lines(
             spec,
-            case,
+            &case.spectrum,
             case.band,
             spec.points_1d_per_cell * case.grid,
         )?),
         Task::MapMrd => json(&run_lines(
             spec,
-            case,
+            &case.spectrum,
             case.source_band,
             spec.points_1d_per_cell * map_n,
         )?),
         Task::MapBem => json(&run_map_bem(spec, case)?),
-        Task::Bem(r) => json(&run_bem(spec, case, r)?),
+        Task::Bem(r) => json(&run_bem(spec, case, &case.spectrum, r)?),
+        Task::Spectrum { s, .. } => json(&run_surrogate(spec, case, s)?),
     }
 }
 
