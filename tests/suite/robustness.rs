@@ -1255,6 +1255,17 @@ fn oblique_cycle_bad_input_names_the_key() {
             ("cells = 24", "cells = 24\ncycles = 1", "cycles"),
             ("cells = 24", "cells = 24\nsteps = 4", "steps"),
             ("g_star = 0.8235294117647058", "g_star = 0.5", "cells"),
+            (
+                "phases = [0.0, 90.0, 180.0]",
+                "phases = [0.0, 270.0]",
+                "phases",
+            ),
+            (
+                "phases = [0.0, 90.0, 180.0]",
+                "phases = [90.0, 90.0]",
+                "phases",
+            ),
+            ("phases = [0.0, 90.0, 180.0]", "phases = []", "phases"),
         ],
     );
 }

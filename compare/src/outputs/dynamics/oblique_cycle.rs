@@ -1,7 +1,8 @@
 //! `oblique_cycle`: frictional damping of a sphere whose normal and tangential motion
 //! oscillate together (Section 7 with the normal force oscillating too). The sphere is
 //! pressed to the approach `d0` of a normal force, then moved along
-//! `d0 (1 + normal_amplitude sin)` and `A sin` in phase, cycle by cycle; the energy
+//! `d0 (1 + normal_amplitude sin(wt + phase))` and `A sin(wt)`, cycle by cycle, at each
+//! of the normal motion's phase leads `phases` (0: in phase); the energy
 //! dissipated by slip in the last cycle against the tangential amplitude A, by MRD's
 //! springs (the rule of Hess, tangential springs `G* dx` with Coulomb slip) and by the
 //! 3D contact (`dynamics::ObliqueBem3d`: the normal solve at each step's approach, the
@@ -9,7 +10,8 @@
 //! held normal approach, whose energy is Mindlin and Deresiewicz's closed form
 //! (`mrd::reference::mindlin_damping::dissipation_exact`, the review's Eq. 58 for any
 //! nu). A normal motion in phase lets the contact carry more tangential motion in stick
-//! and below an amplitude the contact shakes down: after the first cycles nothing slips.
+//! and below an amplitude the contact shakes down: after the first cycles nothing slips;
+//! out of phase the contact is loosest when the tangential motion is largest.
 //!
 //! The amplitudes are in units of `A_s = (2/3) mu d0 E* / G*`, the shift at which a
 //! contact stuck at `d0` would carry `mu F0`.
@@ -34,6 +36,10 @@ pub struct ObliqueCycle {
     mu: f64,
     /// The normal approach's amplitude over d0, in [0, 0.9].
     normal_amplitude: f64,
+    /// The normal motion's phase leads over the tangential one [degrees], each in
+    /// [-180, 180], one curve each.
+    #[serde(default = "in_phase")]
+    phases: Vec<f64>,
     /// Tangential amplitudes over A_s (module docs), increasing, each > 0.
     amplitudes: Vec<f64>,
     /// Cycles run (the energy is the last one's).
@@ -54,6 +60,9 @@ pub struct ObliqueCycle {
     tolerance: f64,
 }
 
+fn in_phase() -> Vec<f64> {
+    vec![0.0]
+}
 fn default_cycles() -> usize {
     3
 }
@@ -73,6 +82,8 @@ struct Curve {
     /// 0: MRD, else the 3D grid's side.
     cells: usize,
     normal_amplitude: f64,
+    /// The normal motion's phase lead [degrees].
+    phase: f64,
     energies: Vec<f64>,
 }
 
@@ -91,6 +102,16 @@ impl Output for ObliqueCycle {
             return bad(format!(
                 "normal_amplitude = {} must lie in [0, 0.9] (a fraction of the mean approach: the contact stays closed)",
                 self.normal_amplitude
+            ));
+        }
+        if self.phases.is_empty()
+            || self.phases.len() > 12
+            || self.phases.iter().any(|p| !(-180.0..=180.0).contains(p))
+            || (1..self.phases.len()).any(|i| self.phases[..i].contains(&self.phases[i]))
+        {
+            return bad(format!(
+                "phases = {:?}: give 1 to 12 distinct phase leads of the normal motion in [-180, 180] degrees",
+                self.phases
             ));
         }
         if self.amplitudes.is_empty()
@@ -199,7 +220,7 @@ impl Output for ObliqueCycle {
 
 impl ObliqueCycle {
     /// The last cycle's slip energy at every amplitude, the normal approach held and
-    /// oscillating, each run on a fresh law from `law`.
+    /// oscillating at each phase lead, each run on a fresh law from `law`.
     fn curves(
         &self,
         label: String,
@@ -207,28 +228,38 @@ impl ObliqueCycle {
         (d0, a_s): (f64, f64),
         law: &dyn Fn() -> dynamics::Result<Box<dyn ContactLaw>>,
     ) -> dynamics::Result<Vec<Curve>> {
-        [0.0, self.normal_amplitude]
-            .iter()
-            .map(|&b| {
+        let moving = self.phases.iter().map(|&p| (self.normal_amplitude, p));
+        std::iter::once((0.0, 0.0))
+            .chain(moving)
+            .map(|(b, phase)| {
                 let energies = self
                     .amplitudes
                     .iter()
-                    .map(|x| self.cycle(law()?.as_mut(), d0, b, x * a_s))
+                    .map(|x| self.cycle(law()?.as_mut(), d0, (b, phase), x * a_s))
                     .collect::<dynamics::Result<_>>()?;
                 Ok(Curve {
                     label: label.clone(),
                     cells,
                     normal_amplitude: b,
+                    phase,
                     energies,
                 })
             })
             .collect()
     }
 
-    /// Presses `law` to `d0` (from apart, in a quarter of a cycle's steps), then runs the
-    /// cycles of normal amplitude `b d0` and tangential amplitude `amp` in phase; the
-    /// slip energy of the last cycle.
-    fn cycle(&self, law: &mut dyn ContactLaw, d0: f64, b: f64, amp: f64) -> dynamics::Result<f64> {
+    /// Presses `law` to the cycle's first approach (from apart, in a quarter of a
+    /// cycle's steps), then runs the cycles of normal amplitude `b d0` leading the
+    /// tangential motion of amplitude `amp` by `phase` degrees; the slip energy of the
+    /// last cycle.
+    fn cycle(
+        &self,
+        law: &mut dyn ContactLaw,
+        d0: f64,
+        (b, phase): (f64, f64),
+        amp: f64,
+    ) -> dynamics::Result<f64> {
+        let lead = phase.to_radians();
         let press = (self.steps / 4).max(2);
         let mut step = |normal: f64, tangential: f64| -> dynamics::Result<f64> {
             let f = law.trial(Motion {
@@ -239,15 +270,16 @@ impl ObliqueCycle {
             law.commit()?;
             Ok(f.dissipated)
         };
+        let start = d0 * (1.0 + b * lead.sin());
         for k in 1..=press {
-            step(d0 * k as f64 / press as f64, 0.0)?;
+            step(start * k as f64 / press as f64, 0.0)?;
         }
         let mut last = 0.0;
         for c in 0..self.cycles {
             let mut w = 0.0;
             for k in 1..=self.steps {
-                let phase = (2.0 * std::f64::consts::PI * k as f64 / self.steps as f64).sin();
-                w += step(d0 * (1.0 + b * phase), amp * phase)?;
+                let angle = 2.0 * std::f64::consts::PI * k as f64 / self.steps as f64;
+                w += step(d0 * (1.0 + b * (angle + lead).sin()), amp * angle.sin())?;
             }
             if c + 1 == self.cycles {
                 last = w;
@@ -263,6 +295,7 @@ impl ObliqueCycle {
             &[
                 "method [0 MRD, else 3D cells a side]",
                 "normal amplitude over d0 [1]",
+                "normal phase lead [degrees]",
                 "tangential amplitude over A_s [1]",
                 "slip energy of the last cycle over mu F0 A_s [1]",
                 "Mindlin-Deresiewicz at a held normal over mu F0 A_s [1]",
@@ -270,7 +303,7 @@ impl ObliqueCycle {
         );
         let unit = self.mu * self.normal_force * a_s;
         t.notes.push(format!(
-            "a sphere pressed to the approach d0 of F0 = {}, then moved along d0 (1 + b sin) and A sin in phase, {} cycles of {} steps, the last cycle's slip energy; A_s = (2/3) mu d0 E* / G* = {a_s:.6e}; MRD {} springs, 3D {}^2 cells over 2.5 contact radii (solves to {:e}); Mindlin-Deresiewicz: the review's Eq. 58 for any nu at the held approach d0",
+            "a sphere pressed to the approach d0 of F0 = {}, then moved along d0 (1 + b sin(wt + phase)) and A sin(wt), {} cycles of {} steps, the last cycle's slip energy; A_s = (2/3) mu d0 E* / G* = {a_s:.6e}; MRD {} springs, 3D {}^2 cells over 2.5 contact radii (solves to {:e}); Mindlin-Deresiewicz: the review's Eq. 58 for any nu at the held approach d0",
             self.normal_force, self.cycles, self.steps, self.springs, self.cells, self.tolerance
         ));
         for c in &curves {
@@ -278,6 +311,7 @@ impl ObliqueCycle {
                 t.push(vec![
                     c.cells as f64,
                     c.normal_amplitude,
+                    c.phase,
                     *x,
                     w / unit,
                     w0 / unit,
@@ -297,33 +331,97 @@ impl ObliqueCycle {
             "mrd_held_normal_max_rel_dev_vs_mindlin_deresiewicz",
             worst(&mrd[0]),
         );
-        if let [held, moving] = three {
+        // Scalars of the moving normal at each phase lead: in phase without a suffix.
+        let suffix = |p: f64| {
+            if p == 0.0 {
+                String::new()
+            } else {
+                format!("_phase_{p}")
+            }
+        };
+        if let Some(held) = three.first() {
             out.scalar(
                 "bem3d_held_normal_max_rel_dev_vs_mindlin_deresiewicz",
                 worst(held),
             );
-            // With the normal moving: 3D against MRD where MRD's loop is resolved.
-            let top = mrd[1].energies.iter().cloned().fold(0.0, f64::max);
-            let dev = (0..exact.len())
-                .filter(|&x| mrd[1].energies[x] > 1e-3 * top)
-                .map(|x| (moving.energies[x] / mrd[1].energies[x] - 1.0).abs())
-                .fold(0.0f64, f64::max);
-            out.scalar("moving_normal_max_rel_dev_3d_vs_mrd", dev);
         }
-        // The largest amplitude at which MRD's moving contact shakes down (no slip in the
-        // last cycle); NaN where none does.
-        let shakedown = self
-            .amplitudes
-            .iter()
-            .zip(&mrd[1].energies)
-            .filter(|(_, w)| **w == 0.0)
-            .map(|(x, _)| *x)
-            .fold(f64::NAN, f64::max);
-        out.scalar("mrd_shakedown_largest_amplitude_over_a_s", shakedown);
+        for (k, m) in mrd.iter().enumerate().skip(1) {
+            // With the normal moving: 3D against MRD where MRD's loop is resolved.
+            if let Some(moving) = three.get(k) {
+                let top = m.energies.iter().cloned().fold(0.0, f64::max);
+                let dev = (0..exact.len())
+                    .filter(|&x| m.energies[x] > 1e-3 * top)
+                    .map(|x| (moving.energies[x] / m.energies[x] - 1.0).abs())
+                    .fold(0.0f64, f64::max);
+                out.scalar(
+                    format!("moving_normal_max_rel_dev_3d_vs_mrd{}", suffix(m.phase)),
+                    dev,
+                );
+            }
+            // The largest amplitude at which MRD's moving contact shakes down (no slip
+            // in the last cycle); NaN where none does.
+            let shakedown = self
+                .amplitudes
+                .iter()
+                .zip(&m.energies)
+                .filter(|(_, w)| **w == 0.0)
+                .map(|(x, _)| *x)
+                .fold(f64::NAN, f64::max);
+            out.scalar(
+                format!(
+                    "mrd_shakedown_largest_amplitude_over_a_s{}",
+                    suffix(m.phase)
+                ),
+                shakedown,
+            );
+            // How MRD's loss grows at the two smallest amplitudes: 3 at a held normal
+            // (Mindlin-Deresiewicz), 2 where the moving normal locks tangential
+            // displacement into the cells that enter contact; NaN where either is zero.
+            if let ([x0, x1, ..], [w0, w1, ..]) =
+                (self.amplitudes.as_slice(), m.energies.as_slice())
+            {
+                out.scalar(
+                    format!("mrd_small_amplitude_loss_exponent{}", suffix(m.phase)),
+                    if *w0 > 0.0 && *w1 > 0.0 {
+                        (w1 / w0).ln() / (x1 / x0).ln()
+                    } else {
+                        f64::NAN
+                    },
+                );
+            }
+        }
+        // A normal motion in opposition runs the in-phase path mirrored in the tangential
+        // direction and shifted by half a period: the same steady loss (the first
+        // cycles differ).
+        let at = |p: f64| {
+            curves
+                .iter()
+                .filter(move |c| c.normal_amplitude > 0.0 && c.phase == p)
+        };
+        let mirrored: Vec<f64> = at(0.0)
+            .zip(at(180.0))
+            .flat_map(|(a, b)| {
+                a.energies.iter().zip(&b.energies).map(|(x, y)| {
+                    if *x > 0.0 {
+                        (y / x - 1.0).abs()
+                    } else if *y == 0.0 {
+                        0.0
+                    } else {
+                        f64::INFINITY
+                    }
+                })
+            })
+            .collect();
+        if !mirrored.is_empty() {
+            out.scalar(
+                "loss_max_rel_dev_phase_180_vs_in_phase",
+                mirrored.iter().cloned().fold(0.0, f64::max),
+            );
+        }
         let mut fig = Figure::new(
             "oblique_cycle",
             &format!(
-                "Slip energy per cycle, normal held and oscillating (+/- {} d0); no point: no slip",
+                "Slip energy per cycle, normal held and oscillating by +/- {} d0; no point: no slip",
                 self.normal_amplitude
             ),
             "tangential amplitude over A_s = (2/3) mu d0 E*/G* [1]",
@@ -339,15 +437,23 @@ impl ObliqueCycle {
                 .collect()
         };
         for c in &curves {
+            // In opposition the loss is the in-phase one (mirror symmetry): drawn dashed
+            // or crossed over it, so that both stay visible.
+            let opposed = c.normal_amplitude > 0.0 && c.phase.abs() == 180.0;
             let what = if c.normal_amplitude == 0.0 {
-                "normal held"
+                "normal held".to_string()
+            } else if c.phase == 0.0 {
+                "normal in phase".to_string()
+            } else if opposed {
+                "normal in opposition (= in phase: mirror symmetry)".to_string()
             } else {
-                "normal oscillating"
+                format!("normal leading by {} deg", c.phase)
             };
-            let style = match (c.cells, c.normal_amplitude == 0.0) {
-                (0, _) => Style::Line,
-                (_, true) => Style::Crosses,
-                (_, false) => Style::Markers,
+            let style = match (c.cells, c.normal_amplitude == 0.0, opposed) {
+                (0, _, true) => Style::Dashed,
+                (0, _, false) => Style::Line,
+                (_, true, _) | (_, false, true) => Style::Crosses,
+                (_, false, false) => Style::Markers,
             };
             fig = fig.plot(format!("{}, {what}", c.label), pts(&c.energies), style);
         }
