@@ -86,6 +86,27 @@ impl ContactLaw {
         }
     }
 
+    /// A 3D law with both motions on the free half-space: `heights` read as a free grid,
+    /// the solver's default tolerance where none is given, and `build` called with the
+    /// heights, (nx, ny), (lx, ly) and the tolerance, the GIL released.
+    fn free_3d<L: Law + 'static>(
+        py: Python<'_>,
+        heights: &Bound<'_, PyAny>,
+        size: Option<(f64, f64)>,
+        e_star: f64,
+        tolerance: Option<f64>,
+        build: impl FnOnce(&[f64], (usize, usize), (f64, f64), f64) -> dynamics::Result<L> + Send,
+    ) -> PyResult<Self> {
+        let grid = Grid::new(py, heights, (size, Some(false)), None, e_star, false)?;
+        let (h, frame) = (grid.heights, grid.frame);
+        let tolerance = tolerance.unwrap_or(bem3d::SolverOptions::default().tolerance);
+        let ((ny, nx), (lx, ly)) = (frame.shape, frame.size);
+        let law = py
+            .detach(|| build(&h, (nx, ny), (lx, ly), tolerance))
+            .map_err(|e| law_err(py, Some(&frame), e))?;
+        Ok(Self::new(Box::new(law), Some(frame)))
+    }
+
     /// An MRD spring law, with tangential springs and Coulomb slip when `g_star` and `mu`
     /// are both given.
     fn springs(
@@ -412,24 +433,16 @@ impl ContactLaw {
         e_star: f64,
         tolerance: Option<f64>,
     ) -> PyResult<Self> {
-        let grid = Grid::new(py, heights, (size, Some(false)), None, e_star, false)?;
-        let (h, frame) = (grid.heights, grid.frame);
-        let tolerance = tolerance.unwrap_or(bem3d::SolverOptions::default().tolerance);
-        let ((ny, nx), (lx, ly)) = (frame.shape, frame.size);
-        let law = py
-            .detach(|| {
-                dynamics::SlipBem3d::new(
-                    &h,
-                    (nx, ny),
-                    (lx, ly),
-                    (e_star, g_star),
-                    mu,
-                    normal_force,
-                    tolerance,
-                )
-            })
-            .map_err(|e| law_err(py, Some(&frame), e))?;
-        Ok(Self::new(Box::new(law), Some(frame)))
+        Self::free_3d(
+            py,
+            heights,
+            size,
+            e_star,
+            tolerance,
+            |h, n, l, tolerance| {
+                dynamics::SlipBem3d::new(h, n, l, (e_star, g_star), mu, normal_force, tolerance)
+            },
+        )
     }
 
     /// oblique_bem3d(heights, g_star, mu, size=None, e_star=1.0, tolerance=None)
@@ -453,16 +466,16 @@ impl ContactLaw {
         e_star: f64,
         tolerance: Option<f64>,
     ) -> PyResult<Self> {
-        let grid = Grid::new(py, heights, (size, Some(false)), None, e_star, false)?;
-        let (h, frame) = (grid.heights, grid.frame);
-        let tolerance = tolerance.unwrap_or(bem3d::SolverOptions::default().tolerance);
-        let ((ny, nx), (lx, ly)) = (frame.shape, frame.size);
-        let law = py
-            .detach(|| {
-                dynamics::ObliqueBem3d::new(&h, (nx, ny), (lx, ly), (e_star, g_star), mu, tolerance)
-            })
-            .map_err(|e| law_err(py, Some(&frame), e))?;
-        Ok(Self::new(Box::new(law), Some(frame)))
+        Self::free_3d(
+            py,
+            heights,
+            size,
+            e_star,
+            tolerance,
+            |h, n, l, tolerance| {
+                dynamics::ObliqueBem3d::new(h, n, l, (e_star, g_star), mu, tolerance)
+            },
+        )
     }
 
     /// trial(normal, tangential=0.0, dt=1.0) -> LawForces
