@@ -418,6 +418,11 @@ impl ObliqueCycle {
                 mirrored.iter().cloned().fold(0.0, f64::max),
             );
         }
+        out.figures.push(self.figure(&curves, exact, unit));
+    }
+
+    /// The last cycle's slip energy of every curve against the tangential amplitude.
+    fn figure(&self, curves: &[&Curve], exact: &[f64], unit: f64) -> Figure {
         let mut fig = Figure::new(
             "oblique_cycle",
             &format!(
@@ -436,7 +441,7 @@ impl ObliqueCycle {
                 .map(|(x, w)| (*x, w / unit))
                 .collect()
         };
-        for c in &curves {
+        for c in curves {
             // In opposition the loss is the in-phase one (mirror symmetry): drawn dashed
             // or crossed over it, so that both stay visible.
             let opposed = c.normal_amplitude > 0.0 && c.phase.abs() == 180.0;
@@ -463,6 +468,6 @@ impl ObliqueCycle {
             pts(exact),
             Style::Dashed,
         );
-        out.figures.push(fig);
+        fig
     }
 }
