@@ -104,13 +104,7 @@ fn killed_run_resumes_and_shards_merge_to_identical_csvs() {
     assert!(sm["warnings"]
         .to_string()
         .contains("raise realisations.max"));
-    let part = tmp.path().join("part");
-    stopped_run(&s, &part, "5");
-    ok(&mrdw(
-        &["run", &s, "--out", part.to_str().unwrap(), "--threads", "1"],
-        &[],
-    ));
-    assert_eq!(csvs(&full), csvs(&part));
+    resumes_to_identical_csvs(&s, &full, tmp.path());
     // A rerun over a kept work folder says that it resumes, and from what.
     let work = tmp.path().join("kept.work");
     let again = |out: &str| {
@@ -128,10 +122,34 @@ fn killed_run_resumes_and_shards_merge_to_identical_csvs() {
         second.contains("calibrate: resuming: all ") && second.contains("nothing to compute"),
         "{second}"
     );
-    let shards = run_shards(&s, tmp.path(), &["2", "2"]);
-    let merged = tmp.path().join("merged");
+    merges_to_identical_csvs(&s, &full, tmp.path(), &["2", "2"]);
+}
+
+/// A run of `scene` stopped after 5 tasks, then resumed at one thread, writes the CSVs of
+/// the uninterrupted run `full`.
+fn resumes_to_identical_csvs(scene: &str, full: &Path, dir: &Path) {
+    let part = dir.join("part");
+    stopped_run(scene, &part, "5");
+    ok(&mrdw(
+        &[
+            "run",
+            scene,
+            "--out",
+            part.to_str().unwrap(),
+            "--threads",
+            "1",
+        ],
+        &[],
+    ));
+    assert_eq!(csvs(full), csvs(&part));
+}
+
+/// Two shards of `scene` at the thread counts `threads`, merged, write the CSVs of `full`.
+fn merges_to_identical_csvs(scene: &str, full: &Path, dir: &Path, threads: &[&str]) {
+    let shards = run_shards(scene, dir, threads);
+    let merged = dir.join("merged");
     ok(&merge(&[&shards[0], &shards[1]], &merged));
-    assert_eq!(csvs(&full), csvs(&merged));
+    assert_eq!(csvs(full), csvs(&merged));
 }
 
 /// Keys that would be accepted and ignored are refused, naming the key.
@@ -296,16 +314,7 @@ fn surrogate_spectra_resume_and_merge_to_identical_csvs() {
     );
     let sm = summary(&full);
     assert_eq!(sm["results"]["calibrate.spectrum_resamples"], 4.0);
-    let part = tmp.path().join("part");
-    // The ensemble, the map's two tasks and two of the four surrogates.
-    stopped_run(&s, &part, "5");
-    ok(&mrdw(
-        &["run", &s, "--out", part.to_str().unwrap(), "--threads", "1"],
-        &[],
-    ));
-    assert_eq!(csvs(&full), csvs(&part));
-    let shards = run_shards(&s, tmp.path(), &["1", "2"]);
-    let merged = tmp.path().join("merged");
-    ok(&merge(&[&shards[0], &shards[1]], &merged));
-    assert_eq!(csvs(&full), csvs(&merged));
+    // Stopped after the ensemble, the map's two tasks and two of the four surrogates.
+    resumes_to_identical_csvs(&s, &full, tmp.path());
+    merges_to_identical_csvs(&s, &full, tmp.path(), &["1", "2"]);
 }
