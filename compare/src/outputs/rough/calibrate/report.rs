@@ -135,6 +135,17 @@ pub fn report(
 /// which part to reduce, and the surrogates' table.
 fn spectrum_part(p: &SpectrumPart, cal: &Calibration, out: &mut Section) {
     let width = |e: &crate::experiment::fit::Estimate| e.relative_half_width();
+    let calibrated = p
+        .rows
+        .iter()
+        .filter(|r| (r.lambda / r.reference).is_finite())
+        .count();
+    if !(p.total.lo.is_finite() && p.total.hi.is_finite()) {
+        out.warn(format!(
+            "the spectrum's part of lambda's interval is undefined: {calibrated} of {} surrogate spectra could be calibrated in window (fewer than 3 points of their mean curve, or a failed fit); lambda_spectrum and lambda_total are left empty (spectrum_resamples.csv)",
+            p.rows.len()
+        ));
+    }
     for (k, v) in [
         ("lambda_spectrum_lo", p.lambda.lo),
         ("lambda_spectrum_hi", p.lambda.hi),
@@ -160,7 +171,7 @@ fn spectrum_part(p: &SpectrumPart, cal: &Calibration, out: &mut Section) {
             100.0 * p.bias_error
         ));
     }
-    if !p.resolved {
+    if !p.resolved && p.total.lo.is_finite() {
         out.warn(format!(
             "the spectrum's part of lambda's interval is not resolved from the punches' noise with {} surrogate spectra of {} punches each (variance of ln lambda {:.2e} over the surrogates, of which the punches explain {:.2e}; estimate +/- {:.1} %): taken at its upper bound, +/- {:.1} %, in lambda_spectrum and lambda_total; raise spectrum_uncertainty.punches to narrow it (the punches' noise falls as 1 / punches)",
             p.rows.len(),
@@ -291,7 +302,8 @@ fn summary_table(
         "lambda_total_hi95 [1]",
     ];
     let mut t = Table::new("calibration", &cols);
-    t.missing_ok = part.is_none();
+    // Empty without a spectrum part, or where too few surrogates calibrated.
+    t.missing_ok = true;
     t.notes.push(format!(
         "lambda of Eq. (76) (C1D = lambda q C2D of the same C2D, the line not rescaled) for this surface: {} rigid circular punches of diameter L (the source's side) with faces of its spectrum up to {} x 2 pi / L, {} cells a side, against {} MRD lines; fitted over k/(E* L) in [{}, {}] of the 3D mean (f = F/(E* h L), each curve over its own rms height); amplitude statistics of the faces: {} (the lines: fixed, Eq. 72); 95 % bootstrap intervals over the punches ({} resamples); misfit: |ln k3D - ln kMRD| at the calibrated lambda over that range; alpha: slope of ln k against ln f there (Eq. 77); halves: lambda fitted on the lower / upper half of the range's forces",
         cal.realisations,

@@ -147,7 +147,14 @@ pub fn analyse(
         .map(|r| (r.lambda / r.reference).ln())
         .filter(|v| v.is_finite())
         .collect();
-    let noise = rows.iter().map(|r| r.noise).sum::<f64>() / rows.len() as f64;
+    // Undefined (NaN, reported as such) below three calibrated surrogates.
+    let noises: Vec<f64> = rows
+        .iter()
+        .map(|r| r.noise)
+        .filter(|v| v.is_finite())
+        .collect();
+    let noise = noises.iter().sum::<f64>() / noises.len() as f64;
+    let logs = if logs.len() < 3 { Vec::new() } else { logs };
     let spread = variance(&logs);
     let estimate = 1.96 * (spread - noise).max(0.0).sqrt();
     let upper = 1.96 * spread.sqrt();
@@ -191,6 +198,9 @@ pub fn analyse(
 
 /// The sample variance (NaN below two values).
 fn variance(v: &[f64]) -> f64 {
+    if v.len() < 2 {
+        return f64::NAN;
+    }
     let n = v.len() as f64;
     let mean = v.iter().sum::<f64>() / n;
     v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)
