@@ -12,11 +12,14 @@
 //! elastically similar bodies; MRD's springs (`crate::law::Springs::with_friction`) are
 //! its 1D counterpart, exact for bodies of revolution.
 //!
-//! **One contact.** The law starts apart; the first trial with a cell in contact starts
-//! the slip solver (the tangential displacement of that moment is its origin); when no
-//! cell is in contact any more, the forces are zero and stay so. A contact that forms
-//! again after separating is refused (the surfaces' relative position between contacts
-//! is not modelled): build a new law for each contact.
+//! **Contacts.** The law starts apart; the first trial with a cell in contact starts
+//! the slip solver (the tangential displacement of that moment is its origin). When no
+//! cell is in contact any more the forces are zero, and the half-space carries no
+//! traction and no displacement (a quasi-static elastic body keeps no memory of the
+//! contact); the half-space is flat, so a contact that forms again anywhere along x is
+//! a first contact again: a new slip solver, its origin the tangential displacement of
+//! that moment. MRD's springs do the same spring by spring (a spring that touches again
+//! sticks where it is).
 //!
 //! **Trial and commit.** The slip solver's trial is taken back bit for bit by its
 //! snapshot (`crate::held`); the normal solution of a trial replaces the accepted one
@@ -30,10 +33,10 @@ use bem3d::tangential::{CerrutiFree, ViscoelasticSlip};
 use bem3d::viscoelastic::Relaxation;
 use bem3d::{ContactSolver, Load, NonPeriodicHalfSpace, Solution, SolverOptions};
 
-/// Where the one contact of an [`ObliqueBem3d`] is.
+/// Where the contact of an [`ObliqueBem3d`] is.
 enum Phase {
-    /// Not yet touched.
-    Before,
+    /// Apart: not yet touched, or separated after a contact.
+    Apart,
     /// In contact: the accepted normal solution, the slip solver, and the tangential
     /// displacement at first contact.
     Touching {
@@ -41,8 +44,6 @@ enum Phase {
         slip: Box<Held<ViscoelasticSlip<CerrutiFree>>>,
         origin: f64,
     },
-    /// Separated after a contact.
-    After,
 }
 
 /// A trial's outcome, applied on commit.
@@ -59,7 +60,7 @@ enum Pending {
     Apart,
 }
 
-/// The 3D contact with free normal and tangential motion, one contact (module docs).
+/// The 3D contact with free normal and tangential motion (module docs).
 pub struct ObliqueBem3d {
     normal: ContactSolver<NonPeriodicHalfSpace>,
     options: SolverOptions,
@@ -106,7 +107,7 @@ impl ObliqueBem3d {
             g,
             mu,
             tolerance,
-            phase: Phase::Before,
+            phase: Phase::Apart,
             pending: None,
             committed: Forces::default(),
             label: format!("3D oblique contact, {nx} x {ny} cells, Coulomb mu = {mu}"),
@@ -155,12 +156,6 @@ impl ContactLaw for ObliqueBem3d {
         let (area, tolerance) = (self.cell_area(), self.tolerance);
         let (pending, forces) = match (sol, &mut self.phase) {
             (None, _) => (Pending::Apart, Forces::default()),
-            (Some(_), Phase::After) => {
-                return bad(format!(
-                    "normal = {}: the contact forms again after separating; this law models one contact (module docs): build a new one",
-                    motion.normal
-                ));
-            }
             (Some(sol), Phase::Touching { slip, origin, .. }) => {
                 let shift = motion.tangential - *origin;
                 let forces = slip.trial(|c| {
@@ -170,7 +165,7 @@ impl ContactLaw for ObliqueBem3d {
                 })?;
                 (Pending::Touching(sol), forces)
             }
-            (Some(sol), Phase::Before) => {
+            (Some(sol), Phase::Apart) => {
                 let (nx, ny, lx, ly) = self.grid;
                 let shear = CerrutiFree::new(nx, ny, lx, ly, 1.0, self.nu)?;
                 let c = ViscoelasticSlip::new(
@@ -202,11 +197,7 @@ impl ContactLaw for ObliqueBem3d {
             return bad("commit: no trial step to accept (call trial first)");
         };
         match pending {
-            Pending::Apart => {
-                if matches!(self.phase, Phase::Touching { .. }) {
-                    self.phase = Phase::After;
-                }
-            }
+            Pending::Apart => self.phase = Phase::Apart,
             Pending::Touching(sol) => {
                 if let Phase::Touching { normal, slip, .. } = &mut self.phase {
                     slip.commit()?;
@@ -419,32 +410,123 @@ mod tests {
         assert!(w3 < 1e-2 * w_half, "3D slip energy {w3} against {w_half}");
     }
 
-    /// A contact that forms again after separating is refused; a rejected trial leaves
-    /// no trace (the trial after it is bit for bit the one without it).
+    /// A rejected trial leaves no trace (the trial after it is bit for bit the one
+    /// without it); a contact that forms again after separating is a first contact
+    /// again: the same motion from the new origin gives the same bits.
     #[test]
-    fn one_contact_and_a_rollback_that_replays() {
+    fn a_rollback_replays_and_a_contact_forms_again() {
         let mut law = three(16, 1.0, 0.3);
         let d = 1e-3;
+        // A tangential step that is exact in binary from either origin below.
+        let du = 2f64.powi(-13);
         let at = |normal: f64, tangential: f64| Motion {
             normal,
             tangential,
             dt: 1.0,
         };
-        law.trial(at(d, 0.0)).unwrap();
+        let touch = law.trial(at(d, 0.0)).unwrap();
         law.commit().unwrap();
-        law.trial(at(1.5 * d, 1e-4)).unwrap();
+        let pressed = law.trial(at(1.5 * d, du)).unwrap();
         law.commit().unwrap();
-        let first = law.trial(at(1.2 * d, 2e-4)).unwrap();
+        let first = law.trial(at(1.2 * d, 2.0 * du)).unwrap();
         law.rollback();
-        law.trial(at(2.0 * d, -3e-4)).unwrap();
-        let again = law.trial(at(1.2 * d, 2e-4)).unwrap();
+        law.trial(at(2.0 * d, -3.0 * du)).unwrap();
+        let again = law.trial(at(1.2 * d, 2.0 * du)).unwrap();
         assert_eq!(again.tangential.to_bits(), first.tangential.to_bits());
         assert_eq!(again.normal.to_bits(), first.normal.to_bits());
         law.commit().unwrap();
-        let apart = law.trial(at(-d, 2e-4)).unwrap();
+        let apart = law.trial(at(-d, 2.0 * du)).unwrap();
         assert_eq!((apart.normal, apart.tangential), (0.0, 0.0));
         law.commit().unwrap();
-        let e = law.trial(at(d, 0.0)).unwrap_err().to_string();
-        assert!(e.contains("forms again"), "{e}");
+        // In contact again at x = 0.25: the first two steps once more.
+        let bits = |f: Forces| [f.normal, f.tangential, f.contact_area].map(f64::to_bits);
+        let retouch = law.trial(at(d, 0.25)).unwrap();
+        law.commit().unwrap();
+        let repressed = law.trial(at(1.5 * d, 0.25 + du)).unwrap();
+        law.commit().unwrap();
+        assert_eq!(bits(retouch), bits(touch));
+        assert_eq!(bits(repressed), bits(pressed));
+        assert!(pressed.tangential > 0.0);
+    }
+
+    /// A sphere in and out of contact while it drifts along x (Section 7's fretting
+    /// with separation), `nc` steps a cycle: the normal approach
+    /// `d0 sin(2 pi (k - 1/2) / nc)` (apart on the negative half), the tangential
+    /// displacement `6 u_s k / nc` (u_s the shift at which a stuck contact carries
+    /// `mu P` at d0), each contact sticking first and sliding at its end; 32^2 cells
+    /// over 2.5 contact radii at d0. Returns the largest difference of the tangential
+    /// forces (3D less MRD) over `mu P(d0)`, and per contact, by MRD and in 3D, the
+    /// tangential forces of its steps and its slip energy.
+    fn fretting(nc: usize, contacts: usize) -> (f64, Vec<[(Vec<f64>, f64); 2]>) {
+        let (mu, g_star) = (0.3, 1.4 / 1.7);
+        let d0 = 0.5 * hertz_impact::max_approach(1.0, 1.0, 1e-3, 0.05);
+        let u_slip = 2.0 / 3.0 * mu * d0 / g_star;
+        let mu_p0 = mu * 4.0 / 3.0 * d0.powf(1.5);
+        let (mut springs, mut three) = (springs(g_star, mu), three(32, g_star, mu));
+        let mut out: Vec<[(Vec<f64>, f64); 2]> = vec![];
+        let mut worst = 0.0f64;
+        for k in 1..=contacts * nc {
+            let phase = ((k % nc) as f64 - 0.5) / nc as f64;
+            let m = Motion {
+                normal: d0 * (2.0 * std::f64::consts::PI * phase).sin(),
+                tangential: 6.0 * u_slip * k as f64 / nc as f64,
+                dt: 1.0,
+            };
+            let fm = springs.trial(m).unwrap();
+            springs.commit().unwrap();
+            let f3 = three.trial(m).unwrap();
+            three.commit().unwrap();
+            if k % nc == 1 {
+                out.push(Default::default());
+            }
+            if (1..=nc / 2).contains(&(k % nc)) {
+                let c = out.last_mut().unwrap();
+                for (side, f) in c.iter_mut().zip([fm, f3]) {
+                    side.0.push(f.tangential);
+                    side.1 += f.dissipated;
+                }
+                worst = worst.max((f3.tangential - fm.tangential).abs() / mu_p0);
+            } else {
+                assert_eq!(
+                    (fm.normal, f3.normal, f3.tangential),
+                    (0.0, 0.0, 0.0),
+                    "{k}"
+                );
+            }
+        }
+        for c in &out {
+            let again = c.iter().zip(&out[0]);
+            for ((q, _), (q0, _)) in again {
+                let off = q.iter().zip(q0).map(|(a, b)| (a - b).abs());
+                let off = off.fold(0.0, f64::max);
+                assert!(off < 1e-9 * mu_p0, "a contact again: {off}");
+            }
+        }
+        (worst, out)
+    }
+
+    /// Contacts that form again after separating ([`fretting`]):
+    /// - each is the first one again: the second's and third's tangential forces equal
+    ///   the first's within 1e-9 of `mu P(d0)`, in 3D and by MRD (the same motion from a
+    ///   new origin; they differ by the rounding of the shift);
+    /// - the 3D tangential force follows MRD's within 8 % of `mu P(d0)` at 40 steps a
+    ///   cycle (measured 6.3 %) and the difference falls with the step, below 0.75 of it
+    ///   at 80 (measured 3.9 %, then 2.1 % at 160): first order, a cell entering contact
+    ///   anchored at the step's start in 3D, a spring at its end by MRD; each contact's
+    ///   slip energy within 8 % and 5 % (measured 5.2 % and 3.3 %).
+    #[test]
+    fn contacts_that_form_again_follow_mrd() {
+        let (coarse, contacts) = fretting(40, 3);
+        let (fine, once) = fretting(80, 1);
+        assert!(coarse < 0.08, "3D force off MRD's by {coarse} of mu P");
+        assert!(fine < 0.75 * coarse, "{fine} against {coarse}");
+        for (c, tolerance) in contacts.iter().map(|c| (c, 0.08)).chain([(&once[0], 0.05)]) {
+            let [(_, wm), (_, w3)] = c;
+            assert!(*wm > 0.0);
+            assert!(
+                (w3 / wm - 1.0).abs() < tolerance,
+                "slip energy {w3} against {wm}"
+            );
+        }
     }
 }

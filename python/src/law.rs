@@ -452,8 +452,9 @@ impl ContactLaw {
     /// highest cell), then the partial slip under that pressure at its tangential
     /// displacement (Coulomb's `mu` cell by cell, the slip carried from step to step, a
     /// cell entering contact sticking where it is; E* and G* of one elastic body under a
-    /// rigid one, G* / E* in [2/3, 1]). It starts apart and models one contact: a
-    /// contact that forms again after separating is refused. tolerance: the solves'
+    /// rigid one, G* / E* in [2/3, 1]). It starts apart; a contact that forms again
+    /// after separating is a first contact again (no traction, its origin the
+    /// tangential displacement of that moment). tolerance: the solves'
     /// (None: the solver's default, 1e-10).
     #[staticmethod]
     #[pyo3(signature = (heights, g_star, mu, size = None, e_star = 1.0, tolerance = None))]

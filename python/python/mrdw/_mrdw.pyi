@@ -451,7 +451,8 @@ class ContactLaw:
     ) -> "ContactLaw":
         """The 3D contact of the height map on the free half-space with both motions free
         (the normal solve, then the partial slip under its pressure, the slip carried);
-        one contact: starting apart, a contact forming again after separating is refused."""
+        it starts apart, and a contact forming again after separating is a first contact
+        again (its origin the tangential displacement of that moment)."""
     def trial(self, normal: float, tangential: float = 0.0, dt: float = 1.0) -> LawForces:
         """The forces at the step's end motion from the last accepted state."""
     def commit(self) -> None:
