@@ -449,6 +449,9 @@ mod tests {
         assert!(pressed.tangential > 0.0);
     }
 
+    /// One contact's tangential forces step by step and its slip energy, by MRD and in 3D.
+    type Contact = [(Vec<f64>, f64); 2];
+
     /// A sphere in and out of contact while it drifts along x (Section 7's fretting
     /// with separation), `nc` steps a cycle: the normal approach
     /// `d0 sin(2 pi (k - 1/2) / nc)` (apart on the negative half), the tangential
@@ -457,13 +460,13 @@ mod tests {
     /// over 2.5 contact radii at d0. Returns the largest difference of the tangential
     /// forces (3D less MRD) over `mu P(d0)`, and per contact, by MRD and in 3D, the
     /// tangential forces of its steps and its slip energy.
-    fn fretting(nc: usize, contacts: usize) -> (f64, Vec<[(Vec<f64>, f64); 2]>) {
+    fn fretting(nc: usize, contacts: usize) -> (f64, Vec<Contact>) {
         let (mu, g_star) = (0.3, 1.4 / 1.7);
         let d0 = 0.5 * hertz_impact::max_approach(1.0, 1.0, 1e-3, 0.05);
         let u_slip = 2.0 / 3.0 * mu * d0 / g_star;
         let mu_p0 = mu * 4.0 / 3.0 * d0.powf(1.5);
         let (mut springs, mut three) = (springs(g_star, mu), three(32, g_star, mu));
-        let mut out: Vec<[(Vec<f64>, f64); 2]> = vec![];
+        let mut out: Vec<Contact> = vec![];
         let mut worst = 0.0f64;
         for k in 1..=contacts * nc {
             let phase = ((k % nc) as f64 - 0.5) / nc as f64;
