@@ -11,6 +11,9 @@
 # and fig6-converged, a study of many CPU hours).
 # Exit status 0 when every compared file is identical.
 #
+# With ONLY set (a regex), only the scenes it matches are run; with BASE_BIN set (a
+# built `mrdw` of BASE_REF), that binary is the base and nothing is built for it.
+#
 # With RTOL set (e.g. RTOL=1e-6), a CSV that differs is compared number by number
 # instead: it passes ("close") when every value differs from the base by at most RTOL
 # times its column's largest magnitude. Columns of run statistics (iterations, times,
@@ -23,10 +26,14 @@ skip=${2:-^(fig6-full|fig6-converged)$}
 tmp=$(mktemp -d)
 trap 'git worktree remove --force "$tmp/base" >/dev/null 2>&1 || true; rm -rf "$tmp"' EXIT
 
-git worktree add --detach "$tmp/base" "$base_ref" >/dev/null
-(cd "$tmp/base" && cargo build --release --quiet --bin mrdw)
+if [ -n "${BASE_BIN:-}" ]; then
+  base_bin=$BASE_BIN
+else
+  git worktree add --detach "$tmp/base" "$base_ref" >/dev/null
+  (cd "$tmp/base" && cargo build --release --quiet --bin mrdw)
+  base_bin=$tmp/base/target/release/mrdw
+fi
 cargo build --release --quiet --bin mrdw
-base_bin=$tmp/base/target/release/mrdw
 new_bin=$PWD/target/release/mrdw
 
 # summary.json without its timings (keys ending in _s, *seconds*, wall_time*).
@@ -77,7 +84,7 @@ sys.exit(0 if worst <= rtol else 1)
 
 status=0
 for scene in $("$new_bin" scenes | awk '{print $1}'); do
-  if [[ $scene =~ $skip ]]; then
+  if [[ $scene =~ $skip ]] || { [ -n "${ONLY:-}" ] && ! [[ $scene =~ $ONLY ]]; }; then
     echo "skip  $scene"
     continue
   fi
