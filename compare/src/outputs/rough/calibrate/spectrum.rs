@@ -147,40 +147,29 @@ pub fn analyse(
         .map(|r| (r.lambda / r.reference).ln())
         .filter(|v| v.is_finite())
         .collect();
-    // Undefined (NaN, reported as such) below three calibrated surrogates.
     let noises: Vec<f64> = rows
         .iter()
         .map(|r| r.noise)
         .filter(|v| v.is_finite())
         .collect();
-    let noise = noises.iter().sum::<f64>() / noises.len() as f64;
-    let logs = if logs.len() < 3 { Vec::new() } else { logs };
-    let spread = variance(&logs);
-    let estimate = 1.96 * (spread - noise).max(0.0).sqrt();
-    let upper = 1.96 * spread.sqrt();
-    // The standard errors of the two variances (S - 1 and S degrees of freedom).
-    let n = logs.len() as f64;
-    let error = ((spread * (2.0 / (n - 1.0)).sqrt()).powi(2)
-        + (noise * (2.0 / rows.len() as f64).sqrt()).powi(2))
-    .sqrt();
-    let mean = logs.iter().sum::<f64>() / logs.len() as f64;
+    let split = Split::of(&logs, &noises);
     // Unresolved, the part is taken at its bound: the interval may be too wide, never
     // too narrow.
-    let b = if spread - noise > error {
-        estimate
+    let b = if split.resolved {
+        split.estimate
     } else {
-        upper
+        split.upper
     };
     let v = lambda.value;
     let (lo, hi) = ((v / lambda.lo).ln(), (lambda.hi / v).ln());
     Ok(Some(SpectrumPart {
         punches: n0 as u64,
-        bias: mean.exp() - 1.0,
-        bias_error: (spread / n).sqrt(),
-        variance: (spread, noise),
-        resolved: spread - noise > error,
-        upper,
-        estimate,
+        bias: split.mean.exp() - 1.0,
+        bias_error: (split.spread / logs.len() as f64).sqrt(),
+        variance: (split.spread, split.noise),
+        resolved: split.resolved,
+        upper: split.upper,
+        estimate: split.estimate,
         lambda: Estimate {
             value: v,
             lo: v * (-b).exp(),
@@ -196,6 +185,50 @@ pub fn analyse(
     }))
 }
 
+/// The random-effects split of the surrogates' spread (module docs): ln r_s (`logs`)
+/// scatters by the spectrum's variance plus the punches' noise, whose estimate per
+/// surrogate (`noises`, from its two halves of punches) is pooled and subtracted.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Split {
+    /// The mean of ln r.
+    mean: f64,
+    /// var(ln r) over the surrogates, and the mean of their noise estimates.
+    spread: f64,
+    noise: f64,
+    /// The standard error of `spread - noise` (S - 1 and S degrees of freedom for the
+    /// two; the two are independent: a surrogate's whole-sample ratio and the difference
+    /// of its halves are).
+    error: f64,
+    /// `spread - noise > error`: the spectrum's part stands out of the noise.
+    resolved: bool,
+    /// 1.96 sqrt(spread - noise, or 0) and 1.96 sqrt(spread): the spectrum's 95 %
+    /// half-width in ln lambda and its bound.
+    estimate: f64,
+    upper: f64,
+}
+
+impl Split {
+    /// Undefined (NaN, reported as such) below three surrogates.
+    fn of(logs: &[f64], noises: &[f64]) -> Self {
+        let logs = if logs.len() < 3 { &[][..] } else { logs };
+        let noise = noises.iter().sum::<f64>() / noises.len() as f64;
+        let spread = variance(logs);
+        let n = logs.len() as f64;
+        let error = ((spread * (2.0 / (n - 1.0)).sqrt()).powi(2)
+            + (noise * (2.0 / noises.len() as f64).sqrt()).powi(2))
+        .sqrt();
+        Self {
+            mean: logs.iter().sum::<f64>() / n,
+            spread,
+            noise,
+            error,
+            resolved: spread - noise > error,
+            estimate: 1.96 * (spread - noise).max(0.0).sqrt(),
+            upper: 1.96 * spread.sqrt(),
+        }
+    }
+}
+
 /// The sample variance (NaN below two values).
 fn variance(v: &[f64]) -> f64 {
     if v.len() < 2 {
@@ -204,4 +237,78 @@ fn variance(v: &[f64]) -> f64 {
     let n = v.len() as f64;
     let mean = v.iter().sum::<f64>() / n;
     v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{RngExt, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// Synthetic surrogates with a known spectrum variance `s2` and punches' noise `n2`
+    /// (of the whole sample; each half has twice it): ln r_s = a_s + (e_a + e_b) / 2 and
+    /// the noise estimate (e_a - e_b)^2 / 4, a_s ~ N(0, s2), e ~ N(0, 2 n2). Returns the
+    /// splits of `trials` experiments of `surrogates` each.
+    fn experiments(s2: f64, n2: f64, surrogates: usize, trials: usize) -> Vec<Split> {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        // Box-Muller: a standard normal from two uniforms.
+        let mut normal = move || -> f64 {
+            let (u, v): (f64, f64) = (rng.random(), rng.random());
+            (-2.0 * (1.0 - u).ln()).sqrt() * (2.0 * std::f64::consts::PI * v).cos()
+        };
+        (0..trials)
+            .map(|_| {
+                let (mut logs, mut noises) = (vec![], vec![]);
+                for _ in 0..surrogates {
+                    let a = s2.sqrt() * normal();
+                    let (ea, eb) = ((2.0 * n2).sqrt() * normal(), (2.0 * n2).sqrt() * normal());
+                    logs.push(a + (ea + eb) / 2.0);
+                    noises.push((ea - eb).powi(2) / 4.0);
+                }
+                Split::of(&logs, &noises)
+            })
+            .collect()
+    }
+
+    fn mean_sd(v: impl Iterator<Item = f64>) -> (f64, f64) {
+        let v: Vec<f64> = v.collect();
+        let m = v.iter().sum::<f64>() / v.len() as f64;
+        (m, variance(&v).sqrt())
+    }
+
+    /// The split recovers a known spectrum variance: over 4000 experiments of 12
+    /// surrogates (the default) with the punches' noise of 32 punches (0.1 / 32),
+    /// `spread - noise` averages the true s2 within 4 of its standard errors (measured
+    /// within 0.1 of one, for s2 equal to, a quarter of and zero times the noise), and
+    /// its stated standard error matches its observed scatter within 15 % (measured
+    /// 4 % high); with no spectrum part, the part is called resolved in at most 20 % of
+    /// the experiments (measured 14 %: a one-sided one-standard-error test). How often
+    /// a real part is found at 12 surrogates: 53 % of the experiments where it equals
+    /// the noise, 24 % at a quarter of it.
+    #[test]
+    fn the_split_recovers_a_known_spectrum_variance() {
+        let n2 = 0.1 / 32.0;
+        for s2 in [n2, 0.25 * n2, 0.0] {
+            let runs = experiments(s2, n2, 12, 4000);
+            let (m, sd) = mean_sd(runs.iter().map(|r| r.spread - r.noise));
+            let se = sd / (runs.len() as f64).sqrt();
+            assert!((m - s2).abs() < 4.0 * se, "s2 {s2}: mean {m} +/- {se}");
+            // The stated error at the true variances, against the observed scatter.
+            let (stated, _) = mean_sd(runs.iter().map(|r| r.error));
+            assert!(
+                (stated / sd - 1.0).abs() < 0.15,
+                "s2 {s2}: error {stated} against {sd}"
+            );
+            if s2 == 0.0 {
+                let called = runs.iter().filter(|r| r.resolved).count() as f64;
+                assert!(called / (runs.len() as f64) < 0.2, "resolved in {called}");
+            }
+        }
+        // Well above the noise and with many surrogates, it is resolved every time.
+        let runs = experiments(10.0 * n2, n2, 64, 200);
+        assert!(runs.iter().all(|r| r.resolved));
+        // Below three surrogates: undefined.
+        let few = Split::of(&[0.1, 0.2], &[0.01, 0.01]);
+        assert!(few.spread.is_nan() && !few.resolved);
+    }
 }
