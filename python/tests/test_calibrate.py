@@ -47,12 +47,19 @@ def test_a_map_and_its_psd_table_end_to_end(tmp_path):
     assert lo <= r["lambda"] <= hi
     assert r["interval_total"][0] <= min(lo, r["interval"][0])
     assert r["interval_total"][1] >= max(hi, r["interval"][1])
+    # the bootstrap's bias correction: lambda over (1 + bias), inside a wider interval
+    value, (blo, bhi) = r["lambda_bias_corrected"]
+    bias = r["results"]["spectrum_bias"]
+    assert value * (1 + bias) == pytest.approx(r["lambda"], rel=1e-12)
+    assert blo < value < bhi
+    assert bhi / blo >= r["interval_total"][1] / r["interval_total"][0]
     q, c = mrdw.psd(h, (4 / 3, 4 / 3), bins=24)
     with pytest.raises(ValueError, match="size"):
         mrdw.calibrate((q, c), out=tmp_path / "psd0", **SMALL)
     t = mrdw.calibrate((q, c), size=4 / 3, out=tmp_path / "psd", **SMALL)
     assert 1.0 < t["lambda"] < 8.0
     assert t["interval_spectrum"] is None and t["interval_total"] is None
+    assert t["lambda_bias_corrected"] is None
 
 
 @pytest.mark.filterwarnings("ignore:units")
