@@ -23,8 +23,9 @@
 //! where it changes; a restart (`t = y`) where `t` would not descend. Restarting at every
 //! change of the free set instead (Polonsky & Keer) made the plastic benchmark's 512^2
 //! steps take 49.8 iterations against 33.8. The step is the exact one along `t`
-//! (`<r, t> / <t, K t>`), then every free cell is clamped into its box. Where no bound cut the step, `u = K p` follows by `-tau K t` without a transform
-//! (afresh every [`REFRESH`] such steps and before a stop is accepted). A direction
+//! (`<r, t> / <t, K t>`), then every free cell is clamped into its box. Where no bound
+//! cut the step, `u = K p` follows by `-tau K t` without a transform (afresh every
+//! [`REFRESH`] such steps and before a stop is accepted). A direction
 //! without curvature (the periodic half-space's uniform mode, which K does not see:
 //! a flat periodic face under a uniform tension) is followed to the first bound it
 //! meets, and is an error where it meets none (the energy falls without bound).
