@@ -598,6 +598,12 @@ mod tests {
     ///   (measured 0.50 MRD, 0.47 3D; the contact nears the in-phase shakedown of
     ///   `oblique-cycle`); at the same frequency it peaks at one turning point and is
     ///   least at the other, and the loss rises above 1.15 of it (measured 1.27).
+    ///
+    /// Refined (measured, not run here): at 400 and 1600 steps a period the ratios move
+    /// to 0.54 / 0.56 and 1.30 / 1.31 (MRD; 3D alike), first order in the step; the 3D
+    /// run stays within 1.3 % of mu P in force, 3.9 % in slip energy and 0.7 % in
+    /// amplitude of MRD's at every step; on 64^2 cells at 100 steps the 3D energies come
+    /// within 3.8 % (from 6.1 %) and the forces within 1.2 % (from 1.4 %).
     #[test]
     fn ring_down_under_a_normal_wave_follows_mrd() {
         let (mu, g_star) = (0.3, 1.4 / 1.7);
@@ -631,12 +637,12 @@ mod tests {
                 (w3 / wm - 1.0).abs() < 0.08,
                 "ratio {ratio}: loss {w3} against {wm}"
             );
+            // The largest excursion over the last of the four periods (by time: a run
+            // that halves steps has more samples).
             let last = |s: &[crate::integrate::Sample]| {
-                s.iter()
-                    .rev()
-                    .take(100)
-                    .map(|s| s.x.abs())
-                    .fold(0.0, f64::max)
+                let end = s.last().map_or(0.0, |p| p.t);
+                let tail = s.iter().filter(|p| p.t >= 0.75 * end);
+                tail.map(|p| p.x.abs()).fold(0.0, f64::max)
             };
             let (am, a3) = (last(&sm), last(&s3));
             assert!(
