@@ -159,24 +159,10 @@ fn spectrum_part(p: &SpectrumPart, cal: &Calibration, out: &mut Section) {
     ] {
         out.scalar(k, v);
     }
-    // The bootstrap's bias correction (ln lambda less the surrogates' mean ln ratio),
-    // its interval the total one widened by the correction's own standard error: an
-    // alternative reading, not the calibrated value.
-    let shift = p.bias.ln_1p();
-    let corrected = |v: f64, widen: f64| (v.ln() - shift + widen).exp();
-    let (lo, hi) = (
-        (cal.lambda.value / p.total.lo).ln(),
-        (p.total.hi / cal.lambda.value).ln(),
-    );
-    let (lo, hi) = (lo.hypot(1.96 * p.bias_error), hi.hypot(1.96 * p.bias_error));
-    let bias_corrected = (
-        corrected(cal.lambda.value, 0.0),
-        corrected(cal.lambda.value, -lo),
-        corrected(cal.lambda.value, hi),
-    );
-    out.scalar("lambda_bias_corrected", bias_corrected.0);
-    out.scalar("lambda_bias_corrected_lo", bias_corrected.1);
-    out.scalar("lambda_bias_corrected_hi", bias_corrected.2);
+    let bias_corrected = p.bias_corrected();
+    out.scalar("lambda_bias_corrected", bias_corrected.value);
+    out.scalar("lambda_bias_corrected_lo", bias_corrected.lo);
+    out.scalar("lambda_bias_corrected_hi", bias_corrected.hi);
     out.scalar("spectrum_resolved", p.resolved as u8 as f64);
     out.scalar("spectrum_upper", p.upper.exp() - 1.0);
     out.scalar("spectrum_estimate", p.estimate.exp() - 1.0);
@@ -187,9 +173,9 @@ fn spectrum_part(p: &SpectrumPart, cal: &Calibration, out: &mut Section) {
             100.0 * p.bias.abs(),
             if p.bias < 0.0 { "below" } else { "above" },
             100.0 * p.bias_error,
-            bias_corrected.0,
-            bias_corrected.1,
-            bias_corrected.2
+            bias_corrected.value,
+            bias_corrected.lo,
+            bias_corrected.hi
         ));
     }
     if !p.resolved && p.total.lo.is_finite() {

@@ -71,6 +71,24 @@ pub struct SpectrumPart {
     pub curves: Vec<BemCurve>,
 }
 
+impl SpectrumPart {
+    /// The bootstrap's bias correction (ln lambda less the surrogates' mean ln ratio),
+    /// its interval the total one widened by the correction's own standard error: an
+    /// alternative reading, not the calibrated value.
+    pub fn bias_corrected(&self) -> Estimate {
+        let v = self.total.value;
+        let shift = self.bias.ln_1p();
+        let corrected = |widen: f64| (v.ln() - shift + widen).exp();
+        let (lo, hi) = ((v / self.total.lo).ln(), (self.total.hi / v).ln());
+        let widen = 1.96 * self.bias_error;
+        Estimate {
+            value: corrected(0.0),
+            lo: corrected(-lo.hypot(widen)),
+            hi: corrected(hi.hypot(widen)),
+        }
+    }
+}
+
 /// Reads the surrogates' checkpoints and calibrates each; `k3` the main sample's reduced
 /// curves (the first `punches` are used), `k1` and `rms_factor` the map spectrum's MRD
 /// mean and factor, `lambda` the calibration's estimate (its punches' interval).
