@@ -593,11 +593,11 @@ mod tests {
     ///   energy within 8 % (measured 0.1 % to 6.1 %, the largest where the loss is
     ///   smallest) and the last period's amplitude within 2 % (measured 0.8 % at most).
     /// - How the normal motion's frequency sets the damping, by both methods: at twice
-    ///   the ring-down's frequency the normal force peaks at both turning points, where
-    ///   the tangential force does, and the loss falls below 0.6 of the held approach's
-    ///   (measured 0.50 MRD, 0.47 3D; the contact nears the in-phase shakedown of
-    ///   `oblique-cycle`); at the same frequency it peaks at one turning point and is
-    ///   least at the other, and the loss rises above 1.15 of it (measured 1.27).
+    ///   the ring-down's frequency (the approach at its mean at each turning point,
+    ///   highest an eighth of a period after it) the loss falls below 0.6 of the held
+    ///   approach's (measured 0.50 MRD, 0.47 3D); at the same frequency (the approach
+    ///   highest as the mass passes the middle one way, lowest as it passes back) it
+    ///   rises above 1.15 of it (measured 1.27).
     ///
     /// Refined (measured, not run here): at 400 and 1600 steps a period the ratios move
     /// to 0.54 / 0.56 and 1.30 / 1.31 (MRD; 3D alike), first order in the step; the 3D

@@ -1220,6 +1220,32 @@ fn dynamics_bad_input_names_the_key() {
             ("mass = 1e-3", "mass = 1e-3\nsteps_3d = 10", "steps_3d = 10"),
         ],
     );
+    refuses_each_edit(
+        "ring-down-wave-ci",
+        &[
+            (
+                "amplitude = 0.2",
+                "amplitude = 1.0",
+                "normal_wave.amplitude = 1",
+            ),
+            (
+                "frequencies = [0.5, 1.0, 2.0]",
+                "frequencies = []",
+                "normal_wave.frequencies has 0 values",
+            ),
+            (
+                "frequencies = [0.5, 1.0, 2.0]",
+                "frequencies = [0.5, -1.0]",
+                "normal_wave.frequencies holds -1",
+            ),
+            (
+                "frequencies = [0.5, 1.0, 2.0]",
+                "frequencies = [1.0]\nphase = -1.5",
+                "normal_wave.phase = -1.5",
+            ),
+            ("frequencies = [", "period = 2.0\nfrequencies = [", "period"),
+        ],
+    );
 }
 
 /// `forced_resonance` refuses keys out of range by name before computing.
