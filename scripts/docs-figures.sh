@@ -24,7 +24,7 @@ all=(
   tangential-3d-free tangential-viscoelastic-3d tangential-stiffness-3d
   rough-partial-slip-3d rough-slip-3d rough-slip-3d-punch
   calibrate-rolloff:curves.png,curves_4.png
-  plastic-sphere plastic-cone rough-plastic-3d impact ring-down ring-down-wave:ring_down_wave.png,normal_wave.png oblique-impact oblique-impact-spin:oblique_rebound.png oblique-cycle contact-resonance
+  plastic-sphere plastic-cone rough-plastic-3d impact ring-down ring-down-wave:ring_down_wave.png,normal_wave.png friction-forced oblique-impact oblique-impact-spin:oblique_rebound.png oblique-cycle contact-resonance
   forced-resonance
   viscoelastic-impact adhesive-impact references
 )

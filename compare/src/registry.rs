@@ -71,6 +71,10 @@ pub const KINDS: &[Kind] = &[
         "rough_plastic_3d",
         "a rough punch loaded, unloaded and reloaded on an elastic-perfectly plastic half-space (pressure cap H) in 3D beside MRD's rough lines with patch-capped springs, across the plasticity index: stiffness ratios, recovered approach, lambda refitted (Section 11 on rough surfaces)",
     ),
+    Kind::of::<dynamics::friction_forced::FrictionForced>(
+        "friction_forced",
+        "a mass on a sphere driven tangentially by a harmonic force, damped by partial slip: the frequency response by MRD's Coulomb springs and the 3D partial slip in the loop, each steady period's slip energy against Mindlin-Deresiewicz's at its force amplitude (Sections 7 and 12)",
+    ),
     Kind::of::<dynamics::impact::Impact>(
         "impact",
         "a sphere's impact integrated in time with the contact at every step, MRD's springs and the 3D solve in the loop, against Hertz's impact (Section 12)",

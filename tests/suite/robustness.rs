@@ -1221,6 +1221,31 @@ fn dynamics_bad_input_names_the_key() {
         ],
     );
     refuses_each_edit(
+        "friction-forced-ci",
+        &[
+            ("drive = 0.05", "drive = 1.0", "drive = 1"),
+            (
+                "frequencies = [0.6,",
+                "frequencies = [-0.6,",
+                "frequencies holds -0.6",
+            ),
+            (
+                "frequencies_3d = [0.94]",
+                "frequencies_3d = [0.94, 20.0]",
+                "frequencies_3d holds 20",
+            ),
+            ("steps = 100", "steps = 10", "steps = 10"),
+            ("cells_3d = 24", "cells_3d = 8", "cells_3d = 8"),
+            ("mass = 1e-3", "mass = 1e-3\ndamping = 1.0", "damping = 1"),
+            (
+                "mass = 1e-3",
+                "mass = 1e-3\nsettle_tolerance = 0.0",
+                "settle_tolerance = 0",
+            ),
+            ("g_star = 1.0", "g_star = 0.5", "G* / E* = 0.5"),
+        ],
+    );
+    refuses_each_edit(
         "ring-down-wave-ci",
         &[
             (

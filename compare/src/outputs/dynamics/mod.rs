@@ -4,6 +4,7 @@
 
 pub mod adhesive_impact;
 pub mod forced;
+pub mod friction_forced;
 pub mod impact;
 pub mod oblique_cycle;
 pub mod oblique_impact;

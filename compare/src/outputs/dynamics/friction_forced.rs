@@ -1,0 +1,518 @@
+//! `friction_forced`: frictional damping under a steady harmonic drive (Section 7 in
+//! time): a mass held on a sphere by a constant normal force F_N and driven tangentially
+//! by `F1 cos(Omega t)`, damped by partial slip (and a light dashpot), the contact
+//! evaluated at every step by MRD's tangential springs with Coulomb slip and by the 3D
+//! partial slip in the loop. The drive frequency is stepped through the resonance; at
+//! each the drive's periods are run one by one until the amplitude settles.
+//!
+//! The closed form at the steady state: the tangential force runs a symmetric loop
+//! between +-Q*, and a loop's slip energy is Mindlin and Deresiewicz's `W(Q*)` whatever
+//! the path between the extremes (Johnson, Contact Mechanics, Eq. 7.59; the sphere's loop
+//! after its first loading depends only on its extremes). So the steady slip energy per
+//! period is held against `W(Q*)` at the measured force amplitude, and the work the drive
+//! does over a period against the slip and the dashpot's losses (the energy balance of a
+//! periodic motion). MRD's frequency response against the 3D one: the amplitude at each
+//! frequency, the resonance's peak.
+//!
+//! Set-up: as `ring_down`'s (`k_t = 2 a G*` the initial tangential stiffness, `omega_t =
+//! sqrt(k_t / m)`); a dashpot `c = 2 zeta m omega_t`; the sweep starts at rest at the
+//! held approach, each frequency from the last one's end; `steps` velocity-Verlet steps
+//! per drive period (whole periods, so each starts in phase).
+
+use crate::checks::{bad, count_in};
+use crate::context::Context;
+use crate::error::{Context as _, Result};
+use crate::experiment::axisym_3d::AxisymGrid;
+use crate::output::{Env, Output};
+use crate::plan::Stage;
+use crate::report::{Figure, Section, Style, Table};
+use dynamics::integrate::{Axis, Oscillator, Stop};
+use dynamics::{ContactLaw, SlipBem3d, Springs};
+use mrd::reference::{for_profile, hertz, mindlin_damping as md};
+use serde::Deserialize;
+use std::f64::consts::PI;
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionForced {
+    /// Normal force F_N holding the contact [force].
+    normal_force: f64,
+    /// Coulomb friction coefficient.
+    mu: f64,
+    /// Mass of the body driven tangentially [mass].
+    mass: f64,
+    /// The drive's amplitude F1 over mu F_N, in (0, 1).
+    drive: f64,
+    /// Drive frequencies Omega over omega_t, in the sweep's order (1 to 60, each in
+    /// (0, 10]).
+    frequencies: Vec<f64>,
+    /// Frequencies of the 3D sweep (over omega_t; empty: MRD alone).
+    #[serde(default)]
+    frequencies_3d: Vec<f64>,
+    /// Damping ratio zeta of the dashpot at omega_t, in [0, 1).
+    #[serde(default = "default_damping")]
+    damping: f64,
+    /// Time steps per drive period.
+    #[serde(default = "crate::checks::default_count::<200>")]
+    steps: usize,
+    /// Settling: a frequency's periods run until one period's amplitude differs from
+    /// the last one's by at most this fraction of it (after at least five periods).
+    #[serde(default = "default_settle_tolerance")]
+    settle_tolerance: f64,
+    /// The most periods at one frequency; one that reaches it unsettled is a failure of
+    /// the run, named.
+    #[serde(default = "crate::checks::default_count::<2000>")]
+    max_periods: usize,
+    /// MRD springs on the half line (over 1.5 contact radii).
+    #[serde(default = "crate::checks::default_count::<2000>")]
+    springs: usize,
+    /// Cells per side of the 3D run (the free half-space over [`SIDE_3D`] contact radii).
+    #[serde(default = "crate::checks::default_count::<32>")]
+    cells_3d: usize,
+}
+
+fn default_damping() -> f64 {
+    0.02
+}
+fn default_settle_tolerance() -> f64 {
+    1e-6
+}
+
+/// The side of the 3D run's grid in Hertz contact radii.
+const SIDE_3D: f64 = 2.5;
+/// Periods at each frequency before the settling test may stop.
+const MIN_PERIODS: usize = 5;
+
+/// The steady state at one drive frequency, over its last period.
+#[derive(Debug, Clone, Copy)]
+struct Steady {
+    omega: f64,
+    /// Half the range of the displacement [length].
+    amplitude: f64,
+    /// Half the range of the contact force [force].
+    force_amplitude: f64,
+    /// Slip energy, the dashpot's loss and the drive's work [force x length].
+    slip: f64,
+    viscous: f64,
+    work: f64,
+    periods: usize,
+    settled: bool,
+}
+
+impl Output for FrictionForced {
+    fn validate(&self, ctx: &Context) -> Result<()> {
+        if for_profile::sphere_radius(ctx.profile()?).is_none() {
+            return bad("friction_forced needs a sphere (profile = paraboloid): Mindlin and Deresiewicz's loss per cycle is the reference");
+        }
+        let g = ctx.material.g_star().ctx("friction_forced")?;
+        for (key, v) in [
+            ("normal_force", self.normal_force),
+            ("mu", self.mu),
+            ("mass", self.mass),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return bad(format!("{key} = {v} must be finite and > 0"));
+            }
+        }
+        if !(self.drive > 0.0 && self.drive < 1.0) {
+            return bad(format!(
+                "drive = {} must lie in (0, 1) (a fraction of mu F_N)",
+                self.drive
+            ));
+        }
+        for (key, list, most) in [
+            ("frequencies", &self.frequencies, 60),
+            ("frequencies_3d", &self.frequencies_3d, 20),
+        ] {
+            if list.len() > most || (key == "frequencies" && list.is_empty()) {
+                return bad(format!(
+                    "{key} has {} values; give {} to {most}",
+                    list.len(),
+                    if key == "frequencies" { 1 } else { 0 }
+                ));
+            }
+            if let Some(f) = list
+                .iter()
+                .find(|f| !(f.is_finite() && **f > 0.0 && **f <= 10.0))
+            {
+                return bad(format!(
+                    "{key} holds {f}: each must lie in (0, 10] (over omega_t)"
+                ));
+            }
+        }
+        if !(self.damping.is_finite() && (0.0..1.0).contains(&self.damping)) {
+            return bad(format!("damping = {} must lie in [0, 1)", self.damping));
+        }
+        if !(self.settle_tolerance > 0.0 && self.settle_tolerance <= 0.1) {
+            return bad(format!(
+                "settle_tolerance = {} must lie in (0, 0.1]",
+                self.settle_tolerance
+            ));
+        }
+        count_in("steps", self.steps as u64, 50..=100_000)?;
+        count_in(
+            "max_periods",
+            self.max_periods as u64,
+            MIN_PERIODS as u64..=100_000,
+        )?;
+        count_in("springs", self.springs as u64, 100..=1_000_000)?;
+        let total = (self.frequencies.len() * self.max_periods).saturating_mul(self.steps);
+        if total > 200_000_000 {
+            return bad(format!(
+                "frequencies x max_periods x steps = {total} steps: at most 2e8"
+            ));
+        }
+        if !self.frequencies_3d.is_empty() {
+            count_in("cells_3d", self.cells_3d as u64, 16..=512)?;
+            let ratio = g / ctx.material.e_star;
+            if !(2.0 / 3.0..=1.0).contains(&ratio) {
+                return bad(format!(
+                    "G* / E* = {ratio}: the 3D run (frequencies_3d) takes one elastic body, G* / E* in [2/3, 1] (Poisson's ratio in [0, 0.5]); or leave frequencies_3d empty"
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn stages(&self, _: &Context) -> Vec<Stage> {
+        let mut s = vec![Stage::HessTransform, Stage::ClosedForm, Stage::Dynamics];
+        if !self.frequencies_3d.is_empty() {
+            s.push(Stage::Dynamics3d);
+        }
+        s
+    }
+
+    fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
+        let ctx = env.ctx;
+        let profile = ctx.profile()?.clone();
+        let (e, g) = (
+            ctx.material.e_star,
+            ctx.material.g_star().ctx("friction_forced")?,
+        );
+        let r = for_profile::sphere_radius(&profile).unwrap_or(1.0);
+        let fn_ = self.normal_force;
+        out.stage(Stage::HessTransform, || profile.z1d(0.0));
+        let a = out.stage(Stage::ClosedForm, || {
+            hertz::radius(r, hertz::depth(e, r, fn_))
+        });
+        let omega_t = (2.0 * a * g / self.mass).sqrt();
+        let mrd = out
+            .stage(Stage::Dynamics, || -> dynamics::Result<Vec<Steady>> {
+                let mut law =
+                    Springs::body(&profile, e, self.springs, 1.5 * a)?.with_friction(g, self.mu)?;
+                let d = law.approach_at(fn_)?;
+                self.sweep(&mut law, d, omega_t, &self.frequencies)
+            })
+            .ctx("MRD in the loop")?;
+        let three = if self.frequencies_3d.is_empty() {
+            None
+        } else {
+            let grid = AxisymGrid {
+                cells: self.cells_3d,
+                side: SIDE_3D * a,
+                periodic: false,
+            };
+            let (z, _) = grid.heights(&profile);
+            let (n, side) = (grid.cells, grid.side);
+            let s = out
+                .stage(Stage::Dynamics3d, || -> dynamics::Result<Vec<Steady>> {
+                    let mut law =
+                        SlipBem3d::new(&z, (n, n), (side, side), (e, g), self.mu, fn_, 1e-8)?;
+                    let d = law.approach();
+                    self.sweep(&mut law, d, omega_t, &self.frequencies_3d)
+                })
+                .ctx("3D in the loop")?;
+            out.scalar("cells_per_contact_radius_3d", a / (side / n as f64));
+            Some(s)
+        };
+        self.report(out, &mrd, three.as_deref(), (g, a, omega_t))
+    }
+}
+
+impl FrictionForced {
+    /// The sweep through `frequencies` (over `omega_t`) on `law` pressed to the approach
+    /// `d`: from rest, each frequency from the last one's end.
+    fn sweep(
+        &self,
+        law: &mut dyn ContactLaw,
+        d: f64,
+        omega_t: f64,
+        frequencies: &[f64],
+    ) -> dynamics::Result<Vec<Steady>> {
+        let mut state = (0.0, 0.0);
+        let mut out = Vec::with_capacity(frequencies.len());
+        for &f in frequencies {
+            let (steady, end) = self.steady(law, d, f * omega_t, omega_t, state)?;
+            out.push(steady);
+            state = end;
+        }
+        Ok(out)
+    }
+
+    /// The drive's periods at `omega` from `start` (displacement, speed), one by one,
+    /// until the amplitude settles; the last period's steady state and the end state.
+    fn steady(
+        &self,
+        law: &mut dyn ContactLaw,
+        d: f64,
+        omega: f64,
+        omega_t: f64,
+        start: (f64, f64),
+    ) -> dynamics::Result<(Steady, (f64, f64))> {
+        let f1 = self.drive * self.mu * self.normal_force;
+        let drive = move |t: f64| f1 * (omega * t).cos();
+        let period = 2.0 * PI / omega;
+        let c = 2.0 * self.damping * self.mass * omega_t;
+        let dt = period / self.steps as f64;
+        let osc = Oscillator {
+            mass: self.mass,
+            damping: c,
+            drive: &drive,
+            axis: Axis::Tangential { approach: d },
+            dt,
+            dt_min: dt / 100.0,
+            max_jump: 0.05,
+            force_scale: self.mu * self.normal_force,
+        };
+        let mut state = start;
+        let mut last = f64::NAN;
+        for k in 1..=self.max_periods {
+            let (s, _) = osc.run(law, state, Stop::At(period), 1)?;
+            let range = |v: &dyn Fn(&dynamics::integrate::Sample) -> f64| {
+                let (lo, hi) = s
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                        (a.min(v(p)), b.max(v(p)))
+                    });
+                0.5 * (hi - lo)
+            };
+            let amplitude = range(&|p| p.x);
+            let end = s[s.len() - 1];
+            state = (end.x, end.v);
+            let settled = (amplitude - last).abs() <= self.settle_tolerance * amplitude;
+            if (k >= MIN_PERIODS && settled) || k == self.max_periods {
+                // The drive's work integrated by parts, F1 [cos(W t) x] + F1 W int sin(W t)
+                // x dt: a smooth periodic integrand, whose trapezoids converge fast, where
+                // int F dx is a small difference of large parts off resonance (the
+                // response nearly in or out of phase). The dashpot's loss c int v^2 dt;
+                // the slip energy as the law reports it.
+                let (mut work, mut viscous) = (f1 * (end.x * (omega * end.t).cos() - s[0].x), 0.0);
+                for w in s.windows(2) {
+                    let dt = w[1].t - w[0].t;
+                    let sx = |p: &dynamics::integrate::Sample| (omega * p.t).sin() * p.x;
+                    work += f1 * omega * 0.5 * (sx(&w[0]) + sx(&w[1])) * dt;
+                    viscous += c * 0.5 * (w[0].v * w[0].v + w[1].v * w[1].v) * dt;
+                }
+                let steady = Steady {
+                    omega,
+                    amplitude,
+                    force_amplitude: range(&|p| p.force),
+                    slip: s.iter().skip(1).map(|p| p.dissipated).sum(),
+                    viscous,
+                    work,
+                    periods: k,
+                    settled,
+                };
+                return Ok((steady, state));
+            }
+            last = amplitude;
+        }
+        unreachable!("max_periods >= {MIN_PERIODS} (validated)")
+    }
+
+    /// Per frequency: [Omega / omega_t, amplitude over the drive's static displacement
+    /// F1 / k_t, Q* / (mu F_N), slip energy, Mindlin-Deresiewicz's W(Q*), their ratio,
+    /// the drive's work over the losses, periods, settled (1 or 0)].
+    fn rows(&self, s: &[Steady], (g, a, omega_t): (f64, f64, f64)) -> Vec<Vec<f64>> {
+        let (mu, fn_) = (self.mu, self.normal_force);
+        let static_x = self.drive * mu * fn_ / (2.0 * a * g);
+        s.iter()
+            .map(|p| {
+                let q = p.force_amplitude.min(mu * fn_);
+                let exact = md::dissipation_force_amplitude_exact(g, a, mu, fn_, q);
+                vec![
+                    p.omega / omega_t,
+                    p.amplitude / static_x,
+                    p.force_amplitude / (mu * fn_),
+                    p.slip,
+                    exact,
+                    p.slip / exact,
+                    p.work / (p.slip + p.viscous),
+                    p.periods as f64,
+                    if p.settled { 1.0 } else { 0.0 },
+                ]
+            })
+            .collect()
+    }
+
+    /// The linear oscillator on the stuck contact's stiffness k_t with the dashpot alone,
+    /// `1 / sqrt((1 - w^2)^2 + (2 zeta w)^2)` over the span of the rows' frequencies.
+    fn stuck(&self, rows: &[Vec<f64>]) -> Vec<(f64, f64)> {
+        let (lo, hi) = rows.iter().fold((f64::INFINITY, 0.0f64), |(a, b), r| {
+            (a.min(r[0]), b.max(r[0]))
+        });
+        let z = self.damping;
+        (0..=400)
+            .map(|k| {
+                let w = lo + (hi - lo) * k as f64 / 400.0;
+                (
+                    w,
+                    1.0 / ((1.0 - w * w).powi(2) + (2.0 * z * w).powi(2)).sqrt(),
+                )
+            })
+            .collect()
+    }
+
+    fn table(&self, name: &str, who: &str, rows: Vec<Vec<f64>>, note: String) -> Table {
+        let slip = format!("slip energy per period, {who} [force x length]");
+        let ratio = format!("slip energy {who} / MD [1]");
+        let mut t = Table::new(
+            name,
+            &[
+                "drive frequency over omega_t [1]",
+                "amplitude over F1 / k_t [1]",
+                "force amplitude over mu F_N [1]",
+                &slip,
+                "Mindlin-Deresiewicz W(Q*) [force x length]",
+                &ratio,
+                "drive work over slip and dashpot losses [1]",
+                "periods run [count]",
+                "settled [1 or 0]",
+            ],
+        );
+        t.notes.push(note);
+        for r in rows {
+            t.push(r);
+        }
+        t
+    }
+
+    fn report(
+        &self,
+        out: &mut Section,
+        mrd: &[Steady],
+        three: Option<&[Steady]>,
+        (g, a, omega_t): (f64, f64, f64),
+    ) -> Result<()> {
+        let (mu, fn_) = (self.mu, self.normal_force);
+        let common = format!(
+            "sphere under F_N = {fn_} with mu = {mu}, G* = {g}, contact radius a = {a:.6e}, k_t = 2 a G* = {:.6e}, omega_t = sqrt(k_t / m) = {omega_t:.6e}; mass {} driven by {} mu F_N cos(Omega t), dashpot zeta = {} at omega_t; {} steps per drive period, each frequency run period by period from the last one's end until the amplitude changes by at most {:e} of itself (at least {MIN_PERIODS}, at most {} periods); the last period's slip energy against Johnson's Eq. 7.59 at its force amplitude (half the force's range)",
+            2.0 * a * g,
+            self.mass,
+            self.drive,
+            self.damping,
+            self.steps,
+            self.settle_tolerance,
+            self.max_periods
+        );
+        let worst = |rows: &[Vec<f64>], col: usize| {
+            rows.iter().fold(0.0f64, |w, r| w.max((r[col] - 1.0).abs()))
+        };
+        let peak = |rows: &[Vec<f64>]| {
+            rows.iter().fold((0.0f64, 0.0f64), |(f, x), r| {
+                if r[1] > x {
+                    (r[0], r[1])
+                } else {
+                    (f, x)
+                }
+            })
+        };
+        let unsettled = |s: &[Steady], who: &str, out: &mut Section| {
+            for p in s.iter().filter(|p| !p.settled) {
+                out.failures.push(format!(
+                    "{who}: the amplitude at {:.4} omega_t did not settle in {} periods (raise max_periods or settle_tolerance)",
+                    p.omega / omega_t,
+                    p.periods
+                ));
+            }
+        };
+        unsettled(mrd, "MRD", out);
+        let rows = self.rows(mrd, (g, a, omega_t));
+        out.scalar(
+            "slip_energy_max_rel_dev_vs_mindlin_deresiewicz",
+            worst(&rows, 5),
+        );
+        out.scalar("energy_balance_max_rel_dev", worst(&rows, 6));
+        let (f_peak, x_peak) = peak(&rows);
+        out.scalar("peak_frequency_over_omega_t", f_peak);
+        out.scalar("peak_amplitude_over_static", x_peak);
+        let mut response = Figure::new(
+            "frequency_response",
+            "Frictionally damped forced oscillation on a sphere: amplitude against drive frequency",
+            "drive frequency Omega / omega_t [1]",
+            "amplitude over the drive's static displacement F1 / k_t [1]",
+        )
+        .plot(
+            format!("MRD in the loop, {} springs", self.springs),
+            rows.iter().map(|r| (r[0], r[1])).collect(),
+            Style::Line,
+        )
+        .plot(
+            "the contact stuck (no slip): the linear oscillator on k_t",
+            self.stuck(&rows),
+            Style::Dashed,
+        );
+        let mut losses = Figure::new(
+            "slip_energy",
+            "Steady slip energy per period over Mindlin-Deresiewicz's at the force amplitude",
+            "drive frequency Omega / omega_t [1]",
+            "slip energy over W(Q*) [1]",
+        )
+        .plot(
+            format!("MRD in the loop, {} springs", self.springs),
+            rows.iter().map(|r| (r[0], r[5])).collect(),
+            Style::Markers,
+        );
+        out.tables.push(self.table(
+            "steady",
+            "MRD",
+            rows.clone(),
+            format!("{common}; MRD's {} springs with Coulomb slip", self.springs),
+        ));
+        if let Some(s3) = three {
+            unsettled(s3, "3D", out);
+            let rows3 = self.rows(s3, (g, a, omega_t));
+            out.scalar(
+                "slip_energy_max_rel_dev_3d_vs_mindlin_deresiewicz",
+                worst(&rows3, 5),
+            );
+            out.scalar("energy_balance_max_rel_dev_3d", worst(&rows3, 6));
+            // The 3D amplitude against MRD's curve at the same frequency (linear between
+            // MRD's frequencies; a 3D frequency outside MRD's sweep is left out).
+            let mut dev = 0.0f64;
+            for r in &rows3 {
+                let at = rows
+                    .windows(2)
+                    .find(|w| (w[0][0] - r[0]) * (w[1][0] - r[0]) <= 0.0 && w[0][0] != w[1][0]);
+                if let Some(w) = at {
+                    let s = (r[0] - w[0][0]) / (w[1][0] - w[0][0]);
+                    let x = w[0][1] + s * (w[1][1] - w[0][1]);
+                    dev = dev.max((r[1] / x - 1.0).abs());
+                }
+            }
+            out.scalar("amplitude_max_rel_dev_3d_vs_mrd", dev);
+            response = response.plot(
+                format!("3D partial slip in the loop, {0}^2 cells", self.cells_3d),
+                rows3.iter().map(|r| (r[0], r[1])).collect(),
+                Style::Crosses,
+            );
+            losses = losses.plot(
+                format!("3D in the loop, {0}^2 cells", self.cells_3d),
+                rows3.iter().map(|r| (r[0], r[5])).collect(),
+                Style::Crosses,
+            );
+            out.tables.push(self.table(
+                "steady_3d",
+                "3D",
+                rows3,
+                format!(
+                    "{common}; 3D partial slip on the free half-space, {0}^2 cells over {SIDE_3D} contact radii (the normal pressure of F_N held), solves to 1e-8",
+                    self.cells_3d
+                ),
+            ));
+        }
+        out.figures.push(response);
+        out.figures.push(losses);
+        Ok(())
+    }
+}
