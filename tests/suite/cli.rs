@@ -452,6 +452,8 @@ const RESULT_BOUNDS: &[(&str, Bound, &[&str])] = &[
     ("friction_forced.amplitude_max_rel_dev_3d_vs_mrd", Below(0.01), DRIVEN),
     ("friction_forced.peak_frequency_over_omega_t", Within(0.9, 0.98), DRIVEN),
     ("friction_forced.peak_amplitude_over_static", Within(10.0, 14.0), DRIVEN),
+    ("friction_forced.sliding_frequencies", Below(0.5), DRIVEN),
+    ("friction_forced.sliding_frequencies_3d", Below(0.5), DRIVEN),
     ("ring_down.normal_wave_amplitude_max_rel_dev_3d_vs_mrd", Below(0.01), WAVE),
     ("ring_down.normal_wave_loss_per_cycle_max_rel_dev_3d_vs_mrd", Below(0.06), WAVE),
     ("ring_down.normal_wave_loss_over_held_max_rel_dev_3d_vs_mrd", Below(0.05), WAVE),

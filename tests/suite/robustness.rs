@@ -1235,6 +1235,11 @@ fn dynamics_bad_input_names_the_key() {
                 "frequencies_3d holds 20",
             ),
             ("steps = 100", "steps = 10", "steps = 10"),
+            (
+                "frequencies = [0.6,",
+                "frequencies = [0.01, 0.6,",
+                "at the lowest frequency 0.01",
+            ),
             ("cells_3d = 24", "cells_3d = 8", "cells_3d = 8"),
             ("mass = 1e-3", "mass = 1e-3\ndamping = 1.0", "damping = 1"),
             (

@@ -82,6 +82,11 @@ fn default_settle_tolerance() -> f64 {
 const SIDE_3D: f64 = 2.5;
 /// Periods at each frequency before the settling test may stop.
 const MIN_PERIODS: usize = 5;
+/// Steps per period of omega_t at the lowest drive frequency, at least.
+const MIN_STEPS_T: f64 = 40.0;
+/// A force amplitude within this fraction of mu F_N is gross slip: the contact slides
+/// over part of each period, and Mindlin-Deresiewicz's loop no longer holds.
+const SLIDING: f64 = 1e-6;
 
 /// The steady state at one drive frequency, over its last period.
 #[derive(Debug, Clone, Copy)]
@@ -139,6 +144,21 @@ impl Output for FrictionForced {
                     "{key} holds {f}: each must lie in (0, 10] (over omega_t)"
                 ));
             }
+        }
+        // The stuck contact's period 2 pi / omega_t needs its own steps, whatever the
+        // drive's: at least MIN_STEPS_T of them at the lowest frequency.
+        let lowest = self
+            .frequencies
+            .iter()
+            .chain(&self.frequencies_3d)
+            .fold(f64::INFINITY, |a, f| a.min(*f));
+        if (self.steps as f64) * lowest < MIN_STEPS_T {
+            return bad(format!(
+                "steps = {} per drive period gives {:.1} steps per period of omega_t at the lowest frequency {lowest}: at least {MIN_STEPS_T} are needed (raise steps to {} or drop the frequency)",
+                self.steps,
+                self.steps as f64 * lowest,
+                (MIN_STEPS_T / lowest).ceil()
+            ));
         }
         if !(self.damping.is_finite() && (0.0..1.0).contains(&self.damping)) {
             return bad(format!("damping = {} must lie in [0, 1)", self.damping));
@@ -322,7 +342,8 @@ impl FrictionForced {
 
     /// Per frequency: [Omega / omega_t, amplitude over the drive's static displacement
     /// F1 / k_t, Q* / (mu F_N), slip energy, Mindlin-Deresiewicz's W(Q*), their ratio,
-    /// the drive's work over the losses, periods, settled (1 or 0)].
+    /// the drive's work over the losses, periods, settled (1 or 0), sliding (1: the
+    /// force amplitude at mu F_N, where W(Q*) is no reference)].
     fn rows(&self, s: &[Steady], (g, a, omega_t): (f64, f64, f64)) -> Vec<Vec<f64>> {
         let (mu, fn_) = (self.mu, self.normal_force);
         let static_x = self.drive * mu * fn_ / (2.0 * a * g);
@@ -340,6 +361,11 @@ impl FrictionForced {
                     p.work / (p.slip + p.viscous),
                     p.periods as f64,
                     if p.settled { 1.0 } else { 0.0 },
+                    if p.force_amplitude >= (1.0 - SLIDING) * mu * fn_ {
+                        1.0
+                    } else {
+                        0.0
+                    },
                 ]
             })
             .collect()
@@ -378,6 +404,7 @@ impl FrictionForced {
                 "drive work over slip and dashpot losses [1]",
                 "periods run [count]",
                 "settled [1 or 0]",
+                "sliding: force amplitude at mu F_N [1 or 0]",
             ],
         );
         t.notes.push(note);
@@ -396,7 +423,7 @@ impl FrictionForced {
     ) -> Result<()> {
         let (mu, fn_) = (self.mu, self.normal_force);
         let common = format!(
-            "sphere under F_N = {fn_} with mu = {mu}, G* = {g}, contact radius a = {a:.6e}, k_t = 2 a G* = {:.6e}, omega_t = sqrt(k_t / m) = {omega_t:.6e}; mass {} driven by {} mu F_N cos(Omega t), dashpot zeta = {} at omega_t; {} steps per drive period, each frequency run period by period from the last one's end until the amplitude changes by at most {:e} of itself (at least {MIN_PERIODS}, at most {} periods); the last period's slip energy against Johnson's Eq. 7.59 at its force amplitude (half the force's range)",
+            "sphere under F_N = {fn_} with mu = {mu}, G* = {g}, contact radius a = {a:.6e}, k_t = 2 a G* = {:.6e}, omega_t = sqrt(k_t / m) = {omega_t:.6e}; mass {} driven by {} mu F_N cos(Omega t), dashpot zeta = {} at omega_t; {} steps per drive period, each frequency run period by period from the last one's end until the amplitude changes by at most {:e} of itself (at least {MIN_PERIODS}, at most {} periods); the last period's slip energy against Johnson's Eq. 7.59 at its force amplitude (half the force's range), where the contact does not slide (force amplitude below (1 - {SLIDING:e}) mu F_N)",
             2.0 * a * g,
             self.mass,
             self.drive,
@@ -405,9 +432,13 @@ impl FrictionForced {
             self.settle_tolerance,
             self.max_periods
         );
+        // The largest deviation from 1 of column `col`; the MD ratio (column 5) over the
+        // frequencies that do not slide.
         let worst = |rows: &[Vec<f64>], col: usize| {
-            rows.iter().fold(0.0f64, |w, r| w.max((r[col] - 1.0).abs()))
+            let held = rows.iter().filter(|r| col != 5 || r[9] == 0.0);
+            held.fold(0.0f64, |w, r| w.max((r[col] - 1.0).abs()))
         };
+        let sliding = |rows: &[Vec<f64>]| rows.iter().filter(|r| r[9] == 1.0).count() as f64;
         let peak = |rows: &[Vec<f64>]| {
             rows.iter().fold((0.0f64, 0.0f64), |(f, x), r| {
                 if r[1] > x {
@@ -433,6 +464,7 @@ impl FrictionForced {
             worst(&rows, 5),
         );
         out.scalar("energy_balance_max_rel_dev", worst(&rows, 6));
+        out.scalar("sliding_frequencies", sliding(&rows));
         let (f_peak, x_peak) = peak(&rows);
         out.scalar("peak_frequency_over_omega_t", f_peak);
         out.scalar("peak_amplitude_over_static", x_peak);
@@ -477,6 +509,7 @@ impl FrictionForced {
                 worst(&rows3, 5),
             );
             out.scalar("energy_balance_max_rel_dev_3d", worst(&rows3, 6));
+            out.scalar("sliding_frequencies_3d", sliding(&rows3));
             // The 3D amplitude against MRD's curve at the same frequency (linear between
             // MRD's frequencies; a 3D frequency outside MRD's sweep is left out).
             let mut dev = 0.0f64;
