@@ -12,6 +12,11 @@ use mrd::Profile;
 
 pub use bem3d::tangential::equivalent_body;
 
+/// The side of a free grid in the loop of a time integration, in Hertz contact radii: a
+/// sphere's tangential runs in time (`ring_down`, `friction_forced`) hold their contact
+/// well inside it.
+pub const SIDE_IN_RADII: f64 = 2.5;
+
 /// The grid of an axisymmetric 3D contact: `cells` per side over `side` (a length), on
 /// the periodic half-space (the side its period) or the free one.
 #[derive(Debug, Clone, Copy)]

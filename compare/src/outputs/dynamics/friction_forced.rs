@@ -22,7 +22,8 @@
 use crate::checks::{bad, count_in};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
-use crate::experiment::axisym_3d::AxisymGrid;
+// The side of the 3D run's grid in Hertz contact radii.
+use crate::experiment::axisym_3d::{AxisymGrid, SIDE_IN_RADII as SIDE_3D};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::{Figure, Section, Style, Table};
@@ -66,7 +67,7 @@ pub struct FrictionForced {
     /// MRD springs on the half line (over 1.5 contact radii).
     #[serde(default = "crate::checks::default_count::<2000>")]
     springs: usize,
-    /// Cells per side of the 3D run (the free half-space over [`SIDE_3D`] contact radii).
+    /// Cells per side of the 3D run (the free half-space over 2.5 contact radii).
     #[serde(default = "crate::checks::default_count::<32>")]
     cells_3d: usize,
 }
@@ -78,8 +79,6 @@ fn default_settle_tolerance() -> f64 {
     1e-6
 }
 
-/// The side of the 3D run's grid in Hertz contact radii.
-const SIDE_3D: f64 = 2.5;
 /// Periods at each frequency before the settling test may stop.
 const MIN_PERIODS: usize = 5;
 /// Steps per period of omega_t at the lowest drive frequency, at least.
@@ -176,10 +175,11 @@ impl Output for FrictionForced {
             MIN_PERIODS as u64..=100_000,
         )?;
         count_in("springs", self.springs as u64, 100..=1_000_000)?;
-        let total = (self.frequencies.len() * self.max_periods).saturating_mul(self.steps);
+        let runs = self.frequencies.len() + self.frequencies_3d.len();
+        let total = (runs * self.max_periods).saturating_mul(self.steps);
         if total > 200_000_000 {
             return bad(format!(
-                "frequencies x max_periods x steps = {total} steps: at most 2e8"
+                "(frequencies + frequencies_3d) x max_periods x steps = {total} steps: at most 2e8"
             ));
         }
         if !self.frequencies_3d.is_empty() {

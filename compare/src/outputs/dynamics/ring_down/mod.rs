@@ -36,6 +36,8 @@ mod kind;
 mod report;
 mod wave;
 
+// The side of the 3D run's grid in Hertz contact radii.
+use crate::experiment::axisym_3d::SIDE_IN_RADII as SIDE_3D;
 use serde::Deserialize;
 
 #[derive(Debug, Clone, Deserialize)]
@@ -58,8 +60,8 @@ pub struct RingDown {
     /// MRD springs on the half line (over 1.5 contact radii).
     #[serde(default = "default_springs")]
     springs: usize,
-    /// Cells per side of the 3D run in the loop (the free half-space over
-    /// [`SIDE_3D`] contact radii); 0: MRD alone.
+    /// Cells per side of the 3D run in the loop (the free half-space over 2.5
+    /// contact radii); 0: MRD alone.
     #[serde(default = "crate::checks::default_count::<64>")]
     cells_3d: usize,
     /// Periods of the 3D run (the first cycles: the largest amplitudes).
@@ -90,9 +92,6 @@ pub struct NormalWave {
 
 /// The most frequencies a normal wave takes (one figure line, one 3D run each).
 const MAX_FREQUENCIES: usize = 8;
-
-/// The side of the 3D run's grid in Hertz contact radii.
-const SIDE_3D: f64 = 2.5;
 
 fn default_periods() -> usize {
     30
