@@ -19,7 +19,7 @@
 //! held approach, each frequency from the last one's end; `steps` velocity-Verlet steps
 //! per drive period (whole periods, so each starts in phase).
 
-use crate::checks::{bad, count_in};
+use crate::checks::{bad, count_in, require_positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 // The side of the 3D run's grid in Hertz contact radii.
@@ -109,15 +109,9 @@ impl Output for FrictionForced {
             return bad("friction_forced needs a sphere (profile = paraboloid): Mindlin and Deresiewicz's loss per cycle is the reference");
         }
         let g = ctx.material.g_star().ctx("friction_forced")?;
-        for (key, v) in [
-            ("normal_force", self.normal_force),
-            ("mu", self.mu),
-            ("mass", self.mass),
-        ] {
-            if !(v.is_finite() && v > 0.0) {
-                return bad(format!("{key} = {v} must be finite and > 0"));
-            }
-        }
+        require_positive("normal_force", self.normal_force)?;
+        require_positive("mu", self.mu)?;
+        require_positive("mass", self.mass)?;
         if !(self.drive > 0.0 && self.drive < 1.0) {
             return bad(format!(
                 "drive = {} must lie in (0, 1) (a fraction of mu F_N)",

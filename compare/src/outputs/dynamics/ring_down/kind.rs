@@ -1,7 +1,7 @@
 //! `ring_down`'s run: the held approach by MRD and in 3D, then the normal wave's runs.
 
 use super::{RingDown, SIDE_3D};
-use crate::checks::bad;
+use crate::checks::{bad, require_positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::axisym_3d::AxisymGrid;
@@ -20,15 +20,9 @@ impl Output for RingDown {
             return bad("ring_down needs a sphere (profile = paraboloid): Mindlin and Deresiewicz's loss per cycle is the reference");
         }
         ctx.material.g_star().ctx("ring_down")?;
-        for (key, v) in [
-            ("normal_force", self.normal_force),
-            ("mu", self.mu),
-            ("mass", self.mass),
-        ] {
-            if !(v.is_finite() && v > 0.0) {
-                return bad(format!("{key} = {v} must be finite and > 0"));
-            }
-        }
+        require_positive("normal_force", self.normal_force)?;
+        require_positive("mu", self.mu)?;
+        require_positive("mass", self.mass)?;
         if !(self.amplitude > 0.0 && self.amplitude < 1.0) {
             return bad(format!(
                 "amplitude = {} must lie in (0, 1) (a fraction of mu F_N; at 1 the body slides)",
@@ -173,7 +167,8 @@ impl RingDown {
         };
         let mut u = 0.0;
         let du = target / k_t / 100.0;
-        // Mindlin's virgin loading reaches 0.95 mu F_N at 1.7 elastic displacements.
+        // Mindlin's virgin loading takes at most 1.5 elastic displacements (target / k_t)
+        // to any force below mu F_N: the cap stops only a contact that slides.
         for shift in 0.. {
             if shift == 100_000 {
                 return Err(dynamics::DynamicsError::InvalidInput(format!(
