@@ -34,6 +34,7 @@ const EXAMPLES: &str = "Examples:
   mrdw run fig6-full --shard 0/4 --out shards/0    one machine's share of a sweep
   mrdw merge shards/0 shards/1 shards/2 shards/3   combine the shares into one report
   mrdw bench mrd | rough | bem | sliding | sliding3d | viscoelastic | adhesion | tangential
+             | plastic | families | large
                                                      run time (and error) of the solvers
   mrdw bench report [--quick]   run time against error as a report folder, reports/bench/
 
@@ -104,11 +105,12 @@ enum Command {
         /// (rough: 7).
         #[arg(long, value_parser = clap::value_parser!(u32).range(3..=8))]
         max_exp: Option<u32>,
-        /// Largest grid side (bem, sliding3d, viscoelastic, large: 128..=16384). bem:
-        /// periodic 128.. up to this, the periodic surfaces at 0.1 % contact ("sparse")
-        /// and Hertz 128.. up to min(this, 1024) (default 1024); sliding3d and
-        /// viscoelastic: 128.. up to this (default 512); large: 4096.. up to this
-        /// (default 16384; a smaller value runs that one grid).
+        /// Largest grid side (bem, sliding3d, viscoelastic, adhesion, tangential, plastic,
+        /// families, large: 128..=16384). bem: periodic 128.. up to this, the periodic
+        /// surfaces at 0.1 % contact ("sparse") and Hertz 128.. up to min(this, 1024)
+        /// (default 1024); sliding3d, viscoelastic, adhesion, tangential and plastic:
+        /// 128.. up to this (default 512); families: this one grid (default 512); large:
+        /// 4096.. up to this (default 16384; a smaller value runs that one grid).
         #[arg(long, value_parser = clap::value_parser!(u64).range(128..=16384))]
         max_n: Option<u64>,
         /// Also write the periodic surfaces and our pressures as .npy here (bem), for
@@ -177,6 +179,12 @@ enum BenchTarget {
     /// (bem3d::plastic) on the periodic rough reference surface against the elastic solve
     /// at the same forces, 128^2 .. (--max-n)^2 (default up to 512).
     Plastic,
+    /// Every 3D solver family against the normal solver: seconds per load step of each
+    /// (pressure cap, adhesive, cohesive, transient and sliding viscoelastic, partial slip
+    /// periodic and free, viscoelastic partial slip) on the periodic rough reference
+    /// surface along one force ladder, over a normal step; one grid, (--max-n)^2
+    /// (default 512).
+    Families,
     /// Run time against error as a report folder (CSV + PNG): axisymmetric cases with
     /// closed forms (MRD semi-analytic, springs, 3D), rough contacts (alpha against a
     /// reference, 3D and MRD), scaling with fitted exponents.
@@ -200,7 +208,8 @@ impl BenchTarget {
             | BenchTarget::Viscoelastic
             | BenchTarget::Adhesion
             | BenchTarget::Tangential
-            | BenchTarget::Plastic => 512,
+            | BenchTarget::Plastic
+            | BenchTarget::Families => 512,
             BenchTarget::Large => 16384,
             _ => 1024,
         };
@@ -233,9 +242,15 @@ fn bench_options_apply(
             max_n.is_some()
                 && !matches!(
                     target,
-                    Bem | Sliding3d | Viscoelastic | Adhesion | Tangential | Plastic | Large
+                    Bem | Sliding3d
+                        | Viscoelastic
+                        | Adhesion
+                        | Tangential
+                        | Plastic
+                        | Families
+                        | Large
                 ),
-            "bem, sliding3d, viscoelastic, adhesion, tangential, plastic and large",
+            "bem, sliding3d, viscoelastic, adhesion, tangential, plastic, families and large",
         ),
         (
             "--write-surfaces",
@@ -443,6 +458,7 @@ fn run(cmd: Command, out: &mut Out) -> Result<(), Failure> {
                 BenchTarget::Adhesion => bench::run_adhesion(&mut out.0, side)?,
                 BenchTarget::Tangential => bench::run_tangential(&mut out.0, side)?,
                 BenchTarget::Plastic => bench::run_plastic(&mut out.0, side)?,
+                BenchTarget::Families => bench::run_families(&mut out.0, side)?,
                 BenchTarget::Large => bench::run_large(&mut out.0, side)?,
                 BenchTarget::Bem => bench::run_bem(&mut out.0, side, write_surfaces.as_deref())?,
                 BenchTarget::Report => {

@@ -7,8 +7,8 @@
 //! is held (the uncoupled approximation of `bem3d::tangential`, exact for nu = 0.5 or
 //! elastically similar bodies). Each trial prescribes the body's tangential displacement:
 //! `bem3d::tangential::ViscoelasticSlip` with a constant shear modulus is the elastic
-//! partial slip under a prescribed shift (its force found by a safeguarded secant over
-//! force-controlled solves; verified against the force-controlled solver, `bem3d`'s
+//! partial slip under a prescribed shift (on the free half-space one box-constrained
+//! solve holding the shift; verified against the force-controlled solver, `bem3d`'s
 //! tests), so the law takes the displacement an integrator gives. The free half-space
 //! measures the shift absolutely, as the body's rigid displacement.
 //!

@@ -269,8 +269,11 @@ step_class! {
         slip_cells: usize,
         /// Energy dissipated by slip in this step [stress x length^3].
         dissipated: f64,
-        /// Partial-slip solves the step took (trials of the force).
+        /// Solves the step took: 1 on the free half-space (the shift held), the trials
+        /// of the force on the periodic one, 0 where the body slides.
         solves: usize,
+        /// Conjugate-gradient iterations of those solves.
+        iterations: usize,
         /// The body slides: every contact cell at its bound.
         sliding: bool,
     }

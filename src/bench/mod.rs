@@ -3,6 +3,7 @@
 
 mod adhesion;
 pub mod common;
+mod families;
 mod large;
 mod plastic;
 pub mod report;
@@ -10,6 +11,7 @@ mod rough_ladder;
 mod tangential;
 mod viscoelastic;
 pub use adhesion::run_adhesion;
+pub use families::run_families;
 pub use large::{run_large, run_large_case};
 pub use plastic::run_plastic;
 pub use tangential::run_tangential;

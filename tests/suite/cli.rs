@@ -1303,6 +1303,40 @@ fn bench_large_reports_converged_cases_and_their_memory() {
     }
 }
 
+/// `mrdw bench families --max-n 128`: a row for each of the eleven families, each step
+/// solved (a positive time, iterations and contact); the partial-slip rows share their
+/// normal solve's contact, and the pressure cap at H = 0.1 E* holds about as many cells
+/// as the elastic contact (deterministic numbers; the times are not checked).
+#[test]
+fn bench_families_has_every_family_solved() {
+    let o = mrdw(&["bench", "families", "--max-n", "128"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout);
+    let rows: Vec<Vec<&str>> = text
+        .lines()
+        .filter(|l| l.matches('|').count() == 7 && !l.contains("family"))
+        .map(|l| l.split('|').map(str::trim).collect())
+        .collect();
+    assert_eq!(rows.len(), 11, "{text}");
+    let num = |r: &[&str], k: usize| -> f64 { r[k].trim_end_matches('%').parse().unwrap() };
+    for r in &rows {
+        assert!(num(r, 3) > 0.0 && num(r, 6) > 0.0, "{text}");
+        assert!(num(r, 7) > 1.0 && num(r, 7) < 40.0, "{text}");
+    }
+    let contact = |family: &str, half_space: &str| {
+        let r = rows
+            .iter()
+            .find(|r| r[0] == family && r[1] == half_space)
+            .unwrap_or_else(|| panic!("no row {family}, {half_space}: {text}"));
+        num(r, 7)
+    };
+    for h in ["periodic", "free"] {
+        assert_eq!(contact("partial slip", h), contact("normal", h), "{text}");
+    }
+    let cap = contact("pressure cap", "periodic") / contact("normal", "periodic");
+    assert!((1.0..1.05).contains(&cap), "{text}");
+}
+
 /// `mrdw bench viscoelastic --max-n 128`: the equal-error table has its three rows, and
 /// with the calibrated lambda MRD's mean approach after the hold lies inside the 3D
 /// interval (deterministic numbers; the times are not checked).

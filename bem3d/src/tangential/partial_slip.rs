@@ -57,7 +57,7 @@ pub struct PartialSlip<C = CerrutiPeriodic> {
     /// The cells in contact (`p > 0`), in grid order.
     pub(super) contact: Vec<usize>,
     /// Set by the caller (from another thread) to stop the iteration.
-    interrupt: Option<Interrupt>,
+    pub(super) interrupt: Option<Interrupt>,
 }
 
 /// The largest friction coefficient a solver takes.

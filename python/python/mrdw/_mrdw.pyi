@@ -662,7 +662,11 @@ class ViscoelasticStep:
         """Energy dissipated by slip in this step [stress x length^3]."""
     @property
     def solves(self) -> int:
-        """Partial-slip solves the step took."""
+        """Solves the step took: 1 on the free half-space (the shift held), the trials of
+        the force on the periodic one, 0 where the body slides."""
+    @property
+    def iterations(self) -> int:
+        """Conjugate-gradient iterations of those solves."""
     @property
     def sliding(self) -> bool: ...
 
