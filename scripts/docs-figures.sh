@@ -25,6 +25,7 @@ all=(
   rough-partial-slip-3d rough-slip-3d rough-slip-3d-punch
   calibrate-rolloff:curves.png,curves_4.png
   plastic-sphere plastic-cone rough-plastic-3d impact ring-down ring-down-wave:ring_down_wave.png,normal_wave.png friction-forced oblique-impact oblique-impact-spin:oblique_rebound.png oblique-cycle contact-resonance
+  rough-ring-down:rough_damping.png,rough_damping_mrd_over_3d.png,rough_loss_ratio.png
   forced-resonance
   viscoelastic-impact adhesive-impact references
 )

@@ -107,6 +107,10 @@ pub const KINDS: &[Kind] = &[
         "ring_down",
         "a mass ringing down on a sphere's frictional contact, MRD's Coulomb springs at every step, against Mindlin-Deresiewicz's loss per cycle (Sections 7 and 12)",
     ),
+    Kind::of::<dynamics::rough_ring_down::RoughRingDown>(
+        "rough_ring_down",
+        "a mass ringing down on a rough punch's frictional contact, MRD's rough lines with Coulomb springs and the 3D partial slip in the loop: each cycle's loss against the closed form of its own normal curve (Ciavarella-Jaeger with Masing's rule), MRD's damping ratio against the 3D one (Sections 7 and 12)",
+    ),
     Kind::of::<literature::references::References>(
         "references",
         "published reference results (compare/data/references.toml: Hertz's impact time, JKR's pull-off, Cattaneo-Mindlin's stick radius), each by MRD and in 3D, with its deviation and verdict",

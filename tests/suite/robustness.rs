@@ -1251,6 +1251,25 @@ fn dynamics_bad_input_names_the_key() {
         ],
     );
     refuses_each_edit(
+        "rough-ring-down-ci",
+        &[
+            ("preloads = [0.1, 1.0]", "preloads = []", "preloads = []"),
+            (
+                "preloads = [0.1, 1.0]",
+                "preloads = [0.1, 20.0]",
+                "preloads holds 20",
+            ),
+            ("mu = 0.3", "mu = 0.0", "mu = 0"),
+            ("mu = 0.3", "mu = 1e7", "mu = 10000000"),
+            ("mu = 0.3", "mu = 0.3\namplitude = 1.0", "amplitude = 1"),
+            ("g_star = 1.0", "g_star = 0.5", "G* / E* = 0.5"),
+            ("steps = 200", "steps = 10", "steps = 10"),
+            ("lines = 8", "lines = 1", "lines = 1"),
+            ("bandwidth = 4", "bandwidth = 64", "bandwidth = 64"),
+            ("hurst = 0.8", "hurst = 1.5", "hurst = 1.5"),
+        ],
+    );
+    refuses_each_edit(
         "ring-down-wave-ci",
         &[
             (

@@ -10,7 +10,7 @@
 //! of Eq. (82) ([`elastomer`]) and their MRD ensemble of sliding lines
 //! ([`sliding_line`]), a measured topography's detrended square and isotropic PSD
 //! ([`measured`]), checkpointed task sets ([`tasks`]), the progress bar of long stages
-//! ([`progress`]), a rigid body's impact on a contact law in time ([`impact`]), a mass on a rough punch in the loop ([`punch_loop`]) and the options of a study's 3D normal solves ([`solve_options`]).
+//! ([`progress`]), a rigid body's impact on a contact law in time ([`impact`]), a mass on a rough punch in the loop ([`punch_loop`]), a mass released on a frictional contact and its cycles' losses ([`ring`]) and the options of a study's 3D normal solves ([`solve_options`]).
 
 pub mod axisym_3d;
 pub mod elastomer;
@@ -23,6 +23,7 @@ pub mod measured;
 pub mod periodic;
 pub mod progress;
 pub mod punch_loop;
+pub mod ring;
 pub mod rough_body;
 pub mod rough_punch;
 pub mod rough_sphere;

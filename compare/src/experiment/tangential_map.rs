@@ -9,6 +9,8 @@
 //! b(Q) = mu [d(F_N) - d(F_N - Q / mu)] (Section 7). [`Mapping`] holds b at the
 //! requested forces and the integrals, so that one normal curve serves every Poisson's
 //! ratio (E* / G* = (2 - nu) / (2 (1 - nu)) for a rigid indenter, Eqs. 2 and 5).
+//! The same law with the approach as the variable, for a contact law that gives F(d)
+//! (the ring-down's), is `mrd::reference::masing`.
 
 use crate::checks::{bad, check_fractions};
 use crate::error::Result;

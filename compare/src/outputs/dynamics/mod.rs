@@ -10,4 +10,5 @@ pub mod oblique_cycle;
 pub mod oblique_impact;
 pub mod resonance;
 pub mod ring_down;
+pub mod rough_ring_down;
 pub mod viscoelastic_impact;

@@ -5,11 +5,11 @@ use crate::checks::{bad, require_positive};
 use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::axisym_3d::AxisymGrid;
+use crate::experiment::ring::{ring, Release};
 use crate::output::{Env, Output};
 use crate::plan::Stage;
 use crate::report::Section;
-use dynamics::integrate::{Axis, Oscillator, Sample, Stop};
-use dynamics::law::Motion;
+use dynamics::integrate::{Axis, Sample};
 use dynamics::{ContactLaw, SlipBem3d, Springs};
 use mrd::reference::{for_profile, hertz};
 use std::f64::consts::PI;
@@ -152,7 +152,6 @@ impl RingDown {
         (periods, steps): (usize, usize),
     ) -> dynamics::Result<Vec<Sample>> {
         let (mu, fn_) = (self.mu, self.normal_force);
-        let target = self.amplitude * mu * fn_;
         let (axis, d_start) = match wave {
             None => (Axis::Tangential { approach: d }, d),
             Some((amplitude, omega, phase)) => (
@@ -165,40 +164,15 @@ impl RingDown {
                 d * (1.0 + amplitude * phase.sin()),
             ),
         };
-        let mut u = 0.0;
-        let du = target / k_t / 100.0;
-        // Mindlin's virgin loading takes at most 1.5 elastic displacements (target / k_t)
-        // to any force below mu F_N: the cap stops only a contact that slides.
-        for shift in 0.. {
-            if shift == 100_000 {
-                return Err(dynamics::DynamicsError::InvalidInput(format!(
-                    "the starting force amplitude x mu F_N = {target:.4e} was not reached in 1000 elastic displacements (the contact slides below it)"
-                )));
-            }
-            let f = law.trial(Motion {
-                normal: d_start,
-                tangential: u + du,
-                dt: 1.0,
-            })?;
-            if f.tangential >= target {
-                law.rollback();
-                break;
-            }
-            law.commit()?;
-            u += du;
-        }
-        let drive = |_t: f64| 0.0;
-        let osc = Oscillator {
+        let release = Release {
             mass: self.mass,
-            damping: 0.0,
-            drive: &drive,
-            axis,
-            dt: period / steps as f64,
-            dt_min: period / (100.0 * steps as f64),
-            max_jump: 0.05,
+            target: self.amplitude * mu * fn_,
+            k_t,
+            period,
+            periods,
+            steps,
             force_scale: mu * fn_,
         };
-        let (s, _) = osc.run(law, (u, 0.0), Stop::At(periods as f64 * period), 1)?;
-        Ok(s)
+        ring(law, d_start, axis, &release)
     }
 }

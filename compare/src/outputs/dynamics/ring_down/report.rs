@@ -3,20 +3,11 @@
 
 use super::{RingDown, SIDE_3D};
 use crate::error::Result;
+use crate::experiment::ring::cycles;
 use crate::report::{Figure, Section, Style, Table};
 use dynamics::integrate::Sample;
 use mrd::reference::mindlin_damping as md;
 use std::f64::consts::PI;
-
-/// A turning point of the motion: where the velocity changes sign.
-#[derive(Debug, Clone, Copy)]
-struct Turn {
-    t: f64,
-    x: f64,
-    force: f64,
-    /// Slip energy since the start [force x length].
-    dissipated: f64,
-}
 
 impl RingDown {
     /// Per cycle of a run (from a turning point to the second after it, same sign):
@@ -25,34 +16,17 @@ impl RingDown {
     /// ratio, zeta, zeta of Mindlin-Deresiewicz].
     pub(super) fn cycles(&self, s: &[Sample], (g, a, period): (f64, f64, f64)) -> Vec<Vec<f64>> {
         let (mu, fn_) = (self.mu, self.normal_force);
-        // Turning points, with the slip energy accumulated up to each.
-        let mut turns = Vec::new();
-        let mut dissipated = 0.0;
-        for w in s.windows(2) {
-            dissipated += w[1].dissipated;
-            if w[0].v * w[1].v < 0.0 || w[1].v == 0.0 {
-                turns.push(Turn {
-                    t: w[1].t,
-                    x: w[1].x,
-                    force: w[1].force,
-                    dissipated,
-                });
-            }
-        }
-        turns
-            .windows(3)
-            .step_by(2)
+        cycles(s)
+            .into_iter()
             .enumerate()
-            .map(|(c, w)| {
-                let q = (w[0].force.abs() + w[1].force.abs() + w[2].force.abs()) / 3.0;
-                let xa = (w[0].x.abs() + w[1].x.abs() + w[2].x.abs()) / 3.0;
-                let loss = w[2].dissipated - w[0].dissipated;
+            .map(|(c, cy)| {
+                let (q, xa, loss) = (cy.force, cy.x, cy.loss);
                 let exact = md::dissipation_force_amplitude_exact(g, a, mu, fn_, q);
                 let stored = 0.5 * q * xa;
                 let exact_stored = 0.5 * q * self.md_displacement(g, a, q);
                 vec![
                     c as f64,
-                    w[0].t / period,
+                    cy.t / period,
                     q / (mu * fn_),
                     loss,
                     exact,

@@ -1,0 +1,656 @@
+//! `rough_ring_down`: frictional damping of a rough interface in time (Sections 7 and 12
+//! on a rough contact): a mass held on a rough circular punch by a constant normal force
+//! F0 is released from a tangential force and rings down on the contact alone, MRD's
+//! rough lines with tangential springs `G* dx` and Coulomb slip (C1D = lambda q C2D,
+//! Eq. 76) and the 3D partial slip of the punch (`dynamics::SlipBem3d`) each evaluated
+//! at every step.
+//!
+//! **The closed form every run is held against.** Under a held normal force the
+//! tangential problem is a difference of two normal ones (Ciavarella 1998, Jaeger 1998)
+//! and its cycles follow Masing's rule, so a contact's loss per cycle at the force
+//! amplitude Q* follows from its own normal curve F(d) alone
+//! (`mrd::reference::masing`): exact for MRD's springs on any line, and in 3D for
+//! Mindlin's model where the tangential compliance is the normal one scaled (G* = E*,
+//! nu = 0, the embedded scenes' choice). Each cycle's loss in the loop is set against it
+//! (each half-cycle, turning point to turning point, a Masing branch whose loss is half
+//! the symmetric cycle's at half its force range), for every line and face; then MRD's
+//! loss and damping ratio
+//! against the 3D ones on a ladder of amplitudes, means with 95 % intervals over lines
+//! and faces: MRD's frictional damping is as good as its normal curve near F0.
+//!
+//! Set-up: the faces and lines of `contact_resonance` (`experiment::punch_loop`: units of
+//! the punch diameter L, a self-affine face of bandwidth B on 8 B cells, the disc
+//! inscribed; lines of 16 points per cell); at each of the `preloads`, F0 = preload
+//! E* h L (h the faces' mean rms height); the mass released at rest from `amplitude` mu F0 after a quasi-static virgin
+//! loading (`experiment::ring`), velocity Verlet at `steps` steps per period of each
+//! contact's initial tangential stiffness `(G* / E*) dF/dd`. The 3D faces' cells outside
+//! the disc are lowered far below the face (the partial-slip law takes no mask).
+
+use crate::checks::{bad, count_in, default_tolerance, require_positive};
+use crate::context::Context;
+use crate::error::{Context as _, Result};
+use crate::experiment::lambda::LambdaSpec;
+use crate::experiment::punch_loop::{
+    calibrated, check_preload, default_lines, rms_on, synthesise, CELLS,
+};
+use crate::experiment::ring::{cycles, ring, Release};
+use crate::experiment::solve_options;
+use crate::output::{Env, Output};
+use crate::plan::Stage;
+use crate::report::{Figure, Section, Series, Style, Table};
+use bem3d::{ContactSolver, Load, NonPeriodicHalfSpace, Solution};
+use dynamics::integrate::{Axis, Sample};
+use dynamics::{ContactLaw, SlipBem3d, Springs};
+use mrd::reference::masing;
+use mrd::rough_contact::Stat;
+use serde::Deserialize;
+use std::f64::consts::PI;
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RoughRingDown {
+    /// Hurst exponent H of the self-affine spectrum, in [0, 1].
+    hurst: f64,
+    /// Bandwidth B = L / lambda_min of the face (the grid has 8 B cells a side).
+    #[serde(default = "default_bandwidth")]
+    bandwidth: usize,
+    /// The normal forces as reduced forces F0 / (E* h L), 1 to 8 of them.
+    #[serde(default = "default_preloads")]
+    preloads: Vec<f64>,
+    /// Coulomb friction coefficient.
+    mu: f64,
+    /// The starting tangential force over mu F0, in (0, 1).
+    #[serde(default = "default_amplitude")]
+    amplitude: f64,
+    /// MRD lines, each in its own loop.
+    #[serde(default = "default_lines")]
+    lines: usize,
+    /// 3D punch faces, each in its own loop.
+    #[serde(default = "default_faces")]
+    realisations_3d: usize,
+    /// lambda of Eq. (76) for the lines; default "calibrated".
+    #[serde(default = "calibrated")]
+    lambda: LambdaSpec,
+    /// Periods of MRD's runs.
+    #[serde(default = "default_periods")]
+    periods: usize,
+    /// Time steps per period of MRD's runs (of each line's initial tangential stiffness).
+    #[serde(default = "default_steps")]
+    steps: usize,
+    /// Periods of the 3D runs.
+    #[serde(default = "default_periods_3d")]
+    periods_3d: usize,
+    /// Time steps per period of the 3D runs.
+    #[serde(default = "default_steps_3d")]
+    steps_3d: usize,
+    /// Seed of the faces and lines (the same seed, the same realisations).
+    #[serde(default)]
+    seed: u64,
+    /// Relative convergence criterion of the 3D solves.
+    #[serde(default = "default_tolerance")]
+    tolerance: f64,
+}
+
+fn default_bandwidth() -> usize {
+    8
+}
+fn default_preloads() -> Vec<f64> {
+    vec![0.03, 0.1, 0.3, 1.0]
+}
+fn default_amplitude() -> f64 {
+    0.9
+}
+fn default_faces() -> usize {
+    3
+}
+fn default_periods() -> usize {
+    30
+}
+fn default_steps() -> usize {
+    400
+}
+fn default_periods_3d() -> usize {
+    4
+}
+fn default_steps_3d() -> usize {
+    100
+}
+
+/// The force amplitudes (over mu F0) of the damping ladder.
+const LADDER: [f64; 6] = [0.1, 0.2, 0.3, 0.5, 0.7, 0.9];
+
+/// One line's or face's run and its own damping curve.
+struct Damping {
+    /// The held approach carrying F0, and the initial tangential stiffness.
+    d0: f64,
+    k_t: f64,
+    period: f64,
+    samples: Vec<Sample>,
+    /// Per cycle: [time over period, Q* / (mu F0), loss, closed form, ratio].
+    cycles: Vec<[f64; 5]>,
+    /// Per ladder amplitude: (loss, damping ratio) of the closed form.
+    ladder: Vec<(f64, f64)>,
+}
+
+impl Output for RoughRingDown {
+    fn validate(&self, ctx: &Context) -> Result<()> {
+        if !(0.0..=1.0).contains(&self.hurst) {
+            return bad(format!("hurst = {} must lie in [0, 1]", self.hurst));
+        }
+        count_in("bandwidth", self.bandwidth as u64, 2..=32)?;
+        count_in("lines", self.lines as u64, 2..=1000)?;
+        count_in("realisations_3d", self.realisations_3d as u64, 1..=100)?;
+        count_in("periods", self.periods as u64, 2..=10_000)?;
+        count_in("steps", self.steps as u64, 50..=100_000)?;
+        count_in("periods_3d", self.periods_3d as u64, 2..=1000)?;
+        count_in("steps_3d", self.steps_3d as u64, 50..=10_000)?;
+        if !(1..=8).contains(&self.preloads.len()) {
+            return bad(format!(
+                "preloads = {:?}: give 1 to 8 reduced forces F0 / (E* h L)",
+                self.preloads
+            ));
+        }
+        if let Some(p) = self.preloads.iter().find(|p| check_preload(**p).is_err()) {
+            return bad(format!(
+                "preloads holds {p}: each must lie in (1e-4, 10) (F0 / (E* h L))"
+            ));
+        }
+        require_positive("mu", self.mu)?;
+        if self.mu > 1e6 {
+            return bad(format!("mu = {} must lie in (0, 1e6]", self.mu));
+        }
+        if !(self.amplitude > 0.0 && self.amplitude < 1.0) {
+            return bad(format!(
+                "amplitude = {} must lie in (0, 1) (a fraction of mu F0; at 1 the body slides)",
+                self.amplitude
+            ));
+        }
+        let ratio = ctx.material.g_star().ctx("rough_ring_down")? / ctx.material.e_star;
+        if !(2.0 / 3.0..=1.0).contains(&ratio) {
+            return bad(format!(
+                "G* / E* = {ratio}: the 3D partial slip takes one elastic body, G* / E* in [2/3, 1] (Poisson's ratio in [0, 0.5]; the closed form is exact in 3D at G* = E*)"
+            ));
+        }
+        LambdaSpec::check_all(std::slice::from_ref(&self.lambda), ctx, &[self.hurst])?;
+        crate::checks::check_tolerance(self.tolerance)?;
+        let g = CELLS * self.bandwidth;
+        crate::checks::check_memory(
+            (g * g) as f64 * crate::checks::cell_bytes::ROUGH_FREE,
+            &format!("a {g} x {g} punch"),
+        )
+    }
+
+    fn stages(&self, _: &Context) -> Vec<Stage> {
+        vec![Stage::RoughSynthesis, Stage::Dynamics, Stage::Dynamics3d]
+    }
+
+    fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
+        let ctx = env.ctx;
+        let (e, g) = (
+            ctx.material.e_star,
+            ctx.material.g_star().ctx("rough_ring_down")?,
+        );
+        let lambda = LambdaSpec::at_hurst(std::slice::from_ref(&self.lambda), ctx, self.hurst)?[0];
+        let (faces, lines) = out
+            .stage(Stage::RoughSynthesis, || {
+                synthesise(
+                    self.hurst,
+                    self.bandwidth,
+                    lambda,
+                    (self.realisations_3d, self.lines),
+                    self.seed,
+                )
+            })
+            .ctx("rough surfaces")?;
+        let rms = faces.iter().map(|f| rms_on(&f.0, &f.1)).sum::<f64>() / faces.len() as f64;
+        let f0s: Vec<f64> = self.preloads.iter().map(|p| p * e * rms).collect();
+        let mrd = out
+            .stage(
+                Stage::Dynamics,
+                || -> dynamics::Result<Vec<Vec<Damping>>> {
+                    f0s.iter()
+                        .map(|&f0| lines.iter().map(|z| self.line(z, (e, g), f0)).collect())
+                        .collect()
+                },
+            )
+            .ctx("MRD in the loop")?;
+        let three = out
+            .stage(
+                Stage::Dynamics3d,
+                || -> dynamics::Result<Vec<Vec<Damping>>> {
+                    f0s.iter()
+                        .map(|&f0| {
+                            faces
+                                .iter()
+                                .map(|(h, mask, _)| self.face(h, mask, (e, g), f0))
+                                .collect()
+                        })
+                        .collect()
+                },
+            )
+            .ctx("3D in the loop")?;
+        self.report(out, (&mrd, &three), (e, g, rms, lambda));
+        Ok(())
+    }
+}
+
+impl RoughRingDown {
+    /// A line: its springs in the loop, its normal curve from a second copy without
+    /// friction.
+    fn line(&self, z: &[f64], (e, g): (f64, f64), f0: f64) -> dynamics::Result<Damping> {
+        let springs = || Springs::rough_line(z, 1.0, e, PI / 4.0);
+        let mut normal = springs()?;
+        let mut law = springs()?.with_friction(g, self.mu)?;
+        let d0 = law.approach_at(f0)?;
+        let mut force = |d: f64| -> f64 {
+            let f = normal.trial(dynamics::Motion {
+                normal: d,
+                tangential: 0.0,
+                dt: 1.0,
+            });
+            normal.rollback();
+            f.map_or(f64::NAN, |f| f.normal)
+        };
+        let samples = self.run_law(&mut law, d0, &mut force, (e, g), self.periods, self.steps)?;
+        self.damping(samples, &mut force, (e, g, f0))
+    }
+
+    /// A face: the 3D partial slip in the loop, its normal curve from the free solve of
+    /// the same heights (warm-started from the last approach).
+    fn face(
+        &self,
+        h: &[f64],
+        mask: &[bool],
+        (e, g): (f64, f64),
+        f0: f64,
+    ) -> dynamics::Result<Damping> {
+        let n = CELLS * self.bandwidth;
+        let inside = || h.iter().zip(mask).filter(|p| *p.1).map(|p| *p.0);
+        let (lo, hi) = (
+            inside().fold(f64::INFINITY, f64::min),
+            inside().fold(f64::NEG_INFINITY, f64::max),
+        );
+        let z: Vec<f64> = h
+            .iter()
+            .zip(mask)
+            .map(|(h, m)| if *m { *h } else { lo - 10.0 * (hi - lo) })
+            .collect();
+        let mut law = SlipBem3d::new(&z, (n, n), (1.0, 1.0), (e, g), self.mu, f0, self.tolerance)?;
+        let d0 = law.approach();
+        let op = NonPeriodicHalfSpace::try_new(n, n, 1.0, 1.0, e)?;
+        let mut solver = ContactSolver::new(op, &z, None)?;
+        let opts = solve_options(self.tolerance, n);
+        let mut last: Option<Solution> = None;
+        let mut failed: Option<bem3d::BemError> = None;
+        let mut force = |d: f64| -> f64 {
+            if d <= 0.0 {
+                return 0.0;
+            }
+            match solver.solve(Load::Approach(d), &opts, last.as_ref()) {
+                Ok(s) => {
+                    let f = s.force;
+                    last = Some(s);
+                    f
+                }
+                Err(err) => {
+                    failed.get_or_insert(err);
+                    f64::NAN
+                }
+            }
+        };
+        let samples = self.run_law(
+            &mut law,
+            d0,
+            &mut force,
+            (e, g),
+            self.periods_3d,
+            self.steps_3d,
+        )?;
+        let damping = self.damping(samples, &mut force, (e, g, f0));
+        match failed {
+            Some(err) => Err(err.into()),
+            None => damping,
+        }
+    }
+
+    /// The run of `law` at the approach `d0`: the initial tangential stiffness from the
+    /// normal curve's slope there, the release from `amplitude` mu F0.
+    #[allow(clippy::too_many_arguments)]
+    fn run_law(
+        &self,
+        law: &mut dyn ContactLaw,
+        d0: f64,
+        force: &mut dyn FnMut(f64) -> f64,
+        (e, g): (f64, f64),
+        periods: usize,
+        steps: usize,
+    ) -> dynamics::Result<(f64, f64, f64, Vec<Sample>)> {
+        let h = 1e-4 * d0;
+        let k_t = g / e * (force(d0 + h) - force(d0 - h)) / (2.0 * h);
+        let f0 = force(d0);
+        let period = 2.0 * PI * (1.0 / k_t).sqrt();
+        let release = Release {
+            mass: 1.0,
+            target: self.amplitude * self.mu * f0,
+            k_t,
+            period,
+            periods,
+            steps,
+            force_scale: self.mu * f0,
+        };
+        let s = ring(law, d0, Axis::Tangential { approach: d0 }, &release)?;
+        Ok((d0, k_t, period, s))
+    }
+
+    /// Each cycle against the closed form of the contact's own normal curve, and the
+    /// closed form on the ladder of amplitudes.
+    fn damping(
+        &self,
+        (d0, k_t, period, samples): (f64, f64, f64, Vec<Sample>),
+        force: &mut dyn FnMut(f64) -> f64,
+        (e, g, f0): (f64, f64, f64),
+    ) -> dynamics::Result<Damping> {
+        let (mu, kappa) = (self.mu, self.mu * e / g);
+        let mut closed = |q: f64| -> dynamics::Result<(f64, f64)> {
+            masing::loss_per_cycle(force, (0.0, d0), mu, kappa, q).ok_or_else(|| {
+                dynamics::DynamicsError::InvalidInput(format!(
+                    "a force amplitude of {q:e} is beyond the contact's mu F0"
+                ))
+            })
+        };
+        // A branch from a turning point is twice the virgin loading in every spring or
+        // cell that slips on it (each slipped on the branch before, which was larger):
+        // a branch of force range dQ dissipates half the symmetric cycle's loss at the
+        // amplitude dQ / 2, however fast the amplitude decays.
+        let mut rows = Vec::new();
+        for c in cycles(&samples) {
+            let [a, b, d] = c.extremes;
+            let w = 0.5 * (closed(0.5 * (a + b))?.0 + closed(0.5 * (b + d))?.0);
+            rows.push([c.t / period, c.force / (mu * f0), c.loss, w, c.loss / w]);
+        }
+        let ladder = LADDER
+            .iter()
+            .map(|x| {
+                let q = x * mu * f0;
+                let (w, u) = closed(q)?;
+                Ok((w, w / (2.0 * PI * q * u)))
+            })
+            .collect::<dynamics::Result<Vec<_>>>()?;
+        Ok(Damping {
+            d0,
+            k_t,
+            period,
+            samples,
+            cycles: rows,
+            ladder,
+        })
+    }
+}
+
+/// Mean and 95 % interval (0 with one value).
+fn stat(v: &[f64]) -> (f64, f64) {
+    let s = Stat::of(v);
+    (s.mean, if v.len() > 1 { s.ci95 } else { 0.0 })
+}
+
+impl RoughRingDown {
+    fn report(
+        &self,
+        out: &mut Section,
+        (mrd, three): (&[Vec<Damping>], &[Vec<Damping>]),
+        (e, g, rms, lambda): (f64, f64, f64, f64),
+    ) {
+        let n = CELLS * self.bandwidth;
+        let common = format!(
+            "rough punch (H = {}, bandwidth {}, {n}^2 cells, diameter L = 1) under F0 = preload x E* h L (h = {rms:.6e} the faces' mean rms height), E* = {e}, G* = {g}, mu = {}; unit mass released at rest from {} mu F0 after a virgin loading; MRD: {} lines of {} springs (C1D = lambda q C2D, lambda = {lambda:.4}), {} periods at {} steps; 3D: {} faces, partial slip on the free half-space under the pressure of F0, {} periods at {} steps, tolerance {:e}",
+            self.hurst, self.bandwidth, self.mu, self.amplitude, self.lines, 16 * n,
+            self.periods, self.steps, self.realisations_3d, self.periods_3d, self.steps_3d,
+            self.tolerance
+        );
+        // Every cycle of every run against its own closed form.
+        let mut t = Table::new(
+            "cycles",
+            &[
+                "preload F0 / (E* h L) [1]",
+                "method [0 MRD, 1 3D]",
+                "realisation [index]",
+                "cycle [index]",
+                "time over period [1]",
+                "force amplitude over mu F0 [1]",
+                "loss per cycle in the loop [force x length]",
+                "loss per cycle, closed form of its own normal curve [force x length]",
+                "loss ratio in the loop / closed form [1]",
+            ],
+        );
+        t.notes.push(format!(
+            "{common}; a cycle from a turning point to the second after it, its amplitude the mean of its three extremes; the closed form: the Ciavarella-Jaeger difference of two normal problems with Masing's rule on the run's own F(d) (mrd::reference::masing), each half-cycle a branch of force range dQ losing half the symmetric cycle's loss at dQ / 2"
+        ));
+        let mut worst = [0.0f64; 2];
+        for (p, preload) in self.preloads.iter().enumerate() {
+            for (m, runs) in [&mrd[p], &three[p]].iter().enumerate() {
+                for (r, run) in runs.iter().enumerate() {
+                    for (c, row) in run.cycles.iter().enumerate() {
+                        worst[m] = worst[m].max((row[4] - 1.0).abs());
+                        let mut v = vec![*preload, m as f64, r as f64, c as f64];
+                        v.extend_from_slice(row);
+                        t.push(v);
+                    }
+                }
+            }
+        }
+        out.scalar("mrd_loss_max_rel_dev_vs_own_closed_form", worst[0]);
+        out.scalar("loss_3d_max_rel_dev_vs_own_closed_form", worst[1]);
+        let mean =
+            |d: &[Damping], f: fn(&Damping) -> f64| stat(&d.iter().map(f).collect::<Vec<_>>()).0;
+        let (mut kt, mut d0) = (Vec::new(), Vec::new());
+        for p in 0..self.preloads.len() {
+            kt.push(mean(&mrd[p], |d| d.k_t) / mean(&three[p], |d| d.k_t));
+            d0.push(mean(&mrd[p], |d| d.d0) / mean(&three[p], |d| d.d0));
+        }
+        let spread = |v: &[f64]| v.iter().fold(0.0f64, |w, x| w.max((x - 1.0).abs()));
+        out.scalar(
+            "initial_tangential_stiffness_mrd_over_3d_max_rel_dev",
+            spread(&kt),
+        );
+        out.scalar("approach_mrd_over_3d_max_rel_dev", spread(&d0));
+        let ladder = self.ladder_table(out, (mrd, three), &common);
+        out.figures.push(self.history_figure(&mrd[0], &three[0]));
+        out.figures.push(ratio_figure(&t));
+        out.figures.push(self.ladder_figure(&ladder));
+        out.figures.push(self.over_figure(&ladder));
+        out.tables.push(t);
+        out.tables.push(ladder);
+    }
+
+    /// MRD's closed-form loss and damping ratio against the 3D ones on the ladder, at
+    /// each preload.
+    fn ladder_table(
+        &self,
+        out: &mut Section,
+        (mrd, three): (&[Vec<Damping>], &[Vec<Damping>]),
+        common: &str,
+    ) -> Table {
+        let mut t = Table::new(
+            "damping",
+            &[
+                "preload F0 / (E* h L) [1]",
+                "force amplitude over mu F0 [1]",
+                "loss per cycle MRD, mean [force x length]",
+                "loss MRD ci95 [force x length]",
+                "loss per cycle 3D, mean [force x length]",
+                "loss 3D ci95 [force x length]",
+                "loss MRD over 3D [1]",
+                "loss MRD over 3D ci95 [1]",
+                "damping ratio MRD, mean [1]",
+                "damping ratio MRD ci95 [1]",
+                "damping ratio 3D, mean [1]",
+                "damping ratio 3D ci95 [1]",
+            ],
+        );
+        t.notes.push(format!(
+            "{common}; each line's and face's loss per cycle from the closed form of its own normal curve (which its run in the loop meets: table cycles), damping ratio zeta = W / (4 pi U), U = Q* u* / 2 with u* the virgin loading's displacement; means and 95 % intervals over lines and faces, the ratio's interval from the two relative intervals in quadrature"
+        ));
+        let mut worst = 0.0f64;
+        for (p, preload) in self.preloads.iter().enumerate() {
+            for (i, x) in LADDER.iter().enumerate() {
+                let of = |d: &[Damping], k: usize| {
+                    stat(
+                        &d.iter()
+                            .map(|d| [d.ladder[i].0, d.ladder[i].1][k])
+                            .collect::<Vec<_>>(),
+                    )
+                };
+                let (w1, w3, z1, z3) = (
+                    of(&mrd[p], 0),
+                    of(&three[p], 0),
+                    of(&mrd[p], 1),
+                    of(&three[p], 1),
+                );
+                let ratio = w1.0 / w3.0;
+                let ci = ratio * ((w1.1 / w1.0).powi(2) + (w3.1 / w3.0).powi(2)).sqrt();
+                worst = worst.max((ratio - 1.0).abs());
+                t.push(vec![
+                    *preload, *x, w1.0, w1.1, w3.0, w3.1, ratio, ci, z1.0, z1.1, z3.0, z3.1,
+                ]);
+            }
+        }
+        out.scalar("loss_mrd_over_3d_max_rel_dev", worst);
+        t
+    }
+
+    fn history_figure(&self, mrd: &[Damping], three: &[Damping]) -> Figure {
+        let scale = |d: &Damping| self.mu * d.samples.first().map_or(1.0, |s| s.normal);
+        let mut fig = Figure::new(
+            "rough_ring_down",
+            &format!(
+                "Frictional ring-down on a rough punch at F0 = {} E* h L: MRD and 3D in the loop",
+                self.preloads[0]
+            ),
+            "time over the contact's stick period t / T [1]",
+            "tangential force over mu F0 [1]",
+        );
+        for (label, d, style) in [
+            (
+                format!("MRD line 0 ({} periods)", self.periods),
+                &mrd[0],
+                Style::Line,
+            ),
+            (
+                format!("3D face 0 ({} periods)", self.periods_3d),
+                &three[0],
+                Style::Dashed,
+            ),
+        ] {
+            let f = scale(d);
+            fig = fig.plot(
+                label,
+                d.samples
+                    .iter()
+                    .step_by((d.samples.len() / 2000).max(1))
+                    .map(|s| (s.t / d.period, s.force / f))
+                    .collect(),
+                style,
+            );
+        }
+        fig
+    }
+
+    /// The rows of one preload as (amplitude, column, interval) points, each preload's
+    /// amplitudes shifted by a hundredth of mu F0 from the next so that their intervals
+    /// stand apart (a lower end floored at a hundredth of the mean, for a log axis).
+    fn series(
+        &self,
+        t: &Table,
+        p: f64,
+        (m, c): (usize, usize),
+        label: String,
+        style: Style,
+    ) -> Series {
+        let k = self.preloads.iter().position(|q| *q == p).unwrap_or(0) as f64;
+        let dx = 0.01 * (k - 0.5 * (self.preloads.len() as f64 - 1.0));
+        let rows: Vec<&Vec<f64>> = t.rows.iter().filter(|r| r[0] == p).collect();
+        Series::new(
+            label,
+            rows.iter().map(|r| (r[1] + dx, r[m])).collect(),
+            style,
+        )
+        .with_bars(
+            rows.iter()
+                .map(|r| (r[1] + dx, (r[m] - r[c]).max(0.01 * r[m]), r[m] + r[c]))
+                .collect(),
+        )
+    }
+
+    fn ladder_figure(&self, t: &Table) -> Figure {
+        let mut fig = Figure::new(
+            "rough_damping",
+            "Damping ratio of a rough contact against the force amplitude: MRD lines and 3D faces",
+            "force amplitude over mu F0 [1]",
+            "damping ratio zeta = W / (4 pi U) [1] (amplitudes offset by 0.01 per preload)",
+        );
+        // Each preload's two methods in one colour: the 3D markers, MRD's line.
+        for (k, &p) in self.preloads.iter().enumerate() {
+            let (faces, lines) = (self.realisations_3d, self.lines);
+            fig = fig
+                .with(
+                    self.series(
+                        t,
+                        p,
+                        (10, 11),
+                        format!("3D, F0 = {p} E* h L, {faces} faces (95 %)"),
+                        Style::Markers,
+                    )
+                    .colored(2 * k),
+                )
+                .with(
+                    self.series(
+                        t,
+                        p,
+                        (8, 9),
+                        format!("MRD, F0 = {p} E* h L, {lines} lines (95 %)"),
+                        Style::Line,
+                    )
+                    .colored(2 * k),
+                );
+        }
+        fig
+    }
+
+    fn over_figure(&self, t: &Table) -> Figure {
+        let mut fig = Figure::new(
+            "rough_damping_mrd_over_3d",
+            "Loss per cycle of a rough contact, MRD over 3D, against the force amplitude",
+            "force amplitude over mu F0 [1]",
+            "loss per cycle, MRD / 3D [1] (amplitudes offset by 0.01 per preload)",
+        );
+        for &p in &self.preloads {
+            fig =
+                fig.with(self.series(t, p, (6, 7), format!("F0 = {p} E* h L (95 %)"), Style::Line));
+        }
+        fig.log_y = true;
+        fig.plot(
+            "equal",
+            LADDER.iter().map(|x| (*x, 1.0)).collect(),
+            Style::Dashed,
+        )
+    }
+}
+
+/// Each cycle's loss in the loop over its closed form, against the amplitude.
+fn ratio_figure(t: &Table) -> Figure {
+    let of = |m: f64| -> Vec<(f64, f64)> {
+        t.rows
+            .iter()
+            .filter(|r| r[1] == m)
+            .map(|r| (r[5], r[8]))
+            .collect()
+    };
+    Figure::new(
+        "rough_loss_ratio",
+        "Loss per cycle in the loop over the closed form of the contact's own normal curve",
+        "force amplitude over mu F0 [1]",
+        "loss in the loop / closed form [1]",
+    )
+    .plot("MRD lines, every cycle", of(0.0), Style::Crosses)
+    .plot("3D faces, every cycle", of(1.0), Style::Markers)
+}
