@@ -563,6 +563,14 @@ const RESULT_BOUNDS: &[(&str, Bound, &[&str])] = &[
     // ones (measured 20 % and 10 % at CI scale, 8 % and 19 % at report scale).
     ("rough_ring_down.mrd_loss_max_rel_dev_vs_own_closed_form", Below(0.01), ROUGH_RING),
     ("rough_ring_down.loss_3d_max_rel_dev_vs_own_closed_form", Below(0.02), ROUGH_RING),
+    // The CI scene's grid check: the faces on twice the cells a side meet their own
+    // closed form too (measured 0.41 %); how far the losses move is reported, not bound
+    // (60 % at 0.1 mu F0 on bandwidth 4, docs/results.md).
+    (
+        "rough_ring_down.loss_3d_refined_max_rel_dev_vs_own_closed_form",
+        Below(0.02),
+        &["rough-ring-down-ci"],
+    ),
     ("rough_ring_down.approach_mrd_over_3d_max_rel_dev", Below(0.3), ROUGH_RING),
     (
         "rough_ring_down.initial_tangential_stiffness_mrd_over_3d_max_rel_dev",

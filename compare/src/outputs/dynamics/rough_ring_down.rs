@@ -34,6 +34,7 @@ use crate::experiment::punch_loop::{
     calibrated, check_preload, default_lines, rms_on, synthesise, CELLS,
 };
 use crate::experiment::ring::{cycles, ring, Release};
+use crate::experiment::rough_punch::punch_face;
 use crate::experiment::solve_options;
 use crate::output::{Env, Output};
 use crate::plan::Stage;
@@ -43,6 +44,7 @@ use dynamics::integrate::{Axis, Sample};
 use dynamics::{ContactLaw, SlipBem3d, Springs};
 use mrd::reference::masing;
 use mrd::rough_contact::Stat;
+use mrd::roughness::synthesis::{upsample, Grid};
 use serde::Deserialize;
 use std::f64::consts::PI;
 
@@ -89,6 +91,11 @@ pub struct RoughRingDown {
     /// Relative convergence criterion of the 3D solves.
     #[serde(default = "default_tolerance")]
     tolerance: f64,
+    /// Also run the 3D faces on twice the cells a side (the same faces, band-limited
+    /// interpolation: 16 cells per shortest wavelength) and report how far the 3D losses
+    /// move (table `grid_check`).
+    #[serde(default)]
+    refine_3d: bool,
 }
 
 fn default_bandwidth() -> usize {
@@ -173,7 +180,7 @@ impl Output for RoughRingDown {
         }
         LambdaSpec::check_all(std::slice::from_ref(&self.lambda), ctx, &[self.hurst])?;
         crate::checks::check_tolerance(self.tolerance)?;
-        let g = CELLS * self.bandwidth;
+        let g = CELLS * self.bandwidth * if self.refine_3d { 2 } else { 1 };
         crate::checks::check_memory(
             (g * g) as f64 * crate::checks::cell_bytes::ROUGH_FREE,
             &format!("a {g} x {g} punch"),
@@ -230,6 +237,37 @@ impl Output for RoughRingDown {
             )
             .ctx("3D in the loop")?;
         self.report(out, (&mrd, &three), (e, g, rms, lambda));
+        if self.refine_3d {
+            let fine = out
+                .stage(
+                    Stage::Dynamics3d,
+                    || -> dynamics::Result<Vec<Vec<Damping>>> {
+                        let (n, base) = (CELLS * self.bandwidth, CELLS * self.bandwidth);
+                        let faces = faces
+                            .iter()
+                            .map(|(h, _, _)| -> dynamics::Result<_> {
+                                let h2 = upsample(
+                                    h,
+                                    &Grid::square(base, 1.0),
+                                    &Grid::square(2 * n, 1.0),
+                                )?;
+                                let (mask, _) = punch_face(&h2, 2 * n);
+                                Ok((h2, mask))
+                            })
+                            .collect::<dynamics::Result<Vec<_>>>()?;
+                        f0s.iter()
+                            .map(|&f0| {
+                                faces
+                                    .iter()
+                                    .map(|(h, mask)| self.face(h, mask, (e, g), f0))
+                                    .collect()
+                            })
+                            .collect()
+                    },
+                )
+                .ctx("3D in the loop, refined grid")?;
+            self.grid_check(out, &three, &fine);
+        }
         Ok(())
     }
 }
@@ -264,7 +302,7 @@ impl RoughRingDown {
         (e, g): (f64, f64),
         f0: f64,
     ) -> dynamics::Result<Damping> {
-        let n = CELLS * self.bandwidth;
+        let n = (h.len() as f64).sqrt().round() as usize;
         let inside = || h.iter().zip(mask).filter(|p| *p.1).map(|p| *p.0);
         let (lo, hi) = (
             inside().fold(f64::INFINITY, f64::min),
@@ -516,6 +554,45 @@ impl RoughRingDown {
         }
         out.scalar("loss_mrd_over_3d_max_rel_dev", worst);
         t
+    }
+
+    /// The 3D ladder's mean losses on the scene's grid against the refined one.
+    fn grid_check(&self, out: &mut Section, coarse: &[Vec<Damping>], fine: &[Vec<Damping>]) {
+        let n = CELLS * self.bandwidth;
+        let mut t = Table::new(
+            "grid_check",
+            &[
+                "preload F0 / (E* h L) [1]",
+                "force amplitude over mu F0 [1]",
+                "loss per cycle 3D, scene's grid, mean [force x length]",
+                "loss per cycle 3D, refined grid, mean [force x length]",
+                "relative change [1]",
+                "worst cycle in the loop / closed form, refined grid [1]",
+            ],
+        );
+        t.notes.push(format!(
+            "the same {} faces on {n}^2 and {}^2 cells (band-limited interpolation; 8 and 16 cells per shortest wavelength), the closed form of each run's own normal curve on the ladder of force amplitudes",
+            self.realisations_3d,
+            2 * n
+        ));
+        let (mut worst, mut in_loop) = (0.0f64, 0.0f64);
+        for (p, preload) in self.preloads.iter().enumerate() {
+            let loop_dev = fine[p]
+                .iter()
+                .flat_map(|d| d.cycles.iter().map(|c| (c[4] - 1.0).abs()))
+                .fold(0.0f64, f64::max);
+            in_loop = in_loop.max(loop_dev);
+            for (i, x) in LADDER.iter().enumerate() {
+                let mean =
+                    |d: &[Damping]| stat(&d.iter().map(|d| d.ladder[i].0).collect::<Vec<_>>()).0;
+                let (a, b) = (mean(&coarse[p]), mean(&fine[p]));
+                worst = worst.max((b / a - 1.0).abs());
+                t.push(vec![*preload, *x, a, b, b / a - 1.0, loop_dev]);
+            }
+        }
+        out.scalar("loss_3d_refined_grid_max_rel_change", worst);
+        out.scalar("loss_3d_refined_max_rel_dev_vs_own_closed_form", in_loop);
+        out.tables.push(t);
     }
 
     fn history_figure(&self, mrd: &[Damping], three: &[Damping]) -> Figure {
