@@ -29,6 +29,7 @@
 //! over mu d_0, the energies over mu^2 F_N d_0. The cells ladder samples the same
 //! surfaces on finer grids (nested synthesis).
 
+mod figures;
 mod kind;
 mod report;
 mod runs;
