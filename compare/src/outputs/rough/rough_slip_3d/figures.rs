@@ -1,6 +1,6 @@
 //! `rough_slip_3d`'s figures: the curves against the force, MRD over 3D, the stick maps.
 
-use super::report::*;
+use super::quantity::{CaseRows, Quantity, ZERO};
 use super::runs::Case;
 use super::Body;
 use super::RoughSlip3d;

@@ -31,6 +31,7 @@
 
 mod figures;
 mod kind;
+mod quantity;
 mod report;
 mod runs;
 
