@@ -38,6 +38,7 @@
 
 pub mod analysis;
 mod kind;
+mod psd;
 mod report;
 pub mod spectrum;
 pub mod tasks;
