@@ -92,6 +92,14 @@ pub fn check_preload(preload: f64) -> crate::error::Result<()> {
     Ok(())
 }
 
+/// The memory of a free `g x g` punch's 3D solve, checked before computing.
+pub fn check_punch_memory(g: usize) -> crate::error::Result<()> {
+    crate::checks::check_memory(
+        (g * g) as f64 * crate::checks::cell_bytes::ROUGH_FREE,
+        &format!("a {g} x {g} punch"),
+    )
+}
+
 /// The rms height over the cells of `mask`.
 pub fn rms_on(h: &[f64], mask: &[bool]) -> f64 {
     let v: Vec<f64> = h.iter().zip(mask).filter(|p| *p.1).map(|p| *p.0).collect();

@@ -25,8 +25,8 @@ use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::lambda::LambdaSpec;
 use crate::experiment::punch_loop::{
-    calibrated, check_preload, default_lines, default_preload, face_law, line_law, rms_on,
-    static_stiffness, synthesise, CELLS,
+    calibrated, check_preload, check_punch_memory, default_lines, default_preload, face_law,
+    line_law, rms_on, static_stiffness, synthesise, CELLS,
 };
 use crate::output::{Env, Output};
 use crate::plan::Stage;
@@ -151,10 +151,7 @@ impl Output for ContactResonance {
             * self
                 .bandwidth
                 .max(self.cost_bandwidths.last().copied().unwrap_or(0));
-        crate::checks::check_memory(
-            (g * g) as f64 * crate::checks::cell_bytes::ROUGH_FREE,
-            &format!("a {g} x {g} punch"),
-        )
+        check_punch_memory(g)
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {

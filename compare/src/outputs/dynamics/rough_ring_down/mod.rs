@@ -33,7 +33,7 @@ use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::lambda::LambdaSpec;
 use crate::experiment::punch_loop::{
-    calibrated, check_preload, default_lines, rms_on, synthesise, CELLS,
+    calibrated, check_preload, check_punch_memory, default_lines, rms_on, synthesise, CELLS,
 };
 use crate::experiment::ring::{cycles, ring, Release};
 use crate::experiment::rough_punch::punch_face;
@@ -183,10 +183,7 @@ impl Output for RoughRingDown {
         LambdaSpec::check_all(std::slice::from_ref(&self.lambda), ctx, &[self.hurst])?;
         crate::checks::check_tolerance(self.tolerance)?;
         let g = CELLS * self.bandwidth * if self.refine_3d { 2 } else { 1 };
-        crate::checks::check_memory(
-            (g * g) as f64 * crate::checks::cell_bytes::ROUGH_FREE,
-            &format!("a {g} x {g} punch"),
-        )
+        check_punch_memory(g)
     }
 
     fn stages(&self, _: &Context) -> Vec<Stage> {
