@@ -82,6 +82,32 @@ pub fn synthesise(
     Ok((faces, lines))
 }
 
+/// A scene's lambda, faces, lines and the faces' mean rms height.
+pub type Ensemble = (f64, Vec<Face>, Vec<Vec<f64>>, f64);
+
+/// The faces and lines of a scene: lambda at `hurst` as the scene gives it, the
+/// synthesis ([`synthesise`]) as the scene's rough-synthesis stage, and the faces' mean
+/// rms height over their discs (the unit of every preload F0 / (E* h L)). Returns
+/// (lambda, faces, lines, mean rms height).
+pub fn ensemble(
+    out: &mut crate::report::Section,
+    ctx: &crate::context::Context,
+    (spec, hurst): (&LambdaSpec, f64),
+    band: usize,
+    counts: (usize, usize),
+    seed: u64,
+) -> crate::error::Result<Ensemble> {
+    use crate::error::Context as _;
+    let lambda = LambdaSpec::at_hurst(std::slice::from_ref(spec), ctx, hurst)?[0];
+    let (faces, lines) = out
+        .stage(crate::plan::Stage::RoughSynthesis, || {
+            synthesise(hurst, band, lambda, counts, seed)
+        })
+        .ctx("rough surfaces")?;
+    let rms = faces.iter().map(|f| rms_on(&f.0, &f.1)).sum::<f64>() / faces.len() as f64;
+    Ok((lambda, faces, lines, rms))
+}
+
 /// The preload's range, as a reduced force F0 / (E* h L): (1e-4, 10).
 pub fn check_preload(preload: f64) -> crate::error::Result<()> {
     if !(preload.is_finite() && preload > 1e-4 && preload < 10.0) {

@@ -35,8 +35,8 @@ use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::lambda::LambdaSpec;
 use crate::experiment::punch_loop::{
-    calibrated, check_preload, check_punch_memory, default_lines, default_preload, face_law,
-    line_law, rms_on, static_stiffness, synthesise, CELLS,
+    calibrated, check_preload, check_punch_memory, default_lines, default_preload, ensemble,
+    face_law, line_law, static_stiffness, CELLS,
 };
 use crate::output::{Env, Output};
 use crate::plan::Stage;
@@ -211,17 +211,17 @@ impl Output for ForcedResonance {
     }
 
     fn run(&self, env: &Env, out: &mut Section) -> Result<()> {
-        let lambda =
-            LambdaSpec::at_hurst(std::slice::from_ref(&self.lambda), env.ctx, self.hurst)?[0];
         let counts = (self.realisations_3d, self.lines);
-        let (faces, lines) = out
-            .stage(Stage::RoughSynthesis, || {
-                synthesise(self.hurst, self.bandwidth, lambda, counts, self.seed)
-            })
-            .ctx("rough surfaces")?;
+        let (lambda, faces, lines, rms) = ensemble(
+            out,
+            env.ctx,
+            (&self.lambda, self.hurst),
+            self.bandwidth,
+            counts,
+            self.seed,
+        )?;
         let g = CELLS * self.bandwidth;
         // One preload for every method: the faces' mean rms height times the reduced force.
-        let rms = faces.iter().map(|f| rms_on(&f.0, &f.1)).sum::<f64>() / faces.len() as f64;
         let f0 = self.preload * rms;
         let three = out
             .stage(Stage::Dynamics3d, || -> dynamics::Result<Vec<Run>> {

@@ -33,7 +33,7 @@ use crate::context::Context;
 use crate::error::{Context as _, Result};
 use crate::experiment::lambda::LambdaSpec;
 use crate::experiment::punch_loop::{
-    calibrated, check_preload, check_punch_memory, default_lines, rms_on, synthesise, CELLS,
+    calibrated, check_preload, check_punch_memory, default_lines, ensemble, CELLS,
 };
 use crate::experiment::ring::{cycles, ring, Release};
 use crate::experiment::rough_punch::punch_face;
@@ -196,19 +196,15 @@ impl Output for RoughRingDown {
             ctx.material.e_star,
             ctx.material.g_star().ctx("rough_ring_down")?,
         );
-        let lambda = LambdaSpec::at_hurst(std::slice::from_ref(&self.lambda), ctx, self.hurst)?[0];
-        let (faces, lines) = out
-            .stage(Stage::RoughSynthesis, || {
-                synthesise(
-                    self.hurst,
-                    self.bandwidth,
-                    lambda,
-                    (self.realisations_3d, self.lines),
-                    self.seed,
-                )
-            })
-            .ctx("rough surfaces")?;
-        let rms = faces.iter().map(|f| rms_on(&f.0, &f.1)).sum::<f64>() / faces.len() as f64;
+        let counts = (self.realisations_3d, self.lines);
+        let (lambda, faces, lines, rms) = ensemble(
+            out,
+            ctx,
+            (&self.lambda, self.hurst),
+            self.bandwidth,
+            counts,
+            self.seed,
+        )?;
         let f0s: Vec<f64> = self.preloads.iter().map(|p| p * e * rms).collect();
         let mrd = out
             .stage(
