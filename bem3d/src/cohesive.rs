@@ -18,8 +18,12 @@
 //! by `-tau K t` without a transform; afresh every 50 such steps and before a stop is
 //! accepted; the kit's iteration, `kit::box_cg`). Then `S` is updated from the gaps (cells with
 //! `g >= delta` leave, cells outside with `g < delta` join) and the rounds repeat from the
-//! last pressures until `S` holds. Each round is convex and stops when every cell of `S`
-//! satisfies the complementarity within `tolerance` times the length scale
+//! last pressures until `S` holds. Rounds whose set moves are solved to
+//! `max(tolerance, 1e-4)`; once `S` holds at that, it is solved again at `tolerance` and
+//! read once more (the rounds' iterations fall by 2.4x on the rough benchmark; the set
+//! is read from the gaps both ways, so a loose round only delays a cell's move). Each
+//! round is convex and the last stops when every cell of `S` satisfies the
+//! complementarity within `tolerance` times the length scale
 //! `max(rms of z, |d|, min(delta, L))` (L the map's larger side: a range beyond it does
 //! not set the size of the gaps' errors), capped where `tolerance` times it would reach
 //! `delta / 10` (a deep approach would let gaps of several ranges pass for contact); the
@@ -60,6 +64,8 @@ use crate::solver::{Interrupt, Load};
 
 /// Cells per Dugdale length for [`CohesiveContact::resolved`].
 pub const RESOLVED_CELLS: f64 = 10.0;
+/// The tolerance of the Maugis-Dugdale rounds whose set still moves (module docs).
+const LOOSE_TOLERANCE: f64 = 1e-4;
 /// Rounds of set updates in one step.
 pub const MAX_ROUNDS: usize = 20_000;
 const MAX_ITERATIONS: usize = 20_000;
@@ -279,9 +285,13 @@ impl<C: Preconditioner> CohesiveContact<C> {
     fn settle(&mut self, d: f64, tolerance: f64) -> Result<CohesiveStep> {
         let n = self.z.len();
         let (mut iterations, mut residual) = (0, 0.0);
+        // Rounds whose set moves are solved loosely; a set that holds at the loose
+        // tolerance is solved again at the step's and read once more.
+        let loose = tolerance.max(LOOSE_TOLERANCE);
+        let mut round_tolerance = loose;
         for round in 1..=MAX_ROUNDS {
             if self.cohesive.iter().any(|c| *c) {
-                let (it, res) = self.solve_on_set(d, tolerance)?;
+                let (it, res) = self.solve_on_set(d, round_tolerance)?;
                 iterations += it;
                 residual = res;
             } else {
@@ -303,8 +313,13 @@ impl<C: Preconditioner> CohesiveContact<C> {
                 }
             }
             if changed == 0 {
-                return Ok(self.report(d, round, iterations, residual));
+                if round_tolerance <= tolerance {
+                    return Ok(self.report(d, round, iterations, residual));
+                }
+                round_tolerance = tolerance;
+                continue;
             }
+            round_tolerance = loose;
             self.op.apply(&self.p, &mut self.u);
         }
         Err(BemError::Breakdown {
@@ -605,8 +620,9 @@ mod tests {
         }
     }
 
-    /// A deep approach (complete contact, the force linear in it) settles in two rounds:
-    /// the criterion's scale grows with |d| only until it resolves a tenth of the range
+    /// A deep approach (complete contact, the force linear in it) settles in three rounds
+    /// (the set found, held at the loose tolerance, and held at the step's): the
+    /// criterion's scale grows with |d| only until it resolves a tenth of the range
     /// (with |d| itself, gaps of 50 ranges passed for contact at d = 1e8 and the set
     /// cycled for 20,000 rounds).
     #[test]
@@ -621,7 +637,7 @@ mod tests {
         let base = step(1e6);
         for d in [1e7, 1e8, 1e9] {
             let s = step(d);
-            assert!(s.rounds <= 2 && s.contact_cells == n * n, "d = {d}: {s:?}");
+            assert!(s.rounds <= 3 && s.contact_cells == n * n, "d = {d}: {s:?}");
             let linear = base.force * d / 1e6;
             assert!((s.force / linear - 1.0).abs() < 1e-6, "d = {d}: {s:?}");
         }

@@ -1,20 +1,21 @@
 //! The adhesive solve of a round on a window of the grid: a box of cells that holds the
-//! whole contact set, with the operator's own transforms at the box's size
-//! ([`GridForms::window`]).
+//! whole contact set and the cells that may join, with the operator's own transforms at
+//! the box's size ([`GridForms::window`]).
 //!
-//! Within a round the set is fixed and the pressure vanishes off it, so the solve on a
-//! box that holds the set is the solve on the grid: between cells of the box the
-//! influence coefficients are the grid's (Love's kernel depends on the offset only),
-//! and only the transforms' rounding and the preconditioner (the box's inverse symbol,
-//! not the grid's) differ. A round then applies K once on the grid, for the gaps
-//! outside the box, except in a step that retracts the body under approach control:
-//! there no gap outside the set can close, and K is applied on the grid once, when
-//! the set holds in the box. (The approach's decrease opens every gap outside the set
-//! by at least what the set's lift, at most the decrease, closes: the potential of
-//! the set's equilibrium pressure is at most its value on the set. A cell that leaves
-//! only opens gaps: the potential of a positive load swept onto the set, its balayage,
-//! lies below the load's own everywhere. Both hold for the continuous half-space; on
-//! the grid, the tests compare whole cycles on the box and on the grid cell by cell.)
+//! A round's pressure vanishes on every cell that is neither bonded nor pressed, so the
+//! solve on a box that holds the bonded and the pressed cells is the solve on the grid: between cells of
+//! the box the influence coefficients are the grid's (Love's kernel depends on the
+//! offset only), and only the transforms' rounding and the preconditioner (the box's
+//! inverse symbol, not the grid's) differ. A round then applies K once on the grid, for
+//! the gaps outside the box (a cell penetrating there widens the next round's box),
+//! except in a step that retracts the body under approach control: there no gap outside
+//! the set can close, and K is applied on the grid once, when the set holds in the box.
+//! (The approach's decrease opens every gap outside the set by at least what the set's
+//! lift, at most the decrease, closes: the potential of the set's equilibrium pressure
+//! is at most its value on the set. A cell that leaves only opens gaps: the potential of
+//! a positive load swept onto the set, its balayage, lies below the load's own
+//! everywhere. Both hold for the continuous half-space; on the grid, the tests compare
+//! whole cycles on the box and on the grid cell by cell.)
 //!
 //! A sphere's contact covers 10-50 % of the benchmark grid while it unloads: the box's
 //! padded transforms cost about that fraction of the grid's. A periodic operator has no

@@ -434,9 +434,16 @@ fn meet_sum(pb: &BoxProblem, p: &mut [f64], sum: f64, moved: Option<&[bool]>) ->
     if !carries(&movable) {
         movable = Movable::gather(pb, p, &|_| true);
     }
+    // The size of the sum's terms: the held sum, and the pressures of the cells that may
+    // pull (a held sum near zero may balance large tensions and pressures).
+    let size = sum.abs()
+        + (0..p.len())
+            .filter(|&i| pb.set[i] && pb.lo.at(i) < 0.0)
+            .map(|i| p[i].abs())
+            .sum::<f64>();
     // Far above the rounding of a sum of cells (about 1e-16 of it per square root of
     // their number), far below the held force's use.
-    let tol = 1e-13 * sum.abs().max(f64::MIN_POSITIVE);
+    let tol = 1e-13 * size.max(f64::MIN_POSITIVE);
     let (mut a, mut b) = (-span, span);
     let mut mu = 0.0;
     for _ in 0..200 {
@@ -461,7 +468,7 @@ fn meet_sum(pb: &BoxProblem, p: &mut [f64], sum: f64, moved: Option<&[bool]>) ->
         p[i] = (pj + mu).max(lo).min(hi);
     }
     let s = set_sum(pb, p);
-    let miss = (s - sum).abs() / sum.abs().max(f64::MIN_POSITIVE);
+    let miss = (s - sum).abs() / size.max(f64::MIN_POSITIVE);
     if miss > 1e-12 {
         return Err(BemError::Breakdown {
             what: pb.what,
