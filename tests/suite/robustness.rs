@@ -1267,6 +1267,16 @@ fn dynamics_bad_input_names_the_key() {
             ("lines = 8", "lines = 1", "lines = 1"),
             ("bandwidth = 4", "bandwidth = 64", "bandwidth = 64"),
             ("hurst = 0.8", "hurst = 1.5", "hurst = 1.5"),
+            (
+                "refine_3d = true",
+                "refine_3d = true\nrefine_factor_3d = 1",
+                "refine_factor_3d = 1",
+            ),
+            (
+                "refine_3d = true",
+                "refine_3d = false\nrefine_factor_3d = 4",
+                "refine_factor_3d = 4 is set but refine_3d is false",
+            ),
         ],
     );
     refuses_each_edit(

@@ -93,11 +93,15 @@ pub struct RoughRingDown {
     /// Relative convergence criterion of the 3D solves.
     #[serde(default = "default_tolerance")]
     tolerance: f64,
-    /// Also run the 3D faces on twice the cells a side (the same faces, band-limited
-    /// interpolation: 16 cells per shortest wavelength) and report how far the 3D losses
-    /// move (table `grid_check`).
+    /// Also run the 3D faces on `refine_factor_3d` times the cells a side (the same
+    /// faces, band-limited interpolation) and report how far the 3D losses move (table
+    /// `grid_check`).
     #[serde(default)]
     refine_3d: bool,
+    /// The refined grid's cells a side over the scene's (2 to 8; default 2: 16 cells per
+    /// shortest wavelength); only with `refine_3d`.
+    #[serde(default)]
+    refine_factor_3d: Option<usize>,
 }
 
 fn default_bandwidth() -> usize {
@@ -182,7 +186,21 @@ impl Output for RoughRingDown {
         }
         LambdaSpec::check_all(std::slice::from_ref(&self.lambda), ctx, &[self.hurst])?;
         crate::checks::check_tolerance(self.tolerance)?;
-        let g = CELLS * self.bandwidth * if self.refine_3d { 2 } else { 1 };
+        if let Some(k) = self.refine_factor_3d {
+            if !self.refine_3d {
+                return bad(format!(
+                    "refine_factor_3d = {k} is set but refine_3d is false: set refine_3d = true to run the refined grid"
+                ));
+            }
+            count_in("refine_factor_3d", k as u64, 2..=8)?;
+        }
+        let g = CELLS
+            * self.bandwidth
+            * if self.refine_3d {
+                self.refine_factor()
+            } else {
+                1
+            };
         check_punch_memory(g)
     }
 
@@ -237,16 +255,13 @@ impl Output for RoughRingDown {
                 .stage(
                     Stage::Dynamics3d,
                     || -> dynamics::Result<Vec<Vec<Damping>>> {
-                        let (n, base) = (CELLS * self.bandwidth, CELLS * self.bandwidth);
+                        let (n, fine) = (CELLS * self.bandwidth, self.fine_cells());
                         let faces = faces
                             .iter()
                             .map(|(h, _, _)| -> dynamics::Result<_> {
-                                let h2 = upsample(
-                                    h,
-                                    &Grid::square(base, 1.0),
-                                    &Grid::square(2 * n, 1.0),
-                                )?;
-                                let (mask, _) = punch_face(&h2, 2 * n);
+                                let h2 =
+                                    upsample(h, &Grid::square(n, 1.0), &Grid::square(fine, 1.0))?;
+                                let (mask, _) = punch_face(&h2, fine);
                                 Ok((h2, mask))
                             })
                             .collect::<dynamics::Result<Vec<_>>>()?;
@@ -268,6 +283,16 @@ impl Output for RoughRingDown {
 }
 
 impl RoughRingDown {
+    /// The refined grid's cells a side over the scene's.
+    fn refine_factor(&self) -> usize {
+        self.refine_factor_3d.unwrap_or(2)
+    }
+
+    /// Cells a side of the refined grid.
+    fn fine_cells(&self) -> usize {
+        CELLS * self.bandwidth * self.refine_factor()
+    }
+
     /// A line: its springs in the loop, its normal curve from a second copy without
     /// friction.
     fn line(&self, z: &[f64], (e, g): (f64, f64), f0: f64) -> dynamics::Result<Damping> {

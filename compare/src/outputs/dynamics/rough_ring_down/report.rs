@@ -154,9 +154,11 @@ impl RoughRingDown {
             ],
         );
         t.notes.push(format!(
-            "the same {} faces on {n}^2 and {}^2 cells (band-limited interpolation; 8 and 16 cells per shortest wavelength), the closed form of each run's own normal curve on the ladder of force amplitudes",
+            "the same {} faces on {n}^2 and {}^2 cells (band-limited interpolation; {} and {} cells per shortest wavelength), the closed form of each run's own normal curve on the ladder of force amplitudes",
             self.realisations_3d,
-            2 * n
+            self.fine_cells(),
+            CELLS,
+            CELLS * self.refine_factor()
         ));
         let (mut worst, mut in_loop) = (0.0f64, 0.0f64);
         for (p, preload) in self.preloads.iter().enumerate() {
