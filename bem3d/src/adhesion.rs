@@ -468,18 +468,12 @@ impl<C: Preconditioner + GridForms> AdhesiveContact<C> {
             for (lo, c) in self.lo.iter_mut().zip(&self.contact) {
                 *lo = bound(*c);
             }
-            let problem = BoxProblem {
-                set: &self.domain,
-                lo: Bound::Cells(&self.lo),
-                hi: Bound::Uniform(f64::INFINITY),
-                z: &self.z,
+            let problem = round_problem(
+                (&self.domain, &self.lo, &self.z),
                 hold,
-                scale,
-                tolerance,
-                max_iterations: MAX_ITERATIONS,
-                what: "adhesive contact",
-                interrupt: self.interrupt.as_ref(),
-            };
+                (scale, tolerance),
+                self.interrupt.as_ref(),
+            );
             let r = box_cg::solve(
                 &mut self.op,
                 &problem,
@@ -494,18 +488,12 @@ impl<C: Preconditioner + GridForms> AdhesiveContact<C> {
         let (z, set) = (win.gather(&self.z), win.gather(&self.domain));
         let mut p = win.gather(&self.p);
         let mut u = vec![0.0; p.len()];
-        let problem = BoxProblem {
-            set: &set,
-            lo: Bound::Cells(&lo),
-            hi: Bound::Uniform(f64::INFINITY),
-            z: &z,
+        let problem = round_problem(
+            (&set, &lo, &z),
             hold,
-            scale,
-            tolerance,
-            max_iterations: MAX_ITERATIONS,
-            what: "adhesive contact",
-            interrupt: self.interrupt.as_ref(),
-        };
+            (scale, tolerance),
+            self.interrupt.as_ref(),
+        );
         let solved = box_cg::solve(&mut win.op, &problem, &mut p, &mut u, &mut self.scratch);
         // Every cell off the window is unbonded with no pressure: p vanishes there, and
         // K p in the window is the grid's.
@@ -519,6 +507,28 @@ impl<C: Preconditioner + GridForms> AdhesiveContact<C> {
         let r = solved?;
         self.approach = r.approach;
         Ok((r.iterations, r.residual, Some(cells)))
+    }
+}
+
+/// A round's box problem (module docs) on the cells, lower bounds and surface of the
+/// grid or of a window.
+fn round_problem<'a>(
+    (set, lo, z): (&'a [bool], &'a [f64], &'a [f64]),
+    hold: Hold,
+    (scale, tolerance): (f64, f64),
+    interrupt: Option<&'a Interrupt>,
+) -> BoxProblem<'a> {
+    BoxProblem {
+        set,
+        lo: Bound::Cells(lo),
+        hi: Bound::Uniform(f64::INFINITY),
+        z,
+        hold,
+        scale,
+        tolerance,
+        max_iterations: MAX_ITERATIONS,
+        what: "adhesive contact",
+        interrupt,
     }
 }
 
