@@ -436,11 +436,18 @@ fn meet_sum(pb: &BoxProblem, p: &mut [f64], sum: f64, moved: Option<&[bool]>) ->
     }
     // The size of the sum's terms: the held sum, and the pressures of the cells that may
     // pull (a held sum near zero may balance large tensions and pressures).
+    // (No pass over the cells where no bound lets a cell pull: the plastic hot path.)
+    let may_pull = !matches!(pb.lo, Bound::Uniform(lo) if lo >= 0.0);
+    let pulling = |i: usize| pb.set[i] && pb.lo.at(i) < 0.0;
     let size = sum.abs()
-        + (0..p.len())
-            .filter(|&i| pb.set[i] && pb.lo.at(i) < 0.0)
-            .map(|i| p[i].abs())
-            .sum::<f64>();
+        + if may_pull {
+            (0..p.len())
+                .filter(|&i| pulling(i))
+                .map(|i| p[i].abs())
+                .sum::<f64>()
+        } else {
+            0.0
+        };
     // Far above the rounding of a sum of cells (about 1e-16 of it per square root of
     // their number), far below the held force's use.
     let tol = 1e-13 * size.max(f64::MIN_POSITIVE);
