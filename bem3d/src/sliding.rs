@@ -48,6 +48,7 @@
 
 use crate::error::{BemError, Result};
 use crate::fft::Fft2;
+use crate::kit::anderson::Anderson;
 use crate::operator::{spectral_grid, PeriodicHalfSpace};
 use crate::solver::{ContactSolver, Load, Solution, SolverOptions};
 use rustfft::num_complex::Complex64;
@@ -345,96 +346,4 @@ impl SlidingContact {
             last: Box::new(last),
         })
     }
-}
-
-/// Anderson acceleration (type II) of a fixed-point iteration x -> G(x), with the last
-/// `memory` differences; sums in a fixed order (results do not depend on threads).
-struct Anderson {
-    memory: usize,
-    last: Option<(Vec<f64>, Vec<f64>)>,
-    d_g: Vec<Vec<f64>>,
-    d_f: Vec<Vec<f64>>,
-}
-
-impl Anderson {
-    fn new(memory: usize) -> Self {
-        Self {
-            memory,
-            last: None,
-            d_g: Vec::new(),
-            d_f: Vec::new(),
-        }
-    }
-
-    /// The next iterate from x and g = G(x).
-    fn next(&mut self, x: &[f64], g: &[f64]) -> Vec<f64> {
-        let f: Vec<f64> = g.iter().zip(x).map(|(g, x)| g - x).collect();
-        if let Some((g0, f0)) = self.last.take() {
-            self.d_g
-                .push(g.iter().zip(&g0).map(|(a, b)| a - b).collect());
-            self.d_f
-                .push(f.iter().zip(&f0).map(|(a, b)| a - b).collect());
-            if self.d_f.len() > self.memory {
-                self.d_g.remove(0);
-                self.d_f.remove(0);
-            }
-        }
-        self.last = Some((g.to_vec(), f.clone()));
-        let m = self.d_f.len();
-        if m == 0 {
-            return g.to_vec();
-        }
-        // Least squares min |f - dF gamma| by the normal equations (m <= 6), regularised.
-        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
-        let mut a = vec![vec![0.0; m + 1]; m];
-        for i in 0..m {
-            for j in 0..m {
-                a[i][j] = dot(&self.d_f[i], &self.d_f[j]);
-            }
-            a[i][m] = dot(&self.d_f[i], &f);
-        }
-        let trace: f64 = (0..m).map(|i| a[i][i]).sum();
-        for (i, row) in a.iter_mut().enumerate() {
-            row[i] += 1e-10 * trace.max(f64::MIN_POSITIVE);
-        }
-        let gamma = match solve_small(a) {
-            Some(g) => g,
-            None => {
-                self.d_g.clear();
-                self.d_f.clear();
-                return g.to_vec();
-            }
-        };
-        let mut out = g.to_vec();
-        for (k, gk) in gamma.iter().enumerate() {
-            for (o, d) in out.iter_mut().zip(&self.d_g[k]) {
-                *o -= gk * d;
-            }
-        }
-        out
-    }
-}
-
-/// Solves the augmented m x (m + 1) system by Gaussian elimination with partial pivoting.
-fn solve_small(mut a: Vec<Vec<f64>>) -> Option<Vec<f64>> {
-    let m = a.len();
-    for col in 0..m {
-        let piv = (col..m).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
-        if a[piv][col].abs() < 1e-300 {
-            return None;
-        }
-        a.swap(col, piv);
-        for row in col + 1..m {
-            let f = a[row][col] / a[col][col];
-            for k in col..=m {
-                a[row][k] -= f * a[col][k];
-            }
-        }
-    }
-    let mut x = vec![0.0; m];
-    for row in (0..m).rev() {
-        let s: f64 = (row + 1..m).map(|k| a[row][k] * x[k]).sum();
-        x[row] = (a[row][m] - s) / a[row][row];
-    }
-    x.iter().all(|v| v.is_finite()).then_some(x)
 }
