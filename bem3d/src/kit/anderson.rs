@@ -86,7 +86,9 @@ impl Anderson {
     }
 }
 
-/// `sum a b` in cell order (sums that do not depend on the threads).
+/// `sum a b` in cell order (sums that do not depend on the threads): sequential rather
+/// than `chunks::dot`, whose chunked order would round the sliding outputs otherwise;
+/// a few products of the grid a round, beside a round's transforms.
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>()
 }
