@@ -53,11 +53,12 @@
 //! `adhesion-tabor-exponential` scene on 64^2 at tolerance 1e-8 lie within 8e-8 pi w R
 //! of their values at 1e-10. The rounds stop when every cell out of contact holds the
 //! law at its own gap within the tension that a gap error of the solves' own criterion
-//! (`tolerance` times the length scale) makes, `tolerance * sigma0 * scale / delta`: a tighter stop would
-//! ask the tensions for more than the gaps they come from resolve. Combined bounds are
-//! clamped to `[-sigma0, 0]`, the law's range, so each round is still a convex problem;
-//! the energy need not fall from round to round as the plain procedure's does, and the
-//! equilibrium is the one the rounds reach from the previous step's state.
+//! (`tolerance` times the length scale) makes, `tolerance * sigma0 * scale / delta`: a
+//! tighter stop would ask the tensions for more than the gaps they come from resolve.
+//! Combined bounds are clamped to `[-sigma0, 0]`, the law's range, so each round is
+//! still a convex problem; the energy need not fall from round to round as the plain
+//! procedure's does, and the equilibrium is the one the rounds reach from the previous
+//! step's state.
 //!
 //! **Approach on a periodic cell.** The periodic half-space carries no mean displacement
 //! (its k = 0 mode), so the approach `d` fixes the mean gap over the cell at
@@ -80,7 +81,8 @@ use crate::solver::{Interrupt, Load};
 
 /// Cells per Dugdale length for [`CohesiveContact::resolved`].
 pub const RESOLVED_CELLS: f64 = 10.0;
-/// The tolerance of the Maugis-Dugdale rounds whose set still moves (module docs).
+/// The tolerance of the Maugis-Dugdale rounds whose set still moves, and the loosest
+/// an exponential round is solved to (module docs).
 const LOOSE_TOLERANCE: f64 = 1e-4;
 /// Rounds of the exponential law combined by the acceleration (module docs).
 const ANDERSON_MEMORY: usize = 5;
